@@ -1,0 +1,31 @@
+// The one door to GLM: every file spells vectors and matrices through these aliases, so a
+// precision study can swap the scalar type in one place.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace csg {
+
+using Scalar = double;
+using Vec2 = glm::dvec2;
+using Vec3 = glm::dvec3;
+using Vec4 = glm::dvec4;
+using Mat3 = glm::dmat3;
+using Mat4 = glm::dmat4;
+
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// Point and direction transforms by an affine 4x4 matrix (the last row is 0 0 0 1).
+inline Vec3 transformPoint(const Mat4& m, const Vec3& p) { return Vec3(m * Vec4(p, 1.0)); }
+inline Vec3 transformVector(const Mat4& m, const Vec3& v) { return Mat3(m) * v; }
+
+// True when every entry of the matrix is a finite number.
+inline bool isFinite(const Mat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return true;
+}
+
+}  // namespace csg

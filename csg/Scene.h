@@ -1,0 +1,101 @@
+// A compiled scene and the three queries every client of csgray stands on.
+//
+//   spans(ray)          the whole span list of the ray within [tmin, tmax]
+//   closest(ray)        the first surface crossing in [tmin, tmax]
+//   occluded(ray)       whether any solid lies along [tmin, tmax] (stops at the first)
+//
+// The scene is the union of everything in the tree (OpenSCAD's implicit top-level union).
+// Queries are const and thread-safe; each thread brings its own QueryContext, whose scratch
+// memory grows to the largest ray seen and is then reused: no heap allocation per ray.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "csg/Bounds.h"
+#include "csg/Ray.h"
+#include "csg/Span.h"
+#include "csg/Tree.h"
+
+namespace csg {
+
+// A tree that cannot be compiled (singular or non-finite transform, bad primitive parameter).
+// source is the offending node's Tags::source, for io/ to turn into file:line:col.
+struct CompileError : std::runtime_error {
+    uint32_t source;
+    CompileError(const std::string& message, uint32_t sourceTag)
+        : std::runtime_error(message), source(sourceTag) {}
+};
+
+// Work counters of one context, summed over its queries (benchmarks and --stats read them).
+struct QueryStats {
+    uint64_t rays = 0;
+    uint64_t nodeVisits = 0;       // CSG nodes and BVH nodes whose bounds were tested
+    uint64_t primitiveTests = 0;   // primitive solves after their bounds were hit
+};
+
+// Per-thread scratch: a stack of spans holding every intermediate list of one query.
+class QueryContext {
+public:
+    QueryContext() { stack_.reserve(256); }
+    QueryStats stats;
+
+private:
+    friend class Scene;
+    friend struct Evaluator;
+    std::vector<Span> stack_;
+};
+
+// What a leaf's surface looks like at a hit, computed only on request.
+struct SurfacePoint {
+    Vec3 point;   // world position o + t d
+    Vec3 normal;  // outward unit normal of the solid (difference cuts already flipped)
+};
+
+struct CompiledLeaf;
+struct CompiledNode;
+struct BvhNode;
+
+class Scene {
+public:
+    // Throws CompileError. root may be nullptr (the empty scene).
+    static Scene compile(const NodePtr& root);
+
+    Scene();
+    ~Scene();
+    Scene(Scene&&) noexcept;
+    Scene& operator=(Scene&&) noexcept;
+
+    // Spans within [ray.tmin, ray.tmax], sorted, disjoint, regularized. An end at tmin or tmax
+    // that is not a surface has face kClipFace. The view lives in ctx until its next query.
+    std::span<const Span> spans(const Ray& ray, QueryContext& ctx) const;
+    // The first span end in [tmin, tmax] that is a surface, or nothing.
+    std::optional<Hit> closest(const Ray& ray, QueryContext& ctx) const;
+    // True when a span of positive length lies within [tmin, tmax].
+    bool occluded(const Ray& ray, QueryContext& ctx) const;
+
+    SurfacePoint surface(const Ray& ray, const Hit& hit) const;
+    // Point-membership classification of the closed solid, from the primitives' inside tests.
+    bool inside(const Vec3& p) const;
+
+    Bounds3 bounds() const;
+    size_t leafCount() const;
+    const Tags& leafTags(uint32_t leaf) const;
+    // Index of the leaf's primitive in Primitive (the variant), and the primitive itself.
+    const Primitive& leafPrimitive(uint32_t leaf) const;
+    const Mat4& leafWorldFromLocal(uint32_t leaf) const;
+
+private:
+    friend struct Evaluator;
+    friend struct Compiler;
+    std::vector<CompiledLeaf> leaves_;
+    std::vector<CompiledNode> nodes_;
+    std::vector<uint32_t> children_;  // child node indices of n-ary unions
+    std::vector<BvhNode> bvh_;
+    uint32_t root_ = 0;
+};
+
+}  // namespace csg

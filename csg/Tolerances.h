@@ -1,0 +1,36 @@
+// Every tolerance csgray uses, each with its unit and the reason for its value.
+// A tolerance that is not here does not exist: code refers to these names only.
+#pragma once
+
+#include <limits>
+
+namespace csg::tol {
+
+// Machine epsilon of double: the relative rounding error of one operation is at most
+// kUlp / 2.
+inline constexpr double kUlp = std::numeric_limits<double>::epsilon();
+
+// pbrt's gamma(n): a bound on the relative error accumulated by n floating-point
+// operations, each rounding by at most kUlp / 2.
+constexpr double gamma(int n) { return (n * kUlp / 2) / (1 - n * kUlp / 2); }
+
+// Span ends closer than this are one boundary (unit: ray parameter t, relative).
+// Two ends a and b coincide when |a - b| <= kCoincidentRel * (originScale + max(|a|, |b|)),
+// where originScale = |o| / |d| of the world ray. Why this form: the point o + t d carries an
+// absolute error of about ulp(|o| + |t| |d|), i.e. ulp(originScale + |t|) in units of t, and
+// one primitive solve adds a few hundred ulps at most. 1e-9 leaves a margin of ~10^4 over
+// that, yet is ~10^6 below the smallest feature (1e-3 of the part size) a test or sample
+// resolves at any scale. The same rule drops spans shorter than this (slivers from
+// coincident faces, tangent rays) and fuses spans separated by less (face-sharing parts).
+inline constexpr double kCoincidentRel = 1e-9;
+
+// A ray-box slab test widens both ends by this fraction of their magnitude so that rounding
+// in the test never culls a box the exact test would hit (pbrt's 2 gamma(3)).
+inline constexpr double kSlabWiden = 2 * gamma(3);
+
+// A transform whose linear part has |det| below this fraction of the cube of its largest
+// column length is singular for our purposes (unit: relative). Inverting it would amplify
+// rounding by more than 1e12, so localFromWorld would be garbage: compile rejects it.
+inline constexpr double kSingularDetRel = 1e-12;
+
+}  // namespace csg::tol

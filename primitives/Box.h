@@ -1,0 +1,19 @@
+// A solid axis-aligned box [lo, hi] in its local frame (OpenSCAD cube(size, center)).
+#pragma once
+
+#include "primitives/Primitive.h"
+
+namespace csg {
+
+struct Box {
+    Vec3 lo{0.0};
+    Vec3 hi{1.0};
+
+    // Faces: 0 = -x, 1 = +x, 2 = -y, 3 = +y, 4 = -z, 5 = +z.
+    Bounds3 bounds() const { return {lo, hi}; }
+    void spans(const Vec3& o, const Vec3& d, LocalSpans& out) const;
+    bool inside(const Vec3& p) const;
+    Vec3 normal(const Vec3& p, uint16_t face) const;
+};
+
+}  // namespace csg

@@ -1,0 +1,21 @@
+// The closed half-space of points p with dot(planeNormal, p) <= offset: a plane and the side below
+// it. Unbounded, so it is never put in a BVH; planeNormal need not be unit length.
+#pragma once
+
+#include "primitives/Primitive.h"
+
+namespace csg {
+
+struct HalfSpace {
+    Vec3 planeNormal{0.0, 0.0, 1.0};
+    double offset = 0.0;
+
+    // Face 0 is the plane. Bounds are everything unless the normal is axis-aligned, in which
+    // case the bounded side is kept (z <= 2 gives lo = -inf, hi = (inf, inf, 2)).
+    Bounds3 bounds() const;
+    void spans(const Vec3& o, const Vec3& d, LocalSpans& out) const;
+    bool inside(const Vec3& p) const { return glm::dot(planeNormal, p) <= offset; }
+    Vec3 normal(const Vec3& p, uint16_t face) const;
+};
+
+}  // namespace csg

@@ -1,0 +1,37 @@
+// The primitive contract. A primitive is a plain value in its own local frame with its
+// natural parameters. It answers four questions and knows nothing of trees or scenes:
+//   bounds()          local axis-aligned bounds (may be unbounded, never empty)
+//   spans(o, d, out)  the spans of the whole line o + t d (t in (-inf, inf)) inside the
+//                     solid, ascending; d is not unit length; o is already close to the
+//                     primitive (the caller moves it to the entry of bounds()).
+//                     A tangent touch may be reported as a zero-length span or omitted;
+//                     the caller drops spans shorter than the coincidence tolerance.
+//   inside(p)         point membership of the closed solid
+//   normal(p, face)   outward unit normal at a point p on the given face; never NaN,
+//                     with a defined direction at degenerate points (a cone's apex)
+#pragma once
+
+#include <concepts>
+
+#include "csg/Bounds.h"
+#include "csg/Math.h"
+#include "csg/Span.h"
+
+namespace csg {
+
+template <class P>
+concept PrimitiveShape = requires(const P& p, const Vec3& v, LocalSpans& out, uint16_t face) {
+    { p.bounds() } -> std::same_as<Bounds3>;
+    { p.spans(v, v, out) } -> std::same_as<void>;
+    { p.inside(v) } -> std::same_as<bool>;
+    { p.normal(v, face) } -> std::same_as<Vec3>;
+};
+
+// Optional: a primitive may give tight world bounds under an affine map (a rotated sphere's
+// box is smaller than its rotated local box). Without it, the local box corners are mapped.
+template <class P>
+concept HasTightBounds = requires(const P& p, const Mat4& m) {
+    { p.boundsUnder(m) } -> std::same_as<Bounds3>;
+};
+
+}  // namespace csg

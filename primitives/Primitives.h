@@ -1,0 +1,20 @@
+// The closed set of primitives. Registering a new one is one line in this variant (plus its
+// own file and tests); csg/ dispatches over it with std::visit, which compiles to a jump table
+// rather than a virtual call.
+#pragma once
+
+#include <variant>
+
+#include "primitives/Box.h"
+#include "primitives/Cylinder.h"
+#include "primitives/HalfSpace.h"
+#include "primitives/Sphere.h"
+
+namespace csg {
+
+using Primitive = std::variant<Sphere, Box, Cylinder, HalfSpace>;
+
+static_assert(PrimitiveShape<Sphere> && PrimitiveShape<Box> && PrimitiveShape<Cylinder> &&
+              PrimitiveShape<HalfSpace>);
+
+}  // namespace csg

@@ -1,0 +1,20 @@
+// A solid ball of radius r centred at the local origin (OpenSCAD sphere(r)).
+#pragma once
+
+#include "primitives/Primitive.h"
+
+namespace csg {
+
+struct Sphere {
+    double radius = 1.0;
+
+    Bounds3 bounds() const { return {Vec3(-radius), Vec3(radius)}; }
+    // Exact: the image of a ball under an affine map is an ellipsoid whose extent along world
+    // axis i is r times the length of row i of the linear part.
+    Bounds3 boundsUnder(const Mat4& m) const;
+    void spans(const Vec3& o, const Vec3& d, LocalSpans& out) const;
+    bool inside(const Vec3& p) const { return glm::dot(p, p) <= radius * radius; }
+    Vec3 normal(const Vec3& p, uint16_t face) const;
+};
+
+}  // namespace csg

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs every Debian package csgray needs to build, test and benchmark.
+# Idempotent: when everything is present it prints nothing and exits 0.
+set -euo pipefail
+
+packages=(
+    build-essential cmake ninja-build pkg-config
+    libglm-dev            # vector/matrix math, through csg/Math.h only
+    libopenmesh-dev       # mesh structure and OBJ IO (mesh export)
+    libtinygltf-dev nlohmann-json3-dev libstb-dev  # glTF/GLB writer and its JSON/image deps
+    libpng-dev            # PNG output
+    libgtest-dev libgmock-dev  # tests
+    libbenchmark-dev      # bench/
+    libboost-dev          # Boost.Multiprecision: high-precision reference in tests
+)
+
+missing=()
+for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+sudo=""
+[ "$(id -u)" -ne 0 ] && sudo="sudo"
+echo "install-deps: installing ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq >/dev/null
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
