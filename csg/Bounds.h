@@ -43,8 +43,12 @@ struct Bounds3 {
     }
 };
 
-inline Bounds3 hull(const Bounds3& a, const Bounds3& b) { return {glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)}; }
-inline Bounds3 overlap(const Bounds3& a, const Bounds3& b) { return {glm::max(a.lo, b.lo), glm::min(a.hi, b.hi)}; }
+inline Bounds3 hull(const Bounds3& a, const Bounds3& b) {
+    return {glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)};
+}
+inline Bounds3 overlap(const Bounds3& a, const Bounds3& b) {
+    return {glm::max(a.lo, b.lo), glm::min(a.hi, b.hi)};
+}
 
 // Bounds of the image of box b under the affine map m. An unbounded box maps to everything
 // (its corners are infinite and 0 * inf would give NaN).
@@ -66,8 +70,9 @@ inline bool clipToBox(const SlabRay& r, const Bounds3& b, double& t0, double& t1
         double tNear = (b.lo[a] - r.o[a]) * r.invD[a];
         double tFar = (b.hi[a] - r.o[a]) * r.invD[a];
         if (tNear > tFar) std::swap(tNear, tFar);
-        tNear -= std::abs(tNear) * tol::kSlabWiden;
-        tFar += std::abs(tFar) * tol::kSlabWiden;
+        // Scale rather than add, so an infinite end stays infinite instead of inf - inf.
+        tNear *= 1.0 - std::copysign(tol::kSlabWiden, tNear);
+        tFar *= 1.0 + std::copysign(tol::kSlabWiden, tFar);
         t0 = tNear > t0 ? tNear : t0;
         t1 = tFar < t1 ? tFar : t1;
         if (t0 > t1) return false;

@@ -17,8 +17,12 @@ using Mat4 = glm::dmat4;
 inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // Point and direction transforms by an affine 4x4 matrix (the last row is 0 0 0 1).
-inline Vec3 transformPoint(const Mat4& m, const Vec3& p) { return Vec3(m * Vec4(p, 1.0)); }
-inline Vec3 transformVector(const Mat4& m, const Vec3& v) { return Mat3(m) * v; }
+inline Vec3 transformPoint(const Mat4& m, const Vec3& p) {
+    return Vec3(m * Vec4(p, 1.0));
+}
+inline Vec3 transformVector(const Mat4& m, const Vec3& v) {
+    return Mat3(m) * v;
+}
 
 // True when every entry of the matrix is a finite number.
 inline bool isFinite(const Mat4& m) {

@@ -12,7 +12,9 @@ inline constexpr double kUlp = std::numeric_limits<double>::epsilon();
 
 // pbrt's gamma(n): a bound on the relative error accumulated by n floating-point
 // operations, each rounding by at most kUlp / 2.
-constexpr double gamma(int n) { return (n * kUlp / 2) / (1 - n * kUlp / 2); }
+constexpr double gamma(int n) {
+    return (n * kUlp / 2) / (1 - n * kUlp / 2);
+}
 
 // Span ends closer than this are one boundary (unit: ray parameter t, relative).
 // Two ends a and b coincide when |a - b| <= kCoincidentRel * (originScale + max(|a|, |b|)),

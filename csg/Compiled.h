@@ -1,0 +1,50 @@
+// The compiled scene's flat arrays (private to csg/). Built by Compile.cpp, read by Query.cpp.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+
+#include "csg/Bounds.h"
+#include "csg/Tree.h"
+
+namespace csg {
+
+inline constexpr uint32_t kNoNode = std::numeric_limits<uint32_t>::max();
+
+// A leaf with its transforms flattened: the primitive solves in its local frame.
+struct CompiledLeaf {
+    Primitive shape;
+    Mat4 localFromWorld;
+    Mat4 worldFromLocal;
+    Mat3 normalFromLocal;  // inverse transpose of worldFromLocal's linear part
+    Bounds3 localBounds;   // where the ray origin is moved before solving
+    Tags tags;
+};
+
+enum class NodeKind : uint8_t { Leaf, Union, Intersection, Difference };
+
+// Leaf:         first = leaf index.
+// Intersection, Difference: first = left node, second = right node.
+// Union:        children_[first, first + count) are the child nodes; the first `bounded`
+//               of them are ordered by the union's BVH (rooted at bvhRoot, or kNoNode for
+//               a short union scanned linearly); the rest have unbounded bounds.
+struct CompiledNode {
+    NodeKind kind = NodeKind::Union;
+    Bounds3 bounds;
+    uint32_t first = 0;
+    uint32_t second = 0;
+    uint32_t count = 0;
+    uint32_t bounded = 0;
+    uint32_t bvhRoot = kNoNode;
+};
+
+// A BVH node over a union's bounded children. Interior: the left child follows at index + 1,
+// the right child is at `right`; count == 0. Leaf: children_[first, first + count).
+struct BvhNode {
+    Bounds3 box;
+    uint32_t firstOrRight = 0;
+    uint16_t count = 0;
+    uint8_t axis = 0;  // split axis of an interior node: visit order for closest()
+};
+
+}  // namespace csg

@@ -1,0 +1,227 @@
+// The three queries. Notation: see csg/Span.h. Every evaluation pushes the spans of one node,
+// clipped to a parameter range [t0, t1], onto the context's span stack and returns how many it
+// pushed; intermediate lists live on that stack, so a query allocates nothing once the stack
+// has grown to the deepest ray seen.
+#include <algorithm>
+
+#include "csg/Bvh.h"
+#include "csg/Compiled.h"
+#include "csg/Scene.h"
+#include "csg/SpanList.h"
+
+namespace csg {
+
+struct Evaluator {
+    const Scene& scene;
+    QueryContext& ctx;
+    const Ray& ray;
+    SlabRay slab;
+    double originScale;  // |o| / |d|: see tol::kCoincidentRel
+
+    Evaluator(const Scene& s, QueryContext& c, const Ray& r)
+        : scene(s), ctx(c), ray(r), slab(r.o, r.d) {
+        const double dLength = glm::length(r.d);
+        originScale = dLength > 0.0 ? glm::length(r.o) / dLength : 0.0;
+    }
+
+    std::vector<Span>& stack() { return ctx.stack_; }
+
+    // Does the ray within [t0, t1] meet the node's bounds?
+    bool touches(const Bounds3& box, double t0, double t1) {
+        ++ctx.stats.nodeVisits;
+        return clipToBox(slab, box, t0, t1);
+    }
+
+    size_t eval(uint32_t index, double t0, double t1) {
+        const CompiledNode& node = scene.nodes_[index];
+        if (!touches(node.bounds, t0, t1)) return 0;
+        switch (node.kind) {
+            case NodeKind::Leaf:
+                return evalLeaf(scene.leaves_[node.first], node.first, t0, t1);
+            case NodeKind::Union:
+                return evalUnion(node, t0, t1);
+            case NodeKind::Intersection:
+            case NodeKind::Difference:
+                return evalCut(node, t0, t1);
+        }
+        return 0;
+    }
+
+    size_t evalLeaf(const CompiledLeaf& leaf, uint32_t leafIndex, double t0, double t1) {
+        // Map the ray into the leaf's frame; d keeps its length so t is unchanged.
+        const Vec3 o = transformPoint(leaf.localFromWorld, ray.o);
+        const Vec3 d = transformVector(leaf.localFromWorld, ray.d);
+        // Solve near the primitive: restart the ray where it enters the local bounds.
+        double b0 = -kInfinity, b1 = kInfinity;
+        if (!clipToBox(SlabRay(o, d), leaf.localBounds, b0, b1) || b1 < t0 || b0 > t1) return 0;
+        const double shift = std::isfinite(b0) ? b0 : (std::isfinite(b1) ? b1 : 0.0);
+
+        ++ctx.stats.primitiveTests;
+        LocalSpans local;
+        std::visit([&](const auto& shape) { shape.spans(o + shift * d, d, local); }, leaf.shape);
+
+        // Clip to [t0, t1] and regularize; a primitive yields at most LocalSpans::kCapacity.
+        const size_t base = stack().size();
+        stack().resize(base + local.count);
+        SpanWriter writer(stack().data() + base, originScale);
+        for (int i = 0; i < local.count; ++i) {
+            const LocalSpans::Entry& e = local.entries[i];
+            Span s{{e.tIn + shift, leafIndex, e.faceIn, false},
+                   {e.tOut + shift, leafIndex, e.faceOut, false}};
+            if (s.in.t < t0) s.in = {t0, leafIndex, kClipFace, false};
+            if (s.out.t > t1) s.out = {t1, leafIndex, kClipFace, false};
+            if (s.in.t <= s.out.t) writer.emit(s);
+        }
+        stack().resize(base + writer.count());
+        return writer.count();
+    }
+
+    // Merges the list at [base, base + na) with the one right after it (nb spans) and leaves
+    // the result at base. Returns its length.
+    size_t mergeInPlace(SetOp op, size_t base, size_t na, size_t nb) {
+        std::vector<Span>& s = stack();
+        const size_t out = base + na + nb;
+        s.resize(out + na + nb);  // within capacity once the stack has warmed up
+        const size_t n = mergeSpans(op, s.data() + base, na, s.data() + base + na, nb,
+                                    s.data() + out, originScale);
+        std::copy(s.begin() + out, s.begin() + out + n, s.begin() + base);
+        s.resize(base + n);
+        return n;
+    }
+
+    size_t evalCut(const CompiledNode& node, double t0, double t1) {
+        const size_t base = stack().size();
+        const size_t na = eval(node.first, t0, t1);
+        if (na == 0) return 0;
+        // The right operand matters only where the left one is: narrow its range to that hull.
+        const double lo = stack()[base].in.t, hi = stack()[base + na - 1].out.t;
+        const size_t nb = eval(node.second, lo, hi);
+        if (node.kind == NodeKind::Difference) {
+            return nb == 0 ? na : mergeInPlace(SetOp::Difference, base, na, nb);
+        }
+        if (nb == 0) {
+            stack().resize(base);
+            return 0;
+        }
+        return mergeInPlace(SetOp::Intersection, base, na, nb);
+    }
+
+    // Calls visit(child) for the union's children whose bounds the ray meets in [t0, t1],
+    // nearer BVH subtrees first; visit returns false to stop, and may lower t1 through the
+    // reference it is given.
+    template <class Visit>
+    void forEachChild(const CompiledNode& node, double t0, double& t1, Visit&& visit) {
+        const std::vector<uint32_t>& children = scene.children_;
+        if (node.bvhRoot == kNoNode) {
+            for (uint32_t i = 0; i < node.bounded; ++i)
+                if (!visit(children[node.first + i])) return;
+        } else {
+            uint32_t todo[kBvhMaxDepth + 1];
+            int top = 0;
+            todo[top++] = node.bvhRoot;
+            while (top > 0) {
+                const BvhNode& b = scene.bvh_[todo[--top]];
+                if (!touches(b.box, t0, t1)) continue;
+                if (b.count > 0) {
+                    for (uint32_t i = 0; i < b.count; ++i)
+                        if (!visit(children[b.firstOrRight + i])) return;
+                    continue;
+                }
+                // Push the far child first so the near one is visited first.
+                const uint32_t self = static_cast<uint32_t>(&b - scene.bvh_.data());
+                const bool nearIsLeft = ray.d[b.axis] >= 0.0;
+                todo[top++] = nearIsLeft ? b.firstOrRight : self + 1;
+                todo[top++] = nearIsLeft ? self + 1 : b.firstOrRight;
+            }
+        }
+        for (uint32_t i = node.bounded; i < node.count; ++i)
+            if (!visit(children[node.first + i])) return;
+    }
+
+    size_t evalUnion(const CompiledNode& node, double t0, double t1) {
+        const size_t base = stack().size();
+        size_t n = 0;
+        forEachChild(node, t0, t1, [&](uint32_t child) {
+            const size_t nb = eval(child, t0, t1);
+            if (nb > 0) n = n == 0 ? nb : mergeInPlace(SetOp::Union, base, n, nb);
+            return true;
+        });
+        return n;
+    }
+
+    // Is any span of positive length inside [t0, t1]? A union is non-empty when any child is.
+    bool any(uint32_t index, double t0, double t1) {
+        const CompiledNode& node = scene.nodes_[index];
+        if (node.kind == NodeKind::Union) {
+            if (!touches(node.bounds, t0, t1)) return false;
+            bool found = false;
+            forEachChild(node, t0, t1,
+                         [&](uint32_t child) { return !(found = any(child, t0, t1)); });
+            return found;
+        }
+        const size_t base = stack().size();
+        const size_t n = eval(index, t0, t1);
+        stack().resize(base);
+        return n > 0;
+    }
+
+    // First surface end of the root union's spans. Front-to-back over the top-level objects,
+    // lowering t1 to the best entry so far, which is exact as long as the ray starts outside
+    // every object; a ray that starts inside one falls back to the whole span list.
+    std::optional<Hit> closest() {
+        const CompiledNode& root = scene.nodes_[scene.root_];
+        double t1 = ray.tmax;
+        std::optional<Hit> best;
+        bool startsInside = false;
+        if (touches(root.bounds, ray.tmin, t1)) {
+            forEachChild(root, ray.tmin, t1, [&](uint32_t child) {
+                const size_t base = stack().size();
+                const size_t n = eval(child, ray.tmin, t1);
+                if (n > 0) {
+                    const Hit first = stack()[base].in;
+                    stack().resize(base);
+                    if (!first.isSurface()) return !(startsInside = true);
+                    if (!best || first.t < best->t) {
+                        best = first;
+                        t1 = first.t;
+                    }
+                }
+                return true;
+            });
+        }
+        if (!startsInside) return best;
+        const size_t base = stack().size();
+        const size_t n = eval(scene.root_, ray.tmin, ray.tmax);
+        std::optional<Hit> hit;
+        for (size_t i = base; i < base + n && !hit; ++i) {
+            if (stack()[i].in.isSurface())
+                hit = stack()[i].in;
+            else if (stack()[i].out.isSurface())
+                hit = stack()[i].out;
+        }
+        stack().resize(base);
+        return hit;
+    }
+};
+
+std::span<const Span> Scene::spans(const Ray& ray, QueryContext& ctx) const {
+    ++ctx.stats.rays;
+    ctx.stack_.clear();
+    Evaluator e(*this, ctx, ray);
+    const size_t n = e.eval(root_, ray.tmin, ray.tmax);
+    return {ctx.stack_.data(), n};
+}
+
+std::optional<Hit> Scene::closest(const Ray& ray, QueryContext& ctx) const {
+    ++ctx.stats.rays;
+    ctx.stack_.clear();
+    return Evaluator(*this, ctx, ray).closest();
+}
+
+bool Scene::occluded(const Ray& ray, QueryContext& ctx) const {
+    ++ctx.stats.rays;
+    ctx.stack_.clear();
+    return Evaluator(*this, ctx, ray).any(root_, ray.tmin, ray.tmax);
+}
+
+}  // namespace csg

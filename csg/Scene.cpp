@@ -1,0 +1,73 @@
+#include "csg/Scene.h"
+
+#include "csg/Compiled.h"
+
+namespace csg {
+
+Scene::Scene() = default;
+Scene::~Scene() = default;
+Scene::Scene(Scene&&) noexcept = default;
+Scene& Scene::operator=(Scene&&) noexcept = default;
+
+SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
+    SurfacePoint sp{ray.at(hit.t), Vec3(0.0)};
+    if (!hit.isSurface()) return sp;
+    const CompiledLeaf& leaf = leaves_[hit.leaf];
+    const Vec3 local = transformPoint(leaf.localFromWorld, sp.point);
+    const Vec3 n =
+        std::visit([&](const auto& shape) { return shape.normal(local, hit.face); }, leaf.shape);
+    const Vec3 world = leaf.normalFromLocal * n;
+    const double len = glm::length(world);
+    sp.normal = len > 0.0 ? world / len : n;
+    if (hit.flipped) sp.normal = -sp.normal;
+    return sp;
+}
+
+namespace {
+
+bool insideNode(const std::vector<CompiledNode>& nodes, const std::vector<CompiledLeaf>& leaves,
+                const std::vector<uint32_t>& children, uint32_t index, const Vec3& p) {
+    const CompiledNode& node = nodes[index];
+    if (!node.bounds.contains(p)) return false;
+    auto inside = [&](uint32_t i) { return insideNode(nodes, leaves, children, i, p); };
+    switch (node.kind) {
+        case NodeKind::Leaf: {
+            const CompiledLeaf& leaf = leaves[node.first];
+            const Vec3 local = transformPoint(leaf.localFromWorld, p);
+            return std::visit([&](const auto& shape) { return shape.inside(local); }, leaf.shape);
+        }
+        case NodeKind::Union:
+            for (uint32_t i = 0; i < node.count; ++i)
+                if (inside(children[node.first + i])) return true;
+            return false;
+        case NodeKind::Intersection:
+            return inside(node.first) && inside(node.second);
+        case NodeKind::Difference:
+            return inside(node.first) && !inside(node.second);
+    }
+    return false;
+}
+
+}  // namespace
+
+bool Scene::inside(const Vec3& p) const {
+    return insideNode(nodes_, leaves_, children_, root_, p);
+}
+
+Bounds3 Scene::bounds() const {
+    return nodes_[root_].bounds;
+}
+size_t Scene::leafCount() const {
+    return leaves_.size();
+}
+const Tags& Scene::leafTags(uint32_t leaf) const {
+    return leaves_[leaf].tags;
+}
+const Primitive& Scene::leafPrimitive(uint32_t leaf) const {
+    return leaves_[leaf].shape;
+}
+const Mat4& Scene::leafWorldFromLocal(uint32_t leaf) const {
+    return leaves_[leaf].worldFromLocal;
+}
+
+}  // namespace csg

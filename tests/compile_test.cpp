@@ -1,0 +1,109 @@
+// Compiling trees: transforms flattened into leaves, unions flattened, bounds, pruning, BVH.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "csg/Scene.h"
+
+namespace csg {
+namespace {
+
+Mat4 translation(double x, double y, double z) {
+    return glm::translate(Mat4(1.0), Vec3(x, y, z));
+}
+
+TEST(Compile, TransformsAreFlattenedIntoEachLeaf) {
+    const Mat4 outer = translation(1, 2, 3);
+    const Mat4 inner = glm::scale(Mat4(1.0), Vec3(2, 3, 4));
+    const NodePtr tree =
+        transformed(outer, unite(transformed(inner, leaf(Sphere{1})), leaf(Box{})));
+    const Scene scene = Scene::compile(tree);
+    ASSERT_EQ(scene.leafCount(), 2u);
+    const Mat4 want = outer * inner;
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) EXPECT_DOUBLE_EQ(scene.leafWorldFromLocal(0)[c][r], want[c][r]);
+    // The scaled, translated sphere's tight bounds: centre (1,2,3), radii (2,3,4).
+    const Bounds3 b = scene.bounds();
+    EXPECT_DOUBLE_EQ(b.lo.x, -1.0);
+    EXPECT_DOUBLE_EQ(b.lo.y, -1.0);
+    EXPECT_DOUBLE_EQ(b.lo.z, -1.0);
+    EXPECT_DOUBLE_EQ(b.hi.z, 7.0);
+}
+
+TEST(Compile, SingularAndNonFiniteTransformsAreErrorsNamingTheNode) {
+    Tags tags{42, 0};
+    auto flat = std::make_shared<Node>(*leaf(Sphere{1}, tags));
+    flat->parentFromNode = glm::scale(Mat4(1.0), Vec3(1, 0, 1));
+    try {
+        Scene::compile(unite(leaf(Box{}), flat));
+        FAIL() << "a scale(0) must not compile";
+    } catch (const CompileError& e) {
+        EXPECT_EQ(e.source, 42u);
+        EXPECT_NE(std::string(e.what()).find("singular"), std::string::npos);
+    }
+    Mat4 nan(1.0);
+    nan[3][0] = std::nan("");
+    EXPECT_THROW(Scene::compile(transformed(nan, leaf(Sphere{1}))), CompileError);
+    // Two scales that are each fine but whose product underflows to singular.
+    const Mat4 tiny = glm::scale(Mat4(1.0), Vec3(1e-120));
+    EXPECT_THROW(Scene::compile(transformed(tiny, transformed(tiny, leaf(Sphere{1})))),
+                 CompileError);
+}
+
+TEST(Compile, EmptyOverlapPrunesAndDisjointCutIsDropped) {
+    const NodePtr far = transformed(translation(10, 0, 0), leaf(Sphere{1}));
+    const Scene pruned = Scene::compile(intersect(leaf(Sphere{1}), far));
+    EXPECT_EQ(pruned.leafCount(), 2u);  // leaves are compiled, but no node refers to them
+    EXPECT_TRUE(pruned.bounds().empty());
+    QueryContext ctx;
+    EXPECT_TRUE(pruned.spans(Ray{{-20, 0, 0}, {1, 0, 0}}, ctx).empty());
+
+    const Scene cut = Scene::compile(subtract(leaf(Sphere{1}), far));
+    const auto spans = cut.spans(Ray{{-20, 0, 0}, {1, 0, 0}}, ctx);
+    ASSERT_EQ(spans.size(), 1u);
+    EXPECT_DOUBLE_EQ(spans[0].in.t, 19.0);
+    EXPECT_DOUBLE_EQ(spans[0].out.t, 21.0);
+}
+
+TEST(Compile, EmptySceneAnswersNothing) {
+    const Scene scene = Scene::compile(nullptr);
+    QueryContext ctx;
+    const Ray ray{{0, 0, -5}, {0, 0, 1}};
+    EXPECT_TRUE(scene.spans(ray, ctx).empty());
+    EXPECT_FALSE(scene.closest(ray, ctx));
+    EXPECT_FALSE(scene.occluded(ray, ctx));
+    EXPECT_TRUE(scene.bounds().empty());
+}
+
+// A union of n spheres on a grid: node visits per ray must grow like log n, not n.
+double visitsPerRay(int side) {
+    std::vector<NodePtr> parts;
+    for (int i = 0; i < side; ++i)
+        for (int j = 0; j < side; ++j)
+            for (int k = 0; k < side; ++k)
+                parts.push_back(
+                    transformed(translation(3.0 * i, 3.0 * j, 3.0 * k), leaf(Sphere{1})));
+    const Scene scene = Scene::compile(uniteAll(parts));
+    QueryContext ctx;
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> u(0.0, 3.0 * side);
+    constexpr int kRays = 2000;
+    for (int r = 0; r < kRays; ++r) {
+        // Rays along -z through random points above the grid's top layer.
+        scene.closest(Ray{{u(rng), u(rng), 3.0 * side + 5}, {0, 0, -1}}, ctx);
+    }
+    return static_cast<double>(ctx.stats.nodeVisits) / kRays;
+}
+
+TEST(Compile, BvhMakesNodeVisitsLogarithmic) {
+    const double small = visitsPerRay(10);  // 10^3 spheres
+    const double large = visitsPerRay(46);  // ~10^5 spheres
+    // Linear growth would be ~100x. A ray down a column meets ~n^(1/3) sphere boxes before
+    // its first hit at worst, so allow 8x, and bound the count by a multiple of log2 n.
+    EXPECT_LT(large, 8 * small) << small << " vs " << large;
+    EXPECT_LT(large, 15 * std::log2(46.0 * 46 * 46)) << large;
+    EXPECT_GT(large, 0.0);
+}
+
+}  // namespace
+}  // namespace csg

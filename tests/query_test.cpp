@@ -1,0 +1,156 @@
+// The three queries against the point-membership oracle on seeded random trees.
+#include <gtest/gtest.h>
+
+#include "csg/Scene.h"
+#include "tests/TreeOracle.h"
+
+namespace csg {
+namespace {
+
+using testing::insideTree;
+using testing::randomTree;
+
+bool member(std::span<const Span> spans, double t) {
+    for (const Span& s : spans)
+        if (t >= s.in.t && t <= s.out.t) return true;
+    return false;
+}
+
+// Distance from t to the nearest span end.
+double distanceToEnd(std::span<const Span> spans, double t) {
+    double best = kInfinity;
+    for (const Span& s : spans)
+        best = std::min({best, std::abs(t - s.in.t), std::abs(t - s.out.t)});
+    return best;
+}
+
+struct RandomRays {
+    std::mt19937_64 rng;
+    explicit RandomRays(uint64_t seed) : rng(seed) {}
+    // Rays from a sphere of radius 8 toward random points of [-2, 2]^3, a quarter of them
+    // starting inside that cube; |d| varies so t is not always a distance.
+    Ray next() {
+        std::uniform_real_distribution<double> u(-1.0, 1.0), len(0.1, 10.0);
+        const Vec3 target(2 * u(rng), 2 * u(rng), 2 * u(rng));
+        Vec3 o(u(rng), u(rng), u(rng));
+        o = std::uniform_int_distribution<int>(0, 3)(rng) == 0
+                ? 2.0 * o
+                : 8.0 * o / std::max(glm::length(o), 1e-9);
+        Vec3 d = target - o;
+        if (glm::length(d) < 1e-6) d = Vec3(0, 0, 1);
+        d = glm::normalize(d) * len(rng);
+        return Ray{o, d, 0.0, 20.0 / glm::length(d)};
+    }
+};
+
+// Every span list agrees with the oracle at sampled points: in the middle of spans and gaps,
+// just inside and outside each end, and at random points along the ray.
+TEST(Query, SpansAgreeWithPointMembershipOnRandomTrees) {
+    constexpr int kTrees = 200, kRaysPerTree = 500;  // 10^5 rays
+    std::mt19937_64 rng(2024);
+    QueryContext ctx;
+    int nonEmpty = 0;
+    for (int tree = 0; tree < kTrees; ++tree) {
+        const NodePtr root = randomTree(rng, 6);
+        const Scene scene = Scene::compile(root);
+        RandomRays rays(tree);
+        for (int r = 0; r < kRaysPerTree; ++r) {
+            const Ray ray = rays.next();
+            const auto spans = scene.spans(ray, ctx);
+            nonEmpty += !spans.empty();
+            // Sample t where the classification is unambiguous: away from every end by a
+            // margin far above the coincidence tolerance.
+            const double margin = 1e-6 * ray.tmax;
+            std::vector<double> ts;
+            for (size_t i = 0; i < spans.size(); ++i) {
+                ASSERT_LE(spans[i].in.t, spans[i].out.t);
+                ASSERT_GE(spans[i].in.t, ray.tmin);
+                ASSERT_LE(spans[i].out.t, ray.tmax);
+                if (i > 0) {
+                    ASSERT_LT(spans[i - 1].out.t, spans[i].in.t);
+                }
+                ts.push_back(0.5 * (spans[i].in.t + spans[i].out.t));
+                if (i + 1 < spans.size()) ts.push_back(0.5 * (spans[i].out.t + spans[i + 1].in.t));
+                for (double e : {spans[i].in.t, spans[i].out.t})
+                    for (double side : {-1e-4, 1e-4}) ts.push_back(e + side * ray.tmax);
+            }
+            std::uniform_real_distribution<double> along(ray.tmin, ray.tmax);
+            for (int k = 0; k < 8; ++k) ts.push_back(along(rng));
+            for (double t : ts) {
+                if (t < ray.tmin || t > ray.tmax || distanceToEnd(spans, t) < margin) continue;
+                ASSERT_EQ(member(spans, t), insideTree(root, ray.at(t)))
+                    << "tree " << tree << " ray " << r << " t " << t;
+            }
+        }
+    }
+    // The test is only meaningful if the random trees are not mostly empty.
+    EXPECT_GT(nonEmpty, kTrees * kRaysPerTree / 5);
+}
+
+// closest() is the first surface end of spans(); occluded() is "spans is not empty".
+TEST(Query, ClosestAndOccludedAgreeWithSpans) {
+    std::mt19937_64 rng(77);
+    QueryContext ctx;
+    for (int tree = 0; tree < 100; ++tree) {
+        const Scene scene = Scene::compile(randomTree(rng, 6));
+        RandomRays rays(1000 + tree);
+        for (int r = 0; r < 300; ++r) {
+            const Ray ray = rays.next();
+            const auto spans = scene.spans(ray, ctx);
+            std::optional<Hit> want;
+            for (const Span& s : spans) {
+                if (s.in.isSurface()) {
+                    want = s.in;
+                    break;
+                }
+                if (s.out.isSurface()) {
+                    want = s.out;
+                    break;
+                }
+            }
+            const bool wantOccluded = !spans.empty();
+            const std::optional<Hit> got = scene.closest(ray, ctx);
+            ASSERT_EQ(got.has_value(), want.has_value()) << "tree " << tree << " ray " << r;
+            if (want) {
+                EXPECT_NEAR(got->t, want->t, 1e-9 * ray.tmax);
+                EXPECT_EQ(got->leaf, want->leaf);
+            }
+            ASSERT_EQ(scene.occluded(ray, ctx), wantOccluded) << "tree " << tree << " ray " << r;
+        }
+    }
+}
+
+// Normals returned for hits are unit, finite and face the outside of the solid.
+TEST(Query, SurfaceNormalsPointOutOfTheSolid) {
+    std::mt19937_64 rng(5);
+    QueryContext ctx;
+    int rightWay = 0, wrongWay = 0;
+    for (int tree = 0; tree < 100; ++tree) {
+        const NodePtr root = randomTree(rng, 5);
+        const Scene scene = Scene::compile(root);
+        RandomRays rays(500 + tree);
+        for (int r = 0; r < 400; ++r) {
+            const Ray ray = rays.next();
+            for (const Span& s : scene.spans(ray, ctx)) {
+                for (const Hit& h : {s.in, s.out}) {
+                    if (!h.isSurface()) continue;
+                    const SurfacePoint sp = scene.surface(ray, h);
+                    ASSERT_NEAR(glm::length(sp.normal), 1.0, 1e-9);
+                    // Step along the normal: outside, and against it: inside, unless another
+                    // surface is within reach (an edge or a thin wall).
+                    const double eps = 1e-5;
+                    const bool out = insideTree(root, sp.point + eps * sp.normal);
+                    const bool in = insideTree(root, sp.point - eps * sp.normal);
+                    rightWay += !out && in;
+                    wrongWay += out && !in;
+                }
+            }
+        }
+    }
+    // Most hits are away from edges and thin walls, where the steps are unambiguous.
+    EXPECT_GT(rightWay, 10000);
+    EXPECT_LT(wrongWay, rightWay / 1000 + 1);
+}
+
+}  // namespace
+}  // namespace csg
