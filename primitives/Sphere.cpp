@@ -1,5 +1,10 @@
+// Notation: t is the parameter of the line o + t d; s = t - tFoot is measured from the foot of
+// the perpendicular from the centre, where the line is nearest the sphere.
 #include "primitives/Sphere.h"
 
+#include <cmath>
+
+#include "primitives/solvers/LinePoint.h"
 #include "primitives/solvers/Quadratic.h"
 
 namespace csg {
@@ -12,14 +17,18 @@ Bounds3 Sphere::boundsUnder(const Mat4& m) const {
 }
 
 void Sphere::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
-    // Move the origin to the foot of the perpendicular from the centre, so c = |f|^2 - r^2
-    // is computed from a point near the sphere (no cancellation for far-away rays).
     const double dd = glm::dot(d, d);
     if (dd == 0.0) return;
+    // Step 1: move to the foot of the perpendicular from the centre, so |f|^2 - r^2 is
+    // computed from a point near the sphere (no cancellation for far-away rays).
     const double tFoot = -glm::dot(o, d) / dd;
-    const Vec3 f = o + tFoot * d;
+    const Vec3 f = pointOnLine(o, d, tFoot);
+    // Step 2: solve |f + s d|^2 = r^2. The linear term f.d is 0 in exact arithmetic but not
+    // after rounding tFoot; keeping it makes the ends independent of that rounding (for a ray
+    // from 1e6 away it is the difference between 4e-10 and 1e-16 of the radius).
     double s0, s1;
-    if (solveQuadratic(dd, 0.0, glm::dot(f, f) - radius * radius, s0, s1) < 2) return;
+    const double b = 2.0 * glm::dot(f, d), c = glm::dot(f, f) - radius * radius;
+    if (solveQuadratic(dd, b, c, s0, s1) < 2) return;
     out.add(tFoot + s0, 0, tFoot + s1, 0);
 }
 
