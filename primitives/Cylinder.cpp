@@ -82,9 +82,7 @@ void Cylinder::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     const Piece everywhere{-kInfinity, kInfinity, kClipFace, kClipFace};
     if (A == 0.0) {
         if (B == 0.0) {
-            // f is constant along the line: inside only if strictly negative, since a line
-            // lying in the surface (C == 0, a generator of the cone) encloses no volume.
-            if (C >= 0.0) return;
+            if (C > 0.0) return;
             pieces[count++] = everywhere;
         } else {
             const double root = -C / (2.0 * B);
