@@ -1,0 +1,507 @@
+// The built-in modules: OpenSCAD's solids, booleans, transforms and color, csgray's scene
+// modules (camera, light, background, material, halfspace), and a clear error for each
+// OpenSCAD module csgray does not support yet.
+#include <cmath>
+#include <unordered_map>
+
+#include "io/Colors.h"
+#include "io/Degrees.h"
+#include "io/Evaluator.h"
+
+namespace io {
+
+namespace {
+
+using csg::Mat4;
+using csg::Vec3;
+
+// A built-in call's arguments matched to its parameter names (OpenSCAD's rules: positional
+// in order, then by name; $-arguments pass through to the children).
+struct BoundArgs {
+    const InstantiationStmt& call;
+    std::string form;  // the expected form, for messages: "cube(size, center)"
+    std::vector<Value> values;
+    std::vector<Loc> locs;
+    ArgValues all;
+
+    const Value& operator[](size_t i) const { return values[i]; }
+    bool given(size_t i) const { return !values[i].isUndef(); }
+    Loc loc(size_t i) const { return locs[i]; }
+};
+
+BoundArgs bind(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+               std::initializer_list<std::string_view> params, std::string form) {
+    BoundArgs b{s, form, std::vector<Value>(params.size()), std::vector<Loc>(params.size(), s.loc),
+                e.evalArgs(s.args, ctx)};
+    size_t positional = 0;
+    for (const ArgValue& a : b.all) {
+        if (a.name.empty()) {
+            if (positional >= params.size())
+                e.fail(a.loc, "too many arguments to " + s.name + "(); expected " + form);
+            b.locs[positional] = a.loc;
+            b.values[positional++] = a.value;
+            continue;
+        }
+        if (a.name[0] == '$') continue;  // $fn, $fa, $fs: accepted, surfaces are exact
+        size_t k = 0;
+        for (std::string_view p : params) {
+            if (p == a.name) break;
+            ++k;
+        }
+        if (k == params.size()) {
+            e.warn(a.loc,
+                   "unknown parameter '" + a.name + "' of " + s.name + "(); expected " + form);
+            continue;
+        }
+        b.values[k] = a.value;
+        b.locs[k] = a.loc;
+    }
+    return b;
+}
+
+[[noreturn]] void badArgument(Evaluator& e, const BoundArgs& b, size_t i, std::string_view name,
+                              std::string_view what) {
+    e.fail(b.loc(i), b.call.name + "(): '" + std::string(name) + "' must be " + std::string(what) +
+                         ", got " + b[i].repr() + "; expected " + b.form);
+}
+
+double numberArg(Evaluator& e, const BoundArgs& b, size_t i, std::string_view name, double dflt) {
+    if (!b.given(i)) return dflt;
+    if (!b[i].isNumber() || !std::isfinite(b[i].number()))
+        badArgument(e, b, i, name, "a finite number");
+    return b[i].number();
+}
+
+bool boolArg(Evaluator& e, const BoundArgs& b, size_t i, std::string_view name, bool dflt) {
+    if (!b.given(i)) return dflt;
+    if (!b[i].isBool()) badArgument(e, b, i, name, "true or false");
+    return b[i].asBool();
+}
+
+// A vector of 2 or 3 finite numbers (missing entries take `fill`), or with allowScalar a
+// number for all three.
+Vec3 vecArg(Evaluator& e, const BoundArgs& b, size_t i, std::string_view name, Vec3 dflt,
+            double fill, bool allowScalar, bool allow2 = true) {
+    if (!b.given(i)) return dflt;
+    const Value& v = b[i];
+    if (allowScalar && v.isNumber() && std::isfinite(v.number())) return Vec3(v.number());
+    const char* what = allowScalar ? (allow2 ? "a number or a vector of 2 or 3 numbers"
+                                             : "a number or a vector of 3 numbers")
+                                   : "a vector of 2 or 3 numbers";
+    if (!v.isVector()) badArgument(e, b, i, name, what);
+    const ValueList& l = v.list();
+    if (l.size() != 3 && !(allow2 && l.size() == 2)) badArgument(e, b, i, name, what);
+    Vec3 out(fill);
+    for (size_t k = 0; k < l.size(); ++k) {
+        if (!l[k].isNumber() || !std::isfinite(l[k].number())) badArgument(e, b, i, name, what);
+        out[static_cast<int>(k)] = l[k].number();
+    }
+    return out;
+}
+
+// An RGBA color from a name, a hex string or a vector of 3 or 4 numbers.
+std::optional<csg::Vec4> colorArg(Evaluator& e, const BoundArgs& b, size_t i,
+                                  std::string_view name) {
+    if (!b.given(i)) return std::nullopt;
+    const Value& v = b[i];
+    if (v.isString()) {
+        if (auto c = parseColor(v.string())) return c;
+        e.warn(b.loc(i), "unknown color \"" + v.string() +
+                             "\" (expected a CSS color name or "
+                             "#rrggbb); color unchanged");
+        return std::nullopt;
+    }
+    if (v.isVector() && (v.list().size() == 3 || v.list().size() == 4)) {
+        csg::Vec4 c(1.0);
+        for (size_t k = 0; k < v.list().size(); ++k) {
+            if (!v.list()[k].isNumber()) badArgument(e, b, i, name, "a color");
+            c[static_cast<int>(k)] = v.list()[k].number();
+        }
+        return c;
+    }
+    badArgument(e, b, i, name, "a color name, \"#rrggbb\" or [r, g, b] / [r, g, b, a]");
+}
+
+Instance childrenGroup(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
+                       const GeomState& state, uint32_t* tagOut = nullptr) {
+    GeomState inner = state;
+    inner.modulePath = e.childPath(state, b.call.name);
+    bool any = false;
+    auto parts = e.instantiateChildren(b.call, ctx, inner, b.all, any);
+    const uint32_t tag = any ? e.sourceTag(b.call.loc, inner.modulePath) : 0;
+    if (tagOut) *tagOut = tag;
+    return e.group(std::move(parts), any, tag);
+}
+
+uint32_t leafTag(Evaluator& e, const InstantiationStmt& s, const GeomState& state) {
+    return e.sourceTag(s.loc, e.childPath(state, s.name));
+}
+
+// ---- solids ----
+
+Instance cube(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+              const GeomState& state) {
+    BoundArgs b = bind(e, s, ctx, {"size", "center"}, "cube(size, center)");
+    const Vec3 size = vecArg(e, b, 0, "size", Vec3(1.0), 0.0, true, false);
+    const bool center = boolArg(e, b, 1, "center", false);
+    if (size.x <= 0 || size.y <= 0 || size.z <= 0) {
+        e.warn(s.loc, "cube() with a size that is not positive in every axis is empty");
+        return csg::NodePtr();
+    }
+    const Vec3 lo = center ? -0.5 * size : Vec3(0.0);
+    return csg::leaf(csg::Box{lo, lo + size}, {leafTag(e, s, state), state.material});
+}
+
+Instance sphere(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+                const GeomState& state) {
+    BoundArgs b = bind(e, s, ctx, {"r", "d"}, "sphere(r | d)");
+    double r = numberArg(e, b, 0, "r", 1.0);
+    if (b.given(1)) r = numberArg(e, b, 1, "d", 2.0) / 2.0;  // d wins over r, as in OpenSCAD
+    if (r <= 0) {
+        e.warn(s.loc, "sphere() with a radius that is not positive is empty");
+        return csg::NodePtr();
+    }
+    return csg::leaf(csg::Sphere{r}, {leafTag(e, s, state), state.material});
+}
+
+Instance cylinder(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+                  const GeomState& state) {
+    BoundArgs b = bind(e, s, ctx, {"h", "r1", "r2", "center", "r", "d", "d1", "d2"},
+                       "cylinder(h, r|d, r1|d1, r2|d2, center)");
+    const double h = numberArg(e, b, 0, "h", 1.0);
+    // OpenSCAD's precedence: d over r, d1 over r1, d2 over r2; r1/r2 over r.
+    double r1 = 1.0, r2 = 1.0;
+    if (b.given(5))
+        r1 = r2 = numberArg(e, b, 5, "d", 2.0) / 2.0;
+    else if (b.given(4))
+        r1 = r2 = numberArg(e, b, 4, "r", 1.0);
+    if (b.given(6))
+        r1 = numberArg(e, b, 6, "d1", 2.0) / 2.0;
+    else if (b.given(1))
+        r1 = numberArg(e, b, 1, "r1", 1.0);
+    if (b.given(7))
+        r2 = numberArg(e, b, 7, "d2", 2.0) / 2.0;
+    else if (b.given(2))
+        r2 = numberArg(e, b, 2, "r2", 1.0);
+    const bool center = boolArg(e, b, 3, "center", false);
+    if (h <= 0 || r1 < 0 || r2 < 0 || (r1 == 0 && r2 == 0)) {
+        e.warn(s.loc, "cylinder() with a height or radii that are not positive is empty");
+        return csg::NodePtr();
+    }
+    csg::NodePtr node = csg::leaf(csg::Cylinder{h, r1, r2}, {leafTag(e, s, state), state.material});
+    if (center) node = csg::transformed(glm::translate(Mat4(1.0), Vec3(0, 0, -h / 2)), node);
+    return node;
+}
+
+Instance halfspace(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+                   const GeomState& state) {
+    BoundArgs b = bind(e, s, ctx, {"normal", "offset"}, "halfspace(normal, offset)");
+    const Vec3 normal = vecArg(e, b, 0, "normal", Vec3(0, 0, 1), 0.0, false, false);
+    const double offset = numberArg(e, b, 1, "offset", 0.0);
+    if (normal == Vec3(0.0)) badArgument(e, b, 0, "normal", "a non-zero vector");
+    return csg::leaf(csg::HalfSpace{normal, offset}, {leafTag(e, s, state), state.material});
+}
+
+// ---- booleans ----
+
+Instance unionModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+                     const GeomState& state) {
+    // union, group and render are the same to a ray caster.
+    BoundArgs b = bind(e, s, ctx, {"convexity"}, (s.name + "() { ... }").c_str());
+    return childrenGroup(e, b, ctx, state);
+}
+
+Instance booleanModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+                       const GeomState& state, bool isDifference) {
+    BoundArgs b =
+        bind(e, s, ctx, {}, isDifference ? "difference() { ... }" : "intersection() { ... }");
+    GeomState inner = state;
+    inner.modulePath = e.childPath(state, s.name);
+    bool any = false;
+    auto parts = e.instantiateChildren(s, ctx, inner, b.all, any);
+    if (!any) return std::nullopt;
+    const csg::Tags tags{e.sourceTag(s.loc, inner.modulePath), 0};
+    if (isDifference) {
+        // The first child minus all the others; empty children cut nothing.
+        if (!parts[0]) return csg::NodePtr();
+        std::vector<csg::NodePtr> cut;
+        for (size_t i = 1; i < parts.size(); ++i)
+            if (parts[i]) cut.push_back(parts[i]);
+        if (cut.empty()) return parts[0];
+        return csg::subtractAll(parts[0], cut, tags);
+    }
+    for (const auto& p : parts)
+        if (!p) return csg::NodePtr();  // intersecting with nothing gives nothing
+    return csg::intersectAll(parts, tags);
+}
+
+Instance difference(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+                    const GeomState& state) {
+    return booleanModule(e, s, ctx, state, true);
+}
+Instance intersection(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+                      const GeomState& state) {
+    return booleanModule(e, s, ctx, state, false);
+}
+
+// ---- transforms ----
+
+Instance applyTransform(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
+                        const GeomState& state, const Mat4& m) {
+    GeomState inner = state;
+    inner.worldFromHere = state.worldFromHere * m;
+    Instance children = childrenGroup(e, b, ctx, inner);
+    if (!children || !*children) return children;
+    return csg::transformed(m, *children);
+}
+
+Instance translate(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+                   const GeomState& state) {
+    BoundArgs b = bind(e, s, ctx, {"v"}, "translate(v)");
+    const Vec3 v = vecArg(e, b, 0, "v", Vec3(0.0), 0.0, false);
+    return applyTransform(e, b, ctx, state, glm::translate(Mat4(1.0), v));
+}
+
+Mat4 rotationAbout(const Vec3& axis, double degrees) {
+    const double c = cosDegrees(degrees), s = sinDegrees(degrees);
+    const Vec3 u = glm::normalize(axis);
+    // Rodrigues: c I + s [u]x + (1 - c) u u^T, written column by column (glm is column-major).
+    Mat4 m(1.0);
+    for (int col = 0; col < 3; ++col)
+        for (int row = 0; row < 3; ++row) m[col][row] = (1 - c) * u[row] * u[col];
+    for (int k = 0; k < 3; ++k) m[k][k] += c;
+    m[1][0] -= s * u.z;  // row 0, col 1
+    m[2][0] += s * u.y;
+    m[0][1] += s * u.z;
+    m[2][1] -= s * u.x;
+    m[0][2] -= s * u.y;
+    m[1][2] += s * u.x;
+    return m;
+}
+
+Instance rotate(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+                const GeomState& state) {
+    BoundArgs b = bind(e, s, ctx, {"a", "v"}, "rotate(a) or rotate([x, y, z]) or rotate(a, v)");
+    Mat4 m(1.0);
+    if (b.given(0) && b[0].isVector()) {
+        // rotate([x, y, z]) = Rz * Ry * Rx: about x first.
+        const Vec3 angles = vecArg(e, b, 0, "a", Vec3(0.0), 0.0, false);
+        m = rotationAbout(Vec3(0, 0, 1), angles.z) * rotationAbout(Vec3(0, 1, 0), angles.y) *
+            rotationAbout(Vec3(1, 0, 0), angles.x);
+    } else if (b.given(0)) {
+        const double a = numberArg(e, b, 0, "a", 0.0);
+        Vec3 axis(0, 0, 1);
+        if (b.given(1)) axis = vecArg(e, b, 1, "v", axis, 0.0, false, false);
+        // A zero axis rotates nothing, as in OpenSCAD.
+        if (axis != Vec3(0.0)) m = rotationAbout(axis, a);
+    }
+    return applyTransform(e, b, ctx, state, m);
+}
+
+Instance scale(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+               const GeomState& state) {
+    BoundArgs b = bind(e, s, ctx, {"v"}, "scale(v)");
+    const Vec3 v = vecArg(e, b, 0, "v", Vec3(1.0), 1.0, true);
+    if (v.x == 0 || v.y == 0 || v.z == 0)
+        e.fail(b.loc(0), "scale(" + b[0].repr() +
+                             ") is singular (a zero factor flattens the solid); expected scale(v) "
+                             "with non-zero factors");
+    return applyTransform(e, b, ctx, state, glm::scale(Mat4(1.0), v));
+}
+
+Instance mirror(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+                const GeomState& state) {
+    BoundArgs b = bind(e, s, ctx, {"v"}, "mirror(v)");
+    const Vec3 v = vecArg(e, b, 0, "v", Vec3(1, 0, 0), 0.0, false);
+    Mat4 m(1.0);
+    if (v != Vec3(0.0)) {
+        // Householder reflection I - 2 n n^T across the plane through the origin normal to v.
+        const Vec3 n = glm::normalize(v);
+        for (int col = 0; col < 3; ++col)
+            for (int row = 0; row < 3; ++row) m[col][row] -= 2.0 * n[row] * n[col];
+    }
+    return applyTransform(e, b, ctx, state, m);
+}
+
+Instance multmatrix(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+                    const GeomState& state) {
+    BoundArgs b = bind(e, s, ctx, {"m"}, "multmatrix(m) with m a 4x4 or 3x4 matrix of rows");
+    Mat4 m(1.0);
+    if (b.given(0)) {
+        const Value& v = b[0];
+        const char* what = "a 4x4 or 3x4 matrix (a vector of rows of 4 numbers)";
+        if (!v.isVector() || v.list().size() < 3 || v.list().size() > 4)
+            badArgument(e, b, 0, "m", what);
+        for (size_t row = 0; row < v.list().size(); ++row) {
+            const Value& r = v.list()[row];
+            if (!r.isVector() || r.list().size() != 4) badArgument(e, b, 0, "m", what);
+            for (size_t col = 0; col < 4; ++col) {
+                if (!r.list()[col].isNumber() || !std::isfinite(r.list()[col].number()))
+                    badArgument(e, b, 0, "m", what);
+                m[static_cast<int>(col)][static_cast<int>(row)] = r.list()[col].number();
+            }
+        }
+        if (v.list().size() == 4 && (m[0][3] != 0 || m[1][3] != 0 || m[2][3] != 0 || m[3][3] != 1))
+            e.fail(b.loc(0), "multmatrix(): the last row must be [0, 0, 0, 1] (an affine map)");
+        // Singular: the linear part flattens space (relative to its own size).
+        const csg::Mat3 linear(m);
+        double size = 0.0;
+        for (int c = 0; c < 3; ++c) size = std::max(size, glm::length(linear[c]));
+        if (std::fabs(glm::determinant(linear)) <= 1e-12 * size * size * size)
+            e.fail(b.loc(0), "multmatrix(): the matrix is singular (it flattens the solid)");
+    }
+    return applyTransform(e, b, ctx, state, m);
+}
+
+// ---- appearance ----
+
+Instance color(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+               const GeomState& state) {
+    BoundArgs b = bind(e, s, ctx, {"c", "alpha"}, "color(c, alpha)");
+    GeomState inner = state;
+    Material m = e.model().materials[state.material];
+    if (auto c = colorArg(e, b, 0, "c")) m.color = *c;
+    if (b.given(1)) m.color.a = numberArg(e, b, 1, "alpha", 1.0);
+    inner.material = e.internMaterial(m);
+    return childrenGroup(e, b, ctx, inner);
+}
+
+Instance material(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+                  const GeomState& state) {
+    BoundArgs b =
+        bind(e, s, ctx,
+             {"color", "ambient", "diffuse", "specular", "shininess", "reflect", "transmit", "ior"},
+             "material(color, ambient, diffuse, specular, shininess, reflect, transmit, "
+             "ior)");
+    // Fields not given keep the enclosing material's values (inner wins field by field).
+    Material m = e.model().materials[state.material];
+    if (auto c = colorArg(e, b, 0, "color")) m.color = *c;
+    double* fields[] = {&m.ambient, &m.diffuse,  &m.specular, &m.shininess,
+                        &m.reflect, &m.transmit, &m.ior};
+    const char* names[] = {"ambient", "diffuse",  "specular", "shininess",
+                           "reflect", "transmit", "ior"};
+    for (size_t k = 0; k < 7; ++k) {
+        *fields[k] = numberArg(e, b, k + 1, names[k], *fields[k]);
+        if (*fields[k] < 0) badArgument(e, b, k + 1, names[k], "a number >= 0");
+    }
+    if (m.ior <= 0) badArgument(e, b, 7, "ior", "a number > 0");
+    GeomState inner = state;
+    inner.material = e.internMaterial(m);
+    return childrenGroup(e, b, ctx, inner);
+}
+
+// ---- scene ----
+
+Instance noChildren(Evaluator& e, const InstantiationStmt& s) {
+    if (!s.children.empty()) e.warn(s.loc, s.name + "() takes no children; they are ignored");
+    return std::nullopt;
+}
+
+Instance camera(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+                const GeomState& state) {
+    BoundArgs b = bind(e, s, ctx, {"eye", "center", "up", "fov", "projection"},
+                       "camera(eye, center, up, fov, projection)");
+    Camera c;
+    c.eye =
+        csg::transformPoint(state.worldFromHere, vecArg(e, b, 0, "eye", c.eye, 0.0, false, false));
+    c.center = csg::transformPoint(state.worldFromHere,
+                                   vecArg(e, b, 1, "center", c.center, 0.0, false, false));
+    c.up =
+        csg::transformVector(state.worldFromHere, vecArg(e, b, 2, "up", c.up, 0.0, false, false));
+    c.fov = numberArg(e, b, 3, "fov", c.fov);
+    if (c.fov <= 0 || c.fov >= 180) badArgument(e, b, 3, "fov", "an angle in (0, 180) degrees");
+    if (b.given(4)) {
+        if (b[4].isString() && b[4].string() == "perspective")
+            c.projection = Projection::Perspective;
+        else if (b[4].isString() && b[4].string() == "orthographic")
+            c.projection = Projection::Orthographic;
+        else
+            badArgument(e, b, 4, "projection", "\"perspective\" or \"orthographic\"");
+    }
+    if (c.eye == c.center) e.fail(s.loc, "camera(): eye and center are the same point");
+    if (e.model().camera) e.warn(s.loc, "more than one camera(); the last one is used");
+    e.model().camera = c;
+    return noChildren(e, s);
+}
+
+Instance light(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+               const GeomState& state) {
+    BoundArgs b = bind(e, s, ctx, {"position", "color", "intensity", "shadows"},
+                       "light(position, color, intensity, shadows)");
+    Light l;
+    l.position = csg::transformPoint(state.worldFromHere,
+                                     vecArg(e, b, 0, "position", l.position, 0.0, false, false));
+    if (auto c = colorArg(e, b, 1, "color")) l.color = Vec3(*c);
+    l.intensity = numberArg(e, b, 2, "intensity", l.intensity);
+    if (l.intensity < 0) badArgument(e, b, 2, "intensity", "a number >= 0");
+    l.shadows = boolArg(e, b, 3, "shadows", l.shadows);
+    e.model().lights.push_back(l);
+    return noChildren(e, s);
+}
+
+Instance background(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+                    const GeomState&) {
+    BoundArgs b = bind(e, s, ctx, {"color"}, "background(color)");
+    if (!b.given(0)) e.fail(s.loc, "background() needs a color; expected background(color)");
+    if (auto c = colorArg(e, b, 0, "color")) e.model().background = Vec3(*c);
+    return noChildren(e, s);
+}
+
+Instance unsupported(Evaluator& e, const InstantiationStmt& s, const ContextPtr&,
+                     const GeomState&) {
+    e.fail(s.loc, "'" + s.name +
+                      "' is not supported by csgray (only 3-D CSG of sphere, cube, "
+                      "cylinder and halfspace is)");
+}
+
+const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {
+    static const std::unordered_map<std::string, Evaluator::BuiltinModule> modules = {
+        {"cube", cube},
+        {"sphere", sphere},
+        {"cylinder", cylinder},
+        {"halfspace", halfspace},
+        {"union", unionModule},
+        {"group", unionModule},
+        {"render", unionModule},
+        {"difference", difference},
+        {"intersection", intersection},
+        {"translate", translate},
+        {"rotate", rotate},
+        {"scale", scale},
+        {"mirror", mirror},
+        {"multmatrix", multmatrix},
+        {"color", color},
+        {"material", material},
+        {"camera", camera},
+        {"light", light},
+        {"background", background},
+        // OpenSCAD modules with no exact ray-cast counterpart yet: an error, never a skip.
+        {"linear_extrude", unsupported},
+        {"rotate_extrude", unsupported},
+        {"import", unsupported},
+        {"surface", unsupported},
+        {"polyhedron", unsupported},
+        {"square", unsupported},
+        {"circle", unsupported},
+        {"polygon", unsupported},
+        {"text", unsupported},
+        {"offset", unsupported},
+        {"hull", unsupported},
+        {"minkowski", unsupported},
+        {"projection", unsupported},
+        {"resize", unsupported},
+        {"roof", unsupported},
+        {"child", unsupported},
+    };
+    return modules;
+}
+
+}  // namespace
+
+const Evaluator::BuiltinModule* Evaluator::findBuiltinModule(const std::string& name) const {
+    const auto& t = table();
+    auto it = t.find(name);
+    return it == t.end() ? nullptr : &it->second;
+}
+
+}  // namespace io

@@ -1,0 +1,335 @@
+// OpenSCAD's built-in functions. Trigonometry is in degrees; functions given arguments of the
+// wrong type return undef with a warning, as OpenSCAD does.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <unordered_map>
+
+#include "io/Degrees.h"
+#include "io/Evaluator.h"
+
+namespace io {
+
+namespace {
+
+using Args = ArgValues;
+
+std::optional<double> number(const Args& a, size_t i) {
+    if (i < a.size() && a[i].value.isNumber()) return a[i].value.number();
+    return std::nullopt;
+}
+
+Value badArgument(Evaluator& e, Loc loc, const char* name) {
+    e.warn(loc, std::string(name) + "() parameter could not be converted");
+    return Value();
+}
+
+template <double (*F)(double)>
+Value unary(Evaluator& e, const Args& a, Loc loc, const char* name) {
+    auto x = number(a, 0);
+    if (!x || a.size() != 1) return badArgument(e, loc, name);
+    return F(*x);
+}
+
+constexpr double kDegreesPerRadian = 180.0 / std::numbers::pi;
+
+double tanDegrees(double x) {
+    const double c = cosDegrees(x);
+    return c == 0.0 ? (sinDegrees(x) > 0 ? INFINITY : -INFINITY) : sinDegrees(x) / c;
+}
+double asinDegrees(double x) {
+    return std::asin(x) * kDegreesPerRadian;
+}
+double acosDegrees(double x) {
+    return std::acos(x) * kDegreesPerRadian;
+}
+double atanDegrees(double x) {
+    return std::atan(x) * kDegreesPerRadian;
+}
+double sign(double x) {
+    return x < 0 ? -1.0 : x > 0 ? 1.0 : 0.0;
+}
+double sqrtOf(double x) {
+    return std::sqrt(x);
+}
+double expOf(double x) {
+    return std::exp(x);
+}
+double lnOf(double x) {
+    return std::log(x);
+}
+double absOf(double x) {
+    return std::fabs(x);
+}
+double floorOf(double x) {
+    return std::floor(x);
+}
+double ceilOf(double x) {
+    return std::ceil(x);
+}
+double roundOf(double x) {
+    return std::round(x);
+}  // half away from zero, as OpenSCAD
+
+#define UNARY(fn, name) [](Evaluator& e, const Args& a, Loc l) { return unary<fn>(e, a, l, name); }
+
+Value minMax(Evaluator& e, const Args& a, Loc loc, bool isMax) {
+    const char* name = isMax ? "max" : "min";
+    // One vector argument: its elements; otherwise the arguments themselves.
+    std::vector<Value> items;
+    if (a.size() == 1 && a[0].value.isVector())
+        items = a[0].value.list();
+    else
+        for (const auto& x : a) items.push_back(x.value);
+    if (items.empty()) return badArgument(e, loc, name);
+    double best = isMax ? -INFINITY : INFINITY;
+    for (const Value& v : items) {
+        if (!v.isNumber()) return badArgument(e, loc, name);
+        best = isMax ? std::max(best, v.number()) : std::min(best, v.number());
+    }
+    return best;
+}
+
+size_t codePoints(const std::string& s) {
+    size_t n = 0;
+    for (char c : s)
+        if ((static_cast<unsigned char>(c) & 0xC0) != 0x80) ++n;
+    return n;
+}
+
+void appendUtf8(std::string& out, uint32_t cp) {
+    if (cp < 0x80) {
+        out += static_cast<char>(cp);
+    } else if (cp < 0x800) {
+        out += static_cast<char>(0xC0 | (cp >> 6));
+        out += static_cast<char>(0x80 | (cp & 0x3F));
+    } else if (cp < 0x10000) {
+        out += static_cast<char>(0xE0 | (cp >> 12));
+        out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+        out += static_cast<char>(0x80 | (cp & 0x3F));
+    } else {
+        out += static_cast<char>(0xF0 | (cp >> 18));
+        out += static_cast<char>(0x80 | ((cp >> 12) & 0x3F));
+        out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+        out += static_cast<char>(0x80 | (cp & 0x3F));
+    }
+}
+
+void appendChr(std::string& out, const Value& v) {
+    if (v.isNumber()) {
+        const double d = v.number();
+        if (d >= 1 && d <= 0x10FFFF && d == std::floor(d) && !(d >= 0xD800 && d <= 0xDFFF))
+            appendUtf8(out, static_cast<uint32_t>(d));
+    } else if (v.isVector()) {
+        for (const Value& x : v.list()) appendChr(out, x);
+    } else if (v.isRange()) {
+        const Range& r = v.range();
+        const double n = std::min(r.count(), kMaxIterations);
+        for (double i = 0; i < n; ++i) appendChr(out, Value(r.begin + i * r.step));
+    }
+}
+
+Value lookup(Evaluator& e, const Args& a, Loc loc) {
+    auto key = number(a, 0);
+    if (!key || a.size() < 2 || !a[1].value.isVector()) return badArgument(e, loc, "lookup");
+    // Nearest entries at or below and at or above the key; clamped outside the table.
+    const ValueList* low = nullptr;
+    const ValueList* high = nullptr;
+    const ValueList* lowest = nullptr;
+    const ValueList* highest = nullptr;
+    for (const Value& entry : a[1].value.list()) {
+        if (!entry.isVector() || entry.list().size() < 2 || !entry.list()[0].isNumber() ||
+            !entry.list()[1].isNumber())
+            continue;
+        const ValueList* p = &entry.list();
+        const double k = (*p)[0].number();
+        if (!lowest || k < (*lowest)[0].number()) lowest = p;
+        if (!highest || k > (*highest)[0].number()) highest = p;
+        if (k <= *key && (!low || k > (*low)[0].number())) low = p;
+        if (k >= *key && (!high || k < (*high)[0].number())) high = p;
+    }
+    if (!lowest) return Value();
+    if (!low) return (*lowest)[1];
+    if (!high) return (*highest)[1];
+    const double k0 = (*low)[0].number(), k1 = (*high)[0].number();
+    const double v0 = (*low)[1].number(), v1 = (*high)[1].number();
+    if (k1 == k0) return v0;
+    return v0 + (v1 - v0) * (*key - k0) / (k1 - k0);
+}
+
+Value rands(Evaluator& e, const Args& a, Loc loc) {
+    auto lo = number(a, 0), hi = number(a, 1), count = number(a, 2);
+    if (!lo || !hi || !count || *count < 0 || *count > kMaxIterations)
+        return badArgument(e, loc, "rands");
+    std::mt19937 seeded;
+    std::mt19937* generator = &e.random();  // without a seed: one fixed sequence per run
+    if (auto seed = number(a, 3)) {
+        seeded.seed(static_cast<unsigned int>(static_cast<long long>(*seed)));
+        generator = &seeded;
+    }
+    ValueList out;
+    const size_t n = static_cast<size_t>(*count);
+    out.reserve(n);
+    if (*lo == *hi) {
+        out.assign(n, Value(*lo));
+        return out;
+    }
+    std::uniform_real_distribution<double> distribution(std::min(*lo, *hi), std::max(*lo, *hi));
+    for (size_t i = 0; i < n; ++i) out.push_back(distribution(*generator));
+    return out;
+}
+
+Value cross(Evaluator& e, const Args& a, Loc loc) {
+    if (a.size() != 2 || !a[0].value.isVector() || !a[1].value.isVector())
+        return badArgument(e, loc, "cross");
+    const ValueList &u = a[0].value.list(), &v = a[1].value.list();
+    auto numbers = [](const ValueList& l) {
+        return std::all_of(l.begin(), l.end(), [](const Value& x) { return x.isNumber(); });
+    };
+    if (u.size() != v.size() || !numbers(u) || !numbers(v)) return badArgument(e, loc, "cross");
+    if (u.size() == 2) return u[0].number() * v[1].number() - u[1].number() * v[0].number();
+    if (u.size() != 3) return badArgument(e, loc, "cross");
+    const double x = u[1].number() * v[2].number() - u[2].number() * v[1].number();
+    const double y = u[2].number() * v[0].number() - u[0].number() * v[2].number();
+    const double z = u[0].number() * v[1].number() - u[1].number() * v[0].number();
+    return ValueList{x, y, z};
+}
+
+const std::unordered_map<std::string, Evaluator::BuiltinFunction>& table() {
+    static const std::unordered_map<std::string, Evaluator::BuiltinFunction> functions = {
+        {"sin", UNARY(sinDegrees, "sin")},
+        {"cos", UNARY(cosDegrees, "cos")},
+        {"tan", UNARY(tanDegrees, "tan")},
+        {"asin", UNARY(asinDegrees, "asin")},
+        {"acos", UNARY(acosDegrees, "acos")},
+        {"atan", UNARY(atanDegrees, "atan")},
+        {"atan2",
+         [](Evaluator& e, const Args& a, Loc l) -> Value {
+             auto y = number(a, 0), x = number(a, 1);
+             if (!y || !x) return badArgument(e, l, "atan2");
+             return std::atan2(*y, *x) * kDegreesPerRadian;
+         }},
+        {"sqrt", UNARY(sqrtOf, "sqrt")},
+        {"exp", UNARY(expOf, "exp")},
+        {"ln", UNARY(lnOf, "ln")},
+        {"abs", UNARY(absOf, "abs")},
+        {"sign", UNARY(sign, "sign")},
+        {"floor", UNARY(floorOf, "floor")},
+        {"ceil", UNARY(ceilOf, "ceil")},
+        {"round", UNARY(roundOf, "round")},
+        {"pow",
+         [](Evaluator& e, const Args& a, Loc l) -> Value {
+             auto b = number(a, 0), x = number(a, 1);
+             if (!b || !x) return badArgument(e, l, "pow");
+             return std::pow(*b, *x);
+         }},
+        {"log",
+         [](Evaluator& e, const Args& a, Loc l) -> Value {
+             // log(x) is base 10; log(b, x) is base b.
+             if (a.size() == 2) {
+                 auto b = number(a, 0), x = number(a, 1);
+                 if (!b || !x) return badArgument(e, l, "log");
+                 return std::log(*x) / std::log(*b);
+             }
+             auto x = number(a, 0);
+             if (!x || a.size() != 1) return badArgument(e, l, "log");
+             return std::log10(*x);
+         }},
+        {"min", [](Evaluator& e, const Args& a, Loc l) { return minMax(e, a, l, false); }},
+        {"max", [](Evaluator& e, const Args& a, Loc l) { return minMax(e, a, l, true); }},
+        {"norm",
+         [](Evaluator& e, const Args& a, Loc l) -> Value {
+             if (a.size() != 1 || !a[0].value.isVector()) return badArgument(e, l, "norm");
+             double sum = 0.0;
+             for (const Value& x : a[0].value.list()) {
+                 if (!x.isNumber()) return badArgument(e, l, "norm");
+                 sum += x.number() * x.number();
+             }
+             return std::sqrt(sum);
+         }},
+        {"cross", cross},
+        {"len",
+         [](Evaluator& e, const Args& a, Loc l) -> Value {
+             if (a.size() == 1 && a[0].value.isVector())
+                 return static_cast<double>(a[0].value.list().size());
+             if (a.size() == 1 && a[0].value.isString())
+                 return static_cast<double>(codePoints(a[0].value.string()));
+             return badArgument(e, l, "len");
+         }},
+        {"concat",
+         [](Evaluator&, const Args& a, Loc) -> Value {
+             ValueList out;
+             for (const ArgValue& x : a) {
+                 if (x.value.isVector())
+                     out.insert(out.end(), x.value.list().begin(), x.value.list().end());
+                 else
+                     out.push_back(x.value);
+             }
+             return out;
+         }},
+        {"lookup", lookup},
+        {"str",
+         [](Evaluator&, const Args& a, Loc) -> Value {
+             std::string out;
+             for (const ArgValue& x : a) out += x.value.toString();
+             return out;
+         }},
+        {"chr",
+         [](Evaluator&, const Args& a, Loc) -> Value {
+             std::string out;
+             for (const ArgValue& x : a) appendChr(out, x.value);
+             return out;
+         }},
+        {"ord",
+         [](Evaluator& e, const Args& a, Loc l) -> Value {
+             if (a.size() != 1 || !a[0].value.isString()) return badArgument(e, l, "ord");
+             const std::string& s = a[0].value.string();
+             if (s.empty() || codePoints(s) != 1) return Value();
+             const auto c = static_cast<unsigned char>(s[0]);
+             uint32_t cp = c < 0x80 ? c : c < 0xE0 ? c & 0x1F : c < 0xF0 ? c & 0x0F : c & 0x07;
+             for (size_t i = 1; i < s.size(); ++i) cp = (cp << 6) | (s[i] & 0x3F);
+             return static_cast<double>(cp);
+         }},
+        {"rands", rands},
+        {"is_undef",
+         [](Evaluator&, const Args& a, Loc) -> Value {
+             return a.size() == 1 && a[0].value.isUndef();
+         }},
+        {"is_num",
+         [](Evaluator&, const Args& a, Loc) -> Value {
+             return a.size() == 1 && a[0].value.isNumber() && !std::isnan(a[0].value.number());
+         }},
+        {"is_bool",
+         [](Evaluator&, const Args& a, Loc) -> Value {
+             return a.size() == 1 && a[0].value.isBool();
+         }},
+        {"is_string",
+         [](Evaluator&, const Args& a, Loc) -> Value {
+             return a.size() == 1 && a[0].value.isString();
+         }},
+        {"is_list",
+         [](Evaluator&, const Args& a, Loc) -> Value {
+             return a.size() == 1 && a[0].value.isVector();
+         }},
+        {"is_function",
+         [](Evaluator&, const Args& a, Loc) -> Value {
+             return a.size() == 1 && a[0].value.isFunction();
+         }},
+        {"version",
+         [](Evaluator&, const Args&, Loc) -> Value {
+             return ValueList{2021, 1, 0};
+         }},
+        {"version_num", [](Evaluator&, const Args&, Loc) -> Value { return 20210100.0; }},
+    };
+    return functions;
+}
+
+}  // namespace
+
+const Evaluator::BuiltinFunction* Evaluator::findBuiltinFunction(const std::string& name) const {
+    const auto& t = table();
+    auto it = t.find(name);
+    return it == t.end() ? nullptr : &it->second;
+}
+
+}  // namespace io

@@ -1,0 +1,236 @@
+// The evaluator's internals (not a public header): contexts with OpenSCAD's two kinds of
+// scoping, and the Evaluator that turns an AST into csg nodes and Model extras.
+//
+// Scoping, as OpenSCAD 2021 does it:
+//   plain names   resolve lexically: lexicalParent is the scope the code was written in;
+//   $-names       resolve dynamically: dynamicParent is the scope that called this one;
+//   a scope       evaluates all its assignments first, in order (a name assigned twice keeps
+//                 its first position and takes the last value), then its instantiations.
+// Errors are thrown as EvalError inside io/ and become diagnostics at the entry point.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <random>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "io/Ast.h"
+#include "io/Evaluate.h"
+#include "io/SourceFiles.h"
+#include "io/Value.h"
+
+namespace io {
+
+struct EvalError {
+    Loc loc;
+    std::string message;
+};
+
+struct Context;
+using ContextPtr = std::shared_ptr<Context>;
+
+struct Context {
+    ContextPtr lexicalParent;
+    ContextPtr dynamicParent;
+    const Body* body = nullptr;  // the definitions visible from here
+    std::vector<std::pair<std::string, Value>> variables;
+
+    // A user module's call: the children written at the call site and the scope they were
+    // written in (children() evaluates them there).
+    bool isModuleCall = false;
+    const Body* children = nullptr;
+    ContextPtr childrenContext;
+
+    // A file's top scope: the files it uses (their top scopes), searched after its own body.
+    std::vector<ContextPtr> usedFiles;
+
+    static ContextPtr make(ContextPtr lexical, ContextPtr dynamic, const Body* scopeBody) {
+        auto c = std::make_shared<Context>();
+        c->lexicalParent = std::move(lexical);
+        c->dynamicParent = std::move(dynamic);
+        c->body = scopeBody;
+        return c;
+    }
+    // Sets a variable in this scope (replacing one of the same name).
+    void set(std::string_view name, Value value);
+    const Value* findLocal(std::string_view name) const;
+};
+
+// Top-down state of geometry evaluation: where we are (for # and % records), which material
+// applies (inner color/material wins) and the module path for source tags.
+struct GeomState {
+    csg::Mat4 worldFromHere{1.0};
+    uint32_t material = 0;    // index into Model::materials
+    uint32_t modulePath = 0;  // index into Model::modulePaths
+};
+
+// A module instantiation's result: nothing (echo, camera, an empty group — OpenSCAD drops
+// those from booleans), or a node, where a null NodePtr is the empty solid (cube(0)).
+using Instance = std::optional<csg::NodePtr>;
+
+// Evaluated call arguments: name empty when positional.
+struct ArgValue {
+    std::string name;
+    Value value;
+    Loc loc;
+};
+using ArgValues = std::vector<ArgValue>;
+
+class Evaluator {
+public:
+    Evaluator(SourceFiles& sources, Model& model, std::vector<Diagnostic>& diagnostics,
+              const EvaluateOptions& options);
+
+    // Evaluates a parsed main file into model_.root (and the extras).
+    void run(const ParsedFile& file);
+
+    // ---- expressions (ExpressionEval.cpp) ----
+    Value eval(const Expr& e, const ContextPtr& ctx);
+    Value lookupVariable(const std::string& name, const ContextPtr& ctx, Loc loc);
+    ArgValues evalArgs(const Arguments& args, const ContextPtr& ctx);
+    Value callFunctionExpr(const CallExpr& call, const ContextPtr& ctx);
+    void warn(Loc loc, std::string message);
+    [[noreturn]] void fail(Loc loc, std::string message) {
+        throw EvalError{loc, std::move(message)};
+    }
+
+    // ---- built-in functions (Builtins.cpp) ----
+    using BuiltinFunction = Value (*)(Evaluator&, const ArgValues&, Loc);
+    const BuiltinFunction* findBuiltinFunction(const std::string& name) const;
+    std::mt19937& random() { return random_; }
+
+    // The echo line of a list of arguments: "ECHO: a = 1, 2".
+    void echo(const ArgValues& args);
+
+private:
+    friend struct ModuleCall;
+    // ---- expression helpers ----
+    Value evalBinary(const BinaryExpr& e, const ContextPtr& ctx);
+    Value evalVector(const VectorExpr& e, const ContextPtr& ctx);
+    void evalElement(const Expr& e, const ContextPtr& ctx, ValueList& out);
+    Value evalRange(const RangeExpr& e, const ContextPtr& ctx);
+    ContextPtr letContext(const Arguments& assignments, const ContextPtr& ctx);
+    void checkAssert(const AssertOrEchoExpr& e, const ContextPtr& ctx);
+    Value callUserFunction(const Parameters* params, const Expr* body, ContextPtr definition,
+                           ArgValues args, const ContextPtr& caller, Loc loc,
+                           const std::string& name);
+    ContextPtr bindParameters(const Parameters& params, const ArgValues& args,
+                              ContextPtr definition, ContextPtr caller, Loc loc,
+                              const std::string& what);
+    struct FunctionRef {
+        const Parameters* params = nullptr;
+        const Expr* body = nullptr;
+        ContextPtr definition;
+    };
+    std::optional<FunctionRef> findFunction(const std::string& name, const ContextPtr& ctx);
+
+public:
+    // ---- statements (StatementEval.cpp) ----
+    // Evaluates a scope: its assignments, then its instantiations into `out`.
+    void evalScope(const ContextPtr& ctx, const Body& body, const GeomState& state,
+                   std::vector<csg::NodePtr>& out);
+    Instance instantiate(const Stmt& s, const ContextPtr& ctx, const GeomState& state);
+    // The children of a built-in operator call, evaluated in a scope of their own.
+    std::vector<csg::NodePtr> instantiateChildren(const InstantiationStmt& s, const ContextPtr& ctx,
+                                                  const GeomState& state, const ArgValues& args,
+                                                  bool& anyPresent);
+
+    // ---- tree building helpers ----
+    uint32_t sourceTag(Loc loc, uint32_t modulePath);
+    uint32_t childPath(const GeomState& state, std::string_view name);
+    uint32_t internMaterial(const Material& m);
+    // Union of present children: nothing when there are none, else a node (null if empty).
+    Instance group(std::vector<csg::NodePtr> parts, bool anyPresent, uint32_t tag);
+    Model& model() { return model_; }
+    const std::string& fileName(uint32_t file) const { return sources_.name(file); }
+
+    // ---- built-in modules (BuiltinModules.cpp) ----
+    using BuiltinModule = Instance (*)(Evaluator&, const InstantiationStmt&, const ContextPtr&,
+                                       const GeomState&);
+    const BuiltinModule* findBuiltinModule(const std::string& name) const;
+
+private:
+    Instance instantiateCall(const InstantiationStmt& s, const ContextPtr& ctx,
+                             const GeomState& state);
+    Instance callUserModule(const ModuleDefStmt& def, const ContextPtr& definition,
+                            const InstantiationStmt& s, const ContextPtr& ctx,
+                            const GeomState& state);
+    Instance instantiateForLoop(const InstantiationStmt& s, const ContextPtr& ctx,
+                                const GeomState& state, bool intersect);
+    Instance instantiateChildrenCall(const InstantiationStmt& s, const ContextPtr& ctx,
+                                     const GeomState& state);
+    void loadUses(const ParsedFile& file, const ContextPtr& fileContext);
+
+public:
+    // Iterates a for-loop value (vector items, range numbers, string characters, any other
+    // defined value once); f returns false to stop.
+    template <class F>
+    void forEachItem(const Value& v, Loc loc, F&& f);
+
+    // Call depth guard shared by modules and functions.
+    struct DepthGuard {
+        Evaluator& e;
+        DepthGuard(Evaluator& ev, Loc loc, const std::string& name);
+        ~DepthGuard() { --e.depth_; }
+    };
+
+private:
+    SourceFiles& sources_;
+    Model& model_;
+    std::vector<Diagnostic>& diagnostics_;
+    const EvaluateOptions& options_;
+    std::mt19937 random_{0};
+    uint32_t depth_ = 0;
+    uint32_t warnings_ = 0;
+    std::unordered_map<std::string, uint32_t> pathIndex_;
+    std::vector<std::unique_ptr<ParsedFile>> usedFiles_;
+    std::unordered_map<std::string, ContextPtr> usedFileContexts_;
+    ContextPtr root_;                           // built-in constants and the default $-variables
+    std::optional<csg::NodePtr> rootOverride_;  // the first ! subtree
+    friend Instance builtinChildrenCall(Evaluator&, const InstantiationStmt&, const ContextPtr&,
+                                        const GeomState&);
+};
+
+// Most iterations a for loop or a range may yield (a bigger one is an error, not a hang).
+inline constexpr double kMaxIterations = 1e7;
+
+template <class F>
+void Evaluator::forEachItem(const Value& v, Loc loc, F&& f) {
+    switch (v.type()) {
+        case Value::Type::Vector:
+            for (const Value& item : v.list())
+                if (!f(item)) return;
+            return;
+        case Value::Type::Range: {
+            const Range& r = v.range();
+            const double n = r.count();
+            if (n > kMaxIterations)
+                fail(loc, "range has too many elements (" + formatNumber(n) + ")");
+            for (double i = 0; i < n; ++i)
+                if (!f(Value(r.begin + i * r.step))) return;
+            return;
+        }
+        case Value::Type::String: {
+            const std::string& s = v.string();
+            for (size_t i = 0; i < s.size();) {
+                size_t len = 1;
+                while (i + len < s.size() &&
+                       (static_cast<unsigned char>(s[i + len]) & 0xC0) == 0x80)
+                    ++len;
+                if (!f(Value(s.substr(i, len)))) return;
+                i += len;
+            }
+            return;
+        }
+        case Value::Type::Undef:
+            return;
+        default:
+            f(v);
+            return;
+    }
+}
+
+}  // namespace io

@@ -1,0 +1,162 @@
+// Calling functions: parameter binding with positional, named and default arguments, and
+// tail calls run as a loop (as OpenSCAD does), so f(n) = n <= 0 ? a : f(n - 1, ...) may
+// recurse a million times without growing the C++ stack.
+#include "io/Evaluator.h"
+
+namespace io {
+
+// The most tail calls one call may chain (OpenSCAD allows about a million).
+constexpr uint64_t kMaxTailCalls = 2'000'000;
+
+Evaluator::DepthGuard::DepthGuard(Evaluator& ev, Loc loc, const std::string& name) : e(ev) {
+    if (++e.depth_ > e.options_.maxCallDepth) {
+        --e.depth_;
+        e.fail(loc, "recursion too deep calling '" + name + "' (more than " +
+                        std::to_string(e.options_.maxCallDepth) + " nested calls)");
+    }
+}
+
+ContextPtr Evaluator::bindParameters(const Parameters& params, const ArgValues& args,
+                                     ContextPtr definition, ContextPtr caller, Loc loc,
+                                     const std::string& what) {
+    ContextPtr c = Context::make(std::move(definition), std::move(caller), nullptr);
+    std::vector<bool> bound(params.size(), false);
+    size_t nextPositional = 0;
+    for (const ArgValue& a : args) {
+        if (a.name.empty()) {
+            if (nextPositional < params.size()) {
+                c->set(params[nextPositional].name, a.value);
+                bound[nextPositional++] = true;
+            } else {
+                warn(a.loc, "too many unnamed arguments supplied to '" + what + "'");
+            }
+            continue;
+        }
+        size_t k = 0;
+        while (k < params.size() && params[k].name != a.name) ++k;
+        if (k < params.size()) {
+            c->set(a.name, a.value);
+            bound[k] = true;
+        } else if (a.name[0] == '$') {
+            c->set(a.name, a.value);
+        } else {
+            warn(a.loc, "'" + a.name + "' is not a parameter of '" + what + "'");
+        }
+    }
+    (void)loc;
+    // Defaults see the parameters bound before them.
+    for (size_t k = 0; k < params.size(); ++k)
+        if (!bound[k])
+            c->set(params[k].name,
+                   params[k].defaultValue ? eval(*params[k].defaultValue, c) : Value());
+    return c;
+}
+
+std::optional<Evaluator::FunctionRef> Evaluator::findFunction(const std::string& name,
+                                                              const ContextPtr& ctx) {
+    for (ContextPtr c = ctx; c; c = c->lexicalParent) {
+        if (const Value* v = c->findLocal(name); v && v->isFunction())
+            return FunctionRef{&v->function().literal->params, v->function().literal->body.get(),
+                               v->function().closure};
+        if (c->body) {
+            auto it = c->body->functions.find(name);
+            if (it != c->body->functions.end())
+                return FunctionRef{&it->second->params, it->second->body.get(), c};
+        }
+        for (const ContextPtr& used : c->usedFiles) {
+            auto it = used->body->functions.find(name);
+            if (it != used->body->functions.end())
+                return FunctionRef{&it->second->params, it->second->body.get(), used};
+        }
+    }
+    return std::nullopt;
+}
+
+Value Evaluator::callFunctionExpr(const CallExpr& call, const ContextPtr& ctx) {
+    std::string name = "function literal";
+    std::optional<FunctionRef> user;
+    if (call.callee->kind == ExprKind::Identifier) {
+        name = static_cast<const IdentifierExpr&>(*call.callee).name;
+        user = findFunction(name, ctx);
+        if (!user) {
+            if (const BuiltinFunction* b = findBuiltinFunction(name))
+                return (*b)(*this, evalArgs(call.args, ctx), call.loc);
+            fail(call.loc, "unknown function '" + name + "'");
+        }
+    } else {
+        const Value v = eval(*call.callee, ctx);
+        if (!v.isFunction())
+            fail(call.loc, std::string("cannot call a ") + v.typeName() + " (not a function)");
+        user = FunctionRef{&v.function().literal->params, v.function().literal->body.get(),
+                           v.function().closure};
+    }
+    return callUserFunction(user->params, user->body, user->definition, evalArgs(call.args, ctx),
+                            ctx, call.loc, name);
+}
+
+Value Evaluator::callUserFunction(const Parameters* params, const Expr* body, ContextPtr definition,
+                                  ArgValues args, const ContextPtr& caller, Loc loc,
+                                  const std::string& name) {
+    DepthGuard guard(*this, loc, name);
+    ContextPtr callerCtx = caller;
+    std::string currentName = name;
+    for (uint64_t tailCalls = 0;; ++tailCalls) {
+        if (tailCalls > kMaxTailCalls)
+            fail(loc, "recursion too deep calling '" + currentName + "' (more than " +
+                          std::to_string(kMaxTailCalls) + " tail calls)");
+        ContextPtr c = bindParameters(*params, args, definition, callerCtx, loc, currentName);
+        const Expr* e = body;
+        bool tailCall = false;
+        // Walk the body's tail positions; a call there to a user function loops instead of
+        // recursing.
+        while (!tailCall) {
+            switch (e->kind) {
+                case ExprKind::Ternary: {
+                    const auto& t = static_cast<const TernaryExpr&>(*e);
+                    e = eval(*t.condition, c).truthy() ? t.ifTrue.get() : t.ifFalse.get();
+                    continue;
+                }
+                case ExprKind::Let: {
+                    const auto& l = static_cast<const LetExpr&>(*e);
+                    c = letContext(l.assignments, c);
+                    e = l.body.get();
+                    continue;
+                }
+                case ExprKind::Assert:
+                case ExprKind::Echo: {
+                    const auto& a = static_cast<const AssertOrEchoExpr&>(*e);
+                    if (e->kind == ExprKind::Assert)
+                        checkAssert(a, c);
+                    else
+                        echo(evalArgs(a.args, c));
+                    if (!a.body) return Value();
+                    e = a.body.get();
+                    continue;
+                }
+                case ExprKind::Call: {
+                    const auto& call = static_cast<const CallExpr&>(*e);
+                    std::optional<FunctionRef> next;
+                    std::string nextName = "function literal";
+                    if (call.callee->kind == ExprKind::Identifier) {
+                        nextName = static_cast<const IdentifierExpr&>(*call.callee).name;
+                        next = findFunction(nextName, c);
+                    }
+                    if (!next) return eval(*e, c);  // a built-in or a computed callee
+                    args = evalArgs(call.args, c);
+                    params = next->params;
+                    body = next->body;
+                    definition = next->definition;
+                    callerCtx = c;
+                    loc = call.loc;
+                    currentName = std::move(nextName);
+                    tailCall = true;
+                    break;
+                }
+                default:
+                    return eval(*e, c);
+            }
+        }
+    }
+}
+
+}  // namespace io

@@ -1,0 +1,27 @@
+// PNG output: 8-bit RGB images, written atomically (io/AtomicFile.h), so a failed or
+// interrupted write never leaves a broken image behind.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace io {
+
+// Row-major 8-bit sRGB pixels, top row first, 3 bytes per pixel.
+struct Rgb8Image {
+    int width = 0;
+    int height = 0;
+    std::vector<uint8_t> pixels;  // size width * height * 3
+
+    Rgb8Image() = default;
+    Rgb8Image(int w, int h) : width(w), height(h), pixels(size_t(w) * size_t(h) * 3, 0) {}
+    uint8_t* row(int y) { return pixels.data() + size_t(y) * size_t(width) * 3; }
+};
+
+// Writes image to path as PNG. Returns an empty string on success, else the reason (the
+// target is then untouched and no temporary file remains).
+std::string writePng(const std::filesystem::path& path, const Rgb8Image& image);
+
+}  // namespace io

@@ -1,0 +1,45 @@
+#include "io/SourceFiles.h"
+
+#include <fstream>
+#include <sstream>
+
+namespace io {
+
+uint32_t SourceFiles::add(std::string name, std::filesystem::path path, std::string text) {
+    files_.push_back({std::move(name), std::move(path), std::move(text)});
+    return static_cast<uint32_t>(files_.size() - 1);
+}
+
+std::optional<uint32_t> SourceFiles::load(const std::filesystem::path& path, std::string& error) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) {
+        error = "'" + path.string() + "' is a directory";
+        return std::nullopt;
+    }
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        error = "cannot open '" + path.string() + "'";
+        return std::nullopt;
+    }
+    std::string text;
+    in.seekg(0, std::ios::end);
+    const auto size = in.tellg();
+    if (size > 0) {
+        text.resize(static_cast<size_t>(size));
+        in.seekg(0);
+        in.read(text.data(), size);
+    }
+    if (in.bad()) {
+        error = "cannot read '" + path.string() + "'";
+        return std::nullopt;
+    }
+    return add(path.string(), path, std::move(text));
+}
+
+std::filesystem::path SourceFiles::resolve(const std::string& written, uint32_t from) const {
+    const std::filesystem::path p(written);
+    if (p.is_absolute()) return p;
+    return files_[from].path.parent_path() / p;
+}
+
+}  // namespace io
