@@ -8,6 +8,7 @@
 #include "csg/Compiled.h"
 #include "csg/Scene.h"
 #include "csg/SpanList.h"
+#include "primitives/solvers/LinePoint.h"
 
 namespace csg {
 
@@ -58,7 +59,8 @@ struct Evaluator {
 
         ++ctx.stats.primitiveTests;
         LocalSpans local;
-        std::visit([&](const auto& shape) { shape.spans(o + shift * d, d, local); }, leaf.shape);
+        const Vec3 start = pointOnLine(o, d, shift);
+        std::visit([&](const auto& shape) { shape.spans(start, d, local); }, leaf.shape);
 
         // Clip to [t0, t1] and regularize; a primitive yields at most LocalSpans::kCapacity.
         const size_t base = stack().size();

@@ -126,8 +126,12 @@ TEST(Exact, RaysThroughAConeApex) {
     EXPECT_DOUBLE_EQ(down[0].out.t, 3.0);
     // Horizontal through the apex: a single point, no volume.
     EXPECT_TRUE(spansOf(cone, Ray{{-3, 0, 1}, {1, 0, 0}}).empty());
-    // Along a generator line through the apex: the cone's surface, no volume either.
-    EXPECT_TRUE(spansOf(cone, Ray{{-1, 0, 0}, {1, 0, 1}}).empty());
+    // Along a generator line: the line lies in the closed surface. Primitives report the
+    // closed set, so this is the generator segment itself (t in [0, 1]), finite.
+    const auto along = spansOf(cone, Ray{{-1, 0, 0}, {1, 0, 1}});
+    ASSERT_EQ(along.size(), 1u);
+    EXPECT_NEAR(along[0].in.t, 0.0, 1e-12);
+    EXPECT_NEAR(along[0].out.t, 1.0, 1e-12);
     // The normal at the apex is defined: the axis, pointing away from the base.
     const Scene scene = Scene::compile(cone);
     QueryContext ctx;
