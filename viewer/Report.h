@@ -1,0 +1,35 @@
+// Where a subcommand's diagnostics go: as text, each is printed on stderr when it arrives
+// ("file:line:col: error: message"); as JSON, they are collected and printed on stderr as one
+// array when the command ends, so stderr is one valid JSON document. stdout is never touched.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/Diagnostic.h"
+
+namespace viewer {
+
+class Report {
+public:
+    explicit Report(bool json) : json_(json) {}
+    ~Report() { finish(); }
+    Report(const Report&) = delete;
+    Report& operator=(const Report&) = delete;
+
+    void add(io::Diagnostic diagnostic);
+    void addAll(const std::vector<io::Diagnostic>& diagnostics);
+    // An error without a source position (an output file that cannot be written).
+    void error(std::string file, std::string message);
+    // An echo() line from the part: plain on stderr, or a note in JSON mode.
+    void echo(const std::string& line);
+    // Prints the JSON array (once); does nothing in text mode.
+    void finish();
+
+private:
+    bool json_;
+    bool finished_ = false;
+    std::vector<io::Diagnostic> collected_;
+};
+
+}  // namespace viewer
