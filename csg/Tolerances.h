@@ -35,4 +35,12 @@ inline constexpr double kSlabWiden = 2 * gamma(3);
 // rounding by more than 1e12, so localFromWorld would be garbage: compile rejects it.
 inline constexpr double kSingularDetRel = 1e-12;
 
+// A polynomial value within this many times its running rounding-error bound (Horner,
+// Polynomial::eval) is zero for the root solvers (unit: multiples of the bound). Such a value
+// has no trustworthy sign, so a local extremum there is a tangency (double root) and two roots
+// with such a value between them are one cluster. Why 8: the bound covers evaluation only;
+// coefficients computed from a ray (the torus quartic) carry a few ulps of their own, which
+// costs at most a few more bounds' worth.
+inline constexpr double kRootResidualFactor = 8.0;
+
 }  // namespace csg::tol

@@ -1,0 +1,434 @@
+// Tests of the real-root solvers (primitives/solvers/) against a reference that is exact.
+//
+// The reference: every test polynomial is built from roots we choose, and its coefficients are
+// expanded in 50-digit arithmetic (Boost.Multiprecision cpp_bin_float_50). For the random
+// classes, roots are dyadic with few bits, and a polynomial is kept only when every expanded
+// coefficient is exactly a double: then the double polynomial the solvers see *is* the chosen
+// one and its roots, with multiplicity, are known exactly. For the published hard quartics,
+// whose decimal roots are not dyadic, the coefficients are rounded to double and the reference
+// roots are the chosen ones polished by Newton in 50 digits on the rounded coefficients.
+//
+// Notation: a reference is a list of roots in the solvers' contract (Solve.h): a crossing
+// listed once, a tangency twice. error = |root - reference| / max(1, |reference|).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <boost/multiprecision/cpp_bin_float.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "primitives/solvers/Polynomial.h"
+#include "primitives/solvers/Solve.h"
+
+namespace csg {
+namespace {
+
+using Big = boost::multiprecision::cpp_bin_float_50;
+
+// ---- Building polynomials from roots in 50 digits ----
+
+// Multiplies the ascending coefficient list by (t^2 + b t + c).
+void multiplyBy(std::vector<Big>& c, const Big& b1, const Big& b0, bool quadratic) {
+    std::vector<Big> out(c.size() + (quadratic ? 2 : 1), Big(0));
+    for (size_t i = 0; i < c.size(); ++i) {
+        out[i] += c[i] * b0;
+        out[i + 1] += c[i] * b1;
+        if (quadratic) out[i + 2] += c[i];
+    }
+    c = out;
+}
+
+struct Roots {
+    std::vector<double> real;                        // with repetition = multiplicity
+    std::vector<std::pair<double, double>> complex;  // (re, im > 0): one conjugate pair each
+};
+
+std::vector<Big> expand(const Roots& r) {
+    std::vector<Big> c{Big(1)};
+    for (double x : r.real) multiplyBy(c, Big(1), -Big(x), false);
+    for (auto [re, im] : r.complex)
+        multiplyBy(c, -2 * Big(re), Big(re) * Big(re) + Big(im) * Big(im), true);
+    return c;
+}
+
+// The double polynomial; *exact says whether rounding changed any coefficient.
+Polynomial toDouble(const std::vector<Big>& c, bool* exact) {
+    Polynomial p = Polynomial::ofDegree(int(c.size()) - 1);
+    *exact = true;
+    for (size_t i = 0; i < c.size(); ++i) {
+        p[int(i)] = double(c[i]);
+        if (Big(p[int(i)]) != c[i]) *exact = false;
+    }
+    return p;
+}
+
+// The contract's listing of exact roots: multiplicity m becomes 1 (odd) or 2 (even) entries.
+std::vector<double> contractListing(std::vector<double> real) {
+    std::sort(real.begin(), real.end());
+    std::vector<double> out;
+    for (size_t i = 0; i < real.size();) {
+        size_t j = i;
+        while (j < real.size() && real[j] == real[i]) ++j;
+        out.push_back(real[i]);
+        if ((j - i) % 2 == 0) out.push_back(real[i]);
+        i = j;
+    }
+    return out;
+}
+
+// Newton in 50 digits on the double coefficients of p, from x.
+double polishBig(const Polynomial& p, double x) {
+    Big t(x);
+    for (int it = 0; it < 100; ++it) {
+        Big v(p[p.degree()]), dv(0);
+        for (int i = p.degree() - 1; i >= 0; --i) {
+            dv = dv * t + v;
+            v = v * t + Big(p[i]);
+        }
+        if (dv == 0) break;
+        const Big step = v / dv;
+        t -= step;
+        if (abs(step) <= abs(t) * Big(1e-45)) break;
+    }
+    return double(t);
+}
+
+// ---- Comparing a solver's answer to the reference ----
+
+struct Tally {
+    uint64_t cases = 0, wrongCount = 0;
+    double maxError = 0.0;
+    double maxLimitRatio = 0.0;  // max of |error| / conditioningLimit
+};
+
+double rootError(double got, double want) {
+    return std::abs(got - want) / std::max(1.0, std::abs(want));
+}
+
+// What double precision allows for a root r of p: p's rounding bound at r moves a simple root
+// by bound / |p'(r)| (first order) and a tangency by sqrt(2 bound / |p''(r)|); add 2 ulps of r
+// for the root's own rounding. Unit: t.
+double conditioningLimit(const Polynomial& p, double r, bool tangency) {
+    double bound;
+    p.eval(r, &bound);
+    const double slack = 2.0 * tol::kUlp * std::abs(r) + 1e-300;
+    if (!tangency) return slack + bound / std::abs(p.derivative()(r));
+    return slack + std::sqrt(2.0 * bound / std::abs(p.derivative().derivative()(r)));
+}
+
+// Updates the tally; returns false on a wrong count.
+bool compare(const Polynomial& p, const std::vector<double>& want, const double* got, int n,
+             Tally& t) {
+    ++t.cases;
+    if (n != int(want.size())) {
+        ++t.wrongCount;
+        return false;
+    }
+    for (int i = 0; i < n; ++i) {
+        t.maxError = std::max(t.maxError, rootError(got[i], want[i]));
+        const bool tangency =
+            (i > 0 && want[i - 1] == want[i]) || (i + 1 < n && want[i + 1] == want[i]);
+        const double limit = conditioningLimit(p, want[i], tangency);
+        t.maxLimitRatio = std::max(t.maxLimitRatio, std::abs(got[i] - want[i]) / limit);
+    }
+    return true;
+}
+
+// ---- Random classes with exact dyadic roots ----
+
+class Rng {
+public:
+    explicit Rng(uint64_t seed) : gen_(seed) {}
+    int integer(int lo, int hi) { return lo + int(gen_() % uint64_t(hi - lo + 1)); }
+    double dyadic(int lo, int hi, int denominatorLog2) {
+        return std::ldexp(double(integer(lo, hi)), -denominatorLog2);
+    }
+
+private:
+    std::mt19937_64 gen_;
+};
+
+struct Case {
+    Polynomial p;
+    std::vector<double> want;
+    double tlo, thi;
+};
+
+// Roots on the grid k / 256 in [-4, 4], at least `gap` apart.
+double separatedRoot(Rng& rng, const std::vector<double>& others, double gap) {
+    for (;;) {
+        const double x = rng.dyadic(-1024, 1024, 8);
+        bool ok = true;
+        for (double o : others) ok = ok && std::abs(x - o) >= gap;
+        if (ok) return x;
+    }
+}
+
+using Generator = Roots (*)(Rng&, int degree);
+
+Roots separated(Rng& rng, int degree) {
+    Roots r;
+    for (int i = 0; i < degree; ++i) r.real.push_back(separatedRoot(rng, r.real, 1.0 / 64));
+    return r;
+}
+Roots withComplexPair(Rng& rng, int degree) {
+    Roots r;
+    for (int i = 0; i < degree - 2; ++i) r.real.push_back(separatedRoot(rng, r.real, 1.0 / 64));
+    r.complex.push_back({rng.dyadic(-1024, 1024, 8), rng.dyadic(4, 512, 8)});
+    return r;
+}
+Roots allComplex(Rng& rng, int degree) {
+    Roots r;
+    for (int i = 0; i < degree / 2; ++i)
+        r.complex.push_back({rng.dyadic(-1024, 1024, 8), rng.dyadic(4, 512, 8)});
+    if (degree % 2) r.real.push_back(rng.dyadic(-1024, 1024, 8));
+    return r;
+}
+// Flocke's cluster {2.000, 2.001, 2.002, 2.003} on a dyadic grid: 2 + k / 512, k distinct.
+Roots cluster(Rng& rng, int degree) {
+    Roots r;
+    while (int(r.real.size()) < degree) {
+        const double x = 2.0 + rng.dyadic(0, 8, 9);
+        if (std::find(r.real.begin(), r.real.end(), x) == r.real.end()) r.real.push_back(x);
+    }
+    return r;
+}
+// One exact double root (a tangent ray) and the rest separated.
+Roots tangent(Rng& rng, int degree) {
+    Roots r;
+    const double x = rng.dyadic(-1024, 1024, 8);
+    r.real = {x, x};
+    for (int i = 2; i < degree; ++i) r.real.push_back(separatedRoot(rng, r.real, 1.0 / 64));
+    return r;
+}
+// Roots spread over 2^-12 .. 2^12 (seven decades), 6 significant bits each.
+Roots wideRange(Rng& rng, int degree) {
+    Roots r;
+    while (int(r.real.size()) < degree) {
+        const double x = std::ldexp(double(rng.integer(32, 63)), rng.integer(-17, 7));
+        const double s = rng.integer(0, 1) ? x : -x;
+        if (std::find(r.real.begin(), r.real.end(), s) == r.real.end()) r.real.push_back(s);
+    }
+    return r;
+}
+
+Case exactCase(Rng& rng, Generator gen, int degree) {
+    for (;;) {
+        const Roots r = gen(rng, degree);
+        bool exact;
+        const Polynomial p = toDouble(expand(r), &exact);
+        if (!exact) continue;  // the double polynomial would not be the one we chose
+        double hi = 0.0;
+        for (double x : r.real) hi = std::max(hi, std::abs(x));
+        for (auto [re, im] : r.complex) hi = std::max(hi, std::abs(re) + im);
+        hi = 2.0 * hi + 1.0;
+        return {p, contractListing(r.real), -hi, hi};
+    }
+}
+
+struct ClassSpec {
+    const char* name;
+    Generator gen;
+    int degree;
+};
+
+// Auto's roots must lie within this many conditioning limits (see conditioningLimit) of the
+// exact ones: the limit is the displacement that p's own rounding causes, so a solver that
+// stops when |p| reaches its rounding noise lands within one or two of them.
+constexpr double kAutoLimitRatio = 4.0;
+
+const ClassSpec kClasses[] = {
+    {"cubic-separated", separated, 3},
+    {"cubic-tangent", tangent, 3},
+    {"cubic-complex", withComplexPair, 3},
+    {"quartic-separated", separated, 4},
+    {"quartic-complex-pair", withComplexPair, 4},
+    {"quartic-no-real", allComplex, 4},
+    {"quartic-cluster", cluster, 4},
+    {"quartic-tangent", tangent, 4},
+    {"quartic-wide-range", wideRange, 4},
+    {"sextic-separated", separated, 6},
+    {"octic-separated", separated, 8},
+};
+
+constexpr int kRandomPerClass = 100000;
+
+TEST(Solvers, RandomClassesAgainstExactReference) {
+    std::printf("%-22s %-16s %8s %8s %11s %11s %9s\n", "class", "solver", "cases", "wrong#",
+                "max error", "err/limit", "ns/poly");
+    for (const ClassSpec& spec : kClasses) {
+        Rng rng(0x5eed0000u + uint64_t(spec.degree) * 131 + uint64_t(spec.name[0]));
+        std::vector<Case> cases;
+        cases.reserve(kRandomPerClass);
+        for (int i = 0; i < kRandomPerClass; ++i)
+            cases.push_back(exactCase(rng, spec.gen, spec.degree));
+        for (Solver solver : kAllSolvers) {
+            Tally tally;
+            double roots[Polynomial::kMaxDegree];
+            std::string firstWrong;
+            const auto start = std::chrono::steady_clock::now();
+            for (const Case& c : cases) {
+                const int n = solve(c.p, c.tlo, c.thi, roots, solver);
+                if (!compare(c.p, c.want, roots, n, tally) && firstWrong.empty()) {
+                    char buf[256];
+                    std::snprintf(buf, sizeof buf, "got %d roots, want %zu; p[0]=%.17g", n,
+                                  c.want.size(), c.p[0]);
+                    firstWrong = buf;
+                }
+            }
+            const double seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            std::printf("%-22s %-16s %8llu %8llu %11.3g %11.3g %9.0f\n", spec.name,
+                        solverName(solver), (unsigned long long)tally.cases,
+                        (unsigned long long)tally.wrongCount, tally.maxError, tally.maxLimitRatio,
+                        1e9 * seconds / double(tally.cases));
+            if (solver == Solver::Auto) {
+                EXPECT_EQ(tally.wrongCount, 0u) << spec.name << ": " << firstWrong;
+                EXPECT_LE(tally.maxLimitRatio, kAutoLimitRatio) << spec.name;
+            }
+        }
+    }
+}
+
+// ---- The published hard quartics ----
+
+struct HardQuartic {
+    const char* name;
+    Roots roots;
+};
+
+Case hardCase(const HardQuartic& h) {
+    bool exact;
+    const Polynomial p = toDouble(expand(h.roots), &exact);
+    std::vector<double> want;
+    if (exact) {
+        want = contractListing(h.roots.real);
+    } else {
+        // Decimal roots: the double polynomial's roots are the chosen ones moved by the
+        // coefficient rounding; 50-digit Newton finds them (all are simple and separated here).
+        for (double x : h.roots.real) want.push_back(polishBig(p, x));
+        std::sort(want.begin(), want.end());
+    }
+    // Cauchy's bound: every root lies within 1 + max |c_i / c_n|.
+    double bound = 0.0;
+    for (int i = 0; i < p.degree(); ++i) bound = std::max(bound, std::abs(p[i] / p.leading()));
+    return {p, want, -(1.0 + bound), 1.0 + bound};
+}
+
+// From Flocke (ACM TOMS 954), Strobach and Orellana & De Michele (ACM TOMS 1010): roots over
+// many decades, a tight cluster, multiple roots, and real roots next to complex pairs.
+const HardQuartic kHardQuartics[] = {
+    {"decades {1e9,1e6,1e3,1}", {{1e9, 1e6, 1e3, 1.0}, {}}},
+    {"cluster {2.003,2.002,2.001,2}", {{2.003, 2.002, 2.001, 2.0}, {}}},
+    {"quadruple root 1000", {{1000.0, 1000.0, 1000.0, 1000.0}, {}}},
+    {"two double roots {1,1,-1,-1}", {{1.0, 1.0, -1.0, -1.0}, {}}},
+    {"triple root and one", {{3.0, 3.0, 3.0, -5.0}, {}}},
+    {"{1e53,1e50,1e49,1e47}", {{1e53, 1e50, 1e49, 1e47}, {}}},
+    {"{1e14,2,1,-1}", {{1e14, 2.0, 1.0, -1.0}, {}}},
+    {"{-2e7,1e7,1,-1}", {{-2e7, 1e7, 1.0, -1.0}, {}}},
+    {"{1e7,-1e6} + 1+-i", {{1e7, -1e6}, {{1.0, 1.0}}}},
+    {"{-7,-4} + -1e6+-1e5i", {{-7.0, -4.0}, {{-1e6, 1e5}}}},
+    {"{1e8,11} + 1e3+-i", {{1e8, 11.0}, {{1e3, 1.0}}}},
+    {"{1.003,1.002} + 1+-1e-3i", {{1.003, 1.002}, {{1.0, 1e-3}}}},
+    {"1+-i, 2+-3i (no real)", {{}, {{1.0, 1.0}, {2.0, 3.0}}}},
+    {"1e-3 +- 1e-9 i (near-double, complex)", {{5.0, -5.0}, {{1e-3, 1e-9}}}},
+};
+
+TEST(Solvers, PublishedHardQuartics) {
+    for (const HardQuartic& h : kHardQuartics) {
+        const Case c = hardCase(h);
+        for (Solver solver : kAllSolvers) {
+            double roots[Polynomial::kMaxDegree];
+            const int n = solve(c.p, c.tlo, c.thi, roots, solver);
+            Tally t;
+            const bool countOk = compare(c.p, c.want, roots, n, t);
+            std::printf("%-38s %-16s roots %d/%zu  max error %9.3g  err/limit %9.3g\n", h.name,
+                        solverName(solver), n, c.want.size(), t.maxError, t.maxLimitRatio);
+            if (solver == Solver::Auto || solver == Solver::ClosedForm) {
+                EXPECT_TRUE(countOk) << h.name << " " << solverName(solver);
+                EXPECT_LE(t.maxLimitRatio, kAutoLimitRatio) << h.name << " " << solverName(solver);
+            }
+        }
+    }
+}
+
+// ---- Units ----
+
+TEST(Solvers, RangeIsClosedAndOrdered) {
+    // (t + 1) t (t - 1) (t - 2): only the roots in [0, 1] and ascending.
+    const Polynomial p{0.0, 2.0, -1.0, -2.0, 1.0};
+    for (Solver solver : kAllSolvers) {
+        double r[4];
+        ASSERT_EQ(solve(p, 0.0, 1.0, r, solver), 2) << solverName(solver);
+        EXPECT_EQ(r[0], 0.0) << solverName(solver);
+        EXPECT_EQ(r[1], 1.0) << solverName(solver);
+    }
+}
+
+TEST(Solvers, TangencyIsListedTwice) {
+    // (t - 3)^2 (t^2 + 1): one tangency at 3, nothing else.
+    const Polynomial p{9.0, -6.0, 10.0, -6.0, 1.0};
+    for (Solver solver : kAllSolvers) {
+        double r[4];
+        ASSERT_EQ(solve(p, -10.0, 10.0, r, solver), 2) << solverName(solver);
+        EXPECT_NEAR(r[0], 3.0, 1e-7) << solverName(solver);
+        EXPECT_EQ(r[0], r[1]) << solverName(solver);
+    }
+}
+
+TEST(Solvers, HighDegreePowersOfASphere) {
+    // (t^2 - 1)^k along a ray through a sphere's polynomial raised to the k-th power: roots
+    // +-1 of multiplicity k, so tangencies for even k and crossings for odd k.
+    for (int k = 2; k <= 8; ++k) {
+        std::vector<Big> c{Big(1)};
+        for (int i = 0; i < k; ++i) multiplyBy(c, Big(0), Big(-1), true);
+        bool exact;
+        const Polynomial p = toDouble(c, &exact);
+        ASSERT_TRUE(exact);
+        const int per = k % 2 ? 1 : 2;
+        for (Solver solver : {Solver::Auto, Solver::Yuksel, Solver::SturmIllinois}) {
+            double r[Polynomial::kMaxDegree];
+            const int n = solve(p, -4.0, 4.0, r, solver);
+            EXPECT_EQ(n, 2 * per) << "k=" << k << " " << solverName(solver);
+            if (n != 2 * per) continue;
+            EXPECT_NEAR(r[0], -1.0, 1e-2) << "k=" << k << " " << solverName(solver);
+            EXPECT_NEAR(r[n - 1], 1.0, 1e-2) << "k=" << k << " " << solverName(solver);
+        }
+    }
+}
+
+TEST(Polynomial, HornerBoundShiftAndDerivative) {
+    const Polynomial p{-6.0, 11.0, -6.0, 1.0};  // (t-1)(t-2)(t-3)
+    double bound;
+    EXPECT_EQ(p.eval(2.0, &bound), 0.0);
+    EXPECT_GE(bound, 0.0);
+    const Polynomial q = p.shifted(2.0);  // (t+1) t (t-1) = t^3 - t
+    EXPECT_EQ(q[0], 0.0);
+    EXPECT_EQ(q[1], -1.0);
+    EXPECT_EQ(q[2], 0.0);
+    EXPECT_EQ(q[3], 1.0);
+    const Polynomial d = p.derivative();
+    EXPECT_EQ(d.degree(), 2);
+    EXPECT_EQ(d[0], 11.0);
+    EXPECT_EQ(d[2], 3.0);
+    const Polynomial s = p.argumentScaled(2.0);  // p(2t)
+    EXPECT_EQ(s(0.5), p(1.0));
+    // The running bound really bounds the error: compare with 50 digits at random points.
+    Rng rng(7);
+    const Polynomial w{1.1, -3.3, 2.7, -0.9, 0.1};
+    for (int i = 0; i < 10000; ++i) {
+        const double t = rng.dyadic(-4096, 4096, 10) + 1e-3 * rng.integer(0, 999);
+        Big exact(0);
+        for (int k = w.degree(); k >= 0; --k) exact = exact * Big(t) + Big(w[k]);
+        const double got = w.eval(t, &bound);
+        EXPECT_LE(double(abs(Big(got) - exact)), bound) << t;
+    }
+}
+
+}  // namespace
+}  // namespace csg
