@@ -10,9 +10,16 @@ namespace io {
 void Body::add(StmtPtr statement) {
     Stmt* s = statement.get();
     switch (s->kind) {
-        case StmtKind::Assignment:
-            assignments.push_back(static_cast<AssignmentStmt*>(s));
+        case StmtKind::Assignment: {
+            // OpenSCAD: the last assignment of a name wins, evaluated at the first one's place.
+            auto* a = static_cast<AssignmentStmt*>(s);
+            auto [slot, isNew] = assignmentSlots.try_emplace(a->name, assignments.size());
+            if (isNew)
+                assignments.push_back(a);
+            else
+                assignments[slot->second] = a;
             break;
+        }
         case StmtKind::ModuleDef: {
             auto* m = static_cast<ModuleDefStmt*>(s);
             modules[m->name] = m;

@@ -62,7 +62,8 @@ void Evaluator::run(const ParsedFile& file) {
         std::vector<csg::NodePtr> solids;
         for (auto& p : parts)
             if (p) solids.push_back(std::move(p));
-        model_.root = csg::uniteAll(solids);
+        // The implicit top-level union is tagged with the file itself (line 0: no statement).
+        model_.root = csg::uniteAll(solids, {sourceTag(Loc{file.fileIndex, 0, 0}, 0), 0});
     }
 }
 

@@ -1,0 +1,448 @@
+// Evaluation with OpenSCAD's semantics. Expected values are derived by hand (and, where noted,
+// match what OpenSCAD 2021.01 prints); the tree is inspected directly, without csg::Scene.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "io/Evaluate.h"
+
+using namespace io;
+
+namespace {
+
+struct Outcome {
+    EvaluateResult result;
+    std::vector<std::string> echoes;
+};
+
+Outcome run(const std::string& source,
+            std::vector<std::pair<std::string, std::string>> defines = {},
+            const std::string& name = "test.scad") {
+    Outcome r;
+    EvaluateOptions options;
+    options.defines = std::move(defines);
+    options.echo = [&r](const std::string& line) { r.echoes.push_back(line); };
+    r.result = evaluateString(source, name, options);
+    return r;
+}
+
+// The echo lines of a part that must evaluate without errors.
+std::vector<std::string> echoes(const std::string& source) {
+    Outcome r = run(source);
+    for (const auto& d : r.result.diagnostics)
+        if (d.severity == Severity::Error) ADD_FAILURE() << formatDiagnostic(d);
+    return r.echoes;
+}
+
+std::string echo1(const std::string& source) {
+    auto e = echoes(source);
+    return e.size() == 1 ? e[0] : "<" + std::to_string(e.size()) + " echoes>";
+}
+
+csg::NodePtr root(const std::string& source) {
+    Outcome r = run(source);
+    EXPECT_TRUE(r.result.ok()) << (r.result.diagnostics.empty()
+                                       ? ""
+                                       : formatDiagnostic(r.result.diagnostics[0]));
+    return r.result.ok() ? r.result.model->root : nullptr;
+}
+
+// The leaves in order with their accumulated world-from-local transforms.
+void collectLeaves(const csg::NodePtr& n, const csg::Mat4& parent,
+                   std::vector<std::pair<csg::NodePtr, csg::Mat4>>& out) {
+    if (!n) return;
+    const csg::Mat4 m = parent * n->parentFromNode;
+    if (n->op == csg::Op::Leaf) {
+        out.emplace_back(n, m);
+        return;
+    }
+    collectLeaves(n->left, m, out);
+    collectLeaves(n->right, m, out);
+}
+
+std::vector<std::pair<csg::NodePtr, csg::Mat4>> leaves(const csg::NodePtr& n) {
+    std::vector<std::pair<csg::NodePtr, csg::Mat4>> out;
+    collectLeaves(n, csg::Mat4(1.0), out);
+    return out;
+}
+
+void expectNear(const csg::Vec3& a, const csg::Vec3& b, double tolerance = 1e-12) {
+    EXPECT_NEAR(a.x, b.x, tolerance);
+    EXPECT_NEAR(a.y, b.y, tolerance);
+    EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+}  // namespace
+
+// ---- scoping ----
+
+TEST(IoEval, LastAssignmentWinsAndAssignmentsComeFirst) {
+    EXPECT_EQ(echo1("echo(a); a = 1; a = 2;"), "ECHO: 2");
+    EXPECT_EQ(echo1("a = 1; b = a; a = 2; echo(b);"), "ECHO: 2");
+}
+
+TEST(IoEval, LexicalScopingOfPlainVariables) {
+    EXPECT_EQ(echo1("x = 1; module m() echo(x); module n() { x = 2; m(); } n();"), "ECHO: 1");
+    EXPECT_EQ(echo1("module m(a) { a = a + 1; echo(a); } m(1);"), "ECHO: 2");
+}
+
+TEST(IoEval, DollarVariablesAreDynamic) {
+    EXPECT_EQ(echoes("$v = 1; module show() echo($v); module wrap() { $v = 2; show(); }"
+                     "wrap(); show();"),
+              (std::vector<std::string>{"ECHO: 2", "ECHO: 1"}));
+    EXPECT_EQ(echo1("module m() { $x = 5; children(); } m() echo($x);"), "ECHO: 5");
+    EXPECT_EQ(echo1("module m() echo($fn); m($fn = 12);"), "ECHO: 12");
+    EXPECT_EQ(echo1("echo($fn, $fa, $fs, PI);"), "ECHO: 0, 12, 2, 3.14159");
+}
+
+TEST(IoEval, UnknownVariableWarnsAndIsUndef) {
+    Outcome r = run("echo(nope);");
+    ASSERT_TRUE(r.result.ok());
+    EXPECT_EQ(r.echoes.at(0), "ECHO: undef");
+    ASSERT_EQ(r.result.diagnostics.size(), 1u);
+    EXPECT_EQ(r.result.diagnostics[0].severity, Severity::Warning);
+    EXPECT_EQ(r.result.diagnostics[0].col, 6u);
+}
+
+// ---- loops ----
+
+TEST(IoEval, ForOverRanges) {
+    EXPECT_EQ(echoes("for (i = [10:-3:0]) echo(i);"),
+              (std::vector<std::string>{"ECHO: 10", "ECHO: 7", "ECHO: 4", "ECHO: 1"}));
+    EXPECT_TRUE(echoes("for (i = [0:-1:3]) echo(i);").empty());
+    EXPECT_EQ(echoes("for (i = [0:0.1:0.3]) echo(i);").size(), 4u);
+    // The deprecated [5:1] form counts 1..5 (with a warning), as OpenSCAD does.
+    Outcome r = run("for (i = [5:1]) echo(i);");
+    EXPECT_EQ(r.echoes.size(), 5u);
+    EXPECT_EQ(r.echoes.front(), "ECHO: 1");
+    EXPECT_EQ(r.result.diagnostics.size(), 1u);
+}
+
+TEST(IoEval, ForOverSeveralVariablesNests) {
+    EXPECT_EQ(echoes("for (i = [1:2], j = [0:i]) echo(i, j);"),
+              (std::vector<std::string>{"ECHO: 1, 0", "ECHO: 1, 1", "ECHO: 2, 0", "ECHO: 2, 1",
+                                        "ECHO: 2, 2"}));
+    EXPECT_EQ(echoes("for (c = \"ab\", n = 5) echo(c, n);"),
+              (std::vector<std::string>{"ECHO: \"a\", 5", "ECHO: \"b\", 5"}));
+}
+
+// ---- modules and children ----
+
+TEST(IoEval, ChildrenSelection) {
+    EXPECT_EQ(
+        echoes("module two() { children(1); children(0); } two() { echo(\"a\"); echo(\"b\"); }"),
+        (std::vector<std::string>{"ECHO: \"b\"", "ECHO: \"a\""}));
+    EXPECT_EQ(echo1("module c() echo($children); c() { cube(); sphere(); cylinder(); }"),
+              "ECHO: 3");
+    EXPECT_EQ(echoes("module s() children([0:1]); s() { echo(0); echo(1); echo(2); }"),
+              (std::vector<std::string>{"ECHO: 0", "ECHO: 1"}));
+    // children() passed through another module reaches the outer call's children.
+    EXPECT_EQ(
+        echo1("module inner() children(); module outer() inner() children(); outer() echo(7);"),
+        "ECHO: 7");
+}
+
+TEST(IoEval, Recursion) {
+    EXPECT_EQ(echo1("function fact(n) = n <= 1 ? 1 : n * fact(n - 1); echo(fact(10));"),
+              "ECHO: 3.6288e+6");
+    // Tail calls loop: a hundred thousand deep without growing the stack.
+    EXPECT_EQ(
+        echo1("function sum(n, acc = 0) = n == 0 ? acc : sum(n - 1, acc + n); echo(sum(100000));"),
+        "ECHO: 5.00005e+9");
+    EXPECT_EQ(echoes("module count(n) { echo(n); if (n > 0) count(n - 1); } count(2);"),
+              (std::vector<std::string>{"ECHO: 2", "ECHO: 1", "ECHO: 0"}));
+}
+
+TEST(IoEval, ArgumentsPositionalNamedAndDefault) {
+    EXPECT_EQ(echo1("function f(a, b = 2, c = 3) = a + 10 * b + 100 * c;"
+                    "echo(f(1), f(1, c = 0), f(b = 5, a = 0));"),
+              "ECHO: 321, 21, 350");
+    EXPECT_EQ(echo1("module m(a, b = 4) echo(a = a, b = b); m(b = 1);"), "ECHO: a = undef, b = 1");
+}
+
+TEST(IoEval, UseImportsDefinitionsButNotGeometry) {
+    const auto dir = std::filesystem::temp_directory_path() / "csgray_io_eval_use";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "lib.scad") << "k = 3; function triple(x) = k * x; module box() cube(k);\n"
+                                       "sphere(100);\n";
+    Outcome r = run("use <lib.scad>\necho(triple(2));\nbox();\n", {}, (dir / "main.scad").string());
+    ASSERT_TRUE(r.result.ok());
+    EXPECT_EQ(r.echoes.at(0), "ECHO: 6");
+    auto l = leaves(r.result.model->root);
+    ASSERT_EQ(l.size(), 1u);  // the used file's sphere is not part of the model
+    EXPECT_TRUE(std::holds_alternative<csg::Box>(l[0].first->primitive));
+}
+
+// ---- expressions ----
+
+TEST(IoEval, ComprehensionsAndLet) {
+    EXPECT_EQ(echo1("echo([for (i = [1:4]) if (i % 2 == 0) i * i]);"), "ECHO: [4, 16]");
+    EXPECT_EQ(echo1("echo([each [1, 2], each [3:4]]);"), "ECHO: [1, 2, 3, 4]");
+    EXPECT_EQ(echo1("echo([for (i = 0; i < 4; i = i + 2) i]);"), "ECHO: [0, 2]");
+    EXPECT_EQ(echo1("echo([for (i = [0:3]) if (i % 2) i else -i]);"), "ECHO: [0, 1, -2, 3]");
+    EXPECT_EQ(echo1("echo([for (x = [1, 2]) let (y = x * x) y]);"), "ECHO: [1, 4]");
+    EXPECT_EQ(echo1("echo(let (a = 2, b = a * 3) b);"), "ECHO: 6");
+}
+
+TEST(IoEval, VectorArithmetic) {
+    EXPECT_EQ(echo1("m = [[0, -1, 0], [1, 0, 0], [0, 0, 1]]; echo(m * [1, 0, 0]);"),
+              "ECHO: [0, 1, 0]");
+    EXPECT_EQ(echo1("echo([1, 2, 3] * [4, 5, 6]);"), "ECHO: 32");
+    EXPECT_EQ(echo1("echo([1, 2] + [10, 20, 30], 2 * [1, 2], [2, 4] / 2, -[1, -1]);"),
+              "ECHO: [11, 22], [2, 4], [1, 2], [-1, 1]");
+    EXPECT_EQ(echo1("echo([[1, 2], [3, 4]] * [[0, 1], [1, 0]]);"), "ECHO: [[2, 1], [4, 3]]");
+    EXPECT_EQ(echo1("echo([1, 2] * [[1, 0], [0, 1]]);"), "ECHO: [1, 2]");
+}
+
+TEST(IoEval, OperatorsAndComparisons) {
+    EXPECT_EQ(echo1("echo(2 ^ 3 ^ 2, -2 ^ 2, 7 % 3, -7 % 3, 1 / 0, 1 == 1.0, 1 == true);"),
+              "ECHO: 512, -4, 1, -1, inf, true, false");
+    EXPECT_EQ(echo1("echo(\"a\" < \"b\", [1] < [2], true > false, 0 && 1, 1 || 0, !0);"),
+              "ECHO: true, true, true, false, true, true");
+    EXPECT_EQ(echo1("echo(1 > 2 ? \"x\" : \"y\", \"abc\"[1], [1, 2, 3].z, [1, 2][5]);"),
+              "ECHO: \"y\", \"b\", 3, undef");
+}
+
+TEST(IoEval, NumberFormattingMatchesOpenScad) {
+    // Lines as OpenSCAD 2021.01 prints them.
+    EXPECT_EQ(echo1("echo(1/3, 1e20, 100000, 1000000, 123456789, 0.1 + 0.2, -0, 1e-7);"),
+              "ECHO: 0.333333, 1e+20, 100000, 1e+6, 1.23457e+8, 0.3, 0, 1e-7");
+    EXPECT_EQ(
+        echo1("echo([1, 2, \"a\"], \"s\", true, undef, [0:5], [0:2:5], str(\"a\", 1, [1, 2]));"),
+        "ECHO: [1, 2, \"a\"], \"s\", true, undef, [0 : 1 : 5], [0 : 2 : 5], \"a1[1, 2]\"");
+}
+
+TEST(IoEval, BuiltinFunctions) {
+    EXPECT_EQ(echo1("echo(sin(30), cos(60), tan(45), atan2(1, 0), sqrt(16), pow(2, 10), abs(-3),"
+                    "sign(-2), floor(-1.5), ceil(-1.5), round(-1.5), round(2.5));"),
+              "ECHO: 0.5, 0.5, 1, 90, 4, 1024, 3, -1, -2, -1, -2, 3");
+    EXPECT_EQ(echo1("echo(min(4, 2, 8), max([1, 9, 3]), norm([3, 4]), len(\"h\u00e9llo\"),"
+                    "lookup(2.5, [[0, 0], [2, 10], [3, 30]]), lookup(-1, [[0, 5], [1, 6]]));"),
+              "ECHO: 2, 9, 5, 5, 20, 5");
+    EXPECT_EQ(echo1("echo(str(\"x\", 1, [2]), chr(72, 105), ord(\"\u00e9\"), concat([1], 2, [[3]]),"
+                    "cross([1, 0, 0], [0, 1, 0]), ln(1), log(1000), exp(0));"),
+              "ECHO: \"x1[2]\", \"Hi\", 233, [1, 2, [3]], [0, 0, 1], 0, 3, 1");
+    EXPECT_EQ(echo1("echo(is_undef(undef), is_num(1), is_num(0/0), is_bool(false), is_string(\"\"),"
+                    "is_list([]), version());"),
+              "ECHO: true, true, false, true, true, true, [2021, 1, 0]");
+    // Seeded rands is OpenSCAD's sequence (std::mt19937 + uniform_real_distribution).
+    EXPECT_EQ(echo1("echo(rands(0, 1, 2, 42));"), "ECHO: [0.796543, 0.183435]");
+    // Unseeded rands is still deterministic between runs.
+    EXPECT_EQ(echo1("echo(rands(0, 1, 1));"), echo1("echo(rands(0, 1, 1));"));
+}
+
+TEST(IoEval, FunctionLiteralsAndClosures) {
+    EXPECT_EQ(echo1("f = function(x) x * 2; echo(f(4));"), "ECHO: 8");
+    EXPECT_EQ(echo1("function adder(n) = function(x) x + n; add3 = adder(3); echo(add3(4));"),
+              "ECHO: 7");
+}
+
+TEST(IoEval, EchoAndAssertInExpressions) {
+    EXPECT_EQ(echoes("x = echo(\"hi\") 3; echo(x);"),
+              (std::vector<std::string>{"ECHO: \"hi\"", "ECHO: 3"}));
+    EXPECT_EQ(echo1("y = assert(true) 4; echo(y);"), "ECHO: 4");
+}
+
+TEST(IoEval, IfElseAndLetStatements) {
+    EXPECT_EQ(echo1("if (1 > 2) echo(\"no\"); else echo(\"yes\");"), "ECHO: \"yes\"");
+    EXPECT_EQ(echo1("let (a = 2, b = a + 1) echo(b);"), "ECHO: 3");
+}
+
+TEST(IoEval, CommandLineDefinesOverrideInPlace) {
+    Outcome r = run("size = 1; half = size / 2; echo(size, half);", {{"size", "5 * 2"}});
+    ASSERT_TRUE(r.result.ok());
+    EXPECT_EQ(r.echoes.at(0), "ECHO: 10, 5");
+    r = run("echo(extra);", {{"extra", "\"s\""}});
+    EXPECT_EQ(r.echoes.at(0), "ECHO: \"s\"");
+    r = run("cube();", {{"bad", "1 +"}});
+    EXPECT_FALSE(r.result.ok());
+}
+
+// ---- geometry ----
+
+TEST(IoEval, CubeMapsToABoxWithCenterInItsCorners) {
+    auto n = root("cube([1, 2, 3], center = true);");
+    ASSERT_TRUE(n);
+    ASSERT_EQ(n->op, csg::Op::Leaf);
+    const auto& box = std::get<csg::Box>(n->primitive);
+    expectNear(box.lo, {-0.5, -1, -1.5});
+    expectNear(box.hi, {0.5, 1, 1.5});
+    const auto& unit = std::get<csg::Box>(root("cube(2);")->primitive);
+    expectNear(unit.lo, {0, 0, 0});
+    expectNear(unit.hi, {2, 2, 2});
+}
+
+TEST(IoEval, SphereAndTranslate) {
+    auto l = leaves(root("translate([1, 2, 3]) sphere(d = 4);"));
+    ASSERT_EQ(l.size(), 1u);
+    EXPECT_EQ(std::get<csg::Sphere>(l[0].first->primitive).radius, 2.0);
+    expectNear(csg::transformPoint(l[0].second, {0, 0, 0}), {1, 2, 3});
+}
+
+TEST(IoEval, CylinderPrecedenceAndCenter) {
+    // d1 beats r for r1; r2 falls back to r; center moves the base to z = -h/2.
+    auto l = leaves(root("cylinder(h = 3, r = 1, d1 = 4, center = true);"));
+    ASSERT_EQ(l.size(), 1u);
+    const auto& c = std::get<csg::Cylinder>(l[0].first->primitive);
+    EXPECT_EQ(c.height, 3.0);
+    EXPECT_EQ(c.r1, 2.0);
+    EXPECT_EQ(c.r2, 1.0);
+    expectNear(csg::transformPoint(l[0].second, {0, 0, 0}), {0, 0, -1.5});
+    // Positional arguments are (h, r1, r2, center): r2 keeps its default 1.
+    const auto& p = std::get<csg::Cylinder>(root("cylinder(10, 5);")->primitive);
+    EXPECT_EQ(p.r1, 5.0);
+    EXPECT_EQ(p.r2, 1.0);
+    const auto& d = std::get<csg::Cylinder>(root("cylinder(h = 1, d = 4, r = 1);")->primitive);
+    EXPECT_EQ(d.r1, 2.0);  // d beats r
+}
+
+TEST(IoEval, HalfSpace) {
+    const auto& h = std::get<csg::HalfSpace>(root("halfspace([0, 1, 0], 2);")->primitive);
+    expectNear(h.planeNormal, {0, 1, 0});
+    EXPECT_EQ(h.offset, 2.0);
+}
+
+TEST(IoEval, RotationsAreExactAtRightAngles) {
+    auto l = leaves(root("rotate([0, 0, 90]) cube();"));
+    ASSERT_EQ(l.size(), 1u);
+    EXPECT_EQ(csg::transformVector(l[0].second, {1, 0, 0}), csg::Vec3(0, 1, 0));
+    // rotate([x, y, z]) = Rz * Ry * Rx: x first.
+    l = leaves(root("rotate([90, 0, 90]) cube();"));
+    EXPECT_EQ(csg::transformVector(l[0].second, {0, 1, 0}), csg::Vec3(0, 0, 1));
+    EXPECT_EQ(csg::transformVector(l[0].second, {1, 0, 0}), csg::Vec3(0, 1, 0));
+    // Axis-angle: a half turn about (1, 1, 0) swaps x and y.
+    l = leaves(root("rotate(a = 180, v = [1, 1, 0]) cube();"));
+    expectNear(csg::transformVector(l[0].second, {1, 0, 0}), {0, 1, 0});
+    // A bare angle turns about z.
+    l = leaves(root("rotate(90) cube();"));
+    EXPECT_EQ(csg::transformVector(l[0].second, {1, 0, 0}), csg::Vec3(0, 1, 0));
+}
+
+TEST(IoEval, ScaleMirrorMultmatrix) {
+    auto l = leaves(root("scale([2, 3, 4]) mirror([1, 0, 0]) cube();"));
+    ASSERT_EQ(l.size(), 1u);
+    expectNear(csg::transformPoint(l[0].second, {1, 1, 1}), {-2, 3, 4});
+    l = leaves(root("multmatrix([[1, 0, 0, 5], [0, 1, 0, 6], [0, 0, 1, 7]]) sphere();"));
+    expectNear(csg::transformPoint(l[0].second, {0, 0, 0}), {5, 6, 7});
+    l = leaves(root("scale(2) sphere();"));
+    expectNear(csg::transformPoint(l[0].second, {1, 1, 1}), {2, 2, 2});
+}
+
+TEST(IoEval, BooleansBuildTheirOperators) {
+    auto n = root("difference() { cube(10); sphere(1); cylinder(); }");
+    ASSERT_TRUE(n);
+    EXPECT_EQ(n->op, csg::Op::Difference);
+    EXPECT_TRUE(std::holds_alternative<csg::Box>(n->left->primitive));
+    EXPECT_EQ(n->right->op, csg::Op::Union);
+    n = root("intersection() { cube(); sphere(); }");
+    EXPECT_EQ(n->op, csg::Op::Intersection);
+    n = root("union() { cube(); sphere(); }");
+    EXPECT_EQ(n->op, csg::Op::Union);
+}
+
+TEST(IoEval, EmptyGroupsAreDroppedButEmptySolidsCount) {
+    // As OpenSCAD: an if(false) child is no child at all, cube(0) is an empty solid.
+    auto n = root("intersection() { cube(); if (false) sphere(); }");
+    ASSERT_TRUE(n);
+    EXPECT_EQ(n->op, csg::Op::Leaf);
+    Outcome r = run("intersection() { cube(0); sphere(); }");
+    ASSERT_TRUE(r.result.ok());
+    EXPECT_FALSE(r.result.model->root);
+    EXPECT_EQ(r.result.diagnostics.at(0).severity, Severity::Warning);
+    n = root("difference() { echo(1); sphere(5); cube(1); }");
+    EXPECT_EQ(n->op, csg::Op::Difference);
+    EXPECT_TRUE(std::holds_alternative<csg::Sphere>(n->left->primitive));
+}
+
+TEST(IoEval, ForAndIntersectionFor) {
+    auto n = root("for (i = [0:2]) translate([i, 0, 0]) cube();");
+    EXPECT_EQ(leaves(n).size(), 3u);
+    EXPECT_EQ(n->op, csg::Op::Union);
+    n = root("intersection_for (i = [0:1]) translate([i, 0, 0]) cube(2);");
+    EXPECT_EQ(n->op, csg::Op::Intersection);
+    EXPECT_EQ(leaves(n).size(), 2u);
+}
+
+TEST(IoEval, Modifiers) {
+    Outcome r = run("%cube(5); sphere();");
+    ASSERT_TRUE(r.result.ok());
+    EXPECT_TRUE(std::holds_alternative<csg::Sphere>(r.result.model->root->primitive));
+    EXPECT_EQ(r.result.model->backgroundParts.size(), 1u);
+
+    r = run("translate([1, 0, 0]) #cube(); sphere();");
+    EXPECT_EQ(leaves(r.result.model->root).size(), 2u);
+    ASSERT_EQ(r.result.model->highlighted.size(), 1u);
+    auto h = leaves(r.result.model->highlighted[0].node);
+    expectNear(csg::transformPoint(h.at(0).second, {0, 0, 0}), {1, 0, 0});
+
+    EXPECT_TRUE(std::holds_alternative<csg::Sphere>(root("*cube(); sphere();")->primitive));
+    EXPECT_TRUE(echoes("*echo(1);").empty());
+
+    // ! renders that subtree alone, without its parents' transforms (as OpenSCAD).
+    auto n = root("translate([5, 0, 0]) !cube(); sphere();");
+    ASSERT_EQ(n->op, csg::Op::Leaf);
+    EXPECT_TRUE(std::holds_alternative<csg::Box>(n->primitive));
+    EXPECT_EQ(n->parentFromNode, csg::Mat4(1.0));
+}
+
+TEST(IoEval, ColorsAndMaterialsInnerWins) {
+    Outcome r =
+        run("color(\"red\") cube(); cube(); color(\"red\") color(\"#0000ff\") sphere();"
+            "material(reflect = 0.5, ior = 1.3) color([0, 1, 0], 0.5) cylinder();");
+    ASSERT_TRUE(r.result.ok());
+    const Model& m = *r.result.model;
+    auto l = leaves(m.root);
+    ASSERT_EQ(l.size(), 4u);
+    EXPECT_EQ(m.materials.at(l[0].first->tags.material).color, csg::Vec4(1, 0, 0, 1));
+    EXPECT_EQ(l[1].first->tags.material, 0u);
+    EXPECT_EQ(m.materials.at(l[2].first->tags.material).color, csg::Vec4(0, 0, 1, 1));
+    const Material& mat = m.materials.at(l[3].first->tags.material);
+    EXPECT_EQ(mat.color, csg::Vec4(0, 1, 0, 0.5));
+    EXPECT_EQ(mat.reflect, 0.5);
+    EXPECT_EQ(mat.ior, 1.3);
+    EXPECT_EQ(mat.diffuse, Material{}.diffuse);
+}
+
+TEST(IoEval, SceneModules) {
+    Outcome r =
+        run("camera(eye = [10, 0, 5], center = [0, 0, 0], fov = 30, projection = \"orthographic\");"
+            "translate([0, 0, 1]) light(position = [0, 0, 9], color = \"white\", intensity = 2,"
+            "shadows = false); background([0.1, 0.2, 0.3]); cube();");
+    ASSERT_TRUE(r.result.ok()) << formatDiagnostic(r.result.diagnostics.at(0));
+    const Model& m = *r.result.model;
+    ASSERT_TRUE(m.camera);
+    EXPECT_EQ(m.camera->eye, csg::Vec3(10, 0, 5));
+    EXPECT_EQ(m.camera->fov, 30.0);
+    EXPECT_EQ(m.camera->projection, Projection::Orthographic);
+    ASSERT_EQ(m.lights.size(), 1u);
+    EXPECT_EQ(m.lights[0].position, csg::Vec3(0, 0, 10));  // moved by its translate
+    EXPECT_EQ(m.lights[0].intensity, 2.0);
+    EXPECT_FALSE(m.lights[0].shadows);
+    ASSERT_TRUE(m.background);
+    EXPECT_EQ(*m.background, csg::Vec3(0.1, 0.2, 0.3));
+    EXPECT_EQ(leaves(m.root).size(), 1u);
+}
+
+TEST(IoEval, SourceTagsNameFileLineAndModulePath) {
+    Outcome r =
+        run("module part() {\n  difference() {\n    cube(2);\n    cylinder();\n  }\n}\npart();\n");
+    ASSERT_TRUE(r.result.ok());
+    const Model& m = *r.result.model;
+    auto l = leaves(m.root);
+    ASSERT_EQ(l.size(), 2u);
+    const uint32_t tag = l[1].first->tags.source;
+    EXPECT_EQ(m.modulePath(tag), "part() > difference > cylinder");
+    EXPECT_EQ(m.describeSource(tag), "test.scad:4:5");
+    EXPECT_EQ(m.modulePath(m.root->tags.source), "part() > difference");
+    const Diagnostic d = diagnosticAt(m, tag, Severity::Error, "singular");
+    EXPECT_EQ(formatDiagnostic(d), "test.scad:4:5: error: singular");
+}
+
+TEST(IoEval, EmptyFileIsAnEmptyModel) {
+    Outcome r = run("");
+    ASSERT_TRUE(r.result.ok());
+    EXPECT_FALSE(r.result.model->root);
+    EXPECT_TRUE(r.result.diagnostics.empty());
+}
