@@ -43,4 +43,11 @@ inline constexpr double kSingularDetRel = 1e-12;
 // costs at most a few more bounds' worth.
 inline constexpr double kRootResidualFactor = 8.0;
 
+// The torus solves its quartic over the line's range inside the bounding slab and cylinder,
+// widened by this fraction of R + r (unit: relative to the torus size). The torus touches
+// both bounds, and a root there is found only to ~1e-13 of the size (1e-11 for r/R = 1e-3)
+// before polishing, so without the margin a grazing root would fall out of range; 1e-6 keeps
+// a 1e5 safety factor and costs nothing, as F > 0 everywhere outside the torus.
+inline constexpr double kTorusRangeMargin = 1e-6;
+
 }  // namespace csg::tol

@@ -9,12 +9,13 @@
 #include "primitives/Cylinder.h"
 #include "primitives/HalfSpace.h"
 #include "primitives/Sphere.h"
+#include "primitives/Torus.h"
 
 namespace csg {
 
-using Primitive = std::variant<Sphere, Box, Cylinder, HalfSpace>;
+using Primitive = std::variant<Sphere, Box, Cylinder, HalfSpace, Torus>;
 
 static_assert(PrimitiveShape<Sphere> && PrimitiveShape<Box> && PrimitiveShape<Cylinder> &&
-              PrimitiveShape<HalfSpace>);
+              PrimitiveShape<HalfSpace> && PrimitiveShape<Torus>);
 
 }  // namespace csg

@@ -1,0 +1,134 @@
+// Notation: t is the parameter of the line o + t d; u = d / |d| and s = |d| (t - tBase) is the
+// distance along the line from a base point b = o + tBase d, the point of the line nearest
+// the centre. F(p) = (|p|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2), the torus quartic, is <= 0
+// exactly inside; along the line it is a quartic in s with leading coefficient 1.
+#include "primitives/Torus.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "primitives/solvers/LinePoint.h"
+#include "primitives/solvers/Quadratic.h"
+
+namespace csg {
+
+Polynomial Torus::quarticAlong(const Vec3& b, const Vec3& u) const {
+    const double R = majorRadius, r = minorRadius;
+    // F(b + s u) with |u| = 1: let q(s) = |b + s u|^2 + R^2 - r^2 = s^2 + 2 e s + g and
+    // h(s) = x^2 + y^2 = a s^2 + 2 f s + k; F = q^2 - 4 R^2 h.
+    const double e = glm::dot(b, u);
+    const double a = u.x * u.x + u.y * u.y;
+    const double f = b.x * u.x + b.y * u.y;
+    const double rho = std::hypot(b.x, b.y);
+    const double g = glm::dot(b, b) + (R - r) * (R + r);
+    // The constant term F(b) = ((rho - R)^2 + z^2 - r^2) ((rho + R)^2 + z^2 - r^2), factored so
+    // that the first factor, small near the surface, is formed without cancellation.
+    const double nearFactor = (rho - R) * (rho - R) + (b.z - r) * (b.z + r);
+    const double farFactor = (rho + R) * (rho + R) + (b.z - r) * (b.z + r);
+    const double R2 = R * R;
+    return Polynomial{nearFactor * farFactor, 4.0 * (e * g - 2.0 * R2 * f),
+                      4.0 * e * e + 2.0 * g - 4.0 * R2 * a, 4.0 * e, 1.0};
+}
+
+double Torus::polishOnTube(const Vec3& b, const Vec3& u, double s, double lo, double hi) const {
+    // G(s) = (rho - R)^2 + z^2 - r^2 has the quartic's roots (F = G times a factor that is
+    // positive for R > r) and is evaluated from the point itself, without the monomial
+    // expansion's loss of r^2 against R^2 (a thin torus). Newton on G while |G| drops.
+    auto eval = [&](double x, double& g, double& dg) {
+        const Vec3 p = pointOnLine(b, u, x);
+        const double rho = std::hypot(p.x, p.y);
+        const double dr = rho - majorRadius;
+        g = dr * dr + (p.z - minorRadius) * (p.z + minorRadius);
+        const double drho = rho > 0.0 ? (p.x * u.x + p.y * u.y) / rho : 0.0;
+        dg = 2.0 * (dr * drho + p.z * u.z);
+    };
+    double g, dg;
+    eval(s, g, dg);
+    for (int i = 0; i < 4 && g != 0.0 && dg != 0.0; ++i) {
+        const double next = s - g / dg;
+        if (!(next >= lo && next <= hi)) break;
+        double ng, ndg;
+        eval(next, ng, ndg);
+        if (!(std::abs(ng) < std::abs(g))) break;
+        s = next, g = ng, dg = ndg;
+    }
+    return s;
+}
+
+void Torus::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
+    const double R = majorRadius, r = minorRadius;
+    const double len = glm::length(d);
+    if (!(len > 0.0) || !std::isfinite(len)) return;
+    const Vec3 u = d / len;
+
+    // Step 1: move to the point of the line nearest the centre, so every coefficient is of
+    // the size of the torus (the caller's shift to the bounds entry already did most of it).
+    const double tBase = -glm::dot(o, d) / (len * len);
+    const Vec3 b = pointOnLine(o, d, tBase);
+
+    // Step 2: the cheap test: the line against the slab |z| <= r and the cylinder
+    // x^2 + y^2 <= (R + r)^2, as an s range; empty means a miss without the quartic.
+    double sLo = -kInfinity, sHi = kInfinity;
+    if (u.z != 0.0) {
+        const double s0 = (-r - b.z) / u.z, s1 = (r - b.z) / u.z;
+        sLo = std::min(s0, s1), sHi = std::max(s0, s1);
+    } else if (std::abs(b.z) > r) {
+        return;
+    }
+    const double a = u.x * u.x + u.y * u.y;
+    if (a > 0.0) {
+        const double outer = R + r;
+        double c0, c1;
+        const double f = b.x * u.x + b.y * u.y;
+        const double k = (std::hypot(b.x, b.y) - outer) * (std::hypot(b.x, b.y) + outer);
+        if (solveQuadratic(a, 2.0 * f, k, c0, c1) < 2) return;
+        sLo = std::max(sLo, c0), sHi = std::min(sHi, c1);
+    } else if (std::hypot(b.x, b.y) > R + r) {
+        return;
+    }
+    if (!(sLo <= sHi)) return;
+    // Widen so that roots on the range's ends (the torus touches the slab and the cylinder)
+    // are not lost to the quartic's rounding.
+    const double widen = tol::kTorusRangeMargin * (R + r);
+    sLo -= widen, sHi += widen;
+
+    // Step 3: the quartic's roots in range; F > 0 at both ends of the range (outside), so
+    // the solid is between roots 0-1 and 2-3. An odd count (a root lost to rounding) is
+    // judged by F between the roots instead.
+    const Polynomial quartic = quarticAlong(b, u);
+    double roots[4];
+    const int n = solve(quartic, sLo, sHi, roots, solver);
+    for (int i = 0; i < n; ++i) {
+        const bool tangency =
+            (i > 0 && roots[i - 1] == roots[i]) || (i + 1 < n && roots[i + 1] == roots[i]);
+        if (tangency) continue;
+        const double lo = i > 0 ? 0.5 * (roots[i - 1] + roots[i]) : sLo;
+        const double hi = i + 1 < n ? 0.5 * (roots[i] + roots[i + 1]) : sHi;
+        roots[i] = polishOnTube(b, u, roots[i], lo, hi);
+    }
+    if (n % 2 == 0) {
+        for (int i = 0; i + 1 < n; i += 2)
+            out.add(tBase + roots[i] / len, 0, tBase + roots[i + 1] / len, 0);
+        return;
+    }
+    for (int i = 0; i + 1 < n; ++i)
+        if (quartic(0.5 * roots[i] + 0.5 * roots[i + 1]) < 0.0)
+            out.add(tBase + roots[i] / len, 0, tBase + roots[i + 1] / len, 0);
+}
+
+bool Torus::inside(const Vec3& p) const {
+    const double rho = std::hypot(p.x, p.y);
+    const double dr = rho - majorRadius;
+    return dr * dr + p.z * p.z <= minorRadius * minorRadius;
+}
+
+Vec3 Torus::normal(const Vec3& p, uint16_t) const {
+    const double rho = std::hypot(p.x, p.y);
+    if (!(rho > 0.0)) return Vec3(0.0, 0.0, 1.0);
+    const Vec3 c(majorRadius * p.x / rho, majorRadius * p.y / rho, 0.0);
+    const Vec3 v = p - c;
+    const double l = glm::length(v);
+    return l > 0.0 ? v / l : Vec3(0.0, 0.0, 1.0);
+}
+
+}  // namespace csg

@@ -1,0 +1,38 @@
+// A solid ring torus centred at the local origin around the z axis (OpenSCAD's
+// rotate_extrude() of circle(r) translated by R): (sqrt(x^2 + y^2) - R)^2 + z^2 <= r^2.
+// Requires R > r > 0 (a spindle torus, r >= R, is not this solid's quartic).
+#pragma once
+
+#include "primitives/Primitive.h"
+#include "primitives/solvers/Polynomial.h"
+#include "primitives/solvers/Solve.h"
+
+namespace csg {
+
+struct Torus {
+    double majorRadius = 1.0;   // R: from the z axis to the tube's centre circle
+    double minorRadius = 0.25;  // r: the tube's radius
+    Solver solver = Solver::Auto;
+
+    // Tight: [-R-r, R+r]^2 x [-r, r].
+    Bounds3 bounds() const {
+        const double e = majorRadius + minorRadius;
+        return {Vec3(-e, -e, -minorRadius), Vec3(e, e, minorRadius)};
+    }
+    // Up to 2 spans (face 0, the torus surface); a tangent ray gives a zero-length span.
+    void spans(const Vec3& o, const Vec3& d, LocalSpans& out) const;
+    bool inside(const Vec3& p) const;
+    // (p - c) / |p - c| with c the nearest point of the centre circle (the gradient of the
+    // distance to the tube); on the axis or the centre circle itself, +z.
+    Vec3 normal(const Vec3& p, uint16_t face) const;
+
+    // The torus quartic along o + s u, |u| = 1, solved as is (no origin shift, no bounding
+    // test): exposed so tests can show what moving the origin is worth.
+    Polynomial quarticAlong(const Vec3& o, const Vec3& u) const;
+
+private:
+    // Newton on the tube's distance form from a root s of the quartic, kept within [lo, hi].
+    double polishOnTube(const Vec3& b, const Vec3& u, double s, double lo, double hi) const;
+};
+
+}  // namespace csg
