@@ -127,6 +127,10 @@ struct Compiler {
         Bounds3 box;
         std::visit(
             [&](const auto& shape) {
+                if constexpr (HasValidation<std::decay_t<decltype(shape)>>) {
+                    if (const char* why = shape.invalidReason())
+                        throw CompileError(why, node.tags.source);
+                }
                 leaf.localBounds = shape.bounds();
                 box = worldBounds(shape, worldFromLocal);
             },

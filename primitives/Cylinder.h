@@ -11,6 +11,13 @@ struct Cylinder {
     double r1 = 1.0;  // radius at z = 0, >= 0
     double r2 = 1.0;  // radius at z = height, >= 0 (not both 0)
 
+    const char* invalidReason() const {
+        const bool finite = std::isfinite(height) && std::isfinite(r1) && std::isfinite(r2);
+        return finite && height > 0.0 && r1 >= 0.0 && r2 >= 0.0 && (r1 > 0.0 || r2 > 0.0)
+                   ? nullptr
+                   : "cylinder needs height > 0, radii >= 0 and not both radii 0";
+    }
+
     // Faces: 0 = the lateral surface, 1 = the bottom cap (z = 0), 2 = the top cap (z = h).
     Bounds3 bounds() const;
     // Tight: the hull of the images of the two end discs.

@@ -10,6 +10,13 @@ struct HalfSpace {
     Vec3 planeNormal{0.0, 0.0, 1.0};
     double offset = 0.0;
 
+    const char* invalidReason() const {
+        const bool finite = std::isfinite(planeNormal.x) && std::isfinite(planeNormal.y) &&
+                            std::isfinite(planeNormal.z) && std::isfinite(offset);
+        return finite && planeNormal != Vec3(0.0) ? nullptr
+                                                  : "halfspace needs a finite, non-zero normal";
+    }
+
     // Face 0 is the plane. Bounds are everything unless the normal is axis-aligned, in which
     // case the bounded side is kept (z <= 2 gives lo = -inf, hi = (inf, inf, 2)).
     Bounds3 bounds() const;

@@ -34,4 +34,12 @@ concept HasTightBounds = requires(const P& p, const Mat4& m) {
     { p.boundsUnder(m) } -> std::same_as<Bounds3>;
 };
 
+// Optional: a primitive whose parameters can be out of its domain (a negative radius, a
+// spindle torus) says why, or returns nullptr when they are fine. compile() turns a reason
+// into a CompileError at the node's source, so bad parameters never reach a ray.
+template <class P>
+concept HasValidation = requires(const P& p) {
+    { p.invalidReason() } -> std::same_as<const char*>;
+};
+
 }  // namespace csg

@@ -8,6 +8,10 @@ namespace csg {
 struct Sphere {
     double radius = 1.0;
 
+    const char* invalidReason() const {
+        return std::isfinite(radius) && radius > 0.0 ? nullptr : "sphere radius must be > 0";
+    }
+
     Bounds3 bounds() const { return {Vec3(-radius), Vec3(radius)}; }
     // Exact: the image of a ball under an affine map is an ellipsoid whose extent along world
     // axis i is r times the length of row i of the linear part.

@@ -14,6 +14,12 @@ struct Torus {
     double minorRadius = 0.25;  // r: the tube's radius
     Solver solver = Solver::Auto;
 
+    const char* invalidReason() const {
+        return std::isfinite(majorRadius) && minorRadius > 0.0 && majorRadius > minorRadius
+                   ? nullptr
+                   : "torus needs R > r > 0 (a spindle or horn torus is not supported)";
+    }
+
     // Tight: [-R-r, R+r]^2 x [-r, r].
     Bounds3 bounds() const {
         const double e = majorRadius + minorRadius;

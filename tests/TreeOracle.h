@@ -58,10 +58,11 @@ inline Primitive randomPrimitive(std::mt19937_64& rng, bool allowHalfSpace) {
             return Box{Vec3(-u(rng), -u(rng), -u(rng)), Vec3(u(rng), u(rng), u(rng))};
         case 2:
             return Cylinder{2 * u(rng), u(rng), u(rng)};
-        case 3:
-            return Cylinder{2 * u(rng),
-                            std::uniform_int_distribution<int>(0, 1)(rng) ? u(rng) : 0.0,
-                            std::uniform_int_distribution<int>(0, 1)(rng) ? 0.0 : u(rng)};
+        case 3: {  // a cone, apex up or down
+            const bool apexUp = std::uniform_int_distribution<int>(0, 1)(rng);
+            const double r = u(rng);
+            return Cylinder{2 * u(rng), apexUp ? r : 0.0, apexUp ? 0.0 : r};
+        }
         default:
             return HalfSpace{Vec3(u(rng) - 0.75, u(rng) - 0.75, 1.0), 0.2};
     }

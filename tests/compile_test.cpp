@@ -50,6 +50,21 @@ TEST(Compile, SingularAndNonFiniteTransformsAreErrorsNamingTheNode) {
                  CompileError);
 }
 
+TEST(Compile, PrimitiveParametersOutOfTheirDomainAreErrors) {
+    for (const Primitive& bad : std::initializer_list<Primitive>{
+             Sphere{0.0}, Sphere{-1.0}, Sphere{std::nan("")}, Box{Vec3(0), Vec3(1, 0, 1)},
+             Cylinder{0.0, 1, 1}, Cylinder{1, 0, 0}, Cylinder{1, -1, 1}, HalfSpace{Vec3(0), 1.0},
+             Torus{1.0, 1.0}, Torus{1.0, 0.0}}) {
+        try {
+            Scene::compile(unite(leaf(Sphere{1}), leaf(bad, {7, 0})));
+            ADD_FAILURE() << "primitive " << bad.index() << " compiled";
+        } catch (const CompileError& e) {
+            EXPECT_EQ(e.source, 7u);
+        }
+    }
+    EXPECT_NO_THROW(Scene::compile(leaf(Torus{1.0, 0.999})));
+}
+
 TEST(Compile, EmptyOverlapPrunesAndDisjointCutIsDropped) {
     const NodePtr far = transformed(translation(10, 0, 0), leaf(Sphere{1}));
     const Scene pruned = Scene::compile(intersect(leaf(Sphere{1}), far));
