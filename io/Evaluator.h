@@ -83,6 +83,9 @@ class Evaluator {
 public:
     Evaluator(SourceFiles& sources, Model& model, std::vector<Diagnostic>& diagnostics,
               const EvaluateOptions& options);
+    ~Evaluator();
+    Evaluator(const Evaluator&) = delete;
+    Evaluator& operator=(const Evaluator&) = delete;
 
     // Evaluates a parsed main file into model_.root (and the extras).
     void run(const ParsedFile& file);
@@ -106,7 +109,6 @@ public:
     void echo(const ArgValues& args);
 
 private:
-    friend struct ModuleCall;
     // ---- expression helpers ----
     Value evalBinary(const BinaryExpr& e, const ContextPtr& ctx);
     Value evalVector(const VectorExpr& e, const ContextPtr& ctx);
@@ -190,8 +192,9 @@ private:
     std::unordered_map<std::string, ContextPtr> usedFileContexts_;
     ContextPtr root_;                           // built-in constants and the default $-variables
     std::optional<csg::NodePtr> rootOverride_;  // the first ! subtree
-    friend Instance builtinChildrenCall(Evaluator&, const InstantiationStmt&, const ContextPtr&,
-                                        const GeomState&);
+    // Contexts captured by function literals. A literal stored in a variable of its own
+    // scope is a reference cycle; the destructor breaks those cycles by clearing variables.
+    std::vector<std::weak_ptr<Context>> closures_;
 };
 
 // Most iterations a for loop or a range may yield (a bigger one is an error, not a hang).

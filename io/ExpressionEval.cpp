@@ -500,6 +500,7 @@ Value Evaluator::eval(const Expr& e, const ContextPtr& ctx) {
             return a.body ? eval(*a.body, ctx) : Value();
         }
         case ExprKind::FunctionLiteral:
+            closures_.push_back(ctx);
             return FunctionValue{static_cast<const FunctionLiteralExpr*>(&e), ctx};
         default:
             fail(e.loc, "list comprehension elements are only allowed inside [ ]");

@@ -22,6 +22,27 @@ Evaluator::Evaluator(SourceFiles& sources, Model& model, std::vector<Diagnostic>
     pathIndex_[""] = 0;
 }
 
+Evaluator::~Evaluator() {
+    // Break closure cycles (scope -> variable -> function value -> scope) so nothing leaks.
+    std::vector<ContextPtr> pending;
+    for (const auto& weak : closures_)
+        if (ContextPtr c = weak.lock()) pending.push_back(std::move(c));
+    closures_.clear();
+    while (!pending.empty()) {
+        ContextPtr c = std::move(pending.back());
+        pending.pop_back();
+        if (c->variables.empty() && !c->lexicalParent && !c->dynamicParent) continue;
+        std::vector<std::pair<std::string, Value>> variables;
+        variables.swap(c->variables);
+        if (c->lexicalParent) pending.push_back(std::move(c->lexicalParent));
+        if (c->dynamicParent) pending.push_back(std::move(c->dynamicParent));
+        if (c->childrenContext) pending.push_back(std::move(c->childrenContext));
+        for (auto& used : c->usedFiles) pending.push_back(std::move(used));
+        c->usedFiles.clear();
+        // variables (and any closures in them) are released here, after the walk moved on.
+    }
+}
+
 void Evaluator::loadUses(const ParsedFile& file, const ContextPtr& fileContext) {
     for (const auto& [written, loc] : file.uses) {
         const auto path = sources_.resolve(written, file.fileIndex);
@@ -164,10 +185,11 @@ Instance Evaluator::instantiateCall(const InstantiationStmt& s, const ContextPtr
     if (name == "for") return instantiateForLoop(s, ctx, state, false);
     if (name == "intersection_for") return instantiateForLoop(s, ctx, state, true);
     if (name == "children") return instantiateChildrenCall(s, ctx, state);
-    if (name == "let" || name == "echo" || name == "assert") {
+    // assign() is OpenSCAD's deprecated spelling of let().
+    if (name == "let" || name == "assign" || name == "echo" || name == "assert") {
         ContextPtr c = ctx;
         ArgValues noArgs;
-        if (name == "let") {
+        if (name == "let" || name == "assign") {
             c = Context::make(ctx, ctx, nullptr);
             for (const Argument& a : s.args) {
                 if (a.name.empty())

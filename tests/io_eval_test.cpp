@@ -269,7 +269,8 @@ TEST(IoEval, CubeMapsToABoxWithCenterInItsCorners) {
     const auto& box = std::get<csg::Box>(n->primitive);
     expectNear(box.lo, {-0.5, -1, -1.5});
     expectNear(box.hi, {0.5, 1, 1.5});
-    const auto& unit = std::get<csg::Box>(root("cube(2);")->primitive);
+    const csg::NodePtr node_unit = root("cube(2);");
+    const auto& unit = std::get<csg::Box>(node_unit->primitive);
     expectNear(unit.lo, {0, 0, 0});
     expectNear(unit.hi, {2, 2, 2});
 }
@@ -291,15 +292,18 @@ TEST(IoEval, CylinderPrecedenceAndCenter) {
     EXPECT_EQ(c.r2, 1.0);
     expectNear(csg::transformPoint(l[0].second, {0, 0, 0}), {0, 0, -1.5});
     // Positional arguments are (h, r1, r2, center): r2 keeps its default 1.
-    const auto& p = std::get<csg::Cylinder>(root("cylinder(10, 5);")->primitive);
+    const csg::NodePtr node_p = root("cylinder(10, 5);");
+    const auto& p = std::get<csg::Cylinder>(node_p->primitive);
     EXPECT_EQ(p.r1, 5.0);
     EXPECT_EQ(p.r2, 1.0);
-    const auto& d = std::get<csg::Cylinder>(root("cylinder(h = 1, d = 4, r = 1);")->primitive);
+    const csg::NodePtr node_d = root("cylinder(h = 1, d = 4, r = 1);");
+    const auto& d = std::get<csg::Cylinder>(node_d->primitive);
     EXPECT_EQ(d.r1, 2.0);  // d beats r
 }
 
 TEST(IoEval, HalfSpace) {
-    const auto& h = std::get<csg::HalfSpace>(root("halfspace([0, 1, 0], 2);")->primitive);
+    const csg::NodePtr node_h = root("halfspace([0, 1, 0], 2);");
+    const auto& h = std::get<csg::HalfSpace>(node_h->primitive);
     expectNear(h.planeNormal, {0, 1, 0});
     EXPECT_EQ(h.offset, 2.0);
 }
