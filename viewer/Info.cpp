@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <unordered_map>
 
 #include "io/Json.h"
@@ -33,23 +34,27 @@ const char* const kInfoHelp =
     "options:\n";
 
 // Counts of the expanded tree, saturating rather than wrapping for astronomically shared DAGs.
+// Leaves are counted by primitive name, so a newly registered primitive needs no change here.
 struct NodeCounts {
-    uint64_t sphere = 0, cube = 0, cylinder = 0, halfspace = 0;
+    std::map<std::string, uint64_t> leaves;
     uint64_t unions = 0, intersections = 0, differences = 0, transformed = 0;
 
     static uint64_t add(uint64_t a, uint64_t b) { return a > UINT64_MAX - b ? UINT64_MAX : a + b; }
     void addAll(const NodeCounts& o) {
-        sphere = add(sphere, o.sphere);
-        cube = add(cube, o.cube);
-        cylinder = add(cylinder, o.cylinder);
-        halfspace = add(halfspace, o.halfspace);
+        for (const auto& [name, n] : o.leaves) leaves[name] = add(leaves[name], n);
         unions = add(unions, o.unions);
         intersections = add(intersections, o.intersections);
         differences = add(differences, o.differences);
         transformed = add(transformed, o.transformed);
     }
-    uint64_t leaves() const { return add(add(sphere, cube), add(cylinder, halfspace)); }
-    uint64_t total() const { return add(leaves(), add(add(unions, intersections), differences)); }
+    uint64_t leafTotal() const {
+        uint64_t total = 0;
+        for (const auto& entry : leaves) total = add(total, entry.second);
+        return total;
+    }
+    uint64_t total() const {
+        return add(leafTotal(), add(add(unions, intersections), differences));
+    }
 };
 
 class TreeWriter {
@@ -63,15 +68,7 @@ public:
         if (node.parentFromNode != csg::Mat4(1.0)) c.transformed = 1;
         switch (node.op) {
             case csg::Op::Leaf:
-                std::visit(
-                    [&](const auto& p) {
-                        using P = std::decay_t<decltype(p)>;
-                        if constexpr (std::is_same_v<P, csg::Sphere>) c.sphere = 1;
-                        if constexpr (std::is_same_v<P, csg::Box>) c.cube = 1;
-                        if constexpr (std::is_same_v<P, csg::Cylinder>) c.cylinder = 1;
-                        if constexpr (std::is_same_v<P, csg::HalfSpace>) c.halfspace = 1;
-                    },
-                    node.primitive);
+                c.leaves[primitiveName(node.primitive)] = 1;
                 break;
             case csg::Op::Union:
                 c.unions = 1;
@@ -152,6 +149,8 @@ private:
                     json.key("h").value(p.height).key("r1").value(p.r1).key("r2").value(p.r2);
                 } else if constexpr (std::is_same_v<P, csg::HalfSpace>) {
                     json.key("normal").vec(p.planeNormal, 3).key("offset").value(p.offset);
+                } else if constexpr (std::is_same_v<P, csg::Torus>) {
+                    json.key("R").value(p.majorRadius).key("r").value(p.minorRadius);
                 }
             },
             primitive);
@@ -166,19 +165,12 @@ private:
 void writeCounts(io::JsonWriter& json, const NodeCounts& c) {
     json.key("counts").beginObject();
     json.key("nodes").value(c.total());
-    json.key("leaves")
-        .beginObject()
-        .key("total")
-        .value(c.leaves())
-        .key("cube")
-        .value(c.cube)
-        .key("sphere")
-        .value(c.sphere)
-        .key("cylinder")
-        .value(c.cylinder)
-        .key("halfspace")
-        .value(c.halfspace)
-        .endObject();
+    // Every kind the language has appears, with 0 when unused, so readers need no defaults.
+    std::map<std::string, uint64_t> leaves = c.leaves;
+    for (const char* kind : {"cube", "sphere", "cylinder", "halfspace", "torus"}) leaves[kind];
+    json.key("leaves").beginObject().key("total").value(c.leafTotal());
+    for (const auto& [name, n] : leaves) json.key(name).value(n);
+    json.endObject();
     json.key("unions").value(c.unions);
     json.key("intersections").value(c.intersections);
     json.key("differences").value(c.differences);

@@ -7,14 +7,22 @@
 
 namespace viewer {
 
+namespace {
+
+struct PrimitiveName {
+    const char* operator()(const csg::Sphere&) const { return "sphere"; }
+    const char* operator()(const csg::Box&) const { return "cube"; }
+    const char* operator()(const csg::Cylinder&) const { return "cylinder"; }
+    const char* operator()(const csg::HalfSpace&) const { return "halfspace"; }
+    const char* operator()(const csg::Torus&) const { return "torus"; }
+    // A primitive registered since this list was written still gets a name.
+    const char* operator()(const auto&) const { return "primitive"; }
+};
+
+}  // namespace
+
 const char* primitiveName(const csg::Primitive& primitive) {
-    struct Name {
-        const char* operator()(const csg::Sphere&) const { return "sphere"; }
-        const char* operator()(const csg::Box&) const { return "cube"; }
-        const char* operator()(const csg::Cylinder&) const { return "cylinder"; }
-        const char* operator()(const csg::HalfSpace&) const { return "halfspace"; }
-    };
-    return std::visit(Name{}, primitive);
+    return std::visit(PrimitiveName{}, primitive);
 }
 
 ProbeJson::ProbeJson(const io::Model& model, const csg::Scene& scene) : scene_(scene) {
