@@ -43,6 +43,15 @@ inline constexpr double kSingularDetRel = 1e-12;
 // costs at most a few more bounds' worth.
 inline constexpr double kRootResidualFactor = 8.0;
 
+// The computed hit point o + t d of a closest() answer is within gamma(kHitPointErrorOps) *
+// (|o| + |t d|) of the true surface point, per component (unit: operation counts of gamma).
+// Why 1024: forming the point costs 3 roundings, but t itself carries the primitive solve's
+// error, "a few hundred ulps" of |o| / |d| + |t| (see kCoincidentRel), which becomes a point
+// error of the same relative size. 1024 covers that with margin and is still ~1e-13 of the
+// distance to the eye: a secondary ray's origin offset by this bound along the normal never
+// re-hits the surface it leaves, yet moves by far less than a pixel at any scale.
+inline constexpr int kHitPointErrorOps = 1024;
+
 // The torus solves its quartic over the line's range inside the bounding slab and cylinder,
 // widened by this fraction of R + r (unit: relative to the torus size). The torus touches
 // both bounds, and a root there is found only to ~1e-13 of the size (1e-11 for r/R = 1e-3)

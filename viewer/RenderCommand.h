@@ -1,4 +1,4 @@
-// `csgray render`: a part to a PNG file (the preview renderer until issue 4's renderer lands).
+// `csgray render`: a part to an image by the Whitted renderer (viewer/render/), or --preview.
 #pragma once
 
 #include <span>

@@ -1,0 +1,484 @@
+// The Whitted renderer (viewer/render/): the effects plan (which rays are cast, counted
+// exactly), scale invariance of secondary-ray origins, refraction through a difference's cut
+// face, the PNG it writes (decoded back with libpng), and Ctrl-C leaving no file.
+#include <gtest/gtest.h>
+#include <png.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <thread>
+
+#include "io/Evaluate.h"
+#include "viewer/render/EffectsPlan.h"
+#include "viewer/render/ImageOutput.h"
+#include "viewer/render/Materials.h"
+#include "viewer/render/RenderCamera.h"
+#include "viewer/render/SecondaryOrigin.h"
+#include "viewer/render/TileRenderer.h"
+#include "viewer/render/Tracer.h"
+
+extern char** environ;
+
+namespace viewer::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct LoadedScene {
+    io::Model model;
+    csg::Scene scene;
+};
+
+LoadedScene load(const std::string& source) {
+    io::EvaluateResult result = io::evaluateString(source, "render_test.scad");
+    for (const io::Diagnostic& d : result.diagnostics) ADD_FAILURE() << d.message;
+    LoadedScene loaded;
+    if (!result.ok()) return loaded;
+    loaded.model = std::move(*result.model);
+    loaded.scene = csg::Scene::compile(loaded.model.root);
+    return loaded;
+}
+
+struct Rendered {
+    RenderResult result;
+    EffectsPlan plan;
+};
+
+Rendered render(const LoadedScene& s, int width, int height, PlanSettings settings = {},
+                int threads = 2) {
+    const io::Camera camera =
+        s.model.camera ? *s.model.camera : frameBounds(s.scene, double(width) / height);
+    Rendered r;
+    r.plan = makeEffectsPlan(s.model, s.scene, camera, settings);
+    ImageSettings image;
+    image.width = width;
+    image.height = height;
+    image.threads = threads;
+    r.result =
+        renderImage(s.scene, r.plan, RenderCamera(camera, width, height), image, nullptr, nullptr);
+    return r;
+}
+
+// ---- the effects plan ----
+
+const char* const kDiffuseScene = R"(
+    light([5, -8, 10]);
+    halfspace([0, 0, 1], 0);
+    translate([0, 0, 1]) sphere(1);
+    translate([2.5, 0, 0.75]) cube(1.5, center = true);
+)";
+
+TEST(EffectsPlan, DiffuseOnlySceneCastsNoReflectionOrRefractionRays) {
+    const LoadedScene s = load(kDiffuseScene);
+    const Rendered r = render(s, 40, 30);
+    EXPECT_FALSE(r.plan.reflection);
+    EXPECT_FALSE(r.plan.refraction);
+    EXPECT_TRUE(r.plan.shadowRays);
+    EXPECT_EQ(r.result.rays.primary, 40u * 30u);
+    EXPECT_EQ(r.result.rays.reflection, 0u);
+    EXPECT_EQ(r.result.rays.refraction, 0u);
+    EXPECT_GT(r.result.rays.shadow, 0u);
+}
+
+TEST(EffectsPlan, ShadowsOffCastsNoShadowRays) {
+    const LoadedScene s = load(kDiffuseScene);
+    PlanSettings settings;
+    settings.shadows = false;
+    const Rendered r = render(s, 40, 30, settings);
+    EXPECT_FALSE(r.plan.shadowRays);
+    EXPECT_EQ(r.result.rays.shadow, 0u);
+
+    // Per light: shadows=false on the only light has the same effect.
+    std::string perLightSource = kDiffuseScene;
+    const std::string light = "light([5, -8, 10]);";
+    perLightSource.replace(perLightSource.find(light), light.size(),
+                           "light([5, -8, 10], shadows=false);");
+    const LoadedScene perLight = load(perLightSource);
+    EXPECT_EQ(render(perLight, 40, 30).result.rays.shadow, 0u);
+}
+
+TEST(EffectsPlan, OneConvexSolidCastsNoShadowRays) {
+    // A convex solid cannot shadow its own lit side, whatever the light.
+    const LoadedScene s =
+        load("light([3, -4, 5]); intersection() { sphere(1); cube(1.6, center = true); }");
+    const Rendered r = render(s, 32, 32);
+    EXPECT_TRUE(r.plan.convexScene);
+    EXPECT_FALSE(r.plan.shadowRays);
+    EXPECT_EQ(r.result.rays.shadow, 0u);
+    EXPECT_GT(r.result.rays.primary, 0u);
+}
+
+// Two facing mirrors, z <= 0 and z >= 10, seen by an orthographic camera at z = 5 looking
+// down: every primary ray hits the floor and the reflections bounce between the two planes
+// forever, so the ray tree is cut only by the weight rule. The k-th reflection ray weighs
+// reflect^k and is cast when reflect^k >= 1/256.
+std::string facingMirrors(double reflect) {
+    return "camera(eye=[0,0,5], center=[0,0,0], up=[0,1,0], projection=\"orthographic\");\n"
+           "material(ambient=0.2, diffuse=0, specular=0, reflect=" +
+           std::to_string(reflect) +
+           ") {\n"
+           "  halfspace([0, 0, 1], 0);\n"
+           "  halfspace([0, 0, -1], -10);\n"
+           "}\n";
+}
+
+TEST(EffectsPlan, MirrorReflectRaysFollowTheWeightThreshold) {
+    constexpr uint64_t kPixels = 24 * 16;
+    // 0.5^8 = 1/256 is still cast, 0.5^9 is not: 8 reflections per pixel.
+    const Rendered half = render(load(facingMirrors(0.5)), 24, 16);
+    EXPECT_TRUE(half.plan.reflection);
+    EXPECT_FALSE(half.plan.direct);  // diffuse = specular = 0: no light terms, no shadow rays
+    EXPECT_EQ(half.result.rays.primary, kPixels);
+    EXPECT_EQ(half.result.rays.reflection, 8 * kPixels);
+    EXPECT_EQ(half.result.rays.shadow, 0u);
+    // 0.1^2 = 0.01 >= 1/256 > 0.1^3: two per pixel.
+    EXPECT_EQ(render(load(facingMirrors(0.1)), 24, 16).result.rays.reflection, 2 * kPixels);
+    // 0.001 < 1/256: the first reflection already weighs too little; none is cast.
+    const Rendered faint = render(load(facingMirrors(0.001)), 24, 16);
+    EXPECT_TRUE(faint.plan.reflection);
+    EXPECT_EQ(faint.result.rays.reflection, 0u);
+    // --max-depth cuts before the weight rule when it is smaller.
+    PlanSettings shallow;
+    shallow.maxDepth = 3;
+    EXPECT_EQ(render(load(facingMirrors(0.5)), 24, 16, shallow).result.rays.reflection,
+              3 * kPixels);
+    // A lower threshold lets more through: 0.5^10 >= 2^-10.
+    PlanSettings fine;
+    fine.minWeight = 1.0 / 1024.0;
+    EXPECT_EQ(render(load(facingMirrors(0.5)), 24, 16, fine).result.rays.reflection, 10 * kPixels);
+}
+
+TEST(EffectsPlan, UnusedMaterialsDoNotTurnEffectsOn) {
+    // The glass material exists in the table but no leaf uses it... as it is never
+    // instantiated, only the default material is in use.
+    const LoadedScene s = load("light([3, -4, 5]); sphere(1); translate([3, 0, 0]) sphere(1);");
+    const Rendered r = render(s, 32, 24);
+    EXPECT_FALSE(r.plan.refraction);
+    EXPECT_FALSE(r.plan.reflection);
+    EXPECT_TRUE(r.plan.specular);  // io::Material's default has specular 0.2
+}
+
+// ---- secondary-ray origins ----
+
+// A ray leaving a hit point (outward for reflection, inward for refraction) must never find
+// the surface it leaves again, at any scale and from far-away origins.
+TEST(SecondaryOrigin, NeverReHitsTheSurfaceItLeaves) {
+    std::mt19937_64 rng(20240604);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    for (const double scale : {1e-4, 1.0, 1e4}) {
+        const LoadedScene s = load("translate([0.3, -0.2, 0.1]) sphere(1.3);");
+        const LoadedScene scaled =
+            load("scale(" + std::to_string(scale) + ") translate([0.3, -0.2, 0.1]) sphere(1.3);");
+        csg::QueryContext ctx;
+        int hits = 0;
+        for (int i = 0; i < 4000; ++i) {
+            const double far = std::pow(10.0, 1.0 + 5.0 * (unit(rng) + 1.0) / 2.0);
+            const csg::Vec3 from =
+                scale * far * glm::normalize(csg::Vec3(unit(rng), unit(rng), unit(rng)));
+            const csg::Vec3 target =
+                scale * (csg::Vec3(0.3, -0.2, 0.1) + csg::Vec3(unit(rng), unit(rng), unit(rng)));
+            const csg::Ray ray{from, target - from, 0.0, kRayFar};
+            const std::optional<csg::Hit> hit = scaled.scene.closest(ray, ctx);
+            if (!hit) continue;
+            ++hits;
+            const csg::SurfacePoint sp = scaled.scene.surface(ray, *hit);
+            const csg::Vec3 error = hitPointError(ray, hit->t);
+            const csg::Vec3 dir = glm::normalize(ray.d);
+            const csg::Vec3 out = dir - 2.0 * glm::dot(dir, sp.normal) * sp.normal;
+            const csg::Ray reflected{offsetRayOrigin(sp.point, error, sp.normal, out), out, 0.0,
+                                     kRayFar};
+            EXPECT_FALSE(scaled.scene.closest(reflected, ctx)) << "scale " << scale << " ray " << i;
+            // Inward: the next surface is the far side of the sphere, left (not entered).
+            const csg::Ray inward{offsetRayOrigin(sp.point, error, sp.normal, dir), dir, 0.0,
+                                  kRayFar};
+            const std::optional<csg::Hit> exit = scaled.scene.closest(inward, ctx);
+            ASSERT_TRUE(exit) << "scale " << scale << " ray " << i;
+            const csg::SurfacePoint exitPoint = scaled.scene.surface(inward, *exit);
+            EXPECT_GT(glm::dot(inward.d, exitPoint.normal), 0.0) << "scale " << scale;
+        }
+        EXPECT_GT(hits, 1000);
+        (void)s;
+    }
+}
+
+// The same scene at 1e-4, 1 and 1e4 (camera and lights scaled with it) renders the same
+// image: no shadow acne or self-hit speckles appear at any scale.
+std::string scaledScene(double scale) {
+    return "scale(" + std::to_string(scale) + ") {\n" + R"(
+      camera(eye=[7, -9, 5], center=[0.5, 0, 0.8], up=[0, 0, 1], fov=40);
+      light([6, -4, 9]);
+      light([-6, -6, 4], color=[0.4, 0.4, 0.5]);
+      halfspace([0, 0, 1], 0);
+      translate([0, 0, 1]) sphere(1);
+      material(diffuse=0.1, specular=0.6, shininess=80, reflect=0.6)
+        translate([2.2, 1.0, 0.8]) sphere(0.8);
+      material(ambient=0, diffuse=0.05, specular=0.5, shininess=200, transmit=0.85, ior=1.5)
+        translate([-1.6, -1.2, 0.7]) difference() {
+          cube(1.4, center = true);
+          cylinder(h = 2, r = 0.35, center = true);
+        }
+      translate([0.5, 2.5, 0]) rotate([0, 0, 30]) cube([2, 0.4, 2.2]);
+    })";
+}
+
+TEST(ScaleInvariance, SameImageAt1eMinus4And1And1e4) {
+    const int w = 96, h = 72;
+    std::vector<io::Rgb8Image> images;
+    for (const double scale : {1e-4, 1.0, 1e4}) {
+        const Rendered r = render(load(scaledScene(scale)), w, h);
+        EXPECT_GT(r.result.rays.shadow, 0u);
+        EXPECT_GT(r.result.rays.reflection, 0u);
+        EXPECT_GT(r.result.rays.refraction, 0u);
+        images.push_back(encodeSrgb(r.result.image));
+    }
+    for (int k : {0, 2}) {
+        int differing = 0;
+        for (size_t p = 0; p < images[1].pixels.size(); p += 3) {
+            int worst = 0;
+            for (int c = 0; c < 3; ++c)
+                worst = std::max(
+                    worst, std::abs(int(images[k].pixels[p + c]) - int(images[1].pixels[p + c])));
+            differing += worst > 2;
+        }
+        // Silhouette pixels may round differently; acne would be hundreds of pixels.
+        EXPECT_LE(differing, w * h / 500) << "scale " << (k == 0 ? "1e-4" : "1e4");
+    }
+}
+
+// ---- refraction through a difference ----
+
+const char* const kCutGlass = R"(
+    material(ambient=0, diffuse=0, specular=0, transmit=1, ior=1.5)
+      difference() {
+        cube(2, center = true);
+        cylinder(h = 4, r = 0.5, center = true);
+      })";
+
+TEST(Refraction, ARayInsideCutGlassLeavesThroughTheCutFace) {
+    const LoadedScene s = load(kCutGlass);
+    const EffectsPlan plan = makeEffectsPlan(s.model, s.scene, io::Camera{}, {});
+    ASSERT_TRUE(plan.refraction);
+    Tracer tracer(s.scene, plan);
+    PathLog log;
+    tracer.log = &log;
+    // Starts inside the glass, heading for the cylindrical hole.
+    tracer.tracePrimary(csg::Ray{{-0.8, 0.0, 0.3}, {1.0, 0.0, 0.0}, 0.0, kRayFar});
+    ASSERT_GE(log.count, 3);
+    const PathLog::Vertex& cut = log.vertices[0];
+    EXPECT_FALSE(cut.entering) << "the ray leaves the glass into the hole";
+    EXPECT_NEAR(cut.point.x, -0.5, 1e-12);
+    EXPECT_NEAR(cut.point.y, 0.0, 1e-12);
+    EXPECT_NEAR(cut.point.z, 0.3, 1e-12);
+    EXPECT_NEAR(cut.normal.x, 1.0, 1e-12) << "the cut face's outward normal points into the hole";
+    // Across the hole it enters the glass again, then leaves through the box's face.
+    EXPECT_TRUE(log.vertices[1].entering);
+    EXPECT_NEAR(log.vertices[1].point.x, 0.5, 1e-12);
+    EXPECT_FALSE(log.vertices[2].entering);
+    EXPECT_NEAR(log.vertices[2].point.x, 1.0, 1e-12);
+    EXPECT_EQ(log.vertices[1].kind, RayKind::Refraction);
+}
+
+TEST(Refraction, ObliqueRayBendsBySnellsLawAtBothFacesOfTheCut) {
+    const LoadedScene s = load(kCutGlass);
+    const EffectsPlan plan = makeEffectsPlan(s.model, s.scene, io::Camera{}, {});
+    Tracer tracer(s.scene, plan);
+    PathLog log;
+    tracer.log = &log;
+    // From outside, 30 degrees off the x axis in the xy plane, aimed to enter the face x = -1
+    // at (-1, -0.1, 0).
+    const double angle = 30.0 * M_PI / 180.0;
+    const csg::Vec3 d(std::cos(angle), std::sin(angle), 0.0);
+    tracer.tracePrimary(csg::Ray{csg::Vec3(-1.0, -0.1, 0.0) - 3.0 * d, d, 0.0, kRayFar});
+    ASSERT_GE(log.count, 2);
+    EXPECT_TRUE(log.vertices[0].entering);
+    EXPECT_NEAR(log.vertices[0].point.x, -1.0, 1e-12);
+    // Inside: sin(t) = sin(30 deg) / 1.5.
+    const double sinT = std::sin(angle) / 1.5;
+    const csg::Vec3 inside(std::sqrt(1.0 - sinT * sinT), sinT, 0.0);
+    // Expected exit at the cylinder x^2 + y^2 = 0.25: solve |p0 + s inside|^2 = r^2.
+    const csg::Vec3 p0 = log.vertices[0].point;
+    const double b = glm::dot(p0, inside), c = glm::dot(p0, p0) - 0.25;
+    const double sHit = -b - std::sqrt(b * b - c);
+    const csg::Vec3 expected = p0 + sHit * inside;
+    EXPECT_FALSE(log.vertices[1].entering);
+    EXPECT_NEAR(log.vertices[1].point.x, expected.x, 1e-9);
+    EXPECT_NEAR(log.vertices[1].point.y, expected.y, 1e-9);
+    EXPECT_NEAR(glm::length(csg::Vec3(log.vertices[1].point.x, log.vertices[1].point.y, 0)), 0.5,
+                1e-9);
+}
+
+TEST(Refraction, TotalInternalReflectionKeepsTheRayInside) {
+    // A ray inside glass (ior 1.5) meeting the face y = 1 at 60 degrees from its normal (the
+    // critical angle is 41.8 degrees) is reflected: it next meets the face x = 1 at 30 degrees
+    // and leaves there.
+    const LoadedScene s = load(
+        "material(ambient=0, diffuse=0, specular=0, transmit=1, ior=1.5) cube(2, center=true);");
+    const EffectsPlan plan = makeEffectsPlan(s.model, s.scene, io::Camera{}, {});
+    Tracer tracer(s.scene, plan);
+    PathLog log;
+    tracer.log = &log;
+    const double angle = 30.0 * M_PI / 180.0;
+    tracer.tracePrimary(
+        csg::Ray{{0.0, 0.5, 0.0}, {std::cos(angle), std::sin(angle), 0.0}, 0.0, kRayFar});
+    ASSERT_GE(log.count, 2);
+    EXPECT_FALSE(log.vertices[0].entering);
+    EXPECT_NEAR(log.vertices[0].point.y, 1.0, 1e-12);  // first the face y = 1
+    EXPECT_FALSE(log.vertices[1].entering);            // reflected back inside to x = 1
+    EXPECT_NEAR(log.vertices[1].point.x, 1.0, 1e-12);
+}
+
+// ---- output ----
+
+struct DecodedPng {
+    int width = 0, height = 0;
+    std::vector<uint8_t> rgb;
+    bool srgb = false;
+};
+
+DecodedPng decodePng(const fs::path& path) {
+    DecodedPng out;
+    FILE* file = std::fopen(path.c_str(), "rb");
+    if (!file) return out;
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_infop info = png_create_info_struct(png);
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_read_struct(&png, &info, nullptr);
+        std::fclose(file);
+        return DecodedPng{};
+    }
+    png_init_io(png, file);
+    png_read_info(png, info);
+    int intent = 0;
+    out.srgb = png_get_sRGB(png, info, &intent) != 0;
+    out.width = int(png_get_image_width(png, info));
+    out.height = int(png_get_image_height(png, info));
+    if (png_get_color_type(png, info) != PNG_COLOR_TYPE_RGB || png_get_bit_depth(png, info) != 8)
+        ADD_FAILURE() << "expected 8-bit RGB";
+    out.rgb.resize(size_t(out.width) * out.height * 3);
+    for (int y = 0; y < out.height; ++y)
+        png_read_row(png, out.rgb.data() + size_t(y) * out.width * 3, nullptr);
+    png_destroy_read_struct(&png, &info, nullptr);
+    std::fclose(file);
+    return out;
+}
+
+TEST(Output, PngIsSrgbEncodedAndDecodesBack) {
+    // An ambient-only white square (ambient 0.5: linear 0.5) on a background of sRGB 0.4,
+    // seen straight on by an orthographic camera.
+    const LoadedScene s = load(R"(
+        camera(eye=[0, 0, 10], center=[0, 0, 0], up=[0, 1, 0], fov=40, projection="orthographic");
+        background([0.4, 0.4, 0.4]);
+        material(color=[1, 1, 1], ambient=0.5, diffuse=0, specular=0) cube([1, 1, 1], center=true);
+    )");
+    const Rendered r = render(s, 48, 32);
+    const fs::path dir = fs::temp_directory_path() / ("render_test_" + std::to_string(getpid()));
+    fs::create_directories(dir);
+    const fs::path png = dir / "out.png";
+    ASSERT_EQ(writeImage(png, ImageFormat::Png, r.result.image), "");
+    const DecodedPng image = decodePng(png);
+    ASSERT_EQ(image.width, 48);
+    ASSERT_EQ(image.height, 32);
+    EXPECT_TRUE(image.srgb) << "the file says its pixels are sRGB";
+    // The corner is the background: sRGB 0.4 in, 0.4 * 255 = 102 out (decode, encode).
+    EXPECT_EQ(image.rgb[0], 102);
+    // The centre is linear 0.5, which sRGB encodes as 188 (a plain linear write gives 128).
+    const size_t centre = (size_t(16) * 48 + 24) * 3;
+    EXPECT_EQ(image.rgb[centre], 188);
+    EXPECT_EQ(image.rgb[centre + 1], 188);
+    // PFM keeps the linear value.
+    const fs::path pfm = dir / "out.pfm";
+    ASSERT_EQ(writeImage(pfm, ImageFormat::Pfm, r.result.image), "");
+    std::ifstream in(pfm, std::ios::binary);
+    std::string magic, scale;
+    int pw = 0, ph = 0;
+    in >> magic >> pw >> ph >> scale;
+    in.get();
+    EXPECT_EQ(magic, "PF");
+    EXPECT_EQ(pw, 48);
+    EXPECT_EQ(ph, 32);
+    std::vector<float> floats(size_t(pw) * ph * 3);
+    in.read(reinterpret_cast<char*>(floats.data()), std::streamsize(floats.size() * 4));
+    EXPECT_FLOAT_EQ(floats[(size_t(16) * 48 + 24) * 3], 0.5f);
+    fs::remove_all(dir);
+}
+
+TEST(Materials, PresetsMatchTheirClasses) {
+    EXPECT_EQ(materialPreset(MaterialClass::BlackBody).ambient, 0.0);
+    EXPECT_EQ(materialPreset(MaterialClass::BlackBody).diffuse, 0.0);
+    EXPECT_EQ(materialPreset(MaterialClass::Ambient).ambient, 1.0);
+    EXPECT_EQ(materialPreset(MaterialClass::Diffuse).diffuse, 0.9);
+    EXPECT_EQ(materialPreset(MaterialClass::Specular).specular, 0.5);
+    EXPECT_EQ(materialPreset(MaterialClass::Mirror).reflect, 0.9);
+    EXPECT_EQ(materialPreset(MaterialClass::Transparent).transmit, 0.9);
+    EXPECT_EQ(materialPreset(MaterialClass::Transparent).ior, 1.5);
+}
+
+TEST(Sampling, StratifiedSamplesStayInTheirStrataAndRepeat) {
+    for (int n : {1, 2, 4}) {
+        for (int sy = 0; sy < n; ++sy) {
+            for (int sx = 0; sx < n; ++sx) {
+                double u, v, u2, v2;
+                samplePosition(7, 9, sx, sy, n, u, v);
+                samplePosition(7, 9, sx, sy, n, u2, v2);
+                EXPECT_EQ(u, u2);
+                EXPECT_EQ(v, v2);
+                EXPECT_GE(u, double(sx) / n);
+                EXPECT_LT(u, double(sx + 1) / n);
+                EXPECT_GE(v, double(sy) / n);
+                EXPECT_LT(v, double(sy + 1) / n);
+            }
+        }
+    }
+}
+
+TEST(Threads, ImageDoesNotDependOnTheThreadCount) {
+    const LoadedScene s = load(scaledScene(1.0));
+    const Rendered one = render(s, 40, 30, {}, 1);
+    const Rendered three = render(s, 40, 30, {}, 3);
+    EXPECT_EQ(one.result.image.rgb, three.result.image.rgb);
+    EXPECT_EQ(one.result.rays.total(), three.result.rays.total());
+}
+
+// ---- Ctrl-C ----
+
+TEST(Interrupt, CtrlCStopsTheRenderAndLeavesNoFile) {
+    const fs::path dir = fs::temp_directory_path() / ("render_int_" + std::to_string(getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    { std::ofstream(dir / "mirrors.scad") << facingMirrors(0.9); }
+    // Far too much work to finish in the second before the interrupt (~10^9 rays).
+    const std::string exe = CSGRAY_EXE, part = (dir / "mirrors.scad").string(),
+                      out = (dir / "out.png").string();
+    std::vector<std::string> args = {exe,         "render", part, "-o",      out,         "--size",
+                                     "4000x4000", "--aa",   "4",  "--quiet", "--threads", "1"};
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = 0;
+    ASSERT_EQ(posix_spawn(&pid, exe.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(800));
+    const auto sent = std::chrono::steady_clock::now();
+    ASSERT_EQ(kill(pid, SIGINT), 0);
+    int status = 0;
+    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    const double stopSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+    ASSERT_TRUE(WIFEXITED(status)) << "killed by a signal, not stopped cleanly";
+    EXPECT_EQ(WEXITSTATUS(status), 130);
+    EXPECT_LT(stopSeconds, 5.0) << "workers stop between tiles";
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+    EXPECT_EQ(names, std::vector<std::string>{"mirrors.scad"}) << "no image, no temporary file";
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace viewer::render

@@ -1,0 +1,23 @@
+// Writing a finished render: PNG (8-bit, sRGB-encoded from linear light, through
+// io/PngWriter) or PFM (32-bit float linear RGB, the simplest HDR format, for comparisons and
+// compositing). Both go through io/AtomicFile: a failed or interrupted write leaves no file.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "io/PngWriter.h"
+#include "viewer/render/TileRenderer.h"
+
+namespace viewer::render {
+
+enum class ImageFormat { Png, Pfm };
+
+// Linear RGB to 8-bit sRGB (the transfer function, not a plain 2.2 power).
+io::Rgb8Image encodeSrgb(const LinearImage& image);
+
+// Returns an empty string on success, else the reason (the target is then untouched).
+std::string writeImage(const std::filesystem::path& path, ImageFormat format,
+                       const LinearImage& image);
+
+}  // namespace viewer::render

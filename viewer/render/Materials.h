@@ -1,0 +1,47 @@
+// Shading materials: io::Material (sRGB colour, unitless coefficients) turned into what the
+// tracer reads per hit (linear colour), and the seed thesis' material classes as presets.
+#pragma once
+
+#include <string_view>
+#include <vector>
+
+#include "csg/Math.h"
+#include "io/Model.h"
+
+namespace viewer::render {
+
+// What the tracer needs of a material, colour already in linear light.
+struct ShadingMaterial {
+    csg::Vec3 color{1.0};  // linear RGB: tints ambient and diffuse light
+    double ambient = 0.0;
+    double diffuse = 0.0;
+    double specular = 0.0;  // Blinn-Phong weight; the highlight has the light's colour
+    double shininess = 1.0;
+    double reflect = 0.0;   // weight of the mirrored ray
+    double transmit = 0.0;  // weight of the refracted ray
+    double ior = 1.0;       // index of refraction against the surrounding air (1.0)
+};
+
+ShadingMaterial shadingMaterial(const io::Material& m);
+
+// The table the tracer indexes by csg::Tags::material (same order as io::Model::materials).
+std::vector<ShadingMaterial> shadingMaterials(const io::Model& model);
+
+// The material classes of the seed thesis. The part language has no preset selector (its
+// material() takes the coefficients), so a part writes a class out with these values, e.g.
+// a mirror is material(ambient=0, diffuse=0, specular=0.5, shininess=200, reflect=0.9).
+// Colour is left at io::Material's default; only the coefficients define the class.
+enum class MaterialClass {
+    BlackBody,    // absorbs everything: all coefficients 0 (renders black)
+    Ambient,      // self-coloured, unlit: ambient 1, nothing else
+    Diffuse,      // matte: ambient 0.1, diffuse 0.9
+    Specular,     // glossy plastic: ambient 0.1, diffuse 0.6, specular 0.5, shininess 64
+    Mirror,       // ambient 0, diffuse 0.05, specular 0.5, shininess 200, reflect 0.9
+    Transparent,  // glass: ambient 0, diffuse 0.05, specular 0.5, shininess 200,
+                  // reflect 0.05, transmit 0.9, ior 1.5
+};
+
+io::Material materialPreset(MaterialClass kind);
+std::string_view materialClassName(MaterialClass kind);
+
+}  // namespace viewer::render

@@ -1,0 +1,43 @@
+// The camera of a render: the part's camera(...) or one that frames the part, and the primary
+// ray through any point of the image plane (pixel coordinates, so sub-pixel samples are free).
+#pragma once
+
+#include "csg/Ray.h"
+#include "csg/Scene.h"
+#include "io/Model.h"
+
+namespace viewer::render {
+
+// A camera looking at the part's bounds (the leaves' finite bounds clipped by the scene's)
+// from OpenSCAD's default direction (front-right, above), far enough that the bounding sphere
+// fits an image of the given aspect (width / height) with a 5% margin. A scene with no
+// bounded leaf gets io::Camera{}.
+io::Camera frameBounds(const csg::Scene& scene, double aspect);
+
+class RenderCamera {
+public:
+    // camera.fov is the vertical field of view; for an orthographic camera the view height
+    // is the one the perspective camera would see at the centre's distance.
+    RenderCamera(const io::Camera& camera, int width, int height);
+
+    // The primary ray through image point (x, y): pixel units, origin at the top-left corner,
+    // y down, so pixel (i, j) covers [i, i+1] x [j, j+1]. d is unit length, t in world units.
+    csg::Ray ray(double x, double y) const;
+
+    const csg::Vec3& eye() const { return eye_; }
+    const csg::Vec3& right() const { return right_; }
+    const csg::Vec3& up() const { return up_; }
+    const csg::Vec3& forward() const { return forward_; }
+    // Distance from the eye to the camera's centre point (the framing distance).
+    double focusDistance() const { return focusDistance_; }
+
+private:
+    csg::Vec3 eye_, forward_, right_, up_;
+    double halfHeight_;  // tan(fov/2) (perspective) or the world half-height (orthographic)
+    double aspect_;
+    double focusDistance_;
+    bool orthographic_;
+    int width_, height_;
+};
+
+}  // namespace viewer::render

@@ -1,0 +1,119 @@
+#include "viewer/render/TileRenderer.h"
+
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+
+#include "viewer/render/Tracer.h"
+
+namespace viewer::render {
+
+namespace {
+
+// A 64-bit mix (splitmix64's finalizer): the jitter of a sample depends only on where it is,
+// so a render is the same for any thread count and tile order.
+uint64_t mix(uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+double unitFromBits(uint64_t bits) {
+    return double(bits >> 11) * 0x1.0p-53;  // [0, 1) with every value a multiple of 2^-53
+}
+
+}  // namespace
+
+void samplePosition(int x, int y, int sx, int sy, int n, double& u, double& v) {
+    if (n == 1) {
+        u = v = 0.5;
+        return;
+    }
+    const uint64_t key = (uint64_t(uint32_t(x)) << 32 | uint32_t(y)) * 0x9e3779b97f4a7c15ull ^
+                         (uint64_t(sy) * n + sx);
+    const uint64_t h = mix(key);
+    u = (sx + unitFromBits(h)) / n;
+    v = (sy + unitFromBits(mix(h))) / n;
+}
+
+RenderResult renderImage(const csg::Scene& scene, const EffectsPlan& plan,
+                         const RenderCamera& camera, const ImageSettings& settings,
+                         const std::atomic<bool>* cancel, ProgressMeter* progress) {
+    RenderResult result;
+    LinearImage& image = result.image;
+    image.width = settings.width;
+    image.height = settings.height;
+    image.rgb.assign(size_t(image.width) * size_t(image.height) * 3, 0.0f);
+
+    const int tile = settings.tileSize;
+    const int tilesX = (image.width + tile - 1) / tile;
+    const int tilesY = (image.height + tile - 1) / tile;
+    const int tileCount = tilesX * tilesY;
+    const int n = settings.samplesPerAxis;
+    const double sampleWeight = 1.0 / double(n * n);
+
+    std::atomic<int> nextTile{0};
+    std::atomic<int> tilesDone{0};
+    std::atomic<bool> stopped{false};
+    int workersRunning = settings.threads;
+    std::mutex mutex;
+    std::condition_variable workerFinished;
+    std::vector<RayCounts> rays(settings.threads);
+    std::vector<csg::QueryStats> queries(settings.threads);
+
+    auto work = [&](int worker) {
+        Tracer tracer(scene, plan);
+        for (int index; (index = nextTile.fetch_add(1)) < tileCount;) {
+            if (cancel && cancel->load(std::memory_order_relaxed)) {
+                stopped = true;
+                break;
+            }
+            const int x0 = (index % tilesX) * tile, y0 = (index / tilesX) * tile;
+            const int x1 = std::min(x0 + tile, image.width), y1 = std::min(y0 + tile, image.height);
+            for (int y = y0; y < y1; ++y) {
+                for (int x = x0; x < x1; ++x) {
+                    csg::Vec3 sum(0.0);
+                    for (int sy = 0; sy < n; ++sy) {
+                        for (int sx = 0; sx < n; ++sx) {
+                            double u, v;
+                            samplePosition(x, y, sx, sy, n, u, v);
+                            sum += tracer.tracePrimary(camera.ray(x + u, y + v));
+                        }
+                    }
+                    float* px = &image.rgb[(size_t(y) * size_t(image.width) + size_t(x)) * 3];
+                    for (int c = 0; c < 3; ++c) px[c] = float(sum[c] * sampleWeight);
+                }
+            }
+            tilesDone.fetch_add(1, std::memory_order_relaxed);
+        }
+        rays[worker] = tracer.rays;
+        queries[worker] = tracer.context.stats;
+        std::lock_guard lock(mutex);
+        --workersRunning;
+        workerFinished.notify_one();
+    };
+
+    {
+        std::vector<std::jthread> workers;
+        for (int t = 0; t < settings.threads; ++t) workers.emplace_back(work, t);
+        std::unique_lock lock(mutex);
+        while (workersRunning > 0) {
+            workerFinished.wait_for(lock, std::chrono::milliseconds(50));
+            if (progress) progress->update(uint64_t(tilesDone.load()), uint64_t(tileCount));
+        }
+    }  // joins
+
+    for (int t = 0; t < settings.threads; ++t) {
+        result.rays += rays[t];
+        result.queries.rays += queries[t].rays;
+        result.queries.nodeVisits += queries[t].nodeVisits;
+        result.queries.primitiveTests += queries[t].primitiveTests;
+    }
+    result.interrupted = stopped.load() || tilesDone.load() < tileCount;
+    if (progress)
+        progress->finish(uint64_t(tilesDone.load()), uint64_t(tileCount), result.interrupted);
+    return result;
+}
+
+}  // namespace viewer::render

@@ -1,0 +1,93 @@
+#include "viewer/render/Tracer.h"
+
+#include <cmath>
+
+#include "viewer/render/SecondaryOrigin.h"
+
+namespace viewer::render {
+
+csg::Vec3 Tracer::tracePrimary(const csg::Ray& ray) {
+    ++rays.primary;
+    return trace(ray, RayKind::Primary, 0, 1.0);
+}
+
+csg::Vec3 Tracer::trace(const csg::Ray& ray, RayKind kind, int depth, double weight) {
+    const std::optional<csg::Hit> hit = scene_.closest(ray, context);
+    if (!hit) return plan_.background;
+    const csg::SurfacePoint surface = scene_.surface(ray, *hit);
+    const PlannedMaterial& m = plan_.material(scene_.leafTags(hit->leaf).material);
+    const ShadingMaterial& s = m.shading;
+
+    // The side the ray comes from: n faces it, so lighting and offsets use one rule for rays
+    // outside (entering) and inside (leaving) the solid.
+    const csg::Vec3 dir = glm::normalize(ray.d);
+    const bool entering = glm::dot(ray.d, surface.normal) < 0.0;
+    const csg::Vec3 n = entering ? surface.normal : -surface.normal;
+    const csg::Vec3 error = hitPointError(ray, hit->t);
+    if (log && log->count < PathLog::kCapacity)
+        log->vertices[log->count++] = {kind, surface.point, surface.normal, entering, hit->leaf};
+
+    csg::Vec3 color(0.0);
+    // Local terms belong to the surface as seen from outside; the inside face of a glass part
+    // is seen only through refraction, which carries its own light.
+    if (entering || !m.refraction) {
+        color += s.ambient * s.color * plan_.ambientLight;
+        if (m.direct) color += directLight(m, surface.point, error, n, -dir);
+    }
+    if (depth >= plan_.settings.maxDepth) return color;
+
+    // Mirror reflection, only while the branch still weighs enough to show.
+    if (m.reflection && weight * s.reflect >= plan_.settings.minWeight) {
+        const csg::Vec3 r = dir - 2.0 * glm::dot(dir, n) * n;
+        const csg::Ray reflected{offsetRayOrigin(surface.point, error, n, r), r, 0.0, kRayFar};
+        ++rays.reflection;
+        color += s.reflect * trace(reflected, RayKind::Reflection, depth + 1, weight * s.reflect);
+    }
+
+    // Refraction by Snell's law, n1 sin(i) = n2 sin(t), against air (ior 1) outside the solid;
+    // past the critical angle the transmitted share is totally internally reflected.
+    if (m.refraction && weight * s.transmit >= plan_.settings.minWeight) {
+        const double eta = entering ? 1.0 / s.ior : s.ior;  // n1 / n2
+        const double cosI = -glm::dot(dir, n);
+        const double k = 1.0 - eta * eta * (1.0 - cosI * cosI);
+        const csg::Vec3 t =
+            k < 0.0 ? dir + 2.0 * cosI * n : eta * dir + (eta * cosI - std::sqrt(k)) * n;
+        const csg::Ray refracted{offsetRayOrigin(surface.point, error, n, t), t, 0.0, kRayFar};
+        ++rays.refraction;
+        color += s.transmit * trace(refracted, RayKind::Refraction, depth + 1, weight * s.transmit);
+    }
+    return color;
+}
+
+csg::Vec3 Tracer::directLight(const PlannedMaterial& m, const csg::Vec3& point,
+                              const csg::Vec3& pointError, const csg::Vec3& n,
+                              const csg::Vec3& view) {
+    const ShadingMaterial& s = m.shading;
+    csg::Vec3 sum(0.0);
+    for (const PlannedLight& light : plan_.lights) {
+        const csg::Vec3 toLight = light.position - point;
+        const double nDotL = glm::dot(n, toLight);
+        if (nDotL <= 0.0) continue;  // the light is behind the surface
+        if (light.shadowRays) {
+            // t runs from the offset origin (0) to the light (1): tmax is the light itself,
+            // and occluded() computes no point or normal.
+            const csg::Vec3 origin = offsetRayOrigin(point, pointError, n, toLight);
+            const csg::Ray shadow{origin, light.position - origin, 0.0, 1.0};
+            ++rays.shadow;
+            if (scene_.occluded(shadow, context)) continue;
+        }
+        const double distance = glm::length(toLight);
+        const csg::Vec3 l = toLight / distance;
+        csg::Vec3 term = (s.diffuse * (nDotL / distance)) * s.color;
+        if (m.specular) {
+            // Blinn-Phong: the half vector between light and viewer against the normal.
+            const csg::Vec3 h = glm::normalize(l + view);
+            const double nDotH = glm::dot(n, h);
+            if (nDotH > 0.0) term += csg::Vec3(s.specular * std::pow(nDotH, s.shininess));
+        }
+        sum += light.radiance * term;
+    }
+    return sum;
+}
+
+}  // namespace viewer::render

@@ -1,0 +1,58 @@
+// The Whitted ray tree of one sample: ambient, Lambert diffuse and Blinn-Phong specular from
+// point lights, hard shadows, mirror reflection and refraction (Snell's law, total internal
+// reflection), each only where the effects plan says it can occur.
+//
+// Notation: a hit's SurfacePoint normal is the solid's outward unit normal (a difference's
+// cut face already flipped), so a ray enters the solid when d . normal < 0 and leaves it when
+// d . normal > 0. That is how refraction knows its side: a ray inside a glass part that was
+// cut by a difference leaves through the cut face, whose normal points into the cut.
+//
+// One Tracer per thread: it owns the thread's QueryContext and ray counters. The per-ray path
+// allocates nothing and makes no virtual or std::function call.
+#pragma once
+
+#include <array>
+
+#include "csg/Scene.h"
+#include "viewer/render/EffectsPlan.h"
+#include "viewer/render/RayCounts.h"
+
+namespace viewer::render {
+
+enum class RayKind : uint8_t { Primary, Shadow, Reflection, Refraction };
+
+// A record of the surfaces a ray tree met, in the order they were shaded (tests, debugging).
+struct PathLog {
+    struct Vertex {
+        RayKind kind;      // the kind of the ray that hit this surface
+        csg::Vec3 point;   // the hit point
+        csg::Vec3 normal;  // outward unit normal of the solid
+        bool entering;     // the ray was entering the solid (d . normal < 0)
+        uint32_t leaf;
+    };
+    static constexpr int kCapacity = 64;
+    std::array<Vertex, kCapacity> vertices;
+    int count = 0;
+};
+
+class Tracer {
+public:
+    Tracer(const csg::Scene& scene, const EffectsPlan& plan) : scene_(scene), plan_(plan) {}
+
+    // The linear RGB radiance along a primary ray (unit d), background included.
+    csg::Vec3 tracePrimary(const csg::Ray& ray);
+
+    RayCounts rays;
+    csg::QueryContext context;
+    PathLog* log = nullptr;  // when set, every shaded hit is appended (until it is full)
+
+private:
+    csg::Vec3 trace(const csg::Ray& ray, RayKind kind, int depth, double weight);
+    csg::Vec3 directLight(const PlannedMaterial& m, const csg::Vec3& point,
+                          const csg::Vec3& pointError, const csg::Vec3& n, const csg::Vec3& view);
+
+    const csg::Scene& scene_;
+    const EffectsPlan& plan_;
+};
+
+}  // namespace viewer::render
