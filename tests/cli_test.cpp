@@ -1,0 +1,344 @@
+// End-to-end tests of the csgray command line: exit codes (0 ok, 1 bad model or input,
+// 2 usage, 3 I/O), diagnostics in both formats, no partial output file on failure, stdout
+// carrying only the requested output, info's counts and bounds, and the rendered PNG decoded
+// back with libpng.
+#include <png.h>
+
+#include "CliRunner.h"
+
+namespace cli {
+namespace {
+
+const std::string kEmblem = samplePath("emblem.scad").string();
+
+// ---- help and usage ----
+
+TEST(Help, TopLevelAndEverySubcommand) {
+    ScratchDir dir;
+    for (const std::vector<std::string>& args : {std::vector<std::string>{"--help"},
+                                                 {"probe", "--help"},
+                                                 {"info", "--help"},
+                                                 {"render", "--help"},
+                                                 {"probe", "-h"}}) {
+        const RunResult r = runCsgray(args, dir.path());
+        EXPECT_EQ(r.exitCode, 0) << args[0];
+        EXPECT_NE(r.out.find("usage: csgray"), std::string::npos) << r.out;
+        EXPECT_EQ(r.err, "");
+    }
+}
+
+TEST(Usage, BadCommandLinesExitWithTwo) {
+    ScratchDir dir;
+    const std::vector<std::vector<std::string>> bad = {
+        {},
+        {"frobnicate"},
+        {"probe", kEmblem},                                         // no ray
+        {"probe", kEmblem, "--origin", "0,0", "--dir", "1,0,0"},    // two numbers
+        {"probe", kEmblem, "--origin", "0,0,0", "--dir", "0,0,0"},  // zero direction
+        {"probe", kEmblem, "--origin", "0,0,x", "--dir", "1,0,0"},
+        {"probe", kEmblem, "--origin", "0,0,0", "--dir", "1,0,0", "--rays", "-"},
+        {"probe", "--origin", "0,0,0", "--dir", "1,0,0"},  // no part
+        {"info", kEmblem, "--bogus"},
+        {"info", kEmblem, kEmblem},
+        {"render", kEmblem},                                  // no -o
+        {"render", kEmblem, "-o", (dir / "x.jpg").string()},  // unsupported format
+        {"render", kEmblem, "-o", (dir / "x.png").string(), "--size", "0x10"},
+        {"render", kEmblem, "-o", (dir / "x.png").string(), "--size", "big"},
+        {"info", kEmblem, "-D", "novalue"},
+        {"info", kEmblem, "--diagnostics=xml"},
+    };
+    for (const auto& args : bad) {
+        const RunResult r = runCsgray(args, dir.path());
+        std::string joined;
+        for (const auto& a : args) joined += a + " ";
+        EXPECT_EQ(r.exitCode, 2) << joined << "\n" << r.err;
+        EXPECT_EQ(r.out, "") << joined;
+        EXPECT_FALSE(r.err.empty()) << joined;
+    }
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+// ---- bad models: exit 1, file:line:col on stderr ----
+
+TEST(BadModel, SyntaxErrorIsReportedAtItsLine) {
+    ScratchDir dir;
+    writeFile(dir / "bad.scad", "cube(1);\nsphere(;\n");
+    const RunResult r = runCsgray({"info", (dir / "bad.scad").string()}, dir.path());
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(r.out, "");
+    EXPECT_NE(r.err.find("bad.scad:2:"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(": error: "), std::string::npos) << r.err;
+}
+
+TEST(BadModel, CompileErrorNamesTheOffendingStatement) {
+    ScratchDir dir;
+    // A zero scale is accepted by the evaluator or by compile; either way it is the line 2.
+    writeFile(dir / "flat.scad",
+              "cube(1);\nmultmatrix([[1,0,0,0],[0,0,0,0],[0,0,1,0]]) cube(1);\n");
+    const RunResult r = runCsgray(
+        {"probe", (dir / "flat.scad").string(), "--origin", "0,0,0", "--dir", "1,0,0"}, dir.path());
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_NE(r.err.find("flat.scad:2:"), std::string::npos) << r.err;
+}
+
+TEST(BadModel, BadRayLineExitsWithOneAndNamesTheLine) {
+    ScratchDir dir;
+    writeFile(dir / "rays.txt", "-5 0.8 0.8 1 0 0\n# a comment\n\n-5 0 0 1 0\n");
+    const RunResult r =
+        runCsgray({"probe", kEmblem, "--rays", (dir / "rays.txt").string()}, dir.path());
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("rays.txt:4:"), std::string::npos) << r.err;
+    // The good ray before the bad line was answered.
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+}
+
+// ---- I/O errors: exit 3 ----
+
+TEST(IoError, MissingPartUnwritableOutputMissingRaysFile) {
+    ScratchDir dir;
+    const RunResult missing = runCsgray({"info", (dir / "nope.scad").string()}, dir.path());
+    EXPECT_EQ(missing.exitCode, 3) << missing.err;
+    EXPECT_NE(missing.err.find("nope.scad"), std::string::npos);
+
+    const RunResult noDir = runCsgray(
+        {"render", kEmblem, "-o", (dir / "no/such/dir/out.png").string(), "--size", "16x16"},
+        dir.path());
+    EXPECT_EQ(noDir.exitCode, 3) << noDir.err;
+
+    const RunResult noRays =
+        runCsgray({"probe", kEmblem, "--rays", (dir / "nope.txt").string()}, dir.path());
+    EXPECT_EQ(noRays.exitCode, 3) << noRays.err;
+}
+
+// ---- no partial output ----
+
+std::vector<std::string> listDir(const fs::path& dir) {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+TEST(NoPartialOutput, FailedRenderOfABadModelLeavesNoFile) {
+    ScratchDir dir;
+    writeFile(dir / "bad.scad", "difference() { cube(1); sphere(; }\n");
+    const RunResult r = runCsgray(
+        {"render", (dir / "bad.scad").string(), "-o", (dir / "out.png").string()}, dir.path());
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(listDir(dir.path()), std::vector<std::string>{"bad.scad"});
+}
+
+TEST(NoPartialOutput, FailedRenderKeepsAnExistingFileUntouched) {
+    ScratchDir dir;
+    writeFile(dir / "out.png", "the previous image");
+    writeFile(dir / "bad.scad", "cube(undefined_module_call());\n");
+    const RunResult r = runCsgray(
+        {"render", (dir / "bad.scad").string(), "-o", (dir / "out.png").string()}, dir.path());
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(readFile(dir / "out.png"), "the previous image");
+    EXPECT_EQ(listDir(dir.path()), (std::vector<std::string>{"bad.scad", "out.png"}));
+}
+
+TEST(NoPartialOutput, FailedWriteRemovesTheTemporaryFile) {
+    ScratchDir dir;
+    // The target is a directory: the image is written to a temporary file, and the final
+    // rename fails, which must remove the temporary file (exit 3).
+    fs::create_directory(dir / "taken.png");
+    const RunResult r = runCsgray(
+        {"render", kEmblem, "-o", (dir / "taken.png").string(), "--size", "32x24"}, dir.path());
+    EXPECT_EQ(r.exitCode, 3) << r.err;
+    EXPECT_EQ(listDir(dir.path()), std::vector<std::string>{"taken.png"});
+    EXPECT_TRUE(fs::is_empty(dir / "taken.png"));
+}
+
+// ---- diagnostics as JSON ----
+
+TEST(JsonDiagnostics, StderrIsOneValidJsonArray) {
+    ScratchDir dir;
+    writeFile(dir / "bad \"quoted\".scad", "echo(\"tab\there\");\ncube([1, 2);\n");
+    const RunResult r = runCsgray(
+        {"info", (dir / "bad \"quoted\".scad").string(), "--diagnostics=json"}, dir.path());
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(r.out, "");
+    const auto json = nlohmann::json::parse(r.err);  // throws (fails the test) if invalid
+    ASSERT_TRUE(json.is_array());
+    bool sawError = false;
+    for (const auto& d : json) {
+        ASSERT_TRUE(d.contains("file") && d.contains("line") && d.contains("col") &&
+                    d.contains("severity") && d.contains("message"))
+            << d;
+        if (d["severity"] == "error") {
+            sawError = true;
+            EXPECT_EQ(d["line"], 2);
+            EXPECT_NE(d["file"].get<std::string>().find("bad \"quoted\".scad"), std::string::npos);
+        }
+    }
+    EXPECT_TRUE(sawError) << r.err;
+}
+
+TEST(JsonDiagnostics, SuccessWithEchoKeepsStdoutCleanAndStderrValid) {
+    ScratchDir dir;
+    writeFile(dir / "echo.scad", "echo(\"hello\");\ncube(1);\n");
+    const RunResult r = runCsgray({"probe", (dir / "echo.scad").string(), "--origin", "-1,0.5,0.5",
+                                   "--dir", "1,0,0", "--diagnostics=json"},
+                                  dir.path());
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    const auto out = nlohmann::json::parse(r.out);
+    EXPECT_EQ(out["spans"].size(), 1u);
+    const auto err = nlohmann::json::parse(r.err);
+    ASSERT_EQ(err.size(), 1u);
+    EXPECT_EQ(err[0]["severity"], "note");
+    EXPECT_NE(err[0]["message"].get<std::string>().find("hello"), std::string::npos);
+}
+
+// ---- probe output ----
+
+TEST(Probe, OutputIsOneJsonObjectWithNormalsAndObjects) {
+    ScratchDir dir;
+    // Along x at y = z = 0.8 through the emblem: in and out through the sphere r = 1.35.
+    const RunResult r =
+        runCsgray({"probe", kEmblem, "--origin", "-5,0.8,0.8", "--dir", "2,0,0"}, dir.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    const auto json = nlohmann::json::parse(r.out);
+    EXPECT_EQ(json["ray"]["dir"], nlohmann::json::parse("[1,0,0]"));  // normalized
+    ASSERT_EQ(json["spans"].size(), 1u);
+    const auto& in = json["spans"][0]["in"];
+    const double x = -std::sqrt(1.35 * 1.35 - 2 * 0.64);
+    EXPECT_NEAR(in["t"].get<double>(), 5 + x, 1e-12);
+    EXPECT_NEAR(in["point"][0].get<double>(), x, 1e-12);
+    // The outward normal of the sphere at that point is the point over the radius.
+    EXPECT_NEAR(in["normal"][0].get<double>(), x / 1.35, 1e-12);
+    EXPECT_NEAR(in["normal"][1].get<double>(), 0.8 / 1.35, 1e-12);
+    EXPECT_EQ(in["object"]["primitive"], "sphere");
+    EXPECT_NE(in["object"]["source"].get<std::string>().find("emblem.scad:"), std::string::npos);
+    EXPECT_NE(in["object"]["module"].get<std::string>().find("sphere"), std::string::npos);
+    EXPECT_FALSE(in.contains("inside"));
+}
+
+TEST(Probe, RayStartingInsideBeginsAtZeroMarkedInside) {
+    ScratchDir dir;
+    const RunResult r =
+        runCsgray({"probe", kEmblem, "--origin", "0,0.8,0.8", "--dir", "1,0,0"}, dir.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto json = nlohmann::json::parse(r.out);
+    ASSERT_EQ(json["spans"].size(), 1u);
+    const auto& in = json["spans"][0]["in"];
+    EXPECT_EQ(in["t"].get<double>(), 0.0);
+    EXPECT_EQ(in["inside"], true);
+    EXPECT_TRUE(in["normal"].is_null());
+    // The cut bores make a difference's normal point into the bore: here the span ends on the
+    // sphere, whose normal points away from the centre.
+    EXPECT_GT(json["spans"][0]["out"]["normal"][0].get<double>(), 0.0);
+}
+
+TEST(Probe, DefineOverridesATopLevelVariable) {
+    ScratchDir dir;
+    // bore = 0.2: the y bore now removes only |x| <= 0.2 at y = 0.7, z = 0.
+    const RunResult r = runCsgray(
+        {"probe", kEmblem, "-D", "bore=0.2", "--origin", "-5,0.7,0", "--dir", "1,0,0"}, dir.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto spans = spansOf(nlohmann::json::parse(r.out));
+    EXPECT_TRUE(sameSpans(spans, {{4, 4.8}, {5.2, 6}}, 1e-9)) << describe(spans);
+}
+
+TEST(Probe, RaysFromStdinGiveOneLinePerRayInOrder) {
+    ScratchDir dir;
+    std::string rays;
+    for (int i = 0; i < 1000; ++i) rays += "-5 0.8 0.8 1 0 0\n0 0 5 0 0 -1\n";
+    writeFile(dir / "rays.txt", rays);
+    const RunResult r = runCsgray({"probe", kEmblem, "--rays", "-", "--threads", "2"}, dir.path(),
+                                  (dir / "rays.txt").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::istringstream lines(r.out);
+    std::string line;
+    int n = 0;
+    while (std::getline(lines, line)) {
+        const auto json = nlohmann::json::parse(line);
+        EXPECT_EQ(json["spans"].size(), n % 2 == 0 ? 1u : 0u) << "line " << n;
+        ++n;
+    }
+    EXPECT_EQ(n, 2000);
+}
+
+// ---- info ----
+
+TEST(Info, CountsBoundsAndTreeOfTheEmblem) {
+    ScratchDir dir;
+    const RunResult r = runCsgray({"info", kEmblem}, dir.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    const auto json = nlohmann::json::parse(r.out);
+    const auto& counts = json["counts"];
+    EXPECT_EQ(counts["leaves"]["cube"], 1);
+    EXPECT_EQ(counts["leaves"]["sphere"], 1);
+    EXPECT_EQ(counts["leaves"]["cylinder"], 3);
+    EXPECT_EQ(counts["intersections"], 1);
+    EXPECT_EQ(counts["differences"], 1);
+    for (int a = 0; a < 3; ++a) {
+        EXPECT_NEAR(json["bounds"]["min"][a].get<double>(), -1.0, 1e-12);
+        EXPECT_NEAR(json["bounds"]["max"][a].get<double>(), 1.0, 1e-12);
+    }
+    EXPECT_EQ(json["tree"]["op"], "difference");
+    EXPECT_NE(json["tree"]["source"].get<std::string>().find("emblem.scad:"), std::string::npos);
+}
+
+// ---- render ----
+
+struct DecodedPng {
+    int width = 0, height = 0;
+    std::vector<uint8_t> rgb;
+};
+
+DecodedPng decodePng(const fs::path& path) {
+    png_image image{};
+    image.version = PNG_IMAGE_VERSION;
+    DecodedPng out;
+    if (!png_image_begin_read_from_file(&image, path.c_str())) return out;
+    image.format = PNG_FORMAT_RGB;
+    out.rgb.resize(PNG_IMAGE_SIZE(image));
+    if (!png_image_finish_read(&image, nullptr, out.rgb.data(), 0, nullptr)) {
+        png_image_free(&image);
+        return out;
+    }
+    out.width = int(image.width);
+    out.height = int(image.height);
+    return out;
+}
+
+TEST(Render, PngDecodesWithTheRequestedSizeAndShowsThePart) {
+    ScratchDir dir;
+    const fs::path png = dir / "emblem.png";
+    const RunResult r =
+        runCsgray({"render", kEmblem, "-o", png.string(), "--size", "64x48"}, dir.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out, "");
+    const DecodedPng image = decodePng(png);
+    ASSERT_EQ(image.width, 64);
+    ASSERT_EQ(image.height, 48);
+    // The corner is background (the default camera frames the part with a margin); the part
+    // covers much of the frame and its pixels differ from the background.
+    const uint8_t* corner = image.rgb.data();
+    int differing = 0;
+    for (size_t i = 0; i < image.rgb.size(); i += 3)
+        differing += !std::equal(corner, corner + 3, image.rgb.data() + i);
+    EXPECT_GT(differing, 64 * 48 / 5);
+    EXPECT_LT(differing, 64 * 48);
+    EXPECT_EQ(listDir(dir.path()), std::vector<std::string>{"emblem.png"});
+}
+
+TEST(Render, EverySampleRenders) {
+    ScratchDir dir;
+    for (const auto& entry : fs::directory_iterator(CSGRAY_SAMPLES)) {
+        if (entry.path().extension() != ".scad") continue;
+        const fs::path png = dir / (entry.path().stem().string() + ".png");
+        const RunResult r = runCsgray(
+            {"render", entry.path().string(), "-o", png.string(), "--size", "40x30"}, dir.path());
+        EXPECT_EQ(r.exitCode, 0) << entry.path() << "\n" << r.err;
+        EXPECT_EQ(decodePng(png).width, 40) << entry.path();
+    }
+}
+
+}  // namespace
+}  // namespace cli
