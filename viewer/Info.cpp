@@ -15,6 +15,8 @@
 #include "viewer/Cli.h"
 #include "viewer/LoadPart.h"
 #include "viewer/ProbeJson.h"
+#include "viewer/render/EffectsPlan.h"
+#include "viewer/render/RenderCamera.h"
 
 namespace viewer {
 
@@ -29,7 +31,9 @@ const char* const kInfoHelp =
     "extras (camera, lights, background, materials) and the \"tree\": operators, primitives\n"
     "with their parameters in local coordinates, transforms (3x4 rows, parent from node) and\n"
     "each node's module path and file:line:col. A subtree used more than once is printed\n"
-    "once with an \"id\" and referenced as {\"ref\": id}.\n"
+    "once with an \"id\" and referenced as {\"ref\": id}. Last, the renderer's effects\n"
+    "\"plan\" with render's defaults: which lights get shadow rays and why, and which\n"
+    "materials reflect, refract or take direct light.\n"
     "\n"
     "options:\n";
 
@@ -286,6 +290,12 @@ int infoCommand(std::span<const std::string> args) {
     } else {
         json.null();
     }
+    // The renderer's effects plan with render's default settings (a square image frames the
+    // default camera, which only places the default light).
+    json.key("plan");
+    const io::Camera camera =
+        part.model.camera ? *part.model.camera : render::frameBounds(part.scene, 1.0);
+    render::writeEffectsPlan(json, render::makeEffectsPlan(part.model, part.scene, camera, {}));
     json.endObject();
     out += '\n';
     if (std::fwrite(out.data(), 1, out.size(), stdout) != out.size() || std::fflush(stdout)) {
