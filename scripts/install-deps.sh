@@ -12,6 +12,7 @@ packages=(
     libgtest-dev libgmock-dev  # tests
     libbenchmark-dev      # bench/
     libboost-dev          # Boost.Multiprecision: high-precision reference in tests
+    openscad              # CLI tests: samples load in OpenSCAD and round-trip through its .csg
 )
 
 missing=()
