@@ -15,8 +15,8 @@ namespace viewer {
 namespace {
 
 // Rays per block: large enough that starting the threads costs well under 1% of a block,
-// small enough that a block's output (~0.5 KB per ray) stays in the tens of megabytes.
-constexpr size_t kBlockRays = 1 << 15;
+// small enough that a block's output (up to ~1.5 KB per ray) stays around ten megabytes.
+constexpr size_t kBlockRays = 1 << 13;
 constexpr size_t kReadChunk = 1 << 20;
 
 struct RayInput {
