@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "io/Evaluate.h"
+#include "viewer/render/Color.h"
 #include "viewer/render/EffectsPlan.h"
 #include "viewer/render/ImageOutput.h"
 #include "viewer/render/Materials.h"
@@ -408,6 +409,25 @@ TEST(Output, PngIsSrgbEncodedAndDecodesBack) {
     in.read(reinterpret_cast<char*>(floats.data()), std::streamsize(floats.size() * 4));
     EXPECT_FLOAT_EQ(floats[(size_t(16) * 48 + 24) * 3], 0.5f);
     fs::remove_all(dir);
+}
+
+TEST(Output, FastSrgbEncodingAgreesWithTheTransferFunction) {
+    // Every float near each code boundary, a sweep of [0, 1], and out-of-range values.
+    LinearImage image;
+    std::vector<float>& v = image.rgb;
+    for (int k = 0; k < 256; ++k) {
+        float f = float(srgbToLinear((k + 0.5) / 255.0));
+        for (int i = 0; i < 8; ++i) f = std::nextafter(f, 0.0f);
+        for (int i = 0; i < 16; ++i, f = std::nextafter(f, 2.0f)) v.push_back(f);
+    }
+    for (int i = 0; i <= 300000; ++i) v.push_back(float(i) / 300000.0f);
+    for (const float f : {-1.0f, 0.0f, 1.0f, 1.5f, 1e30f}) v.push_back(f);
+    while (v.size() % 3) v.push_back(0.5f);
+    image.width = int(v.size() / 3);
+    image.height = 1;
+    const io::Rgb8Image encoded = encodeSrgb(image);
+    for (size_t i = 0; i < v.size(); ++i)
+        ASSERT_EQ(encoded.pixels[i], linearToSrgb8(v[i])) << "linear " << v[i];
 }
 
 TEST(Materials, PresetsMatchTheirClasses) {

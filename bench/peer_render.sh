@@ -1,0 +1,136 @@
+#!/usr/bin/env bash
+# Peer comparison: POV-Ray against csgray on the scenes of ../shared/peers, at the same size,
+# thread count and no anti-aliasing, in one run. Prints wall time and CPU time (user + sys)
+# of each and their ratios, and the fraction of pixels whose object differs: both renderers
+# draw every object in its own flat colour for that (POV-Ray from a generated copy of the
+# scene, csgray with -D flat=true), and pixels are compared by object, not by shade.
+#
+#   bench/peer_render.sh [SIZE] [THREADS]     defaults: 1600 (a SIZE x SIZE image), nproc
+#
+# Needs a built csgray (CSGRAY=path, default build/viewer/csgray) and POV-Ray (Debian
+# `povray`; installed here with apt-get when missing: benchmarks are not part of the test
+# set-up). Not a timed test: run it on an idle machine and look at `uptime` first.
+set -euo pipefail
+
+here="$(cd "$(dirname "$0")" && pwd)"
+root="$(dirname "$here")"
+peers="${PEERS:-$root/../shared/peers}"
+[ -d "$peers" ] || peers=/work/shared/peers
+size="${1:-1600}"
+threads="${2:-$(nproc)}"
+csgray="${CSGRAY:-$root/build/viewer/csgray}"
+[ -x "$csgray" ] || { echo "no csgray at $csgray (build it, or set CSGRAY)" >&2; exit 1; }
+
+if ! command -v povray >/dev/null; then
+    echo "installing povray (apt-get)..." >&2
+    if [ "$(id -u)" -eq 0 ]; then
+        DEBIAN_FRONTEND=noninteractive apt-get install -y -q povray >&2
+    else
+        sudo DEBIAN_FRONTEND=noninteractive apt-get install -y -q povray >&2
+    fi
+fi
+
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+
+echo "load: $(uptime | sed 's/.*load average: //')   size ${size}x${size}   threads $threads"
+
+# POV-Ray options: no display, no pause, no AA, threads, linear output for the ID images.
+pov_common=(-D -P -A +W"$size" +H"$size" +WT"$threads")
+
+# Runs a command and prints "wall cpu" (seconds; cpu = user + sys of the command).
+timed() {
+    /usr/bin/time -f "%e %U %S" -o "$work/time" "$@" >"$work/log" 2>&1 ||
+        { cat "$work/log" >&2; return 1; }
+    awk '{ printf "%.3f %.3f\n", $1, $2 + $3 }' "$work/time"
+}
+
+# The flat-colour copy of a POV scene: every object's texture replaced by an ambient-only
+# pigment of linear ((I+1)/10, (J+1)/10, (K+1)/10), on a black background.
+pov_flat_grid() {
+    sed -e 's/background {[^}]*}/background { color rgb 0 }/' \
+        -e '/pigment { color rgb <0.8,0.3,0.2> }/d' \
+        -e '/finish { ambient 0.1 diffuse 0.7/d' \
+        -e 's|object { Part rotate <I\*13, J\*17, K\*7> translate <I, J, K> }|object { Part rotate <I*13, J*17, K*7> translate <I, J, K> pigment { color rgb <(I+1)/10, (J+1)/10, (K+1)/10> } finish { ambient 1 diffuse 0 specular 0 } }|' \
+        "$1"
+}
+
+# Fraction of pixels whose object differs, from POV-Ray's linear PPM and csgray's PFM.
+compare_ids() {
+    python3 - "$1" "$2" <<'PY'
+import struct, sys
+def ppm(path):
+    data = open(path, 'rb').read()
+    parts, pos = [], 0
+    while len(parts) < 4:  # magic, width, height, maxval; '#' starts a comment line
+        while data[pos:pos + 1].isspace(): pos += 1
+        if data[pos:pos + 1] == b'#':
+            pos = data.index(b'\n', pos)
+            continue
+        end = pos
+        while not data[end:end + 1].isspace(): end += 1
+        parts.append(data[pos:end]); pos = end
+    pos += 1
+    w, h, maxval = int(parts[1]), int(parts[2]), int(parts[3])
+    step = 2 if maxval > 255 else 1
+    px = []
+    for i in range(w * h):
+        rgb = []
+        for c in range(3):
+            o = pos + (i * 3 + c) * step
+            v = data[o] if step == 1 else (data[o] << 8 | data[o + 1])
+            rgb.append(v / maxval)
+        px.append(rgb)
+    return w, h, px
+def pfm(path):
+    data = open(path, 'rb').read()
+    lines = data.split(b'\n', 3)
+    w, h = map(int, lines[1].split()); scale = float(lines[2])
+    fmt = '<' if scale < 0 else '>'
+    floats = struct.unpack(fmt + '%df' % (w * h * 3), lines[3][:w * h * 12])
+    px = [None] * (w * h)
+    for row in range(h):  # PFM rows run bottom to top
+        for x in range(w):
+            o = ((h - 1 - row) * w + x) * 3
+            px[row * w + x] = floats[o:o + 3]
+    return w, h, px
+def ident(rgb):
+    if max(rgb) < 0.05: return None  # background
+    return tuple(int(round(c * 10)) for c in rgb)
+w1, h1, a = ppm(sys.argv[1]); w2, h2, b = pfm(sys.argv[2])
+assert (w1, h1) == (w2, h2), ((w1, h1), (w2, h2))
+differ = sum(1 for p, q in zip(a, b) if ident(p) != ident(q))
+print('%.4f' % (differ / len(a)))
+PY
+}
+
+run_scene() {
+    local name="$1" pov="$2" scad="$3"
+    if ! "$csgray" info "$scad" >/dev/null 2>"$work/info.err"; then
+        echo "$name: skipped, csgray cannot load $scad: $(head -1 "$work/info.err")"
+        return 0
+    fi
+    # Timed runs: the scenes as they are (shading, shadows), PNG output for both.
+    read -r pov_wall pov_cpu < <(timed povray "${pov_common[@]}" +I"$pov" +O"$work/$name.pov.png" +FN)
+    read -r cs_wall cs_cpu < <(timed "$csgray" render "$scad" -o "$work/$name.csgray.png" \
+        --size "${size}x${size}" --threads "$threads" --quiet)
+    # Silhouettes: flat colours, linear output.
+    pov_flat_"$name" "$pov" >"$work/$name.flat.pov"
+    povray "${pov_common[@]}" +I"$work/$name.flat.pov" +O"$work/$name.flat.ppm" +FP \
+        File_Gamma=1.0 >"$work/log" 2>&1 || { cat "$work/log" >&2; return 1; }
+    "$csgray" render "$scad" -D flat=true -o "$work/$name.flat.pfm" --size "${size}x${size}" \
+        --threads "$threads" --quiet
+    local differ
+    differ="$(compare_ids "$work/$name.flat.ppm" "$work/$name.flat.pfm")"
+    awk -v n="$name" -v pw="$pov_wall" -v pc="$pov_cpu" -v cw="$cs_wall" -v cc="$cs_cpu" \
+        -v d="$differ" 'BEGIN {
+        printf "%-13s POV-Ray wall %7.2f s cpu %7.2f s | csgray wall %7.2f s cpu %7.2f s | ", n, pw, pc, cw, cc
+        printf "wall ratio %5.2fx cpu ratio %5.2fx | objects differ %.2f%% of pixels\n", pw / cw, pc / cc, 100 * d }'
+}
+
+run_scene grid "$peers/csg_grid.pov" "$here/scenes/csg_grid.scad"
+if [ -f "$here/scenes/torus_mirror.scad" ]; then
+    run_scene torus "$peers/torus_mirror.pov" "$here/scenes/torus_mirror.scad"
+else
+    echo "torus: skipped, bench/scenes/torus_mirror.scad is not written yet"
+fi
