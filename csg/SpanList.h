@@ -22,9 +22,12 @@ namespace csg {
 
 enum class SetOp : uint8_t { Union, Intersection, Difference };
 
-// Half-width of the coincidence window around ends a and b (unit: t).
+// Half-width of the coincidence window around ends a and b (unit: t). Infinite ends (an
+// unbounded half-space) do not widen it: a span reaching infinity is never a sliver.
 inline double coincidenceSlack(double originScale, double a, double b) {
-    return tol::kCoincidentRel * (originScale + std::max(std::abs(a), std::abs(b)));
+    const double ta = std::isfinite(a) ? std::abs(a) : 0.0;
+    const double tb = std::isfinite(b) ? std::abs(b) : 0.0;
+    return tol::kCoincidentRel * (originScale + std::max(ta, tb));
 }
 
 // Appends spans in ascending order and keeps the result regularized: drops spans no longer

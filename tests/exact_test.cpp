@@ -118,6 +118,22 @@ TEST(Exact, RayStartingInsideBeginsWithAClipEnd) {
     EXPECT_TRUE(spansOf(leaf(Sphere{1}), Ray{{0, 0, 1}, {0, 0, 1}}).empty());
 }
 
+TEST(Exact, UnboundedHalfSpaceSpansReachInfinity) {
+    const NodePtr below = leaf(HalfSpace{Vec3(0, 0, 1), 0.0});
+    const auto down = spansOf(below, Ray{{0, 0, 1}, {0, 0, -1}});
+    ASSERT_EQ(down.size(), 1u);
+    EXPECT_DOUBLE_EQ(down[0].in.t, 1.0);
+    EXPECT_TRUE(down[0].in.isSurface());
+    EXPECT_EQ(down[0].out.t, kInfinity);
+    EXPECT_FALSE(down[0].out.isSurface());
+    // Cut by a sphere, the half-space keeps its unbounded tail beyond the hole.
+    const auto cut = spansOf(subtract(below, leaf(Sphere{1})), Ray{{0, 0, 5}, {0, 0, -1}});
+    ASSERT_EQ(cut.size(), 1u);
+    EXPECT_DOUBLE_EQ(cut[0].in.t, 6.0);
+    EXPECT_TRUE(cut[0].in.flipped);
+    EXPECT_EQ(cut[0].out.t, kInfinity);
+}
+
 TEST(Exact, RaysThroughAConeApex) {
     const NodePtr cone = leaf(Cylinder{1, 1, 0});  // apex at (0, 0, 1)
     const auto down = spansOf(cone, Ray{{0, 0, 3}, {0, 0, -1}});

@@ -129,6 +129,12 @@ TEST(SpanList, TieBreakKeepsLeftHitAndPrefersSurfaceOverClip) {
     EXPECT_EQ(i[0].out.leaf, 2u);
 }
 
+TEST(SpanList, SpansToInfinityAreNotSlivers) {
+    const double inf = std::numeric_limits<double>::infinity();
+    const List u = merge(SetOp::Union, spans({{1, inf}}, 1), spans({{-inf, -1}}, 2));
+    expectRanges(u, {{-inf, -1}, {1, inf}});
+}
+
 TEST(SpanList, SliversShorterThanTheToleranceAreDropped) {
     const List i = merge(SetOp::Intersection, spans({{0, 1}}, 1), spans({{1 - 1e-12, 3}}, 2));
     EXPECT_TRUE(i.empty());
