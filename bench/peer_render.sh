@@ -55,6 +55,15 @@ pov_flat_grid() {
         "$1"
 }
 
+# The torus scene's flat copy: the plane linear 0.2, the torus 1, no reflection, on black.
+pov_flat_torus() {
+    sed -e 's/background {[^}]*}/background { color rgb 0 }/' \
+        -e 's/pigment { checker color rgb 1 color rgb 0.1 }/pigment { color rgb 0.2 }/' \
+        -e 's/pigment { color rgb <0.9,0.9,0.9> }/pigment { color rgb 1 }/' \
+        -e 's/finish {[^}]*}/finish { ambient 1 diffuse 0 specular 0 }/' \
+        "$1"
+}
+
 # Fraction of pixels whose object differs, from POV-Ray's linear PPM and csgray's PFM.
 compare_ids() {
     python3 - "$1" "$2" <<'PY'
@@ -104,8 +113,10 @@ print('%.4f' % (differ / len(a)))
 PY
 }
 
+# run_scene NAME POV SCAD [csgray options...]
 run_scene() {
     local name="$1" pov="$2" scad="$3"
+    shift 3
     if ! "$csgray" info "$scad" >/dev/null 2>"$work/info.err"; then
         echo "$name: skipped, csgray cannot load $scad: $(head -1 "$work/info.err")"
         return 0
@@ -113,13 +124,13 @@ run_scene() {
     # Timed runs: the scenes as they are (shading, shadows), PNG output for both.
     read -r pov_wall pov_cpu < <(timed povray "${pov_common[@]}" +I"$pov" +O"$work/$name.pov.png" +FN)
     read -r cs_wall cs_cpu < <(timed "$csgray" render "$scad" -o "$work/$name.csgray.png" \
-        --size "${size}x${size}" --threads "$threads" --quiet)
+        --size "${size}x${size}" --threads "$threads" --quiet "$@")
     # Silhouettes: flat colours, linear output.
     pov_flat_"$name" "$pov" >"$work/$name.flat.pov"
     povray "${pov_common[@]}" +I"$work/$name.flat.pov" +O"$work/$name.flat.ppm" +FP \
         File_Gamma=1.0 >"$work/log" 2>&1 || { cat "$work/log" >&2; return 1; }
     "$csgray" render "$scad" -D flat=true -o "$work/$name.flat.pfm" --size "${size}x${size}" \
-        --threads "$threads" --quiet
+        --threads "$threads" --quiet "$@"
     local differ
     differ="$(compare_ids "$work/$name.flat.ppm" "$work/$name.flat.pfm")"
     awk -v n="$name" -v pw="$pov_wall" -v pc="$pov_cpu" -v cw="$cs_wall" -v cc="$cs_cpu" \
@@ -130,7 +141,8 @@ run_scene() {
 
 run_scene grid "$peers/csg_grid.pov" "$here/scenes/csg_grid.scad"
 if [ -f "$here/scenes/torus_mirror.scad" ]; then
-    run_scene torus "$peers/torus_mirror.pov" "$here/scenes/torus_mirror.scad"
+    # POV's max_trace_level 5 counts the primary ray: 4 bounces.
+    run_scene torus "$peers/torus_mirror.pov" "$here/scenes/torus_mirror.scad" --max-depth 4
 else
     echo "torus: skipped, bench/scenes/torus_mirror.scad is not written yet"
 fi

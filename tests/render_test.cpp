@@ -8,8 +8,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -27,6 +29,22 @@
 #include "viewer/render/Tracer.h"
 
 extern char** environ;
+
+// Counts every heap allocation of the test binary, for the no-allocation-per-ray test. GCC
+// cannot see that this operator new is malloc, hence the pragma for the matching free.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+static std::atomic<uint64_t> gAllocations{0};
+void* operator new(size_t size) {
+    gAllocations.fetch_add(1, std::memory_order_relaxed);
+    if (void* p = std::malloc(size ? size : 1)) return p;
+    throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept {
+    std::free(p);
+}
+void operator delete(void* p, size_t) noexcept {
+    std::free(p);
+}
 
 namespace viewer::render {
 namespace {
@@ -465,6 +483,26 @@ TEST(Threads, ImageDoesNotDependOnTheThreadCount) {
     const Rendered three = render(s, 40, 30, {}, 3);
     EXPECT_EQ(one.result.image.rgb, three.result.image.rgb);
     EXPECT_EQ(one.result.rays.total(), three.result.rays.total());
+}
+
+TEST(Tracer, AllocatesNothingPerRayOnceWarm) {
+    // Every effect at once: shadows, reflection, refraction through a cut glass part.
+    const LoadedScene s = load(scaledScene(1.0));
+    const io::Camera camera = *s.model.camera;
+    const EffectsPlan plan = makeEffectsPlan(s.model, s.scene, camera, {});
+    const RenderCamera view(camera, 64, 48);
+    Tracer tracer(s.scene, plan);
+    csg::Vec3 sum(0.0);
+    auto frame = [&] {
+        for (int y = 0; y < 48; ++y)
+            for (int x = 0; x < 64; ++x) sum += tracer.tracePrimary(view.ray(x + 0.5, y + 0.5));
+    };
+    frame();  // warm-up: the context's scratch grows to its largest ray
+    const uint64_t before = gAllocations.load();
+    frame();
+    EXPECT_EQ(gAllocations.load() - before, 0u);
+    EXPECT_GT(tracer.rays.shadow + tracer.rays.reflection + tracer.rays.refraction, 0u);
+    EXPECT_GT(sum.r, 0.0);
 }
 
 // ---- Ctrl-C ----
