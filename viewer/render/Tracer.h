@@ -7,6 +7,10 @@
 // d . normal > 0. That is how refraction knows its side: a ray inside a glass part that was
 // cut by a difference leaves through the cut face, whose normal points into the cut.
 //
+// Whitted's simplifications, kept on purpose: every solid is opaque to shadow rays (glass
+// included), reflect and transmit are constant weights (no Fresnel term), the medium outside
+// every solid is air (ior 1), and a colour's alpha is not transparency (use transmit).
+//
 // One Tracer per thread: it owns the thread's QueryContext and ray counters. The per-ray path
 // allocates nothing and makes no virtual or std::function call.
 #pragma once
