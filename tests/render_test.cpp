@@ -7,6 +7,7 @@
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <nlohmann/json.hpp>
 
 #include <atomic>
 #include <chrono>
@@ -503,6 +504,35 @@ TEST(Tracer, AllocatesNothingPerRayOnceWarm) {
     EXPECT_EQ(gAllocations.load() - before, 0u);
     EXPECT_GT(tracer.rays.shadow + tracer.rays.reflection + tracer.rays.refraction, 0u);
     EXPECT_GT(sum.r, 0.0);
+}
+
+// ---- the command line ----
+
+TEST(RenderCommand, StatsFileHasRaysQueriesPhasesAndThePlan) {
+    const fs::path dir = fs::temp_directory_path() / ("render_stats_" + std::to_string(getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream(dir / "mirrors.scad") << facingMirrors(0.5);
+    const std::string command =
+        std::string(CSGRAY_EXE) + " render '" + (dir / "mirrors.scad").string() + "' -o '" +
+        (dir / "out.png").string() + "' --size 20x10 --quiet --stats '" +
+        (dir / "stats.json").string() + "' 2>'" + (dir / "stderr").string() + "'";
+    ASSERT_EQ(std::system(command.c_str()), 0);
+    const nlohmann::json stats = nlohmann::json::parse(std::ifstream(dir / "stats.json"));
+    EXPECT_EQ(stats["rays"]["primary"], 200);
+    EXPECT_EQ(stats["rays"]["reflection"], 8 * 200);
+    EXPECT_EQ(stats["rays"]["shadow"], 0);
+    EXPECT_EQ(stats["rays"]["refraction"], 0);
+    EXPECT_EQ(stats["queries"]["rays"], 9 * 200);
+    EXPECT_GT(stats["queries"]["nodeVisits"].get<uint64_t>(), 0u);
+    for (const char* phase : {"loadAndCompile", "plan", "render", "write", "total"})
+        EXPECT_GE(stats["seconds"][phase].get<double>(), 0.0) << phase;
+    EXPECT_EQ(stats["plan"]["reflection"], true);
+    EXPECT_EQ(stats["plan"]["refraction"], false);
+    EXPECT_EQ(stats["plan"]["materials"][1]["reflection"], true);
+    std::ifstream err(dir / "stderr");
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(err), {}), "") << "--quiet";
+    fs::remove_all(dir);
 }
 
 // ---- Ctrl-C ----
