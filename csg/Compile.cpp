@@ -56,6 +56,14 @@ Bounds3 worldBounds(const Shape& shape, const Mat4& worldFromLocal) {
         return transformBounds(worldFromLocal, shape.bounds());
 }
 
+// Leaves the compiled scene will hold: one per placement of a primitive, so a shared subtree
+// counts once for each use. Reserving for them up front avoids regrowing ~10^6-entry arrays.
+size_t countLeaves(const Node* node) {
+    if (!node) return 0;
+    if (node->op == Op::Leaf) return 1;
+    return countLeaves(node->left.get()) + countLeaves(node->right.get());
+}
+
 }  // namespace
 
 struct Compiler {
@@ -118,12 +126,10 @@ struct Compiler {
 
     uint32_t buildLeaf(const Node& node, const Mat4& worldFromLocal) {
         checkTransform(worldFromLocal, node, "the accumulated transform");
-        CompiledLeaf leaf;
-        leaf.shape = node.primitive;
-        leaf.worldFromLocal = worldFromLocal;
-        leaf.localFromWorld = glm::inverse(worldFromLocal);
-        leaf.normalFromLocal = glm::transpose(Mat3(leaf.localFromWorld));
-        leaf.tags = node.tags;
+        const Mat4 localFromWorld = glm::inverse(worldFromLocal);
+        if (!isFinite(localFromWorld))
+            throw CompileError("the accumulated transform cannot be inverted", node.tags.source);
+        LeafGeometry geometry{node.primitive, Affine(localFromWorld), {}};
         Bounds3 box;
         std::visit(
             [&](const auto& shape) {
@@ -131,14 +137,13 @@ struct Compiler {
                     if (const char* why = shape.invalidReason())
                         throw CompileError(why, node.tags.source);
                 }
-                leaf.localBounds = shape.bounds();
+                geometry.localBounds = shape.bounds();
                 box = worldBounds(shape, worldFromLocal);
             },
             node.primitive);
-        if (!isFinite(leaf.localFromWorld))
-            throw CompileError("the accumulated transform cannot be inverted", node.tags.source);
         const uint32_t index = static_cast<uint32_t>(scene.leaves_.size());
-        scene.leaves_.push_back(leaf);
+        scene.leaves_.push_back(geometry);
+        scene.frames_.push_back({worldFromLocal, glm::transpose(Mat3(localFromWorld)), node.tags});
         return addNode({NodeKind::Leaf, box, index});
     }
 
@@ -171,6 +176,11 @@ struct Compiler {
 Scene Scene::compile(const NodePtr& root) {
     Scene scene;
     Compiler compiler{scene, {}};
+    const size_t leaves = countLeaves(root.get());
+    scene.leaves_.reserve(leaves);
+    scene.frames_.reserve(leaves);
+    scene.nodes_.reserve(2 * leaves + 1);
+    compiler.nodeBounds.reserve(2 * leaves + 1);
     // The root is always a union (of the top-level objects): closest() relies on it.
     std::vector<uint32_t> top;
     if (root) {

@@ -11,13 +11,18 @@ namespace csg {
 
 inline constexpr uint32_t kNoNode = std::numeric_limits<uint32_t>::max();
 
-// A leaf with its transforms flattened: the primitive solves in its local frame.
-struct CompiledLeaf {
+// A leaf with its transforms flattened, split by who reads it: the ray loop touches only the
+// hot part (what it needs to solve), so a million leaves cost ~200 bytes each in the cache
+// instead of ~440; surface() and accessors read the cold part.
+struct LeafGeometry {
     Primitive shape;
-    Mat4 localFromWorld;
+    Affine localFromWorld;
+    Bounds3 localBounds;  // where the ray origin is moved before solving
+};
+
+struct LeafFrame {
     Mat4 worldFromLocal;
     Mat3 normalFromLocal;  // inverse transpose of worldFromLocal's linear part
-    Bounds3 localBounds;   // where the ray origin is moved before solving
     Tags tags;
 };
 

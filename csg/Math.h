@@ -13,6 +13,7 @@ using Vec3 = glm::dvec3;
 using Vec4 = glm::dvec4;
 using Mat3 = glm::dmat3;
 using Mat4 = glm::dmat4;
+using Affine = glm::dmat4x3;  // an affine map stored as 4 columns of 3 rows (no 0 0 0 1 row)
 
 inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 

@@ -48,7 +48,7 @@ struct Evaluator {
         return 0;
     }
 
-    size_t evalLeaf(const CompiledLeaf& leaf, uint32_t leafIndex, double t0, double t1) {
+    size_t evalLeaf(const LeafGeometry& leaf, uint32_t leafIndex, double t0, double t1) {
         // Map the ray into the leaf's frame; d keeps its length so t is unchanged.
         const Vec3 o = transformPoint(leaf.localFromWorld, ray.o);
         const Vec3 d = transformVector(leaf.localFromWorld, ray.d);

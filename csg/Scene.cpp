@@ -12,11 +12,11 @@ Scene& Scene::operator=(Scene&&) noexcept = default;
 SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
     SurfacePoint sp{ray.at(hit.t), Vec3(0.0)};
     if (!hit.isSurface()) return sp;
-    const CompiledLeaf& leaf = leaves_[hit.leaf];
+    const LeafGeometry& leaf = leaves_[hit.leaf];
     const Vec3 local = transformPoint(leaf.localFromWorld, sp.point);
     const Vec3 n =
         std::visit([&](const auto& shape) { return shape.normal(local, hit.face); }, leaf.shape);
-    const Vec3 world = leaf.normalFromLocal * n;
+    const Vec3 world = frames_[hit.leaf].normalFromLocal * n;
     const double len = glm::length(world);
     sp.normal = len > 0.0 ? world / len : n;
     if (hit.flipped) sp.normal = -sp.normal;
@@ -25,14 +25,14 @@ SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
 
 namespace {
 
-bool insideNode(const std::vector<CompiledNode>& nodes, const std::vector<CompiledLeaf>& leaves,
+bool insideNode(const std::vector<CompiledNode>& nodes, const std::vector<LeafGeometry>& leaves,
                 const std::vector<uint32_t>& children, uint32_t index, const Vec3& p) {
     const CompiledNode& node = nodes[index];
     if (!node.bounds.contains(p)) return false;
     auto inside = [&](uint32_t i) { return insideNode(nodes, leaves, children, i, p); };
     switch (node.kind) {
         case NodeKind::Leaf: {
-            const CompiledLeaf& leaf = leaves[node.first];
+            const LeafGeometry& leaf = leaves[node.first];
             const Vec3 local = transformPoint(leaf.localFromWorld, p);
             return std::visit([&](const auto& shape) { return shape.inside(local); }, leaf.shape);
         }
@@ -61,13 +61,13 @@ size_t Scene::leafCount() const {
     return leaves_.size();
 }
 const Tags& Scene::leafTags(uint32_t leaf) const {
-    return leaves_[leaf].tags;
+    return frames_[leaf].tags;
 }
 const Primitive& Scene::leafPrimitive(uint32_t leaf) const {
     return leaves_[leaf].shape;
 }
 const Mat4& Scene::leafWorldFromLocal(uint32_t leaf) const {
-    return leaves_[leaf].worldFromLocal;
+    return frames_[leaf].worldFromLocal;
 }
 
 }  // namespace csg

@@ -55,7 +55,8 @@ struct SurfacePoint {
     Vec3 normal;  // outward unit normal of the solid (difference cuts already flipped)
 };
 
-struct CompiledLeaf;
+struct LeafGeometry;
+struct LeafFrame;
 struct CompiledNode;
 struct BvhNode;
 
@@ -91,7 +92,8 @@ public:
 private:
     friend struct Evaluator;
     friend struct Compiler;
-    std::vector<CompiledLeaf> leaves_;
+    std::vector<LeafGeometry> leaves_;  // indexed by Hit::leaf; read by the ray loop
+    std::vector<LeafFrame> frames_;     // same index; read on request
     std::vector<CompiledNode> nodes_;
     std::vector<uint32_t> children_;  // child node indices of n-ary unions
     std::vector<BvhNode> bvh_;

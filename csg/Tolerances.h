@@ -43,6 +43,16 @@ inline constexpr double kSingularDetRel = 1e-12;
 // costs at most a few more bounds' worth.
 inline constexpr double kRootResidualFactor = 8.0;
 
+// Fujiwara's root bound (solvers/Roots.h) is widened by this fraction (unit: relative). The
+// bound is attained (p = t - 5 has its root on it) and is computed with log2/exp2, a few ulps
+// off; 1e-9 covers that by 10^6 and only enlarges a range that holds no roots anyway.
+inline constexpr double kRootBoundMargin = 1e-9;
+
+// The subdivision solvers (Descartes, Bernstein, interval) split an interval at most this
+// many times in a row (unit: halvings). 2^-80 of the range is below double resolution of any
+// root at least 2^-27 of the range from 0; deeper clusters are decided by clusterRoots().
+inline constexpr int kMaxSubdivisionDepth = 80;
+
 // The computed hit point o + t d of a closest() answer is within gamma(kHitPointErrorOps) *
 // (|o| + |t d|) of the true surface point, per component (unit: operation counts of gamma).
 // Why 1024: forming the point costs 3 roundings, but t itself carries the primitive solve's
