@@ -205,7 +205,7 @@ TEST(SecondaryOrigin, NeverReHitsTheSurfaceItLeaves) {
                 scale * far * glm::normalize(csg::Vec3(unit(rng), unit(rng), unit(rng)));
             const csg::Vec3 target =
                 scale * (csg::Vec3(0.3, -0.2, 0.1) + csg::Vec3(unit(rng), unit(rng), unit(rng)));
-            const csg::Ray ray{from, target - from, 0.0, kRayFar};
+            const csg::Ray ray{from, target - from, 0.0, csg::kInfinity};
             const std::optional<csg::Hit> hit = scaled.scene.closest(ray, ctx);
             if (!hit) continue;
             ++hits;
@@ -214,11 +214,11 @@ TEST(SecondaryOrigin, NeverReHitsTheSurfaceItLeaves) {
             const csg::Vec3 dir = glm::normalize(ray.d);
             const csg::Vec3 out = dir - 2.0 * glm::dot(dir, sp.normal) * sp.normal;
             const csg::Ray reflected{offsetRayOrigin(sp.point, error, sp.normal, out), out, 0.0,
-                                     kRayFar};
+                                     csg::kInfinity};
             EXPECT_FALSE(scaled.scene.closest(reflected, ctx)) << "scale " << scale << " ray " << i;
             // Inward: the next surface is the far side of the sphere, left (not entered).
             const csg::Ray inward{offsetRayOrigin(sp.point, error, sp.normal, dir), dir, 0.0,
-                                  kRayFar};
+                                  csg::kInfinity};
             const std::optional<csg::Hit> exit = scaled.scene.closest(inward, ctx);
             ASSERT_TRUE(exit) << "scale " << scale << " ray " << i;
             const csg::SurfacePoint exitPoint = scaled.scene.surface(inward, *exit);
@@ -290,7 +290,7 @@ TEST(Refraction, ARayInsideCutGlassLeavesThroughTheCutFace) {
     PathLog log;
     tracer.log = &log;
     // Starts inside the glass, heading for the cylindrical hole.
-    tracer.tracePrimary(csg::Ray{{-0.8, 0.0, 0.3}, {1.0, 0.0, 0.0}, 0.0, kRayFar});
+    tracer.tracePrimary(csg::Ray{{-0.8, 0.0, 0.3}, {1.0, 0.0, 0.0}, 0.0, csg::kInfinity});
     ASSERT_GE(log.count, 3);
     const PathLog::Vertex& cut = log.vertices[0];
     EXPECT_FALSE(cut.entering) << "the ray leaves the glass into the hole";
@@ -316,7 +316,7 @@ TEST(Refraction, ObliqueRayBendsBySnellsLawAtBothFacesOfTheCut) {
     // at (-1, -0.1, 0).
     const double angle = 30.0 * M_PI / 180.0;
     const csg::Vec3 d(std::cos(angle), std::sin(angle), 0.0);
-    tracer.tracePrimary(csg::Ray{csg::Vec3(-1.0, -0.1, 0.0) - 3.0 * d, d, 0.0, kRayFar});
+    tracer.tracePrimary(csg::Ray{csg::Vec3(-1.0, -0.1, 0.0) - 3.0 * d, d, 0.0, csg::kInfinity});
     ASSERT_GE(log.count, 2);
     EXPECT_TRUE(log.vertices[0].entering);
     EXPECT_NEAR(log.vertices[0].point.x, -1.0, 1e-12);
@@ -347,7 +347,7 @@ TEST(Refraction, TotalInternalReflectionKeepsTheRayInside) {
     tracer.log = &log;
     const double angle = 30.0 * M_PI / 180.0;
     tracer.tracePrimary(
-        csg::Ray{{0.0, 0.5, 0.0}, {std::cos(angle), std::sin(angle), 0.0}, 0.0, kRayFar});
+        csg::Ray{{0.0, 0.5, 0.0}, {std::cos(angle), std::sin(angle), 0.0}, 0.0, csg::kInfinity});
     ASSERT_GE(log.count, 2);
     EXPECT_FALSE(log.vertices[0].entering);
     EXPECT_NEAR(log.vertices[0].point.y, 1.0, 1e-12);  // first the face y = 1

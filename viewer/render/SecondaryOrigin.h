@@ -4,20 +4,11 @@
 // offset grows with |o| + |t d|, not with a fixed epsilon.
 #pragma once
 
-#include <limits>
-
 #include "csg/Math.h"
 #include "csg/Ray.h"
 #include "csg/Tolerances.h"
 
 namespace viewer::render {
-
-// The far end of every open-ended ray the renderer casts: the largest finite t rather than
-// infinity. Why: csg's coincidence rule (SpanWriter) measures a span's length against a slack
-// proportional to its ends, so a span with an infinite end (a half-space seen by a ray with
-// tmax = inf) has inf <= inf and is dropped as a sliver. Clipping at a finite tmax gives the
-// same answer for every surface closer than 1e308 and keeps half-spaces visible.
-inline constexpr double kRayFar = std::numeric_limits<double>::max();
 
 // Per-component bound on |computed - true| of the hit point ray.at(t).
 inline csg::Vec3 hitPointError(const csg::Ray& ray, double t) {

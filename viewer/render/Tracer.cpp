@@ -39,7 +39,8 @@ csg::Vec3 Tracer::trace(const csg::Ray& ray, RayKind kind, int depth, double wei
     // Mirror reflection, only while the branch still weighs enough to show.
     if (m.reflection && weight * s.reflect >= plan_.settings.minWeight) {
         const csg::Vec3 r = dir - 2.0 * glm::dot(dir, n) * n;
-        const csg::Ray reflected{offsetRayOrigin(surface.point, error, n, r), r, 0.0, kRayFar};
+        const csg::Ray reflected{offsetRayOrigin(surface.point, error, n, r), r, 0.0,
+                                 csg::kInfinity};
         ++rays.reflection;
         color += s.reflect * trace(reflected, RayKind::Reflection, depth + 1, weight * s.reflect);
     }
@@ -52,7 +53,8 @@ csg::Vec3 Tracer::trace(const csg::Ray& ray, RayKind kind, int depth, double wei
         const double k = 1.0 - eta * eta * (1.0 - cosI * cosI);
         const csg::Vec3 t =
             k < 0.0 ? dir + 2.0 * cosI * n : eta * dir + (eta * cosI - std::sqrt(k)) * n;
-        const csg::Ray refracted{offsetRayOrigin(surface.point, error, n, t), t, 0.0, kRayFar};
+        const csg::Ray refracted{offsetRayOrigin(surface.point, error, n, t), t, 0.0,
+                                 csg::kInfinity};
         ++rays.refraction;
         color += s.transmit * trace(refracted, RayKind::Refraction, depth + 1, weight * s.transmit);
     }
