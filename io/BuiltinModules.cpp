@@ -62,7 +62,7 @@ BoundArgs bind(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
 [[noreturn]] void badArgument(Evaluator& e, const BoundArgs& b, size_t i, std::string_view name,
                               std::string_view what) {
     e.fail(b.loc(i), b.call.name + "(): '" + std::string(name) + "' must be " + std::string(what) +
-                         ", got " + b[i].repr() + "; expected " + b.form);
+                         ", got " + b[i].brief() + "; expected " + b.form);
 }
 
 double numberArg(Evaluator& e, const BoundArgs& b, size_t i, std::string_view name, double dflt) {
@@ -303,7 +303,7 @@ Instance scale(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
     BoundArgs b = bind(e, s, ctx, {"v"}, "scale(v)");
     const Vec3 v = vecArg(e, b, 0, "v", Vec3(1.0), 1.0, true);
     if (v.x == 0 || v.y == 0 || v.z == 0)
-        e.fail(b.loc(0), "scale(" + b[0].repr() +
+        e.fail(b.loc(0), "scale(" + b[0].brief() +
                              ") is singular (a zero factor flattens the solid); expected scale(v) "
                              "with non-zero factors");
     return applyTransform(e, b, ctx, state, glm::scale(Mat4(1.0), v));

@@ -82,6 +82,7 @@ Value minMax(Evaluator& e, const Args& a, Loc loc, bool isMax) {
     else
         for (const auto& x : a) items.push_back(x.value);
     if (items.empty()) return badArgument(e, loc, name);
+    e.spend(loc, items.size());
     double best = isMax ? -INFINITY : INFINITY;
     for (const Value& v : items) {
         if (!v.isNumber()) return badArgument(e, loc, name);
@@ -115,17 +116,21 @@ void appendUtf8(std::string& out, uint32_t cp) {
     }
 }
 
-void appendChr(std::string& out, const Value& v) {
+// Spends a unit per value visited: nested lists may share their elements.
+void appendChr(Evaluator& e, Loc loc, std::string& out, const Value& v) {
+    e.spend(loc);
+    if (out.size() > kMaxStringBytes)
+        e.fail(loc, "string too long (more than " + std::to_string(kMaxStringBytes) + " bytes)");
     if (v.isNumber()) {
         const double d = v.number();
         if (d >= 1 && d <= 0x10FFFF && d == std::floor(d) && !(d >= 0xD800 && d <= 0xDFFF))
             appendUtf8(out, static_cast<uint32_t>(d));
     } else if (v.isVector()) {
-        for (const Value& x : v.list()) appendChr(out, x);
+        for (const Value& x : v.list()) appendChr(e, loc, out, x);
     } else if (v.isRange()) {
         const Range& r = v.range();
         const double n = std::min(r.count(), kMaxIterations);
-        for (double i = 0; i < n; ++i) appendChr(out, Value(r.begin + i * r.step));
+        for (double i = 0; i < n; ++i) appendChr(e, loc, out, Value(r.begin + i * r.step));
     }
 }
 
@@ -137,6 +142,7 @@ Value lookup(Evaluator& e, const Args& a, Loc loc) {
     const ValueList* high = nullptr;
     const ValueList* lowest = nullptr;
     const ValueList* highest = nullptr;
+    e.spend(loc, a[1].value.list().size());
     for (const Value& entry : a[1].value.list()) {
         if (!entry.isVector() || entry.list().size() < 2 || !entry.list()[0].isNumber() ||
             !entry.list()[1].isNumber())
@@ -157,18 +163,28 @@ Value lookup(Evaluator& e, const Args& a, Loc loc) {
     return v0 + (v1 - v0) * (*key - k0) / (k1 - k0);
 }
 
+// The seed's integer part modulo 2^32 (what converting an in-range integer does); 0 for a
+// seed that is not finite. Converting a huge double straight to an integer is undefined.
+unsigned int seedBits(double seed) {
+    if (!std::isfinite(seed)) return 0;
+    double bits = std::fmod(std::trunc(seed), 4294967296.0);
+    if (bits < 0) bits += 4294967296.0;
+    return static_cast<unsigned int>(bits);
+}
+
 Value rands(Evaluator& e, const Args& a, Loc loc) {
     auto lo = number(a, 0), hi = number(a, 1), count = number(a, 2);
-    if (!lo || !hi || !count || *count < 0 || *count > kMaxIterations)
+    if (!lo || !hi || !count || !(*count >= 0 && *count <= kMaxIterations))
         return badArgument(e, loc, "rands");
     std::mt19937 seeded;
     std::mt19937* generator = &e.random();  // without a seed: one fixed sequence per run
     if (auto seed = number(a, 3)) {
-        seeded.seed(static_cast<unsigned int>(static_cast<long long>(*seed)));
+        seeded.seed(seedBits(*seed));
         generator = &seeded;
     }
     ValueList out;
     const size_t n = static_cast<size_t>(*count);
+    e.spend(loc, n);
     out.reserve(n);
     if (*lo == *hi) {
         out.assign(n, Value(*lo));
@@ -240,6 +256,7 @@ const std::unordered_map<std::string, Evaluator::BuiltinFunction>& table() {
         {"norm",
          [](Evaluator& e, const Args& a, Loc l) -> Value {
              if (a.size() != 1 || !a[0].value.isVector()) return badArgument(e, l, "norm");
+             e.spend(l, a[0].value.list().size());
              double sum = 0.0;
              for (const Value& x : a[0].value.list()) {
                  if (!x.isNumber()) return badArgument(e, l, "norm");
@@ -252,32 +269,41 @@ const std::unordered_map<std::string, Evaluator::BuiltinFunction>& table() {
          [](Evaluator& e, const Args& a, Loc l) -> Value {
              if (a.size() == 1 && a[0].value.isVector())
                  return static_cast<double>(a[0].value.list().size());
-             if (a.size() == 1 && a[0].value.isString())
+             if (a.size() == 1 && a[0].value.isString()) {
+                 e.spend(l, a[0].value.string().size());
                  return static_cast<double>(codePoints(a[0].value.string()));
+             }
              return badArgument(e, l, "len");
          }},
         {"concat",
-         [](Evaluator&, const Args& a, Loc) -> Value {
+         [](Evaluator& e, const Args& a, Loc l) -> Value {
              ValueList out;
              for (const ArgValue& x : a) {
-                 if (x.value.isVector())
+                 if (x.value.isVector()) {
+                     e.spend(l, x.value.list().size());
                      out.insert(out.end(), x.value.list().begin(), x.value.list().end());
-                 else
+                 } else {
                      out.push_back(x.value);
+                 }
              }
-             return out;
+             return e.makeList(std::move(out), l);
          }},
         {"lookup", lookup},
         {"str",
-         [](Evaluator&, const Args& a, Loc) -> Value {
+         [](Evaluator& e, const Args& a, Loc l) -> Value {
              std::string out;
-             for (const ArgValue& x : a) out += x.value.toString();
+             for (const ArgValue& x : a) {
+                 out += e.printed(x.value, false, l);
+                 if (out.size() > kMaxStringBytes)
+                     e.fail(l, "string too long (more than " + std::to_string(kMaxStringBytes) +
+                                   " bytes)");
+             }
              return out;
          }},
         {"chr",
-         [](Evaluator&, const Args& a, Loc) -> Value {
+         [](Evaluator& e, const Args& a, Loc l) -> Value {
              std::string out;
-             for (const ArgValue& x : a) appendChr(out, x.value);
+             for (const ArgValue& x : a) appendChr(e, l, out, x.value);
              return out;
          }},
         {"ord",

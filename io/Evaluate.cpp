@@ -17,7 +17,13 @@ namespace {
 
 // Stack for evaluation: deep enough for kMaxNesting parser levels and maxCallDepth calls.
 constexpr size_t kEvaluationStackBytes = size_t(1) << 30;
+// Without a thread of our own, the caller's stack: assume a small share of its usual 8 MiB.
+constexpr size_t kCallerStackBytes = size_t(1) << 20;
+// Stack the evaluator leaves unused: room for a leaf call (a builtin, a value walk of
+// kMaxListDepth levels, sanitizer frames) after its last stack check.
+constexpr size_t kStackReserveBytes = size_t(64) << 20;
 
+// Runs f(usable stack bytes) on a thread with a large stack.
 template <class F>
 EvaluateResult runWithLargeStack(F& f) {
     struct Job {
@@ -26,7 +32,7 @@ EvaluateResult runWithLargeStack(F& f) {
     } job{&f, {}};
     auto body = [](void* p) -> void* {
         auto* j = static_cast<Job*>(p);
-        j->result = (*j->f)();
+        j->result = (*j->f)(kEvaluationStackBytes - kStackReserveBytes);
         return nullptr;
     };
     pthread_attr_t attr;
@@ -38,7 +44,7 @@ EvaluateResult runWithLargeStack(F& f) {
     if (started)
         pthread_join(thread, nullptr);
     else
-        job.result = f();  // no thread: the limits still apply, on the caller's stack
+        job.result = f(kCallerStackBytes);  // no thread: the caller's stack, a smaller limit
     return std::move(job.result);
 }
 
@@ -51,8 +57,9 @@ bool isIdentifier(const std::string& s) {
     return true;
 }
 
-EvaluateResult evaluateMain(SourceFiles& sources, uint32_t mainFile,
-                            const EvaluateOptions& options) {
+EvaluateResult evaluateMain(SourceFiles& sources, uint32_t mainFile, const EvaluateOptions& options,
+                            size_t stackBytes) {
+    const char stackTop = 0;
     EvaluateResult result;
     auto& diagnostics = result.diagnostics;
     auto fillFiles = [&](Model& model) {
@@ -82,6 +89,7 @@ EvaluateResult evaluateMain(SourceFiles& sources, uint32_t mainFile,
         Model model;
         {
             Evaluator evaluator(sources, model, diagnostics, options);
+            evaluator.setStackLimit(&stackTop, stackBytes);
             try {
                 evaluator.run(*parsed);
             } catch (const EvalError& e) {
@@ -106,7 +114,7 @@ EvaluateResult evaluateMain(SourceFiles& sources, uint32_t mainFile,
 }  // namespace
 
 EvaluateResult evaluateFile(const std::filesystem::path& file, const EvaluateOptions& options) {
-    auto work = [&]() -> EvaluateResult {
+    auto work = [&](size_t stackBytes) -> EvaluateResult {
         SourceFiles sources;
         std::string error;
         auto index = sources.load(file, error);
@@ -115,18 +123,20 @@ EvaluateResult evaluateFile(const std::filesystem::path& file, const EvaluateOpt
             r.diagnostics.push_back({file.string(), 0, 0, Severity::Error, error});
             return r;
         }
-        return evaluateMain(sources, *index, options);
+        sources.allowFiles(options.allowFiles);  // the main file itself is always read
+        return evaluateMain(sources, *index, options, stackBytes);
     };
     return runWithLargeStack(work);
 }
 
 EvaluateResult evaluateString(std::string_view source, std::string_view fileName,
                               const EvaluateOptions& options) {
-    auto work = [&]() -> EvaluateResult {
+    auto work = [&](size_t stackBytes) -> EvaluateResult {
         SourceFiles sources;
+        sources.allowFiles(options.allowFiles);
         const uint32_t index = sources.add(std::string(fileName), std::filesystem::path(fileName),
                                            std::string(source));
-        return evaluateMain(sources, index, options);
+        return evaluateMain(sources, index, options, stackBytes);
     };
     return runWithLargeStack(work);
 }

@@ -25,6 +25,13 @@ struct EvaluateOptions {
     std::function<void(const std::string&)> echo;
     // Module and function calls nested deeper than this are an error (not a stack overflow).
     uint32_t maxCallDepth = 10000;
+    // Evaluation steps beyond this are an error at the place the budget ran out, so no part can
+    // hang the evaluator or take all memory. A step is about one expression node, loop
+    // iteration, or list element or character produced or walked (a statement counts 64, a
+    // function call 8); 10^8 steps take 2 to 15 seconds and at most about 500 MB.
+    uint64_t maxSteps = 500'000'000;
+    // False: include <f> and use <f> are errors, for evaluating untrusted text (the fuzzer).
+    bool allowFiles = true;
 };
 
 struct EvaluateResult {

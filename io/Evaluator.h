@@ -90,6 +90,39 @@ public:
     // Evaluates a parsed main file into model_.root (and the extras).
     void run(const ParsedFile& file);
 
+    // ---- limits: work, stack and list nesting ----
+    // Spends steps of EvaluateOptions::maxSteps; past the budget, an error at loc.
+    void spend(Loc loc, uint64_t steps = 1) {
+        steps_ += steps;
+        if (steps_ > options_.maxSteps) failWorkLimit(loc);
+    }
+    // What is left of the budget, for walks over values; settle() charges what they spent.
+    WorkBudget budget() const {
+        return WorkBudget{steps_ < options_.maxSteps ? options_.maxSteps - steps_ : 0};
+    }
+    void settle(const WorkBudget& used, Loc loc) {
+        steps_ = options_.maxSteps - used.left;
+        if (used.exhausted) failWorkLimit(loc);
+    }
+    [[noreturn]] void failWorkLimit(Loc loc);
+    // The evaluator recurses on the C++ stack (expressions, statements, calls); `top` is the
+    // frame evaluation starts from and `bytes` how much stack it may use below it.
+    void setStackLimit(const char* top, size_t bytes) {
+        stackTop_ = top;
+        stackBytes_ = bytes;
+    }
+    // An error at loc when the stack is nearly used up (hostile nesting, deep recursion).
+    void checkStack(Loc loc) {
+        const char here = 0;
+        if (stackTop_ && static_cast<size_t>(stackTop_ - &here) > stackBytes_) failStack(loc);
+    }
+    [[noreturn]] void failStack(Loc loc);
+    // A list built from evaluated items: an error when it nests deeper than kMaxListDepth.
+    Value makeList(ValueList items, Loc loc);
+    // v as echo() (quoted) or str() shows it, within the work budget and kMaxStringBytes; an
+    // error at loc past either (a list sharing a big list a thousand times prints huge).
+    std::string printed(const Value& v, bool quoted, Loc loc);
+
     // ---- expressions (ExpressionEval.cpp) ----
     Value eval(const Expr& e, const ContextPtr& ctx);
     Value lookupVariable(const std::string& name, const ContextPtr& ctx, Loc loc);
@@ -187,6 +220,9 @@ private:
     std::mt19937 random_{0};
     uint32_t depth_ = 0;
     uint32_t warnings_ = 0;
+    uint64_t steps_ = 0;
+    const char* stackTop_ = nullptr;
+    size_t stackBytes_ = 0;
     std::unordered_map<std::string, uint32_t> pathIndex_;
     std::vector<std::unique_ptr<ParsedFile>> usedFiles_;
     std::unordered_map<std::string, ContextPtr> usedFileContexts_;
@@ -197,23 +233,37 @@ private:
     std::vector<std::weak_ptr<Context>> closures_;
 };
 
+// Steps charged for a statement (a module instance: scopes, tags, a CSG node of ~300 bytes)
+// and for a user function call (a scope and its bindings), so that a step stays roughly one
+// simple expression's worth of time and memory.
+inline constexpr uint64_t kStatementSteps = 64;
+inline constexpr uint64_t kCallSteps = 8;
 // Most iterations a for loop or a range may yield (a bigger one is an error, not a hang).
 inline constexpr double kMaxIterations = 1e7;
+// Deepest nesting of lists ([[[...]]]) a part may build: printing, comparing and freeing a
+// list recurse once per level.
+inline constexpr uint32_t kMaxListDepth = 10000;
+// Longest string (str(), echo and assert messages) a part may build, in bytes.
+inline constexpr uint64_t kMaxStringBytes = uint64_t(1) << 27;
 
 template <class F>
 void Evaluator::forEachItem(const Value& v, Loc loc, F&& f) {
     switch (v.type()) {
         case Value::Type::Vector:
-            for (const Value& item : v.list())
+            for (const Value& item : v.list()) {
+                spend(loc);
                 if (!f(item)) return;
+            }
             return;
         case Value::Type::Range: {
             const Range& r = v.range();
             const double n = r.count();
             if (n > kMaxIterations)
                 fail(loc, "range has too many elements (" + formatNumber(n) + ")");
-            for (double i = 0; i < n; ++i)
+            for (double i = 0; i < n; ++i) {
+                spend(loc);
                 if (!f(Value(r.begin + i * r.step))) return;
+            }
             return;
         }
         case Value::Type::String: {
@@ -223,6 +273,7 @@ void Evaluator::forEachItem(const Value& v, Loc loc, F&& f) {
                 while (i + len < s.size() &&
                        (static_cast<unsigned char>(s[i + len]) & 0xC0) == 0x80)
                     ++len;
+                spend(loc);
                 if (!f(Value(s.substr(i, len)))) return;
                 i += len;
             }

@@ -1,6 +1,7 @@
 // Expressions with OpenSCAD 2021's semantics: undefined operations give undef (with a
 // warning), vectors add element-wise up to the shorter length, vector*vector is a dot product
 // or a matrix product, comparisons order numbers, strings, bools and vectors.
+#include <algorithm>
 #include <cmath>
 
 #include "io/Evaluator.h"
@@ -30,6 +31,36 @@ void Evaluator::warn(Loc loc, std::string message) {
     if (warnings_ == kMaxWarnings) message += " (further warnings suppressed)";
     diagnostics_.push_back(
         {sources_.name(loc.file), loc.line, loc.col, Severity::Warning, std::move(message)});
+}
+
+void Evaluator::failWorkLimit(Loc loc) {
+    fail(loc, "evaluation takes too long: more than " + std::to_string(options_.maxSteps) +
+                  " steps (expressions, loop iterations, list elements); is a loop or a "
+                  "recursion unbounded?");
+}
+
+void Evaluator::failStack(Loc loc) {
+    fail(loc, "nesting too deep: expressions, calls and blocks use up the evaluator's stack");
+}
+
+Value Evaluator::makeList(ValueList items, Loc loc) {
+    Value list(std::move(items));
+    if (list.depth() > kMaxListDepth)
+        fail(loc,
+             "lists nested too deeply (more than " + std::to_string(kMaxListDepth) + " levels)");
+    return list;
+}
+
+std::string Evaluator::printed(const Value& v, bool quoted, Loc loc) {
+    const WorkBudget available = budget();
+    WorkBudget b{std::min(available.left, kMaxStringBytes)};
+    std::string text = quoted ? v.repr(b) : v.toString(b);
+    if (b.exhausted && available.left > kMaxStringBytes)
+        fail(loc, "string too long (more than " + std::to_string(kMaxStringBytes) + " bytes)");
+    settle(WorkBudget{available.left - (std::min(available.left, kMaxStringBytes) - b.left),
+                      b.exhausted},
+           loc);
+    return text;
 }
 
 Value Evaluator::lookupVariable(const std::string& name, const ContextPtr& ctx, Loc loc) {
@@ -62,7 +93,7 @@ void Evaluator::echo(const ArgValues& args) {
         if (!first) line += ", ";
         first = false;
         if (!a.name.empty()) line += a.name + " = ";
-        line += a.value.repr();
+        line += printed(a.value, true, a.loc);
     }
     if (options_.echo)
         options_.echo(line);
@@ -76,29 +107,30 @@ void Evaluator::checkAssert(const AssertOrEchoExpr& e, const ContextPtr& ctx) {
         fail(e.loc, "assert() needs a condition; expected assert(condition, message)");
     if (args[0].value.truthy()) return;
     std::string message = "assertion failed";
-    if (args.size() > 1) message += ": " + args[1].value.toString();
+    if (args.size() > 1) message += ": " + printed(args[1].value, false, e.loc);
     fail(e.loc, message);
 }
 
 namespace {
 
-bool isNumberList(const Value& v) {
-    if (!v.isVector()) return false;
+bool isNumberList(const Value& v, WorkBudget& w) {
+    if (!v.isVector() || !w.spend(v.list().size())) return false;
     for (const Value& x : v.list())
         if (!x.isNumber()) return false;
     return true;
 }
 
-bool isMatrix(const Value& v) {
+bool isMatrix(const Value& v, WorkBudget& w) {
     if (!v.isVector() || v.list().empty()) return false;
     const size_t columns = v.list()[0].isVector() ? v.list()[0].list().size() : 0;
     if (columns == 0) return false;
     for (const Value& row : v.list())
-        if (!isNumberList(row) || row.list().size() != columns) return false;
+        if (!isNumberList(row, w) || row.list().size() != columns) return false;
     return true;
 }
 
-Value dot(const ValueList& a, const ValueList& b) {
+Value dot(const ValueList& a, const ValueList& b, WorkBudget& w) {
+    if (!w.spend(a.size())) return Value();
     double sum = 0.0;
     for (size_t i = 0; i < a.size(); ++i) sum += a[i].number() * b[i].number();
     return Value(sum);
@@ -114,8 +146,10 @@ ValueList column(const ValueList& matrix, size_t c) {
 
 }  // namespace
 
-// The arithmetic of OpenSCAD; undef for combinations it does not define.
-static Value arithmetic(BinaryOp op, const Value& a, const Value& b) {
+// The arithmetic of OpenSCAD; undef for combinations it does not define. Each element
+// produced or multiplied spends a unit of w (nested vectors may share their rows).
+static Value arithmetic(BinaryOp op, const Value& a, const Value& b, WorkBudget& w) {
+    if (!w.spend()) return Value();
     if (a.isNumber() && b.isNumber()) {
         const double x = a.number(), y = b.number();
         switch (op) {
@@ -139,7 +173,8 @@ static Value arithmetic(BinaryOp op, const Value& a, const Value& b) {
         const size_t n = std::min(a.list().size(), b.list().size());
         ValueList out;
         out.reserve(n);
-        for (size_t i = 0; i < n; ++i) out.push_back(arithmetic(op, a.list()[i], b.list()[i]));
+        for (size_t i = 0; i < n && !w.exhausted; ++i)
+            out.push_back(arithmetic(op, a.list()[i], b.list()[i], w));
         return out;
     }
     if (op == BinaryOp::Multiply || op == BinaryOp::Divide) {
@@ -147,38 +182,46 @@ static Value arithmetic(BinaryOp op, const Value& a, const Value& b) {
         if (a.isVector() && b.isNumber()) {
             ValueList out;
             out.reserve(a.list().size());
-            for (const Value& x : a.list()) out.push_back(arithmetic(op, x, b));
+            for (const Value& x : a.list()) {
+                if (w.exhausted) break;
+                out.push_back(arithmetic(op, x, b, w));
+            }
             return out;
         }
         if (a.isNumber() && b.isVector()) {
             ValueList out;
             out.reserve(b.list().size());
-            for (const Value& y : b.list()) out.push_back(arithmetic(op, a, y));
+            for (const Value& y : b.list()) {
+                if (w.exhausted) break;
+                out.push_back(arithmetic(op, a, y, w));
+            }
             return out;
         }
     }
     if (op == BinaryOp::Multiply && a.isVector() && b.isVector()) {
         const ValueList &x = a.list(), &y = b.list();
-        if (isNumberList(a) && isNumberList(b)) return x.size() == y.size() ? dot(x, y) : Value();
-        if (isMatrix(a) && isNumberList(b)) {  // matrix * column vector
+        if (isNumberList(a, w) && isNumberList(b, w))
+            return x.size() == y.size() ? dot(x, y, w) : Value();
+        if (isMatrix(a, w) && isNumberList(b, w)) {  // matrix * column vector
             if (x[0].list().size() != y.size()) return Value();
             ValueList out;
-            for (const Value& row : x) out.push_back(dot(row.list(), y));
+            for (const Value& row : x) out.push_back(dot(row.list(), y, w));
             return out;
         }
-        if (isNumberList(a) && isMatrix(b)) {  // row vector * matrix
+        if (isNumberList(a, w) && isMatrix(b, w)) {  // row vector * matrix
             if (x.size() != y.size()) return Value();
             ValueList out;
-            for (size_t c = 0; c < y[0].list().size(); ++c) out.push_back(dot(x, column(y, c)));
+            for (size_t c = 0; c < y[0].list().size() && !w.exhausted; ++c)
+                out.push_back(dot(x, column(y, c), w));
             return out;
         }
-        if (isMatrix(a) && isMatrix(b)) {
+        if (isMatrix(a, w) && isMatrix(b, w)) {
             if (x[0].list().size() != y.size()) return Value();
             ValueList out;
             for (const Value& row : x) {
                 ValueList r;
-                for (size_t c = 0; c < y[0].list().size(); ++c)
-                    r.push_back(dot(row.list(), column(y, c)));
+                for (size_t c = 0; c < y[0].list().size() && !w.exhausted; ++c)
+                    r.push_back(dot(row.list(), column(y, c), w));
                 out.push_back(std::move(r));
             }
             return out;
@@ -188,8 +231,8 @@ static Value arithmetic(BinaryOp op, const Value& a, const Value& b) {
 }
 
 // <, <=, >, >= : numbers, strings, bools, and vectors lexicographically; else undef.
-static std::optional<int> compare(const Value& a, const Value& b) {
-    if (a.type() != b.type()) return std::nullopt;
+static std::optional<int> compare(const Value& a, const Value& b, WorkBudget& w) {
+    if (!w.spend() || a.type() != b.type()) return std::nullopt;
     switch (a.type()) {
         case Value::Type::Number:
             if (std::isnan(a.number()) || std::isnan(b.number())) return std::nullopt;
@@ -197,13 +240,14 @@ static std::optional<int> compare(const Value& a, const Value& b) {
         case Value::Type::Bool:
             return int(a.asBool()) - int(b.asBool());
         case Value::Type::String:
+            if (!w.spend(a.string().size())) return std::nullopt;
             return a.string().compare(b.string()) < 0   ? -1
                    : a.string().compare(b.string()) > 0 ? 1
                                                         : 0;
         case Value::Type::Vector: {
             const ValueList &x = a.list(), &y = b.list();
             for (size_t i = 0; i < x.size() && i < y.size(); ++i) {
-                auto c = compare(x[i], y[i]);
+                auto c = compare(x[i], y[i], w);
                 if (!c) return std::nullopt;
                 if (*c != 0) return c;
             }
@@ -253,16 +297,20 @@ Value Evaluator::evalBinary(const BinaryExpr& e, const ContextPtr& ctx) {
     if (e.op == BinaryOp::Or) return eval(*e.left, ctx).truthy() || eval(*e.right, ctx).truthy();
     const Value a = eval(*e.left, ctx);
     const Value b = eval(*e.right, ctx);
+    WorkBudget w = budget();
     switch (e.op) {
         case BinaryOp::Equal:
-            return a == b;
-        case BinaryOp::NotEqual:
-            return !(a == b);
+        case BinaryOp::NotEqual: {
+            const bool equal = a.equals(b, w);
+            settle(w, e.loc);
+            return e.op == BinaryOp::Equal ? equal : !equal;
+        }
         case BinaryOp::Less:
         case BinaryOp::LessEqual:
         case BinaryOp::Greater:
         case BinaryOp::GreaterEqual: {
-            const auto c = compare(a, b);
+            const auto c = compare(a, b, w);
+            settle(w, e.loc);
             if (!c) {
                 if (!(a.isNumber() && b.isNumber()))  // NaN compares silently false
                     warn(e.loc, std::string("undefined operation (") + a.typeName() + " " +
@@ -281,7 +329,8 @@ Value Evaluator::evalBinary(const BinaryExpr& e, const ContextPtr& ctx) {
             }
         }
         default: {
-            Value r = arithmetic(e.op, a, b);
+            Value r = arithmetic(e.op, a, b, w);
+            settle(w, e.loc);
             if (r.isUndef())
                 warn(e.loc, std::string("undefined operation (") + a.typeName() + " " +
                                 opSymbol(e.op) + " " + b.typeName() + ")");
@@ -290,12 +339,16 @@ Value Evaluator::evalBinary(const BinaryExpr& e, const ContextPtr& ctx) {
     }
 }
 
-static Value negate(const Value& v) {
+static Value negate(const Value& v, WorkBudget& w) {
+    if (!w.spend()) return Value();
     if (v.isNumber()) return -v.number();
     if (v.isVector()) {
         ValueList out;
         out.reserve(v.list().size());
-        for (const Value& x : v.list()) out.push_back(negate(x));
+        for (const Value& x : v.list()) {
+            if (w.exhausted) break;
+            out.push_back(negate(x, w));
+        }
         return out;
     }
     return Value();
@@ -323,10 +376,10 @@ Value Evaluator::evalVector(const VectorExpr& e, const ContextPtr& ctx) {
     out.reserve(e.items.size());
     if (!e.hasComprehension) {
         for (const auto& item : e.items) out.push_back(eval(*item, ctx));
-        return out;
+        return makeList(std::move(out), e.loc);
     }
     for (const auto& item : e.items) evalElement(*item, ctx, out);
-    return out;
+    return makeList(std::move(out), e.loc);
 }
 
 // One element of a vector literal, appending zero or more values.
@@ -357,6 +410,7 @@ void Evaluator::evalElement(const Expr& e, const ContextPtr& ctx, ValueList& out
             ContextPtr c = letContext(f.init, ctx);
             for (double n = 0;; ++n) {
                 if (n > kMaxIterations) fail(e.loc, "for loop runs too long");
+                spend(e.loc);
                 if (!eval(*f.condition, c).truthy()) break;
                 evalElement(*f.body, c, out);
                 // The update sees the previous values; all names update together.
@@ -405,6 +459,8 @@ void Evaluator::evalElement(const Expr& e, const ContextPtr& ctx, ValueList& out
 }
 
 Value Evaluator::eval(const Expr& e, const ContextPtr& ctx) {
+    spend(e.loc);
+    checkStack(e.loc);
     switch (e.kind) {
         case ExprKind::Number:
             return static_cast<const NumberExpr&>(e).value;
@@ -427,7 +483,9 @@ Value Evaluator::eval(const Expr& e, const ContextPtr& ctx) {
             if (u.op == UnaryOp::Plus) {
                 if (v.isNumber() || v.isVector()) return v;
             } else {
-                Value r = negate(v);
+                WorkBudget w = budget();
+                Value r = negate(v, w);
+                settle(w, e.loc);
                 if (!r.isUndef()) return r;
             }
             warn(e.loc, std::string("undefined operation (") + (u.op == UnaryOp::Plus ? "+" : "-") +
@@ -462,6 +520,7 @@ Value Evaluator::eval(const Expr& e, const ContextPtr& ctx) {
                            (static_cast<unsigned char>(s[p + len]) & 0xC0) == 0x80)
                         ++len;
                     if (static_cast<double>(count) == k) return s.substr(p, len);
+                    spend(e.loc);  // indexing walks the code points before k
                     ++count;
                     p += len;
                 }

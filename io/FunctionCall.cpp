@@ -8,6 +8,23 @@ namespace io {
 // The most tail calls one call may chain (OpenSCAD allows about a million).
 constexpr uint64_t kMaxTailCalls = 2'000'000;
 
+namespace {
+
+// The dynamic scope a tail call passes on: the $-variables visible from c (nearest wins),
+// gathered into one context whose dynamic parent is the caller of the whole loop. Chaining
+// c itself instead would lengthen, with every tail call, the chain a $-lookup walks: a
+// million calls would take quadratic time. Only $-names are looked up dynamically, so what
+// the callee sees is the same.
+ContextPtr dynamicScopeOf(const ContextPtr& c, const ContextPtr& loopCaller) {
+    ContextPtr scope = Context::make(nullptr, loopCaller, nullptr);
+    for (const Context* d = c.get(); d && d != loopCaller.get(); d = d->dynamicParent.get())
+        for (const auto& [name, value] : d->variables)
+            if (!name.empty() && name[0] == '$' && !scope->findLocal(name)) scope->set(name, value);
+    return scope;
+}
+
+}  // namespace
+
 Evaluator::DepthGuard::DepthGuard(Evaluator& ev, Loc loc, const std::string& name) : e(ev) {
     if (++e.depth_ > e.options_.maxCallDepth) {
         --e.depth_;
@@ -104,6 +121,7 @@ Value Evaluator::callUserFunction(const Parameters* params, const Expr* body, Co
         if (tailCalls > kMaxTailCalls)
             fail(loc, "recursion too deep calling '" + currentName + "' (more than " +
                           std::to_string(kMaxTailCalls) + " tail calls)");
+        spend(loc, kCallSteps);
         ContextPtr c = bindParameters(*params, args, definition, callerCtx, loc, currentName);
         const Expr* e = body;
         bool tailCall = false;
@@ -146,7 +164,7 @@ Value Evaluator::callUserFunction(const Parameters* params, const Expr* body, Co
                     params = next->params;
                     body = next->body;
                     definition = next->definition;
-                    callerCtx = c;
+                    callerCtx = dynamicScopeOf(c, caller);
                     loc = call.loc;
                     currentName = std::move(nextName);
                     tailCall = true;

@@ -11,6 +11,10 @@ uint32_t SourceFiles::add(std::string name, std::filesystem::path path, std::str
 }
 
 std::optional<uint32_t> SourceFiles::load(const std::filesystem::path& path, std::string& error) {
+    if (!filesAllowed_) {
+        error = "reading files is not allowed here";
+        return std::nullopt;
+    }
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) {
         error = "'" + path.string() + "' is a directory";

@@ -14,8 +14,12 @@ class SourceFiles {
 public:
     // Adds text under a display name; returns its file index.
     uint32_t add(std::string name, std::filesystem::path path, std::string text);
-    // Reads a file from disk; nothing (and a message in error) when it cannot be read.
+    // Reads a file from disk; nothing (and a message in error) when it cannot be read or
+    // files are not allowed.
     std::optional<uint32_t> load(const std::filesystem::path& path, std::string& error);
+
+    // false: load() refuses every file (evaluating untrusted text).
+    void allowFiles(bool allowed) { filesAllowed_ = allowed; }
 
     const std::string& name(uint32_t file) const { return files_[file].name; }
     const std::string& text(uint32_t file) const { return files_[file].text; }
@@ -35,6 +39,7 @@ private:
         std::string text;
     };
     std::vector<File> files_;
+    bool filesAllowed_ = true;
 };
 
 }  // namespace io

@@ -127,6 +127,8 @@ Instance Evaluator::group(std::vector<csg::NodePtr> parts, bool anyPresent, uint
 }
 
 Instance Evaluator::instantiate(const Stmt& s, const ContextPtr& ctx, const GeomState& state) {
+    spend(s.loc, kStatementSteps);
+    checkStack(s.loc);
     const Modifier modifier = s.kind == StmtKind::If
                                   ? static_cast<const IfStmt&>(s).modifier
                                   : static_cast<const InstantiationStmt&>(s).modifier;
@@ -204,7 +206,7 @@ Instance Evaluator::instantiateCall(const InstantiationStmt& s, const ContextPtr
                 fail(s.loc, "assert() needs a condition; expected assert(condition, message)");
             if (!args[0].value.truthy()) {
                 std::string message = "assertion failed";
-                if (args.size() > 1) message += ": " + args[1].value.toString();
+                if (args.size() > 1) message += ": " + printed(args[1].value, false, s.loc);
                 fail(s.loc, message);
             }
         }
@@ -276,7 +278,7 @@ Instance Evaluator::instantiateChildrenCall(const InstantiationStmt& s, const Co
             if (k >= 0 && k < static_cast<double>(count))
                 selected.push_back(static_cast<size_t>(k));
             else
-                warn(args[0].loc, "children() index " + item.repr() + " out of range (" +
+                warn(args[0].loc, "children() index " + item.brief() + " out of range (" +
                                       std::to_string(count) + " children)");
             return true;
         });

@@ -1,5 +1,6 @@
 #include "io/Value.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -11,6 +12,12 @@ double Range::count() const {
     // A little slack so [0:0.1:0.3] reaches 0.3 despite rounding, as in OpenSCAD.
     const double n = std::floor((end - begin) / step + 1e-9);
     return n < 0.0 ? 0.0 : n + 1.0;
+}
+
+Value::Value(ValueList list) {
+    uint32_t deepest = 0;
+    for (const Value& item : list) deepest = std::max(deepest, item.depth());
+    v_ = std::make_shared<const ListData>(ListData{std::move(list), deepest + 1});
 }
 
 bool Value::truthy() const {
@@ -77,7 +84,9 @@ static void quote(std::string& out, const std::string& s) {
     out += '"';
 }
 
-static void append(std::string& out, const Value& v, bool quoteStrings) {
+static void append(std::string& out, const Value& v, bool quoteStrings, WorkBudget& budget) {
+    if (!budget.spend()) return;
+    const size_t before = out.size();
     switch (v.type()) {
         case Value::Type::Undef:
             out += "undef";
@@ -87,8 +96,10 @@ static void append(std::string& out, const Value& v, bool quoteStrings) {
             break;
         case Value::Type::Number:
             out += formatNumber(v.number());
+            budget.spend(out.size() - before);  // printing costs a unit per character
             break;
         case Value::Type::String:
+            if (!budget.spend(v.string().size())) return;
             if (quoteStrings)
                 quote(out, v.string());
             else
@@ -100,7 +111,8 @@ static void append(std::string& out, const Value& v, bool quoteStrings) {
             for (const Value& item : v.list()) {
                 if (!first) out += ", ";
                 first = false;
-                append(out, item, true);
+                append(out, item, true, budget);
+                if (budget.exhausted) return;
             }
             out += ']';
             break;
@@ -109,6 +121,7 @@ static void append(std::string& out, const Value& v, bool quoteStrings) {
             const Range& r = v.range();
             out += '[' + formatNumber(r.begin) + " : " + formatNumber(r.step) + " : " +
                    formatNumber(r.end) + ']';
+            budget.spend(out.size() - before);
             break;
         }
         case Value::Type::Function:
@@ -117,19 +130,40 @@ static void append(std::string& out, const Value& v, bool quoteStrings) {
     }
 }
 
-std::string Value::repr() const {
+std::string Value::repr(WorkBudget& budget) const {
     std::string out;
-    append(out, *this, true);
+    append(out, *this, true, budget);
     return out;
+}
+
+std::string Value::toString(WorkBudget& budget) const {
+    std::string out;
+    append(out, *this, false, budget);
+    return out;
+}
+
+std::string Value::repr() const {
+    WorkBudget unlimited;
+    return repr(unlimited);
 }
 
 std::string Value::toString() const {
-    std::string out;
-    append(out, *this, false);
+    WorkBudget unlimited;
+    return toString(unlimited);
+}
+
+std::string Value::brief(size_t maxChars) const {
+    WorkBudget budget{maxChars};
+    std::string out = repr(budget);
+    if (budget.exhausted || out.size() > maxChars) {
+        out.resize(std::min(out.size(), maxChars));
+        out += "...";
+    }
     return out;
 }
 
-bool Value::operator==(const Value& other) const {
+bool Value::equals(const Value& other, WorkBudget& budget) const {
+    if (!budget.spend()) return false;
     if (type() != other.type()) return false;
     switch (type()) {
         case Type::Undef:
@@ -139,9 +173,14 @@ bool Value::operator==(const Value& other) const {
         case Type::Number:
             return number() == other.number();
         case Type::String:
-            return string() == other.string();
-        case Type::Vector:
-            return list() == other.list();
+            return budget.spend(string().size()) && string() == other.string();
+        case Type::Vector: {
+            const ValueList &a = list(), &b = other.list();
+            if (a.size() != b.size()) return false;
+            for (size_t i = 0; i < a.size(); ++i)
+                if (!a[i].equals(b[i], budget)) return false;
+            return true;
+        }
         case Type::Range:
             return range().begin == other.range().begin && range().step == other.range().step &&
                    range().end == other.range().end;
@@ -149,6 +188,11 @@ bool Value::operator==(const Value& other) const {
             return &function() == &other.function();
     }
     return false;
+}
+
+bool Value::operator==(const Value& other) const {
+    WorkBudget unlimited;
+    return equals(other, unlimited);
 }
 
 const char* Value::typeName(Type t) {

@@ -254,3 +254,82 @@ TEST(IoDiagnostics, OpenScadCsgExportRoundTrip) {
                 EXPECT_NEAR(leavesA[i].world[c][r], leavesB[i].world[c][r], 2e-5) << i;
     }
 }
+
+// ---- bounded work: every unbounded loop, recursion or growth is an error at its location ----
+
+namespace {
+
+// The first error of a part evaluated with a small work budget.
+std::string errorWithin(uint64_t maxSteps, const std::string& source) {
+    EvaluateOptions options;
+    options.echo = [](const std::string&) {};
+    options.maxSteps = maxSteps;
+    EvaluateResult r = evaluateString(source, "part.scad", options);
+    EXPECT_FALSE(r.ok()) << source;
+    for (const Diagnostic& d : r.diagnostics)
+        if (d.severity == Severity::Error)
+            return std::to_string(d.line) + ":" + std::to_string(d.col) + ": " + d.message;
+    return "<no error>";
+}
+
+}  // namespace
+
+TEST(IoDiagnostics, WorkLimitStopsNestedLoopsAndExponentialRecursion) {
+    // Each loop alone is under the 10^7-iteration cap; together they are 10^12 cubes.
+    EXPECT_TRUE(contains(errorWithin(1'000'000, "for (i = [0:1e6])\n  for (j = [0:1e6]) cube(1);"),
+                         "evaluation takes too long"));
+    // 2^60 calls, each well within the depth limit.
+    const std::string e =
+        errorWithin(1'000'000, "function f(n) = n <= 0 ? 1 : f(n - 1) + f(n - 1);\necho(f(60));");
+    EXPECT_TRUE(contains(e, "evaluation takes too long: more than 1000000 steps")) << e;
+    EXPECT_EQ(e.substr(0, 2), "1:") << e;
+    // A range too long to iterate is its own error, at the range.
+    EXPECT_EQ(firstError("x = [for (i = [0:1e12]) i];"),
+              "1:11: range has too many elements (1e+12)");
+}
+
+TEST(IoDiagnostics, WorkLimitCoversWalksOverSharedLists) {
+    // c holds b a thousand times, which holds a a thousand times: a billion numbers that cost
+    // three thousand steps to build. Printing, comparing or adding them is bounded work.
+    const std::string shared =
+        "a = [for (i = [0:999]) i]; b = [for (i = [0:999]) a]; c = [for (i = [0:999]) b];\n"
+        "b2 = [for (i = [0:999]) [for (j = [0:999]) j]]; c2 = [for (i = [0:999]) b2];\n";
+    for (const char* use : {"echo(c);", "x = str(c);", "x = c == c2;", "x = c < c2;", "x = c + c;",
+                            "x = -c;", "x = c * 2;", "x = chr(c);"}) {
+        const std::string e = errorWithin(1'000'000, shared + use);
+        EXPECT_TRUE(contains(e, "2:") && contains(e, "evaluation takes too long")) << use << e;
+    }
+    // A message quoting a huge value is cut short rather than printed whole.
+    const std::string e = firstError(shared + "cube(size = c);");
+    EXPECT_TRUE(contains(e, "'size' must be") && e.size() < 300) << e;
+}
+
+TEST(IoDiagnostics, StringsAndListNestingAreBounded) {
+    // str(s, s) doubles: 2^40 bytes after forty calls.
+    EXPECT_TRUE(contains(
+        firstError("function f(s, n) = n == 0 ? s : f(str(s, s), n - 1);\nx = f(\"ab\", 40);"),
+        "string too long"));
+    // Tail calls wrap a list a hundred thousand times; printing or freeing it would recurse as
+    // deep, so nesting past kMaxListDepth is an error at the list.
+    EXPECT_EQ(firstError("function f(n, acc) = n == 0 ? acc : f(n - 1, [acc]);\nx = f(1e5, []);"),
+              "1:46: lists nested too deeply (more than 10000 levels)");
+}
+
+TEST(IoDiagnostics, DeepExpressionsTimesDeepRecursionHitTheStackLimit) {
+    // Each call evaluates a 4000-level expression before recursing: well within the call
+    // depth limit, far beyond any stack. The evaluator's stack check names the place.
+    std::string body = "f(n - 1)";
+    for (int i = 0; i < 4000; ++i) body += " + 1";
+    const std::string e = firstError("function f(n) = n <= 0 ? 0 : " + body + ";\nx = f(9000);");
+    EXPECT_TRUE(contains(e, "nesting too deep") || contains(e, "recursion too deep")) << e;
+}
+
+TEST(IoDiagnostics, SandboxedEvaluationReadsNoFiles) {
+    EvaluateOptions options;
+    options.allowFiles = false;
+    EvaluateResult r = evaluateString("include </etc/hostname>\ncube();", "part.scad", options);
+    ASSERT_FALSE(r.ok());
+    EXPECT_TRUE(contains(formatDiagnostic(r.diagnostics.at(0)),
+                         "part.scad:1:1: error: cannot include '/etc/hostname': reading files "
+                         "is not allowed"));
+}

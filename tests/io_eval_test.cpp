@@ -155,6 +155,29 @@ TEST(IoEval, Recursion) {
               (std::vector<std::string>{"ECHO: 2", "ECHO: 1", "ECHO: 0"}));
 }
 
+TEST(IoEval, TailCallsKeepDollarVariablesWithoutSlowingDown) {
+    // A million tail calls each reading $y: the dynamic scope must not grow per call (that
+    // made each lookup walk every earlier call: about 5e11 steps).
+    EXPECT_EQ(echo1("$y = 2; function g(n, acc = 0) = n <= 0 ? acc : g(n - 1, acc + $y);"
+                    "echo(g(1000000));"),
+              "ECHO: 2e+6");
+    // $-variables set along the way are still seen by the calls after them.
+    EXPECT_EQ(echo1("function h(n, $d = 0) = n <= 0 ? $d : let($e = n) k(n, $d + $e);"
+                    "function k(n, d) = h(n - 1, $d = d);"
+                    "echo(h(4));"),
+              "ECHO: 10");
+}
+
+TEST(IoEval, RandsSeedIsTakenModulo2To32) {
+    // A huge or non-finite seed is not undefined behaviour: 2^32 + 5 seeds like 5.
+    EXPECT_EQ(echo1("echo(rands(0, 1, 2, 4294967301) == rands(0, 1, 2, 5));"), "ECHO: true");
+    EXPECT_EQ(echo1("echo(len(rands(0, 1, 1, 1e300)), len(rands(0, 1, 1, 1/0)));"), "ECHO: 1, 1");
+    Outcome r = run("x = rands(0, 1, 0/0);");
+    ASSERT_TRUE(r.result.ok());
+    ASSERT_EQ(r.result.diagnostics.size(), 1u);
+    EXPECT_EQ(r.result.diagnostics[0].message, "rands() parameter could not be converted");
+}
+
 TEST(IoEval, ArgumentsPositionalNamedAndDefault) {
     EXPECT_EQ(echo1("function f(a, b = 2, c = 3) = a + 10 * b + 100 * c;"
                     "echo(f(1), f(1, c = 0), f(b = 5, a = 0));"),

@@ -1,0 +1,2 @@
+s = "never closed;
+/* and a comment that never ends

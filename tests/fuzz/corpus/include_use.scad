@@ -1,0 +1,3 @@
+include <missing.scad>
+use <also_missing.scad>
+cube(1);

@@ -1,0 +1,1 @@
+s = "ünïcödé ☃ 𝄞"; echo(len(s), s[1], str(s, s));
