@@ -193,6 +193,25 @@ Instance cylinder(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ct
     return node;
 }
 
+// torus(R, r): the ring torus of issue 5 around the z axis; D and d give diameters (d over
+// r and D over R, as OpenSCAD's d over r). Not an OpenSCAD module, so there is no empty
+// fallback: anything but R > r > 0 is an error naming the expected form.
+Instance torus(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+               const GeomState& state) {
+    BoundArgs b = bind(e, s, ctx, {"R", "r", "D", "d"}, "torus(R, r) with R > r > 0");
+    if (!(b.given(0) || b.given(2)) || !(b.given(1) || b.given(3)))
+        e.fail(s.loc, "torus() needs both radii; expected " + b.form + " (or D, d for diameters)");
+    const double major =
+        b.given(2) ? numberArg(e, b, 2, "D", 0.0) / 2.0 : numberArg(e, b, 0, "R", 0.0);
+    const double minor =
+        b.given(3) ? numberArg(e, b, 3, "d", 0.0) / 2.0 : numberArg(e, b, 1, "r", 0.0);
+    const csg::Torus shape{major, minor};
+    if (shape.invalidReason())
+        e.fail(s.loc, "torus(): R = " + formatNumber(major) + ", r = " + formatNumber(minor) +
+                          " is not a ring torus; expected " + b.form);
+    return csg::leaf(shape, {leafTag(e, s, state), state.material});
+}
+
 Instance halfspace(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                    const GeomState& state) {
     BoundArgs b = bind(e, s, ctx, {"normal", "offset"}, "halfspace(normal, offset)");
@@ -451,7 +470,7 @@ Instance unsupported(Evaluator& e, const InstantiationStmt& s, const ContextPtr&
                      const GeomState&) {
     e.fail(s.loc, "'" + s.name +
                       "' is not supported by csgray (only 3-D CSG of sphere, cube, "
-                      "cylinder and halfspace is)");
+                      "cylinder, halfspace and torus is)");
 }
 
 const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {
@@ -460,6 +479,7 @@ const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {
         {"sphere", sphere},
         {"cylinder", cylinder},
         {"halfspace", halfspace},
+        {"torus", torus},
         {"union", unionModule},
         {"group", unionModule},
         {"render", unionModule},

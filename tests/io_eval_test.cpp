@@ -331,6 +331,57 @@ TEST(IoEval, HalfSpace) {
     EXPECT_EQ(h.offset, 2.0);
 }
 
+TEST(IoEval, TorusRadiiPositionalNamedAndDiameters) {
+    auto radii = [](const std::string& source) {
+        const csg::NodePtr node = root(source);
+        if (!node || !std::holds_alternative<csg::Torus>(node->primitive))
+            return std::pair<double, double>(-1, -1);
+        const auto& t = std::get<csg::Torus>(node->primitive);
+        return std::pair<double, double>(t.majorRadius, t.minorRadius);
+    };
+    using P = std::pair<double, double>;
+    EXPECT_EQ(radii("torus(3, 1);"), P(3, 1));
+    EXPECT_EQ(radii("torus(R = 5, r = 0.5);"), P(5, 0.5));
+    EXPECT_EQ(radii("torus(r = 0.5, R = 5);"), P(5, 0.5));
+    EXPECT_EQ(radii("torus(D = 10, d = 2);"), P(5, 1));
+    EXPECT_EQ(radii("torus(4, r = 3, d = 2);"), P(4, 1));  // d beats r, as in sphere()
+    EXPECT_EQ(radii("torus(4, 1, $fn = 8);"), P(4, 1));    // $fn accepted: surfaces are exact
+    // In a boolean and under a transform like any solid.
+    auto l = leaves(root("difference() { translate([0, 0, 2]) torus(2, 0.5); cube(1); }"));
+    ASSERT_EQ(l.size(), 2u);
+    ASSERT_TRUE(std::holds_alternative<csg::Torus>(l[0].first->primitive));
+    expectNear(csg::Vec3(l[0].second[3]), {0, 0, 2});
+}
+
+TEST(IoEval, TorusBadArgumentsNameTheExpectedForm) {
+    auto error = [](const std::string& source) {
+        Outcome r = run(source);
+        EXPECT_FALSE(r.result.ok()) << source;
+        for (const auto& d : r.result.diagnostics)
+            if (d.severity == Severity::Error) return formatDiagnostic(d);
+        return std::string("<no error>");
+    };
+    const std::string form = "expected torus(R, r) with R > r > 0";
+    EXPECT_EQ(error("cube();\ntorus(1, 2);"),
+              "test.scad:2:1: error: torus(): R = 1, r = 2 is not a ring torus; " + form);
+    EXPECT_EQ(error("torus(2, 2);"),
+              "test.scad:1:1: error: torus(): R = 2, r = 2 is not a ring torus; " + form);
+    EXPECT_EQ(error("torus(2, 0);"),
+              "test.scad:1:1: error: torus(): R = 2, r = 0 is not a ring torus; " + form);
+    EXPECT_EQ(error("torus(2, -1);"),
+              "test.scad:1:1: error: torus(): R = 2, r = -1 is not a ring torus; " + form);
+    EXPECT_EQ(error("torus(2);"), "test.scad:1:1: error: torus() needs both radii; " + form +
+                                      " (or D, d for diameters)");
+    EXPECT_EQ(error("torus(r = 1);"), "test.scad:1:1: error: torus() needs both radii; " + form +
+                                          " (or D, d for diameters)");
+    EXPECT_EQ(error("torus(\"big\", 1);"),
+              "test.scad:1:7: error: torus(): 'R' must be a finite number, got \"big\"; "
+              "expected torus(R, r) with R > r > 0");
+    EXPECT_EQ(error("torus(1/0, 1);"),
+              "test.scad:1:7: error: torus(): 'R' must be a finite number, got inf; "
+              "expected torus(R, r) with R > r > 0");
+}
+
 TEST(IoEval, RotationsAreExactAtRightAngles) {
     auto l = leaves(root("rotate([0, 0, 90]) cube();"));
     ASSERT_EQ(l.size(), 1u);
