@@ -317,6 +317,7 @@ const std::unordered_map<std::string, Evaluator::BuiltinFunction>& table() {
              return static_cast<double>(cp);
          }},
         {"rands", rands},
+        {"search", builtinSearch},
         {"is_undef",
          [](Evaluator&, const Args& a, Loc) -> Value {
              return a.size() == 1 && a[0].value.isUndef();

@@ -79,6 +79,10 @@ struct ArgValue {
 };
 using ArgValues = std::vector<ArgValue>;
 
+class Evaluator;
+// OpenSCAD's search() (Search.cpp).
+Value builtinSearch(Evaluator& e, const ArgValues& args, Loc loc);
+
 class Evaluator {
 public:
     Evaluator(SourceFiles& sources, Model& model, std::vector<Diagnostic>& diagnostics,

@@ -1,5 +1,6 @@
 #include "io/SourceFiles.h"
 
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -40,10 +41,36 @@ std::optional<uint32_t> SourceFiles::load(const std::filesystem::path& path, std
     return add(path.string(), path, std::move(text));
 }
 
+// The library directories searched after the including file's own, in OpenSCAD's order.
+static std::vector<std::filesystem::path> libraryDirectories() {
+    std::vector<std::filesystem::path> dirs;
+    if (const char* env = std::getenv("OPENSCADPATH")) {
+        const std::string list(env);
+        for (size_t begin = 0; begin <= list.size();) {
+            size_t end = list.find(':', begin);
+            if (end == std::string::npos) end = list.size();
+            if (end > begin) dirs.emplace_back(list.substr(begin, end - begin));
+            begin = end + 1;
+        }
+    }
+    if (const char* home = std::getenv("HOME"); home && *home)
+        dirs.push_back(std::filesystem::path(home) / ".local/share/OpenSCAD/libraries");
+    dirs.emplace_back("/usr/share/openscad/libraries");
+    return dirs;
+}
+
 std::filesystem::path SourceFiles::resolve(const std::string& written, uint32_t from) const {
     const std::filesystem::path p(written);
     if (p.is_absolute()) return p;
-    return files_[from].path.parent_path() / p;
+    const std::filesystem::path local = files_[from].path.parent_path() / p;
+    if (!filesAllowed_) return local;  // no looking around the disk either
+    std::error_code ec;
+    if (std::filesystem::exists(local, ec)) return local;
+    for (const auto& dir : libraryDirectories()) {
+        const std::filesystem::path candidate = dir / p;
+        if (std::filesystem::is_regular_file(candidate, ec)) return candidate;
+    }
+    return local;
 }
 
 }  // namespace io

@@ -28,8 +28,11 @@ public:
     // Frees a file's text once it is parsed (names stay for diagnostics).
     void releaseText(uint32_t file) { std::string().swap(files_[file].text); }
 
-    // A name written in include <name> / use <name> inside file `from`: relative to that
-    // file's directory (OpenSCAD's rule), absolute names as they are.
+    // A name written in include <name> / use <name> inside file `from`, found as OpenSCAD
+    // finds it: absolute names as they are; otherwise the first that exists of that file's
+    // directory, each directory of $OPENSCADPATH (':'-separated, in order), the user library
+    // (~/.local/share/OpenSCAD/libraries) and the system one (/usr/share/openscad/libraries).
+    // When none has it, the path next to `from` (so the error names where it was expected).
     std::filesystem::path resolve(const std::string& written, uint32_t from) const;
 
 private:

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 #include "io/Evaluate.h"
 
 using namespace io;
@@ -200,6 +202,50 @@ TEST(IoEval, UseImportsDefinitionsButNotGeometry) {
 
 // ---- expressions ----
 
+TEST(IoEval, IncludeAndUseSearchOpenScadPathAfterTheIncludingDirectory) {
+    // main/ includes and uses names that only $OPENSCADPATH's second directory has, except
+    // shadow.scad, which main/ has too: the including file's directory comes first.
+    const auto root = std::filesystem::temp_directory_path() /
+                      ("csgray_io_eval_openscadpath_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(root);
+    for (const char* dir : {"main", "libs/a", "libs/b/shapes"})
+        std::filesystem::create_directories(root / dir);
+    std::ofstream(root / "libs/b/inc.scad") << "included = 7;\n";
+    std::ofstream(root / "libs/b/shapes/ball.scad") << "module ball() sphere(2);\n";
+    std::ofstream(root / "libs/b/shadow.scad") << "where = \"library\";\n";
+    std::ofstream(root / "main/shadow.scad") << "where = \"beside\";\n";
+    const std::string main = (root / "main/part.scad").string();
+    const char* previous = std::getenv("OPENSCADPATH");
+    const std::string saved = previous ? previous : "";
+    const std::string path = (root / "nowhere").string() + ":" + (root / "libs/a").string() +
+                             "::" + (root / "libs/b").string();
+    ASSERT_EQ(::setenv("OPENSCADPATH", path.c_str(), 1), 0);
+
+    Outcome r =
+        run("include <inc.scad>\ninclude <shadow.scad>\nuse <shapes/ball.scad>\n"
+            "echo(included, where);\nball();\n",
+            {}, main);
+    EXPECT_TRUE(r.result.ok());
+    EXPECT_EQ(r.echoes, (std::vector<std::string>{"ECHO: 7, \"beside\""}));
+    if (r.result.ok()) {
+        auto l = leaves(r.result.model->root);
+        ASSERT_EQ(l.size(), 1u);
+        EXPECT_TRUE(std::holds_alternative<csg::Sphere>(l[0].first->primitive));
+    }
+    // Found nowhere: the error names the path beside the including file.
+    Outcome missing = run("include <absent.scad>\n", {}, main);
+    ASSERT_FALSE(missing.result.ok());
+    EXPECT_NE(missing.result.diagnostics.at(0).message.find((root / "main/absent.scad").string()),
+              std::string::npos)
+        << missing.result.diagnostics.at(0).message;
+    // Without $OPENSCADPATH the library files are not found.
+    ASSERT_EQ(::unsetenv("OPENSCADPATH"), 0);
+    EXPECT_FALSE(run("include <inc.scad>\n", {}, main).result.ok());
+
+    if (previous) ::setenv("OPENSCADPATH", saved.c_str(), 1);
+    std::filesystem::remove_all(root);
+}
+
 TEST(IoEval, ComprehensionsAndLet) {
     EXPECT_EQ(echo1("echo([for (i = [1:4]) if (i % 2 == 0) i * i]);"), "ECHO: [4, 16]");
     EXPECT_EQ(echo1("echo([each [1, 2], each [3:4]]);"), "ECHO: [1, 2, 3, 4]");
@@ -254,6 +300,48 @@ TEST(IoEval, BuiltinFunctions) {
     EXPECT_EQ(echo1("echo(rands(0, 1, 2, 42));"), "ECHO: [0.796543, 0.183435]");
     // Unseeded rands is still deterministic between runs.
     EXPECT_EQ(echo1("echo(rands(0, 1, 1));"), echo1("echo(rands(0, 1, 1));"));
+}
+
+// search() with OpenSCAD 2021.01's rules (func.cc), each result derived by hand.
+TEST(IoEval, SearchInStrings) {
+    // Each character of the match string is searched on its own; with one match wanted, a
+    // character not found adds nothing.
+    EXPECT_EQ(echo1("echo(search(\"a\", \"abcdabcd\"), search(\"e\", \"abcdabcd\"));"),
+              "ECHO: [0], []");
+    EXPECT_EQ(echo1("echo(search(\"abc\", \"abcdabcd\"), search(\"a\", \"abcdabcd\", 0));"),
+              "ECHO: [0, 1, 2], [[0, 4]]");
+    EXPECT_EQ(echo1("echo(search(\"ae\", \"abcdabcd\", 0), search(\"b\", \"bbbb\", 2));"),
+              "ECHO: [[0, 4], []], [[0, 1]]");
+    EXPECT_EQ(echo1("echo(search(\"\u00e9\", \"a\u00e9b\"));"), "ECHO: [1]");  // code points
+}
+
+TEST(IoEval, SearchInTables) {
+    const std::string data = "data = [[\"a\", 1], [\"b\", 2], [\"c\", 3], [\"a\", 4]];";
+    // A string against a table: the first character of column 0 (or index_col_num).
+    EXPECT_EQ(echo1(data + "echo(search(\"a\", data, 0), search(\"ca\", data));"),
+              "ECHO: [[0, 3]], [2, 0]");
+    EXPECT_EQ(echo1("echo(search(\"2\", [[1, \"2x\"], [3, \"4\"]], 1, 1));"), "ECHO: [0]");
+    // A list: each element searched as a whole value, [] for one not found.
+    EXPECT_EQ(echo1(data + "echo(search([\"b\", \"z\", \"a\"], data));"), "ECHO: [1, [], 0]");
+    EXPECT_EQ(echo1(data + "echo(search([\"a\"], data, 0));"), "ECHO: [[0, 3]]");
+    // A number: one flat list, limited by num_returns_per_match; column by index_col_num.
+    EXPECT_EQ(echo1("echo(search(3, [1, 3, 5, 3]), search(3, [1, 3, 5, 3], 0));"),
+              "ECHO: [1], [1, 3]");
+    EXPECT_EQ(echo1("echo(search(3, [1, 3, 5, 3, 3], 2), search(9, [1, 3]));"), "ECHO: [1, 3], []");
+    EXPECT_EQ(echo1(data + "echo(search(3, data, 0, 1), search(4, data, 1, 1));"),
+              "ECHO: [2], [3]");
+    EXPECT_EQ(echo1("echo(search([3, 5, 7], [1, 3, 5, 3]), search([3, 5], [1, 3, 5, 3], 0));"),
+              "ECHO: [1, 2, []], [[1, 3], [2]]");
+}
+
+TEST(IoEval, SearchBadArgumentsWarnAndGiveUndefOrEmpty) {
+    Outcome r = run("echo(search(1), search(true, [true]), search(\"a\", [\"abc\", [\"a\"]]));");
+    ASSERT_TRUE(r.result.ok());
+    EXPECT_EQ(r.echoes.at(0), "ECHO: undef, undef, []");
+    ASSERT_EQ(r.result.diagnostics.size(), 3u);
+    EXPECT_NE(r.result.diagnostics[0].message.find("at least 2 arguments"), std::string::npos);
+    EXPECT_NE(r.result.diagnostics[1].message.find("cannot search for a bool"), std::string::npos);
+    EXPECT_NE(r.result.diagnostics[2].message.find("invalid entry at index 0"), std::string::npos);
 }
 
 TEST(IoEval, FunctionLiteralsAndClosures) {
