@@ -62,22 +62,23 @@ struct SlabRay {
 };
 
 // Clips [t0, t1] to the part of the ray inside box b; returns false when nothing is left.
-// NaN from 0 * inf (ray in a slab's plane, d = 0 on that axis) is ignored by the comparisons,
-// which treats the ray as inside that slab. Both ends are widened by tol::kSlabWiden so
-// rounding never culls a box the exact test would hit.
+// NaN from 0 * inf (a ray in a slab's plane, d = 0 on that axis) must count as "inside that
+// slab": every update keeps the running bound on the right of the comparison, so a NaN
+// candidate never replaces it. The result is widened by tol::kSlabWiden once at the end (the
+// widening is monotone, so this equals widening each axis) so that rounding never culls a box
+// the exact test would hit.
 inline bool clipToBox(const SlabRay& r, const Bounds3& b, double& t0, double& t1) {
     for (int a = 0; a < 3; ++a) {
         double tNear = (b.lo[a] - r.o[a]) * r.invD[a];
         double tFar = (b.hi[a] - r.o[a]) * r.invD[a];
         if (tNear > tFar) std::swap(tNear, tFar);
-        // Scale rather than add, so an infinite end stays infinite instead of inf - inf.
-        tNear *= 1.0 - std::copysign(tol::kSlabWiden, tNear);
-        tFar *= 1.0 + std::copysign(tol::kSlabWiden, tFar);
         t0 = tNear > t0 ? tNear : t0;
         t1 = tFar < t1 ? tFar : t1;
-        if (t0 > t1) return false;
     }
-    return true;
+    // Scale rather than add, so an infinite end stays infinite instead of inf - inf.
+    t0 *= 1.0 - std::copysign(tol::kSlabWiden, t0);
+    t1 *= 1.0 + std::copysign(tol::kSlabWiden, t1);
+    return t0 <= t1;
 }
 
 }  // namespace csg
