@@ -26,7 +26,72 @@ double polishRoot(const Polynomial& p, double x) {
     return x;
 }
 
-double refineBracketed(const Polynomial& p, double lo, double hi) {
+bool bracketSmallEnough(double lo, double hi, double relTol) {
+    const double mid = 0.5 * lo + 0.5 * hi;
+    if (mid <= lo || mid >= hi) return true;
+    return hi - lo <= relTol * std::max({1.0, std::abs(lo), std::abs(hi)});
+}
+
+double rootBound(const Polynomial& input) {
+    const Polynomial p = input.trimmed();
+    const int n = p.degree();
+    if (n == 0 || p.leading() == 0.0) return kInfinity;
+    // Step: max over i of |c[n-i] / c[n]|^(1/i), in logarithms so no ratio overflows; the
+    // constant term's ratio is halved (Fujiwara's refinement).
+    const double logLead = std::log2(std::abs(p.leading()));
+    double best = -kInfinity;
+    for (int i = 1; i <= n; ++i) {
+        const double c = std::abs(p[n - i]) * (i == n ? 0.5 : 1.0);
+        if (c == 0.0) continue;
+        best = std::max(best, (std::log2(c) - logLead) / i);
+    }
+    if (best == -kInfinity) return 0.0;  // p = c t^n: the only root is 0
+    return 2.0 * std::exp2(best) * (1.0 + tol::kRootBoundMargin);
+}
+
+int clusterRoots(const Polynomial& p, double a, double b, double* out) {
+    const double fa = p(a), fb = p(b);
+    const double m = 0.5 * a + 0.5 * b;
+    if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0)) {
+        out[0] = refineBracketed(p, a, b);
+        return 1;
+    }
+    // An exact zero at an end is a split point the caller has already listed.
+    if (fa == 0.0 || fb == 0.0) return 0;
+    // A tangency is where p' vanishes: look there (Newton on p' from the midpoint, kept in
+    // the piece), since a piece that is noise by its coefficients' bound can be much wider
+    // than the zone where Horner's tighter bound calls p zero.
+    double x = m;
+    if (!isNumericalZero(p, x) && p.degree() >= 2) {
+        x = polishRoot(p.derivative(), m);
+        if (!(x >= a && x <= b)) x = m;
+    }
+    if (isNumericalZero(p, x)) {
+        out[0] = out[1] = x;
+        return 2;
+    }
+    return 0;
+}
+
+int maxSignVariations(const double* c, const double* noise, int n) {
+    // Dynamic programme over the sign of the last nonzero entry: best[s] is the most changes
+    // of a prefix whose last nonzero entry has sign s (0: +, 1: -); -1 when none yet.
+    int best[2] = {-1, -1};
+    bool anySign = false;
+    for (int i = 0; i <= n; ++i) {
+        const bool unknown = std::abs(c[i]) <= noise[i];
+        anySign = anySign || !unknown;
+        int next[2] = {best[0], best[1]};  // an unknown entry may also be 0 (skipped)
+        for (int s = 0; s < 2; ++s) {
+            if (!unknown && (s == 1) != (c[i] < 0.0)) continue;
+            next[s] = std::max({next[s], best[s], best[1 - s] >= 0 ? best[1 - s] + 1 : 0});
+        }
+        best[0] = next[0], best[1] = next[1];
+    }
+    return anySign ? std::max(best[0], best[1]) : -1;
+}
+
+double refineBracketed(const Polynomial& p, double lo, double hi, double relTol) {
     const bool risingAtLo = p(lo) < 0.0;
     double x = 0.5 * lo + 0.5 * hi;
     // 200 steps: bisection alone needs at most ~64 per binade crossed plus 53 digits; Newton
@@ -46,6 +111,7 @@ double refineBracketed(const Polynomial& p, double lo, double hi) {
         // Step 3: stop when the step no longer moves (converged, or the bracket is two
         // adjacent doubles).
         if (next == x || next <= lo || next >= hi) return x;
+        if (relTol > 0.0 && bracketSmallEnough(lo, hi, relTol)) return next;
         x = next;
     }
     return x;

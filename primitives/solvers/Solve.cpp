@@ -1,7 +1,14 @@
 #include "primitives/solvers/Solve.h"
 
+#include <algorithm>
+#include <cstring>
+
+#include "primitives/solvers/Bernstein.h"
 #include "primitives/solvers/Cubic.h"
+#include "primitives/solvers/Descartes.h"
+#include "primitives/solvers/IntervalSolver.h"
 #include "primitives/solvers/Quartic.h"
+#include "primitives/solvers/Roots.h"
 #include "primitives/solvers/Sturm.h"
 #include "primitives/solvers/Yuksel.h"
 
@@ -19,13 +26,52 @@ const char* solverName(Solver solver) {
             return "sturm-illinois";
         case Solver::Yuksel:
             return "yuksel";
+        case Solver::Descartes:
+            return "descartes";
+        case Solver::Bernstein:
+            return "bernstein";
+        case Solver::Interval:
+            return "interval";
     }
     return "?";
 }
 
-int solve(const Polynomial& input, double tlo, double thi, double* roots, Solver solver) {
+bool solverFromName(const char* name, Solver* solver) {
+    for (Solver s : kAllSolvers)
+        if (std::strcmp(name, solverName(s)) == 0) {
+            *solver = s;
+            return true;
+        }
+    return false;
+}
+
+namespace {
+
+// True when the crossings in roots[0..n) agree in parity with p's signs at the range ends
+// (when those signs are trustworthy): a cheap proof-of-consistency for a root list.
+bool parityConsistent(const Polynomial& p, double tlo, double thi, const double* roots, int n) {
+    if (isNumericalZero(p, tlo) || isNumericalZero(p, thi)) return true;
+    int crossings = 0;
+    for (int i = 0; i < n; ++i) {
+        const bool tangency =
+            (i > 0 && roots[i - 1] == roots[i]) || (i + 1 < n && roots[i + 1] == roots[i]);
+        if (!tangency) ++crossings;
+    }
+    const bool endsDiffer = (p(tlo) < 0.0) != (p(thi) < 0.0);
+    return (crossings % 2 == 1) == endsDiffer;
+}
+
+}  // namespace
+
+int solve(const Polynomial& input, double tlo, double thi, double* roots, Solver solver,
+          double relTol) {
     const Polynomial p = input.trimmed();
     if (p.degree() == 0 || !(tlo <= thi)) return 0;
+    // Step 1: no root lies beyond Fujiwara's bound; clamping there keeps t^n finite.
+    const double bound = rootBound(p);
+    tlo = std::max(tlo, -bound), thi = std::min(thi, bound);
+    if (!(tlo <= thi)) return 0;
+    // Step 2: the method.
     switch (solver) {
         case Solver::Auto: {
             if (p.degree() <= 2) return solveCubic(p, tlo, thi, roots);
@@ -35,18 +81,26 @@ int solve(const Polynomial& input, double tlo, double thi, double* roots, Solver
                                               : solveQuartic(p, tlo, thi, roots, &verified);
                 if (verified) return n;
             }
-            return solveYuksel(p, tlo, thi, roots);
+            const int n = solveYuksel(p, tlo, thi, roots, relTol);
+            if (parityConsistent(p, tlo, thi, roots, n)) return n;
+            return solveIntervalSubdivision(p, tlo, thi, roots, relTol);
         }
         case Solver::ClosedForm:
             if (p.degree() <= 3) return solveCubic(p, tlo, thi, roots);
             if (p.degree() == 4) return solveQuartic(p, tlo, thi, roots);
-            return solveYuksel(p, tlo, thi, roots);
+            return solveYuksel(p, tlo, thi, roots, relTol);
         case Solver::SturmBisection:
-            return solveSturm(p, tlo, thi, roots, SturmRefine::Bisection);
+            return solveSturm(p, tlo, thi, roots, SturmRefine::Bisection, relTol);
         case Solver::SturmIllinois:
-            return solveSturm(p, tlo, thi, roots, SturmRefine::Illinois);
+            return solveSturm(p, tlo, thi, roots, SturmRefine::Illinois, relTol);
         case Solver::Yuksel:
-            return solveYuksel(p, tlo, thi, roots);
+            return solveYuksel(p, tlo, thi, roots, relTol);
+        case Solver::Descartes:
+            return solveDescartes(p, tlo, thi, roots, relTol);
+        case Solver::Bernstein:
+            return solveBernstein(p, tlo, thi, roots, relTol);
+        case Solver::Interval:
+            return solveIntervalSubdivision(p, tlo, thi, roots, relTol);
     }
     return 0;
 }

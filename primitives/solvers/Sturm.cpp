@@ -69,15 +69,9 @@ SturmSequence buildSequence(const Polynomial& p) {
     return seq;
 }
 
-// Two doubles this close (or adjacent) bound a root to full precision.
-bool converged(double a, double b) {
-    const double mid = 0.5 * a + 0.5 * b;
-    return mid <= a || mid >= b;
-}
-
-double bisect(const Polynomial& p, double a, double b) {
+double bisect(const Polynomial& p, double a, double b, double relTol) {
     const bool negAtA = p(a) < 0.0;
-    while (!converged(a, b)) {
+    while (!bracketSmallEnough(a, b, relTol)) {
         const double m = 0.5 * a + 0.5 * b;
         const double v = p(m);
         if (v == 0.0) return m;
@@ -88,11 +82,11 @@ double bisect(const Polynomial& p, double a, double b) {
 
 // Illinois: regula falsi that halves the stale end's value when the same end is kept twice;
 // a bisection step whenever the bracket failed to halve over the last two steps.
-double illinois(const Polynomial& p, double a, double b) {
+double illinois(const Polynomial& p, double a, double b, double relTol) {
     double fa = p(a), fb = p(b);
     int side = 0;
     double widthBefore = b - a, widthLast = b - a;
-    for (int i = 0; i < 200 && !converged(a, b); ++i) {
+    for (int i = 0; i < 200 && !bracketSmallEnough(a, b, relTol); ++i) {
         double x = (a * fb - b * fa) / (fb - fa);
         if (b - a > 0.5 * widthBefore || !(x > a && x < b)) x = 0.5 * a + 0.5 * b;
         widthBefore = widthLast, widthLast = b - a;
@@ -118,7 +112,8 @@ struct Interval {
 
 }  // namespace
 
-int solveSturm(const Polynomial& input, double tlo, double thi, double* roots, SturmRefine refine) {
+int solveSturm(const Polynomial& input, double tlo, double thi, double* roots, SturmRefine refine,
+               double relTol) {
     const Polynomial p = input.trimmed();
     if (p.degree() == 0 || !(tlo <= thi)) return 0;
     const SturmSequence seq = buildSequence(p);
@@ -145,8 +140,8 @@ int solveSturm(const Polynomial& input, double tlo, double thi, double* roots, S
         const bool signChange = (fa < 0.0) != (fb < 0.0) && fa != 0.0;
         if (count == 1 && signChange) {
             // Step 2a: one crossing, bracketed by a sign change.
-            found[n++] =
-                refine == SturmRefine::Illinois ? illinois(p, iv.a, iv.b) : bisect(p, iv.a, iv.b);
+            found[n++] = refine == SturmRefine::Illinois ? illinois(p, iv.a, iv.b, relTol)
+                                                         : bisect(p, iv.a, iv.b, relTol);
             continue;
         }
         if (fb == 0.0 && count == 1) {

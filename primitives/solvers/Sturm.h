@@ -13,6 +13,8 @@ enum class SturmRefine { Bisection, Illinois };
 // The roots of p in [tlo, thi] (finite) with the contract of Roots.h; roots holds
 // p.degree() entries. Known weakness, kept on purpose as the baseline: the sequence is built in
 // floating point, so clustered or high-degree roots can be miscounted.
-int solveSturm(const Polynomial& p, double tlo, double thi, double* roots, SturmRefine refine);
+// relTol > 0 stops the refinement at that bracket width (Roots.h, bracketSmallEnough).
+int solveSturm(const Polynomial& p, double tlo, double thi, double* roots, SturmRefine refine,
+               double relTol = 0.0);
 
 }  // namespace csg

@@ -16,7 +16,7 @@ namespace {
 constexpr int kMaxRoots = Polynomial::kMaxDegree;
 
 // Roots of p in [lo, hi] as candidates (crossings once, tangencies twice), not yet merged.
-int candidates(const Polynomial& p, double lo, double hi, double* out) {
+int candidates(const Polynomial& p, double lo, double hi, double* out, double relTol) {
     // Step 1: degree <= 2 directly.
     if (p.degree() <= 0) return 0;
     if (p.degree() == 1) {
@@ -41,7 +41,7 @@ int candidates(const Polynomial& p, double lo, double hi, double* out) {
     {
         const Polynomial dp = p.derivative();
         std::array<double, kMaxRoots> crit;
-        const int nc = candidates(dp, lo, hi, crit.data());
+        const int nc = candidates(dp, lo, hi, crit.data(), relTol);
         std::sort(crit.begin(), crit.begin() + nc);
         for (int i = 0; i < nc; ++i)
             if (crit[i] > x[k - 1] && crit[i] < hi) x[k++] = crit[i];
@@ -71,18 +71,18 @@ int candidates(const Polynomial& p, double lo, double hi, double* out) {
             if (touch && n < p.degree()) out[n++] = x[i];
         }
         if (i + 1 < k && v[i] != 0.0 && v[i + 1] != 0.0 && (v[i] < 0.0) != (v[i + 1] < 0.0))
-            out[n++] = refineBracketed(p, x[i], x[i + 1]);
+            out[n++] = refineBracketed(p, x[i], x[i + 1], relTol);
     }
     return n;
 }
 
 }  // namespace
 
-int solveYuksel(const Polynomial& input, double tlo, double thi, double* roots) {
+int solveYuksel(const Polynomial& input, double tlo, double thi, double* roots, double relTol) {
     const Polynomial p = input.trimmed();
     if (p.degree() == 0 || !(tlo <= thi)) return 0;
     std::array<double, kMaxRoots> found;
-    const int n = candidates(p, tlo, thi, found.data());
+    const int n = candidates(p, tlo, thi, found.data(), relTol);
     const int m = finalizeRoots(p, found.data(), n, tlo, thi);
     std::copy(found.begin(), found.begin() + m, roots);
     return m;

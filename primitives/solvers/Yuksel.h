@@ -11,7 +11,8 @@
 namespace csg {
 
 // The roots of p in [tlo, thi] (finite) with the contract of Roots.h; roots holds
-// p.degree() entries.
-int solveYuksel(const Polynomial& p, double tlo, double thi, double* roots);
+// p.degree() entries. relTol > 0 stops each bracketed refinement (the roots' and, one degree
+// down, the critical points') at that width (Roots.h, bracketSmallEnough).
+int solveYuksel(const Polynomial& p, double tlo, double thi, double* roots, double relTol = 0.0);
 
 }  // namespace csg
