@@ -25,7 +25,16 @@ struct Evaluator {
         originScale = dLength > 0.0 ? glm::length(r.o) / dLength : 0.0;
     }
 
+    // The span stack: ctx.stack_[0, top) is in use. The vector only grows (its size is the
+    // high-water mark), so pushing never value-initializes spans in the steady state.
+    size_t top = 0;
     std::vector<Span>& stack() { return ctx.stack_; }
+
+    // Room for n more spans at top; invalidates pointers into the stack taken before.
+    Span* room(size_t n) {
+        if (stack().size() < top + n) stack().resize(std::max(top + n, 2 * stack().size()));
+        return stack().data() + top;
+    }
 
     // Does the ray within [t0, t1] meet the node's bounds?
     bool touches(const Bounds3& box, double t0, double t1) {
@@ -63,9 +72,8 @@ struct Evaluator {
         std::visit([&](const auto& shape) { shape.spans(start, d, local); }, leaf.shape);
 
         // Clip to [t0, t1] and regularize; a primitive yields at most LocalSpans::kCapacity.
-        const size_t base = stack().size();
-        stack().resize(base + local.count);
-        SpanWriter writer(stack().data() + base, originScale);
+        const size_t base = top;
+        SpanWriter writer(room(local.count), originScale);
         for (int i = 0; i < local.count; ++i) {
             const LocalSpans::Entry& e = local.entries[i];
             Span s{{e.tIn + shift, leafIndex, e.faceIn, false},
@@ -74,25 +82,24 @@ struct Evaluator {
             if (s.out.t > t1) s.out = {t1, leafIndex, kClipFace, false};
             if (s.in.t <= s.out.t) writer.emit(s);
         }
-        stack().resize(base + writer.count());
+        top = base + writer.count();
         return writer.count();
     }
 
     // Merges the list at [base, base + na) with the one right after it (nb spans) and leaves
     // the result at base. Returns its length.
     size_t mergeInPlace(SetOp op, size_t base, size_t na, size_t nb) {
-        std::vector<Span>& s = stack();
-        const size_t out = base + na + nb;
-        s.resize(out + na + nb);  // within capacity once the stack has warmed up
-        const size_t n = mergeSpans(op, s.data() + base, na, s.data() + base + na, nb,
-                                    s.data() + out, originScale);
-        std::copy(s.begin() + out, s.begin() + out + n, s.begin() + base);
-        s.resize(base + n);
+        top = base + na + nb;
+        Span* out = room(na + nb);
+        Span* s = stack().data();
+        const size_t n = mergeSpans(op, s + base, na, s + base + na, nb, out, originScale);
+        std::copy(out, out + n, s + base);
+        top = base + n;
         return n;
     }
 
     size_t evalCut(const CompiledNode& node, double t0, double t1) {
-        const size_t base = stack().size();
+        const size_t base = top;
         const size_t na = eval(node.first, t0, t1);
         if (na == 0) return 0;
         // The right operand matters only where the left one is: narrow its range to that hull.
@@ -102,7 +109,7 @@ struct Evaluator {
             return nb == 0 ? na : mergeInPlace(SetOp::Difference, base, na, nb);
         }
         if (nb == 0) {
-            stack().resize(base);
+            top = base;
             return 0;
         }
         return mergeInPlace(SetOp::Intersection, base, na, nb);
@@ -119,10 +126,10 @@ struct Evaluator {
                 if (!visit(children[node.first + i])) return;
         } else {
             uint32_t todo[kBvhMaxDepth + 1];
-            int top = 0;
-            todo[top++] = node.bvhRoot;
-            while (top > 0) {
-                const BvhNode& b = scene.bvh_[todo[--top]];
+            int pending = 0;
+            todo[pending++] = node.bvhRoot;
+            while (pending > 0) {
+                const BvhNode& b = scene.bvh_[todo[--pending]];
                 if (!touches(b.box, t0, t1)) continue;
                 if (b.count > 0) {
                     for (uint32_t i = 0; i < b.count; ++i)
@@ -132,8 +139,8 @@ struct Evaluator {
                 // Push the far child first so the near one is visited first.
                 const uint32_t self = static_cast<uint32_t>(&b - scene.bvh_.data());
                 const bool nearIsLeft = ray.d[b.axis] >= 0.0;
-                todo[top++] = nearIsLeft ? b.firstOrRight : self + 1;
-                todo[top++] = nearIsLeft ? self + 1 : b.firstOrRight;
+                todo[pending++] = nearIsLeft ? b.firstOrRight : self + 1;
+                todo[pending++] = nearIsLeft ? self + 1 : b.firstOrRight;
             }
         }
         for (uint32_t i = node.bounded; i < node.count; ++i)
@@ -141,7 +148,7 @@ struct Evaluator {
     }
 
     size_t evalUnion(const CompiledNode& node, double t0, double t1) {
-        const size_t base = stack().size();
+        const size_t base = top;
         size_t n = 0;
         forEachChild(node, t0, t1, [&](uint32_t child) {
             const size_t nb = eval(child, t0, t1);
@@ -161,9 +168,9 @@ struct Evaluator {
                          [&](uint32_t child) { return !(found = any(child, t0, t1)); });
             return found;
         }
-        const size_t base = stack().size();
+        const size_t base = top;
         const size_t n = eval(index, t0, t1);
-        stack().resize(base);
+        top = base;
         return n > 0;
     }
 
@@ -177,11 +184,11 @@ struct Evaluator {
         bool startsInside = false;
         if (touches(root.bounds, ray.tmin, t1)) {
             forEachChild(root, ray.tmin, t1, [&](uint32_t child) {
-                const size_t base = stack().size();
+                const size_t base = top;
                 const size_t n = eval(child, ray.tmin, t1);
                 if (n > 0) {
                     const Hit first = stack()[base].in;
-                    stack().resize(base);
+                    top = base;
                     if (!first.isSurface()) return !(startsInside = true);
                     if (!best || first.t < best->t) {
                         best = first;
@@ -192,7 +199,7 @@ struct Evaluator {
             });
         }
         if (!startsInside) return best;
-        const size_t base = stack().size();
+        const size_t base = top;
         const size_t n = eval(scene.root_, ray.tmin, ray.tmax);
         std::optional<Hit> hit;
         for (size_t i = base; i < base + n && !hit; ++i) {
@@ -201,14 +208,13 @@ struct Evaluator {
             else if (stack()[i].out.isSurface())
                 hit = stack()[i].out;
         }
-        stack().resize(base);
+        top = base;
         return hit;
     }
 };
 
 std::span<const Span> Scene::spans(const Ray& ray, QueryContext& ctx) const {
     ++ctx.stats.rays;
-    ctx.stack_.clear();
     Evaluator e(*this, ctx, ray);
     const size_t n = e.eval(root_, ray.tmin, ray.tmax);
     return {ctx.stack_.data(), n};
@@ -216,13 +222,11 @@ std::span<const Span> Scene::spans(const Ray& ray, QueryContext& ctx) const {
 
 std::optional<Hit> Scene::closest(const Ray& ray, QueryContext& ctx) const {
     ++ctx.stats.rays;
-    ctx.stack_.clear();
     return Evaluator(*this, ctx, ray).closest();
 }
 
 bool Scene::occluded(const Ray& ray, QueryContext& ctx) const {
     ++ctx.stats.rays;
-    ctx.stack_.clear();
     return Evaluator(*this, ctx, ray).any(root_, ray.tmin, ray.tmax);
 }
 

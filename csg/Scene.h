@@ -40,7 +40,7 @@ struct QueryStats {
 // Per-thread scratch: a stack of spans holding every intermediate list of one query.
 class QueryContext {
 public:
-    QueryContext() { stack_.reserve(256); }
+    QueryContext() { stack_.resize(256); }
     QueryStats stats;
 
 private:
