@@ -36,8 +36,9 @@ struct Span {
 // before any clipping. Ends are finite except for unbounded primitives (half-spaces), whose
 // infinite ends carry kClipFace. The leaf index is filled in by the caller.
 struct LocalSpans {
-    // A convex primitive gives 1 span, a torus 2, a degree-16 algebraic surface 8.
-    static constexpr int kCapacity = 8;
+    // A convex primitive gives 1 span, a torus 2, a degree-16 algebraic surface cut by its
+    // box 9 (16 roots split the chord into 17 pieces, alternating, inside at both ends).
+    static constexpr int kCapacity = 9;
     struct Entry {
         double tIn, tOut;
         uint16_t faceIn, faceOut;

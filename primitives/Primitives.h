@@ -5,6 +5,7 @@
 
 #include <variant>
 
+#include "primitives/AlgebraicSurface.h"
 #include "primitives/Box.h"
 #include "primitives/Cylinder.h"
 #include "primitives/HalfSpace.h"
@@ -13,9 +14,10 @@
 
 namespace csg {
 
-using Primitive = std::variant<Sphere, Box, Cylinder, HalfSpace, Torus>;
+using Primitive = std::variant<Sphere, Box, Cylinder, HalfSpace, Torus, AlgebraicSurface>;
 
 static_assert(PrimitiveShape<Sphere> && PrimitiveShape<Box> && PrimitiveShape<Cylinder> &&
-              PrimitiveShape<HalfSpace> && PrimitiveShape<Torus>);
+              PrimitiveShape<HalfSpace> && PrimitiveShape<Torus> &&
+              PrimitiveShape<AlgebraicSurface>);
 
 }  // namespace csg

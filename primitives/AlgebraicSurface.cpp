@@ -1,0 +1,155 @@
+// Notation: t is the parameter of the line o + t d (d not unit); the chord is the part of the
+// line inside the box, [tIn, tOut]; u is the solve variable, t = tMid + u h with tMid the
+// chord's middle and h the power of two at or above its half-length, so u lies in [-1, 1]
+// and scaling by h is exact. G is F seen from the box centre (AlgebraicSurface.h).
+#include "primitives/AlgebraicSurface.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "primitives/solvers/LinePoint.h"
+
+namespace csg {
+
+AlgebraicSurface AlgebraicSurface::make(const ExactPolynomial& f, const Bounds3& box, Solver solver,
+                                        double tolerance) {
+    auto data = std::make_shared<AlgebraicData>();
+    data->box = box;
+    AlgebraicSurface s{nullptr, solver, tolerance};
+    // Step 1: the input's domain.
+    const int n = f.degree();
+    if (!(box.finite() && box.lo.x < box.hi.x && box.lo.y < box.hi.y && box.lo.z < box.hi.z))
+        data->invalid = "surface bbox must be finite with lo < hi on every axis";
+    else if (n < 1)
+        data->invalid = "surface polynomial must have degree 1 to 16 (a constant is no surface)";
+    else if (!(tolerance >= 0.0) || !std::isfinite(tolerance))
+        data->invalid = "surface solver tolerance must be finite and >= 0";
+    if (data->invalid) {
+        s.data = data;
+        return s;
+    }
+    // Step 2: re-centre exactly at the box centre, then round once per coefficient.
+    data->centre = 0.5 * box.lo + 0.5 * box.hi;
+    Trivariate g = f.shifted(data->centre).toTrivariate();
+    // Step 3: scale to coefficients <= 1 by a power of two (same solid, no overflow later).
+    const double m = g.maxMagnitude();
+    if (!(m > 0.0) || !std::isfinite(m)) {
+        data->invalid = "surface polynomial coefficients must be finite and not all zero";
+        s.data = data;
+        return s;
+    }
+    const double k = std::ldexp(1.0, -std::ilogb(m));
+    for (int i = 0; i <= n; ++i)
+        for (int j = 0; i + j <= n; ++j)
+            for (int l = 0; i + j + l <= n; ++l) g.at(i, j, l) *= k;
+    data->g = g;
+    for (int a = 0; a < 3; ++a) data->gradient[a] = g.partial(a);
+    s.data = data;
+    return s;
+}
+
+const char* AlgebraicSurface::invalidReason() const {
+    if (!data) return "surface was not built";
+    return data->invalid;
+}
+
+Bounds3 AlgebraicSurface::bounds() const {
+    return data ? data->box : Bounds3{Vec3(0.0), Vec3(0.0)};
+}
+
+bool AlgebraicSurface::chord(const Vec3& o, const Vec3& d, Chord& c) const {
+    if (!data || data->invalid) return false;
+    const Bounds3& box = data->box;
+    // Step 1: the chord through the box (slabs, as Box::spans; faces 0..5).
+    double tIn = -kInfinity, tOut = kInfinity;
+    uint16_t faceIn = kClipFace, faceOut = kClipFace;
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] == 0.0) {
+            if (o[a] < box.lo[a] || o[a] > box.hi[a]) return false;
+            continue;
+        }
+        double tLo = (box.lo[a] - o[a]) / d[a], tHi = (box.hi[a] - o[a]) / d[a];
+        uint16_t fLo = uint16_t(2 * a), fHi = uint16_t(2 * a + 1);
+        if (tLo > tHi) std::swap(tLo, tHi), std::swap(fLo, fHi);
+        if (tLo > tIn) tIn = tLo, faceIn = fLo;
+        if (tHi < tOut) tOut = tHi, faceOut = fHi;
+    }
+    if (faceIn == kClipFace || !std::isfinite(tIn) || !std::isfinite(tOut) || !(tIn <= tOut))
+        return false;
+    // Step 2: the solve variable: centred on the chord, scaled by a power of two.
+    const double tMid = 0.5 * tIn + 0.5 * tOut;
+    const double half = std::max(tOut - tMid, tMid - tIn);
+    const double h = half > 0.0 ? std::ldexp(1.0, std::ilogb(half) + 1) : 1.0;
+    // Step 3: G along the chord, from the middle point relative to the box centre.
+    const Vec3 q = pointOnLine(o, d, tMid) - data->centre;
+    c.poly = data->g.along(q, h * d);
+    c.tMid = tMid, c.scale = h;
+    c.uLo = (tIn - tMid) / h, c.uHi = (tOut - tMid) / h;
+    c.tIn = tIn, c.tOut = tOut, c.faceIn = faceIn, c.faceOut = faceOut;
+    return true;
+}
+
+void AlgebraicSurface::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
+    Chord c;
+    if (!chord(o, d, c)) return;
+    // Step 1: the roots of G on the chord (tangencies listed twice).
+    double roots[Polynomial::kMaxDegree];
+    const int n = solve(c.poly, c.uLo, c.uHi, roots, solver, tolerance);
+    // Step 2: breakpoints: chord ends and distinct roots strictly inside.
+    double u[Polynomial::kMaxDegree + 2];
+    int m = 0;
+    u[m++] = c.uLo;
+    for (int i = 0; i < n; ++i)
+        if (roots[i] > u[m - 1] && roots[i] < c.uHi) u[m++] = roots[i];
+    u[m++] = c.uHi;
+    // Step 3: each piece is inside or out by the sign of G at its middle (a tangency leaves
+    // the same sign on both sides, so it merges pieces instead of cutting them); inside
+    // pieces that touch form one span.
+    auto toT = [&](int i) {
+        return i == 0 ? c.tIn : i == m - 1 ? c.tOut : c.tMid + u[i] * c.scale;
+    };
+    auto face = [&](int i) { return i == 0 ? c.faceIn : i == m - 1 ? c.faceOut : kSurfaceFace; };
+    int open = -1;  // breakpoint index where the current span began
+    for (int i = 0; i + 1 < m; ++i) {
+        const bool in = c.poly(0.5 * u[i] + 0.5 * u[i + 1]) <= 0.0;
+        if (in && open < 0) open = i;
+        if (!in && open >= 0) {
+            if (out.count < LocalSpans::kCapacity) out.add(toT(open), face(open), toT(i), face(i));
+            open = -1;
+        }
+    }
+    if (open >= 0 && out.count < LocalSpans::kCapacity)
+        out.add(toT(open), face(open), toT(m - 1), face(m - 1));
+}
+
+bool AlgebraicSurface::inside(const Vec3& p) const {
+    if (!data || data->invalid) return false;
+    const Bounds3& b = data->box;
+    if (p.x < b.lo.x || p.x > b.hi.x || p.y < b.lo.y || p.y > b.hi.y || p.z < b.lo.z ||
+        p.z > b.hi.z)
+        return false;
+    return data->g(p - data->centre) <= 0.0;
+}
+
+Vec3 AlgebraicSurface::normal(const Vec3& p, uint16_t face) const {
+    if (face < 6) {
+        Vec3 n(0.0);
+        n[face / 2] = (face & 1) ? 1.0 : -1.0;
+        return n;
+    }
+    if (!data || data->invalid) return Vec3(0.0, 0.0, 1.0);
+    // Step 1: the analytic gradient, normalized after scaling by its largest component (so
+    // neither tiny nor huge gradients over- or underflow in the length).
+    const Vec3 q = p - data->centre;
+    Vec3 g(data->gradient[0](q), data->gradient[1](q), data->gradient[2](q));
+    const double big = std::max({std::abs(g.x), std::abs(g.y), std::abs(g.z)});
+    if (big > 0.0 && std::isfinite(big)) {
+        g /= big;
+        return g / glm::length(g);
+    }
+    // Step 2: a critical point: the direction from the box centre, else +z.
+    const double l = glm::length(q);
+    return l > 0.0 && std::isfinite(l) ? q / l : Vec3(0.0, 0.0, 1.0);
+}
+
+}  // namespace csg
