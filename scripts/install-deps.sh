@@ -9,6 +9,8 @@ packages=(
     libopenmesh-dev       # mesh structure and OBJ IO (mesh export)
     libtinygltf-dev nlohmann-json3-dev libstb-dev  # glTF/GLB writer and its JSON/image deps
     libpng-dev            # PNG output
+    libsdl2-dev           # `csgray view`: the interactive window
+    xvfb xdotool          # viewer_test: a virtual X server and the input it sends the window
     libgtest-dev libgmock-dev  # tests
     libbenchmark-dev      # bench/
     libboost-dev          # Boost.Multiprecision: high-precision reference in tests

@@ -10,6 +10,7 @@
 #include "viewer/Info.h"
 #include "viewer/Probe.h"
 #include "viewer/RenderCommand.h"
+#include "viewer/window/ViewCommand.h"
 
 namespace {
 
@@ -23,6 +24,7 @@ const char* const kTopHelp =
     "  probe    the spans of one ray or many rays through a part, as JSON\n"
     "  info     node counts, bounds and the evaluated CSG tree of a part, as JSON\n"
     "  render   a part to a PNG image\n"
+    "  view     an interactive window: progressive ray tracing, hot reload, click to probe\n"
     "\n"
     "Run 'csgray COMMAND --help' for a command's options. stdout carries only the\n"
     "requested output; diagnostics go to stderr. Exit codes: 0 ok, 1 bad model or input,\n"
@@ -53,6 +55,7 @@ int main(int argc, char** argv) {
         if (command == "probe") return viewer::probeCommand(rest);
         if (command == "info") return viewer::infoCommand(rest);
         if (command == "render") return viewer::renderCommand(rest);
+        if (command == "view") return viewer::window::viewCommand(rest);
         return usageError("unknown command '" + command + "'", "");
     } catch (const viewer::UsageError& e) {
         return usageError(e.what(), command);

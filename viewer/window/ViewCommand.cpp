@@ -1,0 +1,378 @@
+#include "viewer/window/ViewCommand.h"
+
+#include <SDL.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <thread>
+
+#include "viewer/Cli.h"
+#include "viewer/render/RenderCamera.h"
+#include "viewer/window/PartWatcher.h"
+#include "viewer/window/ProgressiveRenderer.h"
+#include "viewer/window/Screenshot.h"
+#include "viewer/window/ViewCamera.h"
+#include "viewer/window/ViewProbe.h"
+#include "viewer/window/ViewWindow.h"
+
+namespace viewer::window {
+
+namespace {
+
+const char* const kViewHelp =
+    "usage: csgray view PART [options]\n"
+    "\n"
+    "Opens a window that ray traces the part with the renderer of `csgray render`,\n"
+    "progressively: one ray per 8x8 pixels first, then 4x4, 2x2 and every pixel, refined\n"
+    "while the view is still and restarted when it moves. The part is reloaded when it or a\n"
+    "file it includes changes; an error keeps the last good part on screen, shows the\n"
+    "error in the title bar with a red border, and prints it on stderr.\n"
+    "\n"
+    "mouse:  left drag orbit, right or middle drag pan, wheel zoom,\n"
+    "        left click probe the ray under the pointer (JSON as `csgray probe`, on stderr)\n"
+    "keys:   R reset view, F frame the part, O orthographic/perspective,\n"
+    "        S shadows, M reflection, T refraction (on/off), P save a screenshot PNG\n"
+    "        (named on stderr), Q or Esc quit\n"
+    "\n"
+    "options:\n"
+    "  --size WxH             window size in pixels (default 800x600)\n"
+    "  --threads N            rendering threads (default: all cores)\n"
+    "  --verbose              print each refinement level's time and ray rate on stderr\n"
+    "\n"
+    "environment:\n"
+    "  CSGRAY_VIEW_DUMP=FILE  (for tests) write every finished full-resolution frame to\n"
+    "                         FILE as PNG and say so on stderr\n";
+
+struct ViewOptions {
+    CommonOptions common;
+    int width = 800, height = 600;
+    int threads = 0;  // 0: all cores
+    bool verbose = false;
+};
+
+ViewOptions parseViewOptions(std::span<const std::string> args) {
+    ViewOptions o;
+    ArgCursor cursor(args);
+    while (!cursor.done()) {
+        if (auto size = cursor.option("--size")) {
+            std::tie(o.width, o.height) = parseSize(*size, "--size");
+        } else if (auto threads = cursor.option("--threads")) {
+            o.threads = parsePositiveInt(*threads, "--threads", 1024);
+        } else if (cursor.flag("--verbose") || cursor.flag("-v")) {
+            o.verbose = true;
+        } else if (!cursor.common(o.common)) {
+            throw UsageError("view: unknown option '" + cursor.peek() + "'");
+        }
+    }
+    if (!o.common.help) requirePart(o.common, "view");
+    return o;
+}
+
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+std::string formatRate(double raysPerSecond) {
+    char text[32];
+    if (raysPerSecond >= 1e6)
+        std::snprintf(text, sizeof text, "%.2f Mrays/s", raysPerSecond / 1e6);
+    else
+        std::snprintf(text, sizeof text, "%.0f krays/s", raysPerSecond / 1e3);
+    return text;
+}
+
+// Everything the event loop changes, and what it shows.
+class ViewSession {
+public:
+    ViewSession(const ViewOptions& options, ViewWindow& window, Clock::time_point started)
+        : options_(options),
+          window_(window),
+          started_(started),
+          width_(options.width),
+          height_(options.height),
+          wakeEvent_(SDL_RegisterEvents(1)),
+          renderer_(threadCount(options), [this] { wake(); }),
+          watcher_(options.common, [this] { wake(); }) {
+        if (const char* dump = std::getenv("CSGRAY_VIEW_DUMP")) dumpFile_ = dump;
+    }
+
+    // Returns the exit code.
+    int run(std::shared_ptr<const LoadedPart> part) {
+        part_ = std::move(part);
+        camera_.emplace(initialCamera());
+        watcher_.watch(part_->model.files);
+        restart();
+        Clock::time_point lastPoll = Clock::now();
+        while (!quit_) {
+            SDL_Event event;
+            if (SDL_WaitEventTimeout(&event, 50)) {
+                handle(event);
+                while (SDL_PollEvent(&event)) handle(event);
+            }
+            // Hot reload: four polls a second cost a few stat() calls.
+            if (millisecondsSince(lastPoll) >= 250.0) {
+                watcher_.poll();
+                lastPoll = Clock::now();
+            }
+            if (auto outcome = watcher_.take()) reloaded(std::move(*outcome));
+            if (auto frame = renderer_.take()) shown(std::move(*frame));
+            if (restartPending_) restart();
+            if (redraw_) {
+                window_.present();
+                redraw_ = false;
+            }
+        }
+        return exitCode_;
+    }
+
+private:
+    static int threadCount(const ViewOptions& o) {
+        return o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    }
+
+    // Wakes SDL_WaitEventTimeout from another thread (SDL_PushEvent is thread-safe).
+    void wake() {
+        SDL_Event event{};
+        event.type = wakeEvent_;
+        SDL_PushEvent(&event);
+    }
+
+    io::Camera initialCamera() const {
+        // Exactly what `csgray render --size WxH` uses, so the finest level matches it.
+        return part_->model.camera ? *part_->model.camera
+                                   : render::frameBounds(part_->scene, aspect());
+    }
+    double aspect() const { return double(width_) / double(height_); }
+
+    void restart() {
+        restartPending_ = false;
+        RenderRequest request;
+        request.part = part_;
+        request.camera = camera_->camera();
+        request.width = width_;
+        request.height = height_;
+        request.effects = effects_;
+        requestStarted_ = Clock::now();
+        currentRequest_ = renderer_.start(std::move(request));
+    }
+
+    void handle(const SDL_Event& event) {
+        switch (event.type) {
+            case SDL_QUIT:
+                quit_ = true;
+                break;
+            case SDL_KEYDOWN:
+                key(event.key.keysym.sym);
+                break;
+            case SDL_MOUSEBUTTONDOWN:
+                dragButton_ = event.button.button;
+                dragDistance_ = 0.0;
+                break;
+            case SDL_MOUSEBUTTONUP:
+                if (event.button.button == SDL_BUTTON_LEFT && dragButton_ == SDL_BUTTON_LEFT &&
+                    dragDistance_ < 3.0)
+                    probe(event.button.x, event.button.y);
+                dragButton_ = 0;
+                break;
+            case SDL_MOUSEMOTION:
+                drag(event.motion);
+                break;
+            case SDL_MOUSEWHEEL:
+                camera_->zoom(event.wheel.preciseY != 0.0f ? event.wheel.preciseY
+                                                           : float(event.wheel.y));
+                restartPending_ = true;
+                break;
+            case SDL_WINDOWEVENT:
+                if (event.window.event == SDL_WINDOWEVENT_SIZE_CHANGED) {
+                    width_ = std::max(event.window.data1, 1);
+                    height_ = std::max(event.window.data2, 1);
+                    restartPending_ = true;
+                }
+                redraw_ = true;
+                break;
+            default:
+                break;
+        }
+    }
+
+    void drag(const SDL_MouseMotionEvent& motion) {
+        if (dragButton_ == 0) return;
+        dragDistance_ += std::abs(motion.xrel) + std::abs(motion.yrel);
+        // Below a few pixels it is still a click (a probe), not a drag.
+        if (dragDistance_ < 3.0) return;
+        if (dragButton_ == SDL_BUTTON_LEFT)
+            camera_->orbit(motion.xrel, motion.yrel, height_);
+        else
+            camera_->pan(motion.xrel, motion.yrel, height_);
+        restartPending_ = true;
+    }
+
+    void key(SDL_Keycode key) {
+        switch (key) {
+            case SDLK_q:
+            case SDLK_ESCAPE:
+                quit_ = true;
+                return;
+            case SDLK_r:
+                camera_->reset();
+                break;
+            case SDLK_f:
+                camera_->frame(part_->scene, aspect());
+                break;
+            case SDLK_o:
+                camera_->toggleOrthographic();
+                break;
+            case SDLK_s:
+                effects_.shadows = !effects_.shadows;
+                break;
+            case SDLK_m:
+                effects_.reflection = !effects_.reflection;
+                break;
+            case SDLK_t:
+                effects_.refraction = !effects_.refraction;
+                break;
+            case SDLK_p:
+                screenshot();
+                return;
+            default:
+                return;
+        }
+        restartPending_ = true;
+    }
+
+    void probe(int x, int y) {
+        const PixelProbe result = probePixel(*part_, camera_->camera(), width_, height_, x, y);
+        std::fprintf(stderr, "%s\n", result.json.c_str());
+        std::fprintf(stderr, "view: %s (pixel %d,%d)\n", result.summary.c_str(), x, y);
+        probeSummary_ = result.summary;
+        updateTitle();
+    }
+
+    void screenshot() {
+        if (!lastFrame_) {
+            std::fprintf(stderr, "view: no frame to save yet\n");
+            return;
+        }
+        const std::string name = nextScreenshotName(options_.common.part);
+        const std::string error =
+            io::writePng(name, upscaleNearest(lastFrame_->image, width_, height_));
+        if (error.empty())
+            std::fprintf(stderr, "view: screenshot saved to %s\n", name.c_str());
+        else
+            std::fprintf(stderr, "%s: error: %s\n", name.c_str(), error.c_str());
+    }
+
+    void reloaded(LoadOutcome outcome) {
+        if (!outcome.part) {
+            loadError_ = outcome.firstError;
+            std::fprintf(stderr, "view: reload failed; the last good part stays on screen\n");
+            window_.setErrorBorder(true);
+            updateTitle();
+            redraw_ = true;
+            return;
+        }
+        std::fprintf(stderr, "view: reloaded %s in %.1f ms\n", options_.common.part.c_str(),
+                     outcome.seconds * 1e3);
+        part_ = std::move(outcome.part);
+        loadError_.clear();
+        window_.setErrorBorder(false);
+        camera_->setInitial(initialCamera());
+        watcher_.watch(part_->model.files);
+        restart();
+        redraw_ = true;
+    }
+
+    void shown(ProgressiveFrame frame) {
+        window_.setImage(frame.image);
+        redraw_ = true;
+        const double rate = frame.rays.total() / std::max(frame.renderSeconds, 1e-9);
+        status_ = std::to_string(frame.blockSize) + "x" + std::to_string(frame.blockSize) +
+                  " level, " + formatRate(rate) + ", " + frame.plan;
+        if (!firstFrameReported_) {
+            firstFrameReported_ = true;
+            std::fprintf(stderr,
+                         "view: first frame (%dx%d blocks) %.1f ms after the render started, "
+                         "%.1f ms after launch\n",
+                         frame.blockSize, frame.blockSize, frame.sinceRequest * 1e3,
+                         millisecondsSince(started_));
+        }
+        if (options_.verbose)
+            std::fprintf(stderr,
+                         "view: level %dx%d: %d x %d rays in %.1f ms (%s), %.1f ms "
+                         "after the request\n",
+                         frame.blockSize, frame.blockSize, frame.image.width, frame.image.height,
+                         frame.renderSeconds * 1e3, formatRate(rate).c_str(),
+                         frame.sinceRequest * 1e3);
+        if (frame.blockSize == 1 && !dumpFile_.empty()) {
+            const std::string error = io::writePng(dumpFile_, frame.image);
+            if (error.empty())
+                std::fprintf(stderr, "view: frame %llu written to %s\n",
+                             (unsigned long long)frame.request, dumpFile_.c_str());
+            else
+                std::fprintf(stderr, "%s: error: %s\n", dumpFile_.c_str(), error.c_str());
+        }
+        lastFrame_ = std::move(frame);
+        updateTitle();
+    }
+
+    void updateTitle() {
+        std::string title = "csgray view " + options_.common.part;
+        if (!loadError_.empty()) title = loadError_ + "  |  " + title;
+        if (!status_.empty()) title += "  |  " + status_;
+        if (camera_->camera().projection == io::Projection::Orthographic) title += ", ortho";
+        if (!probeSummary_.empty()) title += "  |  " + probeSummary_;
+        window_.setTitle(title);
+    }
+
+    const ViewOptions& options_;
+    ViewWindow& window_;
+    Clock::time_point started_;
+    int width_, height_;
+    Uint32 wakeEvent_;
+    std::shared_ptr<const LoadedPart> part_;
+    std::optional<ViewCamera> camera_;
+    EffectToggles effects_;
+    Clock::time_point requestStarted_;
+    uint64_t currentRequest_ = 0;
+    bool restartPending_ = false, redraw_ = false, quit_ = false;
+    int exitCode_ = kExitOk;
+    Uint8 dragButton_ = 0;
+    double dragDistance_ = 0.0;
+    std::optional<ProgressiveFrame> lastFrame_;
+    bool firstFrameReported_ = false;
+    std::string status_, loadError_, probeSummary_, dumpFile_;
+    // Last: their threads call wake(), so they stop before the rest is destroyed.
+    ProgressiveRenderer renderer_;
+    PartWatcher watcher_;
+};
+
+}  // namespace
+
+int viewCommand(std::span<const std::string> args) {
+    const Clock::time_point started = Clock::now();
+    const ViewOptions options = parseViewOptions(args);
+    if (options.common.help) {
+        std::fputs(kViewHelp, stdout);
+        std::fputs(kCommonOptionsHelp, stdout);
+        return kExitOk;
+    }
+    // The first load decides whether there is anything to show; later errors keep it.
+    LoadOutcome first = loadForView(options.common);
+    if (!first.part) return kExitBadModel;
+    if (options.verbose)
+        std::fprintf(stderr, "view: loaded and compiled in %.1f ms\n", first.seconds * 1e3);
+
+    ViewWindow window("csgray view " + options.common.part, options.width, options.height);
+    if (!window.ok()) {
+        std::fprintf(stderr, "csgray: error: %s\n", window.error().c_str());
+        return kExitIo;
+    }
+    ViewSession session(options, window, started);
+    return session.run(std::move(first.part));
+}
+
+}  // namespace viewer::window

@@ -1,0 +1,21 @@
+// Click-to-probe in the window: the ray through a pixel, as the same JSON as `csgray probe`
+// (viewer/ProbeJson), and a one-line summary for the title bar.
+#pragma once
+
+#include <string>
+
+#include "io/Model.h"
+#include "viewer/LoadPart.h"
+
+namespace viewer::window {
+
+struct PixelProbe {
+    std::string json;     // one ProbeJson object, no newline
+    std::string summary;  // "3 spans; first hit cube at part.scad:4:5", or "no hit"
+};
+
+// The primary ray through the centre of pixel (x, y) of a width x height view, probed.
+PixelProbe probePixel(const LoadedPart& part, const io::Camera& camera, int width, int height,
+                      int x, int y);
+
+}  // namespace viewer::window
