@@ -187,7 +187,9 @@ private:
                 restartPending_ = true;
                 break;
             case SDL_WINDOWEVENT:
-                if (event.window.event == SDL_WINDOWEVENT_SIZE_CHANGED) {
+                // Only a real change restarts: a window manager may repeat the size.
+                if (event.window.event == SDL_WINDOWEVENT_SIZE_CHANGED &&
+                    (event.window.data1 != width_ || event.window.data2 != height_)) {
                     width_ = std::max(event.window.data1, 1);
                     height_ = std::max(event.window.data2, 1);
                     restartPending_ = true;

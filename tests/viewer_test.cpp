@@ -1,0 +1,277 @@
+// End-to-end tests of `csgray view` (issue 8): the window runs under Xvfb, started by the test
+// on a free display; xdotool sends it real X input (keys, a click). The window's test hook
+// CSGRAY_VIEW_DUMP writes every finished full-resolution frame to a PNG and says so on
+// stderr, which is how a test knows a frame is done and what it showed. Tests skip, saying
+// why, where Xvfb or xdotool is missing or no X server starts.
+#include <gtest/gtest.h>
+#include <png.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <functional>
+#include <thread>
+
+#include "CliRunner.h"
+
+namespace {
+
+using namespace cli;
+using namespace std::chrono_literals;
+
+bool onPath(const std::string& program) {
+    return std::system(("command -v " + program + " >/dev/null 2>&1").c_str()) == 0;
+}
+
+bool waitUntil(const std::function<bool()>& done, std::chrono::milliseconds timeout) {
+    const auto end = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < end) {
+        if (done()) return true;
+        std::this_thread::sleep_for(20ms);
+    }
+    return done();
+}
+
+// Starts /bin/sh -c command in dir; the pid is the shell, which execs the program.
+pid_t spawn(const std::string& command, const fs::path& dir) {
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        if (::chdir(dir.c_str()) != 0) ::_exit(127);
+        ::setpgid(0, 0);
+        ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    return pid;
+}
+
+// Xvfb on the first display number with neither a socket nor a lock file.
+class VirtualDisplay {
+public:
+    VirtualDisplay() {
+        if (!onPath("Xvfb")) {
+            reason_ = "Xvfb is not installed (Debian package xvfb)";
+            return;
+        }
+        for (int n = 90; n < 190 && pid_ <= 0; ++n) {
+            const std::string socket = "/tmp/.X11-unix/X" + std::to_string(n);
+            if (fs::exists(socket) || fs::exists("/tmp/.X" + std::to_string(n) + "-lock")) continue;
+            const pid_t pid = spawn("exec Xvfb :" + std::to_string(n) +
+                                        " -screen 0 640x480x24 -nolisten tcp >/dev/null 2>&1",
+                                    fs::temp_directory_path());
+            if (waitUntil([&] { return fs::exists(socket); }, 5s)) {
+                pid_ = pid;
+                name_ = ":" + std::to_string(n);
+            } else {
+                ::kill(pid, SIGKILL);
+                ::waitpid(pid, nullptr, 0);
+            }
+        }
+        if (pid_ <= 0) reason_ = "no Xvfb server could be started";
+    }
+    ~VirtualDisplay() {
+        if (pid_ <= 0) return;
+        ::kill(pid_, SIGTERM);
+        ::waitpid(pid_, nullptr, 0);
+    }
+    bool ok() const { return pid_ > 0; }
+    const std::string& name() const { return name_; }
+    const std::string& reason() const { return reason_; }
+
+private:
+    pid_t pid_ = -1;
+    std::string name_, reason_;
+};
+
+struct Image {
+    int width = 0, height = 0;
+    std::vector<uint8_t> rgb;
+};
+
+Image readPng(const fs::path& path) {
+    Image out;
+    png_image image{};
+    image.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_file(&image, path.c_str())) return out;
+    image.format = PNG_FORMAT_RGB;
+    out.rgb.resize(PNG_IMAGE_SIZE(image));
+    if (!png_image_finish_read(&image, nullptr, out.rgb.data(), 0, nullptr)) {
+        png_image_free(&image);
+        return {};
+    }
+    out.width = int(image.width);
+    out.height = int(image.height);
+    return out;
+}
+
+int maxDifference(const Image& a, const Image& b) {
+    if (a.width != b.width || a.height != b.height) return 256;
+    int worst = 0;
+    for (size_t i = 0; i < a.rgb.size(); ++i)
+        worst = std::max(worst, std::abs(a.rgb[i] - b.rgb[i]));
+    return worst;
+}
+
+// The fraction of pixels that differ from the top-left (background) pixel.
+double coverage(const Image& image) {
+    size_t covered = 0;
+    for (size_t i = 0; i < image.rgb.size(); i += 3)
+        for (int c = 0; c < 3; ++c)
+            if (std::abs(image.rgb[i + c] - image.rgb[c]) > 8) {
+                ++covered;
+                break;
+            }
+    return double(covered) / double(image.rgb.size() / 3);
+}
+
+const char* const kPart =
+    "// two solids, one behind the other\n"
+    "difference() {\n"
+    "    cube(10, center = true);\n"
+    "    sphere(r = 6.5);\n"
+    "}\n"
+    "translate([0, 12, 0]) sphere(r = 4);\n";
+
+constexpr int kWidth = 160, kHeight = 120;
+
+// One `csgray view` under the display, its stderr in a file, frames dumped to frame.png.
+class ViewerTest : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() { display_ = new VirtualDisplay(); }
+    static void TearDownTestSuite() {
+        delete display_;
+        display_ = nullptr;
+    }
+
+    void SetUp() override {
+        if (!display_->ok()) GTEST_SKIP() << display_->reason();
+        part_ = dir_ / "part.scad";
+        writeFile(part_, kPart);
+    }
+    void TearDown() override {
+        if (pid_ > 0) {
+            ::kill(-pid_, SIGKILL);
+            ::waitpid(pid_, nullptr, 0);
+        }
+    }
+
+    void launch() {
+        const std::string command = "DISPLAY=" + display_->name() +
+                                    " CSGRAY_VIEW_DUMP=frame.png exec " + shellQuote(CSGRAY_EXE) +
+                                    " view part.scad --size " + std::to_string(kWidth) + "x" +
+                                    std::to_string(kHeight) + " --threads 2 --verbose 2>stderr.txt";
+        pid_ = spawn(command, dir_.path());
+    }
+    std::string err() const { return readFile(dir_ / "stderr.txt"); }
+    // Waits for the dump of a frame at least `request`.
+    bool waitForFrame(int request) {
+        return waitUntil(
+            [&] {
+                return err().find("view: frame " + std::to_string(request) + " written") !=
+                       std::string::npos;
+            },
+            8s);
+    }
+    bool waitForText(const std::string& text) {
+        return waitUntil([&] { return err().find(text) != std::string::npos; }, 8s);
+    }
+    Image reference() {
+        const RunResult r = runCsgray({"render", part_.string(), "--size",
+                                       std::to_string(kWidth) + "x" + std::to_string(kHeight), "-o",
+                                       (dir_ / "ref.png").string(), "--quiet"},
+                                      dir_.path());
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return readPng(dir_ / "ref.png");
+    }
+    // xdotool with the view's window as %1 (it searches by the title's prefix).
+    int xdotool(const std::string& actions) {
+        const std::string command = "DISPLAY=" + display_->name() +
+                                    " xdotool search --sync --name '^csgray view|error' " +
+                                    actions + " >>xdotool.txt 2>&1";
+        return std::system(("cd " + shellQuote(dir_.path().string()) + " && " + command).c_str());
+    }
+    int exitStatus(std::chrono::milliseconds timeout) {
+        int status = 0;
+        if (!waitUntil([&] { return ::waitpid(pid_, &status, WNOHANG) == pid_; }, timeout))
+            return -1;
+        pid_ = -1;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    }
+
+    static VirtualDisplay* display_;
+    ScratchDir dir_;
+    fs::path part_;
+    pid_t pid_ = -1;
+};
+
+VirtualDisplay* ViewerTest::display_ = nullptr;
+
+TEST_F(ViewerTest, FinestFrameShowsThePartAsRenderDoes) {
+    launch();
+    ASSERT_TRUE(waitForFrame(1)) << err();
+    const Image frame = readPng(dir_ / "frame.png");
+    ASSERT_EQ(frame.width, kWidth);
+    EXPECT_GT(coverage(frame), 0.05) << "the part is not visible";
+    EXPECT_LE(maxDifference(frame, reference()), 2);
+    EXPECT_NE(err().find("view: first frame ("), std::string::npos) << err();
+}
+
+TEST_F(ViewerTest, KeysAndClickReachTheWindow) {
+    if (!onPath("xdotool")) GTEST_SKIP() << "xdotool is not installed (Debian package xdotool)";
+    launch();
+    ASSERT_TRUE(waitForFrame(1)) << err();
+    const Image first = readPng(dir_ / "frame.png");
+
+    // A click on the part prints the probe JSON of that ray and a summary.
+    ASSERT_EQ(xdotool("windowfocus %1 mousemove --window %1 80 60 click 1"), 0);
+    ASSERT_TRUE(waitForText("view: probe: ")) << err();
+    EXPECT_NE(err().find("{\"ray\":{\"origin\""), std::string::npos) << err();
+    EXPECT_NE(err().find("part.scad:"), std::string::npos) << "no source line in the probe";
+
+    // O switches to orthographic: a new, different finest frame.
+    ASSERT_EQ(xdotool("windowfocus %1 key o"), 0);
+    ASSERT_TRUE(waitForFrame(2)) << err();
+    EXPECT_GT(maxDifference(readPng(dir_ / "frame.png"), first), 16);
+
+    // P saves a screenshot, named on stderr.
+    ASSERT_EQ(xdotool("windowfocus %1 key p"), 0);
+    ASSERT_TRUE(waitForText("view: screenshot saved to csgray-view-part-001.png")) << err();
+    EXPECT_EQ(readPng(dir_ / "csgray-view-part-001.png").width, kWidth);
+
+    // The window closes on the key press, so xdotool's key release may find no window: its
+    // status says nothing here; the view's exit status does.
+    xdotool("windowfocus %1 key q");
+    EXPECT_EQ(exitStatus(5s), 0) << err();
+}
+
+TEST_F(ViewerTest, EditReloadsAndSyntaxErrorKeepsTheLastGoodFrame) {
+    launch();
+    ASSERT_TRUE(waitForFrame(1)) << err();
+    const Image first = readPng(dir_ / "frame.png");
+
+    // A bigger sphere: the reload renders a different frame.
+    std::string edited = kPart;
+    edited.replace(edited.find("r = 4"), 5, "r = 7");
+    writeFile(part_, edited);
+    ASSERT_TRUE(waitForText("view: reloaded part.scad")) << err();
+    ASSERT_TRUE(waitForFrame(2)) << err();
+    const Image second = readPng(dir_ / "frame.png");
+    EXPECT_GT(maxDifference(second, first), 16);
+
+    // A syntax error on line 3: reported with file:line:col, and no new frame replaces the
+    // last good one.
+    writeFile(part_, "cube(5);\nsphere(2);\ncube([1, 2;\n");
+    ASSERT_TRUE(waitForText("view: reload failed")) << err();
+    EXPECT_NE(err().find("part.scad:3:"), std::string::npos) << err();
+    EXPECT_NE(err().find(": error: "), std::string::npos) << err();
+    std::this_thread::sleep_for(600ms);
+    EXPECT_EQ(err().find("view: frame 3 written"), std::string::npos) << err();
+    EXPECT_EQ(maxDifference(readPng(dir_ / "frame.png"), second), 0);
+
+    // Fixing the file brings the window back.
+    writeFile(part_, kPart);
+    ASSERT_TRUE(waitForFrame(3)) << err();
+    EXPECT_LE(maxDifference(readPng(dir_ / "frame.png"), first), 2);
+}
+
+}  // namespace
