@@ -1,0 +1,250 @@
+#include "csg/mesh/DualContour.h"
+
+#include <unordered_map>
+
+#include "csg/mesh/CellTopology.h"
+#include "csg/mesh/Qef.h"
+
+namespace csg {
+
+namespace {
+
+using Node3 = std::array<int, 3>;
+
+// The Hermite sample of one grid edge: the ray's crossing, or, when the ray saw none although
+// the corner signs differ (a node within rounding of a face), the midpoint with the edge's
+// own direction as normal.
+struct EdgeSample {
+    Vec3 point;
+    Vec3 normal;
+    uint32_t material = 0;
+    bool measured = true;
+};
+
+class Contourer {
+public:
+    Contourer(const HermiteGrid& grid, DualContourStats& stats)
+        : grid_(grid), spec_(grid.spec()), stats_(stats) {}
+
+    TriangleMesh run() {
+        collectActiveCells();
+        placeSheetVertices();
+        for (const uint64_t cell : active_) fansOfCell(cell);
+        finishNormals();
+        return std::move(mesh_);
+    }
+
+private:
+    uint64_t cellIndex(const Node3& c) const {
+        return uint64_t(c[0]) + uint64_t(spec_.nodes[0]) *
+                                    (uint64_t(c[1]) + uint64_t(spec_.nodes[1]) * uint64_t(c[2]));
+    }
+    Node3 cellNode(uint64_t index) const {
+        const uint64_t nx = uint64_t(spec_.nodes[0]), ny = uint64_t(spec_.nodes[1]);
+        return {int(index % nx), int((index / nx) % ny), int(index / (nx * ny))};
+    }
+    uint8_t cellMask(const Node3& c) const {
+        uint8_t mask = 0;
+        for (int corner = 0; corner < 8; ++corner)
+            if (grid_.inside(c[0] + (corner & 1), c[1] + ((corner >> 1) & 1),
+                             c[2] + ((corner >> 2) & 1)))
+                mask = uint8_t(mask | (1u << corner));
+        return mask;
+    }
+    bool inside(const Node3& n) const { return grid_.inside(n[0], n[1], n[2]); }
+
+    EdgeSample sample(int axis, const Node3& node) {
+        Node3 next = node;
+        ++next[axis];
+        if (const Crossing* x = grid_.crossing(axis, node))
+            return {x->point, x->normal, x->material, true};
+        ++stats_.missingCrossings;
+        EdgeSample s;
+        s.point =
+            0.5 * (spec_.node(node[0], node[1], node[2]) + spec_.node(next[0], next[1], next[2]));
+        s.normal = Vec3(0.0);
+        s.normal[axis] = inside(node) ? 1.0 : -1.0;
+        s.measured = false;
+        return s;
+    }
+
+    // Step 1: the cells with corners of both signs, in index order (deterministic output).
+    void collectActiveCells() {
+        for (int k = 0; k + 1 < spec_.nodes[2]; ++k)
+            for (int j = 0; j + 1 < spec_.nodes[1]; ++j)
+                for (int i = 0; i + 1 < spec_.nodes[0]; ++i) {
+                    const uint8_t mask = cellMask({i, j, k});
+                    if (mask != 0 && mask != 0xff) active_.push_back(cellIndex({i, j, k}));
+                }
+        stats_.activeCells = active_.size();
+    }
+
+    // Step 2: one QEF vertex per sheet of every active cell.
+    void placeSheetVertices() {
+        sheetBase_.reserve(active_.size());
+        for (const uint64_t index : active_) {
+            const Node3 c = cellNode(index);
+            const CellCycles& cycles = cellCycles(cellMask(c));
+            sheetBase_.emplace(index, uint32_t(mesh_.positions.size()));
+            const Bounds3 box{spec_.node(c[0], c[1], c[2]),
+                              spec_.node(c[0] + 1, c[1] + 1, c[2] + 1)};
+            for (int q = 0; q < cycles.count; ++q) {
+                Qef3 qef;
+                for (int e = 0; e < 12; ++e) {
+                    if (cycles.edgeCycle[size_t(e)] != q) continue;
+                    const int a = e / 4;
+                    Node3 n = c;
+                    n[(a + 1) % 3] += e & 1;
+                    n[(a + 2) % 3] += (e >> 1) & 1;
+                    const EdgeSample s = sample(a, n);
+                    qef.add(s.point, s.normal);
+                }
+                addVertex(qef.solve(box), Vec3(0.0));
+                ++stats_.sheetVertices;
+            }
+        }
+    }
+
+    uint32_t addVertex(const Vec3& p, const Vec3& n) {
+        mesh_.positions.push_back(p);
+        mesh_.normals.push_back(n);
+        return uint32_t(mesh_.positions.size() - 1);
+    }
+
+    uint32_t sheetVertex(const Node3& cell, int localEdge) {
+        const uint32_t base = sheetBase_.at(cellIndex(cell));
+        return base + uint32_t(cellCycles(cellMask(cell)).edgeCycle[size_t(localEdge)]);
+    }
+
+    // The vertex on the face between two cells of edge (a, n0)'s ring, or kNone for a straight
+    // face curve. g is the axis the two cells differ on; h the other ring axis, dh its offset.
+    static constexpr uint32_t kNone = UINT32_MAX;
+    uint32_t faceVertex(int a, const Node3& n0, int g, int h, int dh) {
+        // Step 1: the face, its corners' signs, and which of its edges is ours.
+        Node3 faceMin = n0;
+        faceMin[h] += dh;
+        const int u = (g + 1) % 3, v = (g + 2) % 3;
+        std::array<bool, 4> corner;
+        for (int dv = 0; dv < 2; ++dv)
+            for (int du = 0; du < 2; ++du) {
+                Node3 p = faceMin;
+                p[u] += du;
+                p[v] += dv;
+                corner[size_t(du + 2 * dv)] = inside(p);
+            }
+        const int edgeAxis = a == u ? 0 : 1;
+        const int segment = faceSegment(corner, edgeAxis, -dh);
+        const uint64_t key = (cellIndex(faceMin) * 3 + uint64_t(g)) * 2 + uint64_t(segment);
+        if (auto it = faceVertex_.find(key); it != faceVertex_.end()) return it->second;
+
+        // Step 2: the partner edge of the same face curve.
+        int partnerAxis = -1, partnerOffset = -1;
+        for (int ax = 0; ax < 2; ++ax)
+            for (int o = 0; o < 2; ++o) {
+                if (ax == edgeAxis && o == -dh) continue;
+                const int c0 = ax == 0 ? 2 * o : o, c1 = ax == 0 ? 1 + 2 * o : o + 2;
+                if (corner[size_t(c0)] == corner[size_t(c1)]) continue;
+                if (faceSegment(corner, ax, o) == segment) {
+                    partnerAxis = ax;
+                    partnerOffset = o;
+                }
+            }
+        Node3 partnerNode = faceMin;
+        partnerNode[partnerAxis == 0 ? v : u] += partnerOffset;
+        const EdgeSample s0 = sample(a, n0);
+        const EdgeSample s1 = sample(partnerAxis == 0 ? u : v, partnerNode);
+
+        // Step 3: bend the curve where the tangent lines meet; an ambiguous face always gets a
+        // vertex, so two curves on one face never join the same two sheet vertices twice.
+        const bool ambiguous = corner[0] == corner[3] && corner[1] == corner[2];
+        const Vec3 lo3 = spec_.node(faceMin[0], faceMin[1], faceMin[2]);
+        const Vec2 lo(lo3[u], lo3[v]), hi(lo3[u] + spec_.h, lo3[v] + spec_.h);
+        Vec3 crease;
+        uint32_t vertex = kNone;
+        if (s0.measured && s1.measured &&
+            creaseOnFace(s0.point, s0.normal, s1.point, s1.normal, u, v, lo, hi, crease)) {
+            crease[g] = lo3[g];
+            vertex = addVertex(crease, Vec3(0.0));
+        } else if (ambiguous) {
+            Vec3 mid = 0.5 * (s0.point + s1.point);
+            mid[g] = lo3[g];
+            vertex = addVertex(mid, Vec3(0.0));
+        }
+        if (vertex != kNone) ++stats_.faceVertices;
+        faceVertex_.emplace(key, vertex);
+        return vertex;
+    }
+
+    // Step 3: the fan of each crossed edge that starts at this cell's minimum corner.
+    void fansOfCell(uint64_t index) {
+        const Node3 n0 = cellNode(index);
+        for (int a = 0; a < 3; ++a) {
+            Node3 n1 = n0;
+            ++n1[a];
+            const bool in0 = inside(n0);
+            if (in0 == inside(n1)) continue;
+            const int b = (a + 1) % 3, c = (a + 2) % 3;
+            const EdgeSample s = sample(a, n0);
+            const uint32_t center = addVertex(s.point, s.normal);
+
+            // The ring: cells at (db, dc) counter-clockwise about +a, face vertices between.
+            static constexpr int kRing[4][2] = {{-1, -1}, {0, -1}, {0, 0}, {-1, 0}};
+            uint32_t ring[8];
+            int count = 0;
+            for (int q = 0; q < 4; ++q) {
+                Node3 cell = n0;
+                cell[b] += kRing[q][0];
+                cell[c] += kRing[q][1];
+                ring[count++] =
+                    sheetVertex(cell, 4 * a + (kRing[q][0] < 0) + 2 * (kRing[q][1] < 0));
+                const int* next = kRing[(q + 1) % 4];
+                const bool differOnB = next[0] != kRing[q][0];
+                const int g = differOnB ? b : c, h = differOnB ? c : b;
+                const int dh = differOnB ? kRing[q][1] : kRing[q][0];
+                const uint32_t f = faceVertex(a, n0, g, h, dh);
+                if (f != kNone) ring[count++] = f;
+            }
+
+            // Outward is +a when the edge leaves the solid going up the axis.
+            for (int t = 0; t < count; ++t) {
+                uint32_t p = ring[t], q = ring[(t + 1) % count];
+                if (!in0) std::swap(p, q);
+                mesh_.triangles.push_back({center, p, q});
+                mesh_.triangleMaterial.push_back(s.material);
+            }
+        }
+    }
+
+    // Step 4: normals of QEF and face vertices from their triangles (area-weighted); crossing
+    // vertices keep the exact normal.
+    void finishNormals() {
+        std::vector<Vec3> sum(mesh_.positions.size(), Vec3(0.0));
+        for (const auto& tri : mesh_.triangles) {
+            const Vec3 n = glm::cross(mesh_.positions[tri[1]] - mesh_.positions[tri[0]],
+                                      mesh_.positions[tri[2]] - mesh_.positions[tri[0]]);
+            for (const uint32_t corner : tri) sum[corner] += n;
+        }
+        for (size_t i = 0; i < sum.size(); ++i) {
+            if (mesh_.normals[i] != Vec3(0.0)) continue;
+            const double len = glm::length(sum[i]);
+            mesh_.normals[i] = len > 0.0 ? sum[i] / len : Vec3(0.0, 0.0, 1.0);
+        }
+    }
+
+    const HermiteGrid& grid_;
+    const GridSpec& spec_;
+    DualContourStats& stats_;
+    TriangleMesh mesh_;
+    std::vector<uint64_t> active_;
+    std::unordered_map<uint64_t, uint32_t> sheetBase_;
+    std::unordered_map<uint64_t, uint32_t> faceVertex_;
+};
+
+}  // namespace
+
+TriangleMesh dualContour(const HermiteGrid& grid, DualContourStats* stats) {
+    DualContourStats local;
+    return Contourer(grid, stats ? *stats : local).run();
+}
+
+}  // namespace csg

@@ -1,0 +1,174 @@
+#include "csg/mesh/MeshDistance.h"
+
+#include <cmath>
+
+#include "csg/mesh/ParallelFor.h"
+
+namespace csg {
+
+namespace {
+
+// Running figures of one worker, merged at the end.
+struct Accumulator {
+    DistanceStats stats;
+    double sum = 0.0;
+    void add(const Vec3& p, double d) {
+        ++stats.samples;
+        if (!std::isfinite(d))
+            ++stats.unresolved;
+        else
+            sum += d;
+        if (d > stats.max || stats.samples == 1) {
+            stats.max = d;
+            stats.worst = p;
+        }
+    }
+};
+
+DistanceStats merge(const std::vector<Accumulator>& parts) {
+    DistanceStats out;
+    double sum = 0.0;
+    bool first = true;
+    for (const Accumulator& a : parts) {
+        if (a.stats.samples == 0) continue;
+        out.samples += a.stats.samples;
+        out.unresolved += a.stats.unresolved;
+        sum += a.sum;
+        if (first || a.stats.max > out.max) {
+            out.max = a.stats.max;
+            out.worst = a.stats.worst;
+            first = false;
+        }
+    }
+    const uint64_t resolved = out.samples - out.unresolved;
+    out.mean = resolved ? sum / double(resolved) : 0.0;
+    return out;
+}
+
+// Smallest |t| of a surface span end of the scene along p + t d, t in [-reach, reach].
+double alongLine(const Scene& scene, QueryContext& ctx, const Vec3& p, const Vec3& d,
+                 double reach) {
+    Ray ray{p, d, -reach, reach};
+    double best = kInfinity;
+    for (const Span& s : scene.spans(ray, ctx)) {
+        if (s.in.isSurface()) best = std::min(best, std::fabs(s.in.t));
+        if (s.out.isSurface()) best = std::min(best, std::fabs(s.out.t));
+    }
+    return best;
+}
+
+// The first direction, then the three axes and four body diagonals when the first answer is
+// not good enough. The extra lines matter at creases: a point on a concave edge of axis-aligned
+// faces has its normal and all three axis lines lying in the faces (regularized spans then put
+// the nearest surface end far away), while a diagonal line crosses the boundary at the point.
+template <class Measure>
+double bestOfDirections(const Vec3& first, double goodEnough, Measure&& measure) {
+    static const Vec3 kExtra[7] = {{1, 0, 0},  {0, 1, 0},  {0, 0, 1}, {1, 1, 1},
+                                   {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
+    double best = kInfinity;
+    const double len = glm::length(first);
+    if (len > 0.0) best = measure(first / len, Vec3(0.0));
+    for (const Vec3& d : kExtra) {
+        if (best <= goodEnough) break;
+        best = std::min(best, measure(glm::normalize(d), Vec3(0.0)));
+    }
+    // A point on an edge where two solids only touch (a non-manifold part) sees every line
+    // through it either miss both solids or cross both with fused spans: measure again from a
+    // point a hair away in a direction of no symmetry, and add the hair.
+    if (!std::isfinite(best)) {
+        const Vec3 shift = glm::normalize(Vec3(0.5377, 0.8117, 0.2283)) * goodEnough * 1e-3;
+        for (const Vec3& d : kExtra)
+            best = std::min(best, glm::length(shift) + measure(glm::normalize(d), shift));
+    }
+    return best;
+}
+
+}  // namespace
+
+DistanceStats meshToSurface(const Scene& scene, const TriangleMesh& mesh,
+                            const DistanceOptions& options) {
+    const int workers = resolveThreads(options.threads);
+    std::vector<Accumulator> acc(static_cast<size_t>(workers));
+    std::vector<QueryContext> ctx(static_cast<size_t>(workers));
+    const uint64_t triangles = mesh.triangles.size(), vertices = mesh.positions.size();
+    constexpr uint64_t kChunk = 1024;
+    const uint64_t chunks = (triangles + vertices + kChunk - 1) / kChunk;
+    parallelFor(chunks, workers, [&](int w, uint64_t chunk) {
+        auto measureAt = [&](const Vec3& p, const Vec3& n) {
+            const double d =
+                bestOfDirections(n, options.goodEnough, [&](const Vec3& dir, const Vec3& shift) {
+                    return alongLine(scene, ctx[size_t(w)], p + shift, dir, options.reach);
+                });
+            acc[size_t(w)].add(p, d);
+        };
+        for (uint64_t item = chunk * kChunk;
+             item < std::min((chunk + 1) * kChunk, triangles + vertices); ++item) {
+            if (item >= triangles) {
+                // A vertex, along its own normal (or any axis when the mesh has none).
+                const size_t v = size_t(item - triangles);
+                measureAt(mesh.positions[v],
+                          mesh.normals.empty() ? Vec3(0, 0, 1) : mesh.normals[v]);
+                continue;
+            }
+            const auto& tri = mesh.triangles[size_t(item)];
+            const Vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]],
+                       c = mesh.positions[tri[2]];
+            const Vec3 n = glm::cross(b - a, c - a);
+            measureAt((a + b + c) / 3.0, n);
+            measureAt(0.5 * (a + b), n);
+            measureAt(0.5 * (b + c), n);
+            measureAt(0.5 * (c + a), n);
+        }
+    });
+    return merge(acc);
+}
+
+DistanceStats surfaceToMesh(const Scene& scene, const TriangleMesh& mesh, const TriangleBvh& bvh,
+                            int raysPerAxis, const DistanceOptions& options) {
+    (void)mesh;
+    const Bounds3 box = scene.bounds();
+    if (box.empty() || !box.finite() || raysPerAxis <= 0) return {};
+    const int workers = resolveThreads(options.threads);
+    std::vector<Accumulator> acc(static_cast<size_t>(workers));
+    std::vector<QueryContext> ctx(static_cast<size_t>(workers));
+    const Vec3 size = box.extent();
+    // One work item per row of lines; rows of the three axes one after another.
+    parallelFor(uint64_t(3) * uint64_t(raysPerAxis), workers, [&](int w, uint64_t item) {
+        const int a = int(item / uint64_t(raysPerAxis)), row = int(item % uint64_t(raysPerAxis));
+        const int b = (a + 1) % 3, c = (a + 2) % 3;
+        for (int col = 0; col < raysPerAxis; ++col) {
+            // Step 1: a line through cell centres of the bounds' face, from outside the box.
+            Ray ray;
+            ray.o[a] = box.lo[a] - 1.0;
+            ray.o[b] = box.lo[b] + (col + 0.5) * size[b] / raysPerAxis;
+            ray.o[c] = box.lo[c] + (row + 0.5) * size[c] / raysPerAxis;
+            ray.d = Vec3(0.0);
+            ray.d[a] = 1.0;
+            ray.tmin = 0.0;
+            ray.tmax = size[a] + 2.0;
+            // Step 2: each surface span end is an exact surface point with its normal. The span
+            // list lives in ctx until the next query, so copy the few hits out first.
+            Hit hits[64];
+            int count = 0;
+            for (const Span& s : scene.spans(ray, ctx[size_t(w)])) {
+                if (count + 2 > 64) break;
+                if (s.in.isSurface()) hits[count++] = s.in;
+                if (s.out.isSurface()) hits[count++] = s.out;
+            }
+            // Step 3: the mesh along the normal (then the axes) from that point.
+            for (int i = 0; i < count; ++i) {
+                const SurfacePoint sp = scene.surface(ray, hits[i]);
+                const double d = bestOfDirections(
+                    sp.normal, options.goodEnough, [&](const Vec3& dir, const Vec3& shift) {
+                        const auto t =
+                            bvh.nearestHit(sp.point + shift, dir, -options.reach, options.reach);
+                        return t ? std::fabs(*t) : kInfinity;
+                    });
+                acc[size_t(w)].add(sp.point, d);
+            }
+        }
+    });
+    return merge(acc);
+}
+
+}  // namespace csg

@@ -1,0 +1,43 @@
+// Sampled one-sided distances between a mesh and the exact surface of a scene, measured by
+// casting lines: the distance along any line from a point to a surface bounds the Euclidean
+// distance from above, so every figure here is an upper bound at its sample (the maximum is a
+// lower bound of the true one-sided Hausdorff distance only in that it is sampled).
+#pragma once
+
+#include <cstdint>
+
+#include "csg/Scene.h"
+#include "csg/mesh/TriangleBvh.h"
+#include "csg/mesh/TriangleMesh.h"
+
+namespace csg {
+
+struct DistanceStats {
+    uint64_t samples = 0;
+    double max = 0.0;  // world units; +inf when some sample found nothing within reach
+    double mean = 0.0;
+    Vec3 worst{0.0};          // the sample point of max
+    uint64_t unresolved = 0;  // samples with no crossing within reach along any direction
+};
+
+struct DistanceOptions {
+    // Lines reach this far on each side of a sample (world units). Farther surfaces count as
+    // unresolved (distance +inf).
+    double reach = 1.0;
+    // Below this, the first line's answer is taken; above it, three axis lines are tried as
+    // well and the smallest answer kept (a sample near a crease whose normal line slips past).
+    double goodEnough = 0.0;
+    int threads = 0;
+};
+
+// Mesh to surface: every vertex, and every triangle's centroid and edge midpoints, measured
+// first along the mesh normal there.
+DistanceStats meshToSurface(const Scene& scene, const TriangleMesh& mesh,
+                            const DistanceOptions& options);
+
+// Surface to mesh: exact surface points from a grid of raysPerAxis^2 lines along each axis
+// through the scene's bounds, measured along the surface normal against the mesh's BVH.
+DistanceStats surfaceToMesh(const Scene& scene, const TriangleMesh& mesh, const TriangleBvh& bvh,
+                            int raysPerAxis, const DistanceOptions& options);
+
+}  // namespace csg

@@ -1,0 +1,82 @@
+#include "csg/mesh/Tessellate.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "csg/Tolerances.h"
+#include "csg/mesh/HermiteGrid.h"
+
+namespace csg {
+
+TriangleMesh tessellateAt(const Scene& scene, double h, int threads, uint64_t* rays,
+                          DualContourStats* stats) {
+    const Bounds3 box = scene.bounds();
+    if (box.empty()) return {};
+    const HermiteGrid grid = HermiteGrid::cast(scene, makeGrid(box, h), threads);
+    if (rays) *rays += grid.rays();
+    return dualContour(grid, stats);
+}
+
+TessellateResult tessellate(const Scene& scene, const TessellateOptions& options) {
+    TessellateResult result;
+    const Bounds3 box = scene.bounds();
+    if (box.empty()) {
+        result.toleranceMet = true;
+        return result;
+    }
+    if (!box.finite()) throw std::invalid_argument("the part is unbounded (a bare half-space?)");
+
+    // Step 1: the tolerance, and the spacing below which the cell cap would be exceeded.
+    const double diagonal = glm::length(box.extent());
+    const double tolerance = options.tolerance > 0.0 ? options.tolerance : diagonal / 500.0;
+    result.tolerance = tolerance;
+    auto cellsAt = [&](double h) { return makeGrid(box, h).cellCount(); };
+    double hMin = diagonal / 4.0;
+    while (cellsAt(hMin) < options.maxCells && hMin > diagonal * 1e-7) hMin *= 0.5;
+    // Bisect to the smallest h within the cap (the count is monotone in h up to rounding).
+    for (double lo = hMin, hi = 2.0 * hMin, i = 0; i < 20; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        if (cellsAt(mid) > options.maxCells)
+            lo = mid;
+        else
+            hi = mid;
+        hMin = hi;
+    }
+
+    // Step 2: the first spacing from the curvature rule with the reference radius.
+    const double radius = tol::kMeshReferenceRadius * diagonal;
+    double h = std::min(std::sqrt(8.0 * radius * tolerance / 3.0), diagonal / 8.0);
+
+    // Step 3: mesh, measure, refine.
+    DistanceOptions measure;
+    measure.threads = options.threads;
+    measure.goodEnough = tolerance;
+    for (int pass = 0; pass < std::max(1, options.maxPasses); ++pass) {
+        if (h <= hMin) {
+            result.capped = h < hMin;
+            h = hMin;
+        }
+        result.contour = {};
+        result.mesh = tessellateAt(scene, h, options.threads, &result.rays, &result.contour);
+        result.cellSize = h;
+        result.cells = makeGrid(box, h).cellCount();
+        result.passes = pass + 1;
+        measure.reach = 2.0 * h;
+        result.error = meshToSurface(scene, result.mesh, measure);
+        const TriangleBvh bvh(result.mesh);
+        result.backError = surfaceToMesh(scene, result.mesh, bvh, kSurfaceRaysPerAxis, measure);
+        const double worst = std::max(result.error.max, result.backError.max);
+        result.toleranceMet = worst <= tolerance;
+        // Refine until the sampled error is within a margin of T: samples miss the true
+        // maximum by a little, and a different sampling (compare's) must agree.
+        const double target = tol::kMeshMeasureMargin * tolerance;
+        if (worst <= target || h <= hMin) break;
+        const double ratio = std::isfinite(worst) ? target / worst : 0.25;
+        // Linear, not quadratic: errors at creases (a QEF vertex clamped to its cell) shrink
+        // only in proportion to h, and one pass too fine costs less than one pass more.
+        h *= std::clamp(0.85 * ratio, 0.25, 0.85);
+    }
+    return result;
+}
+
+}  // namespace csg

@@ -1,0 +1,61 @@
+// A scene to a triangle mesh within a distance tolerance: tri-dexel Hermite data on a uniform
+// grid, manifold dual contouring, and a measure-and-refine loop on the grid spacing.
+//
+// The tolerance rule. For a surface of smallest curvature radius R, a triangle spanning a
+// cell of edge h (diameter sqrt(3) h) deviates from it by at most (sqrt(3) h)^2 / (8 R), so
+// h = sqrt(8 R T / 3) meets tolerance T. R is not known for a general part, so the first pass
+// assumes R = kReferenceRadiusFraction of the bounds' diagonal; then the mesh-to-surface
+// distance is *measured* (MeshDistance.h: every vertex, centroid and edge midpoint, along the
+// mesh normal and other lines; and surface to mesh, which sees a chamfered or lost feature
+// that every mesh point is close to) and h shrinks by T / measured with a 0.85 safety factor (a
+// linear law: the worst errors sit at curved creases such as a hole's rim, where a cell's QEF
+// vertex is clamped or falls back to the mass point, and those shrink in proportion to h) until
+// the measurement is within T, the cell cap is reached, or maxPasses passes have run.
+#pragma once
+
+#include <cstdint>
+
+#include "csg/Scene.h"
+#include "csg/mesh/DualContour.h"
+#include "csg/mesh/MeshDistance.h"
+#include "csg/mesh/TriangleBvh.h"
+#include "csg/mesh/TriangleMesh.h"
+
+namespace csg {
+
+// Surface samples of the surface-to-mesh measurement: lines per axis along each of x, y, z.
+inline constexpr int kSurfaceRaysPerAxis = 128;
+
+struct TessellateOptions {
+    // Largest allowed mesh-to-surface distance (world units); <= 0 means 1/500 of the bounds'
+    // diagonal.
+    double tolerance = 0.0;
+    // Cap on the grid's cells (the work and memory of one pass grow with it).
+    uint64_t maxCells = uint64_t(1) << 24;
+    int maxPasses = 4;
+    int threads = 0;  // 0: all cores
+};
+
+struct TessellateResult {
+    TriangleMesh mesh;
+    double tolerance = 0.0;  // the tolerance asked for (resolved when <= 0 was given)
+    double cellSize = 0.0;   // h of the last pass
+    uint64_t cells = 0;      // cells of the last pass
+    int passes = 0;
+    uint64_t rays = 0;        // Hermite rays of all passes (distance probes not counted)
+    DistanceStats error;      // mesh to surface of the result, as measured
+    DistanceStats backError;  // surface to mesh (kSurfaceRaysPerAxis^2 lines per axis)
+    DualContourStats contour;
+    bool toleranceMet = false;  // error.max and backError.max <= tolerance
+    bool capped = false;        // maxCells stopped the refinement
+};
+
+// Throws std::invalid_argument for an unbounded scene (a bare half-space). An empty scene
+// gives an empty mesh with toleranceMet = true.
+TessellateResult tessellate(const Scene& scene, const TessellateOptions& options);
+
+// One pass at a given spacing: grid, Hermite data, contouring. For tests and benchmarks.
+TriangleMesh tessellateAt(const Scene& scene, double h, int threads, uint64_t* rays = nullptr,
+                          DualContourStats* stats = nullptr);
+
+}  // namespace csg

@@ -1,0 +1,25 @@
+// An indexed triangle mesh: what meshing produces, the writers write and compare reads.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "csg/Math.h"
+
+namespace csg {
+
+struct TriangleMesh {
+    std::vector<Vec3> positions;
+    std::vector<Vec3> normals;  // unit, one per position; may be empty for a loaded mesh
+    // Corners in counter-clockwise order seen from outside (the normal by the right-hand rule
+    // points out of the solid).
+    std::vector<std::array<uint32_t, 3>> triangles;
+    // One per triangle: the Tags::material of the leaf whose surface the triangle follows.
+    // May be empty for a loaded mesh.
+    std::vector<uint32_t> triangleMaterial;
+
+    bool empty() const { return triangles.empty(); }
+};
+
+}  // namespace csg
