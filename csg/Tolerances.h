@@ -69,4 +69,28 @@ inline constexpr int kHitPointErrorOps = 1024;
 // a 1e5 safety factor and costs nothing, as F > 0 everywhere outside the torus.
 inline constexpr double kTorusRangeMargin = 1e-6;
 
+// Mesh export (csg/mesh/). The QEF of a cell drops eigen-directions of A^T A whose eigenvalue
+// is below this fraction of the largest (unit: relative). Eigenvalues are squared singular
+// values, so this is DC's usual 0.1 singular-value cut: planes within ~6 degrees of each other
+// do not locate a feature along their common direction (a smooth patch gives the mass point,
+// not a far-off intersection of nearly parallel tangent planes).
+inline constexpr double kQefEigenRel = 1e-2;
+
+// Two tangent lines on a cell face that meet at less than this angle (unit: radians, 20 deg)
+// are one smooth curve: no crease vertex on the face. A crease of a part (box edge, a cut's
+// rim) meets at far more; a smooth surface sampled finely enough to meet a tolerance turns by
+// much less across one cell.
+inline constexpr double kCreaseAngle = 0.349;
+
+// The first meshing pass assumes the part's smallest curvature radius is this fraction of its
+// bounds' diagonal (unit: relative). Only the starting grid depends on it: later passes
+// measure the error and refine, so a wrong guess costs a pass, not accuracy.
+inline constexpr double kMeshReferenceRadius = 0.05;
+
+// Meshing refines its grid until the *sampled* mesh-surface distance is within this fraction
+// of the tolerance (unit: relative). Samples (vertices, centroids, edge midpoints, a grid of
+// surface points) find the maximum to within ~10-20% on the samples; 0.8 leaves that margin so
+// an independent sampling (csgray compare, another tool) also finds the mesh within T.
+inline constexpr double kMeshMeasureMargin = 0.8;
+
 }  // namespace csg::tol
