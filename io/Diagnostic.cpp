@@ -1,6 +1,7 @@
 #include "io/Diagnostic.h"
 
-#include <cstdio>
+#include "io/Json.h"
+
 
 namespace io {
 
@@ -29,52 +30,20 @@ std::string formatDiagnostic(const Diagnostic& d) {
     return out;
 }
 
-// JSON string escaping; bytes are passed through as UTF-8 except controls.
-static void appendJsonString(std::string& out, const std::string& s) {
-    out += '"';
-    for (char c : s) {
-        switch (c) {
-            case '"':
-                out += "\\\"";
-                break;
-            case '\\':
-                out += "\\\\";
-                break;
-            case '\n':
-                out += "\\n";
-                break;
-            case '\r':
-                out += "\\r";
-                break;
-            case '\t':
-                out += "\\t";
-                break;
-            default:
-                if (static_cast<unsigned char>(c) < 0x20) {
-                    char buffer[8];
-                    std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
-                    out += buffer;
-                } else {
-                    out += c;
-                }
-        }
-    }
-    out += '"';
-}
-
 std::string diagnosticsToJson(const std::vector<Diagnostic>& diagnostics) {
-    std::string out = "[";
-    for (size_t i = 0; i < diagnostics.size(); ++i) {
-        const Diagnostic& d = diagnostics[i];
-        if (i) out += ",";
-        out += "{\"file\":";
-        appendJsonString(out, d.file);
-        out += ",\"line\":" + std::to_string(d.line) + ",\"col\":" + std::to_string(d.col) +
-               ",\"severity\":\"" + severityName(d.severity) + "\",\"message\":";
-        appendJsonString(out, d.message);
-        out += "}";
+    std::string out;
+    JsonWriter json(out);
+    json.beginArray();
+    for (const Diagnostic& d : diagnostics) {
+        json.beginObject();
+        json.key("file").value(d.file);
+        json.key("line").value(static_cast<uint64_t>(d.line));
+        json.key("col").value(static_cast<uint64_t>(d.col));
+        json.key("severity").value(severityName(d.severity));
+        json.key("message").value(d.message);
+        json.endObject();
     }
-    out += "]";
+    json.endArray();
     return out;
 }
 

@@ -302,8 +302,7 @@ Token Lexer::lexNumber() {
     return {Tok::Number, start, {}, std::strtod(digits.c_str(), nullptr)};
 }
 
-// Appends the UTF-8 encoding of a code point.
-static void appendUtf8(std::string& out, uint32_t cp) {
+void appendUtf8(std::string& out, uint32_t cp) {
     if (cp < 0x80) {
         out += static_cast<char>(cp);
     } else if (cp < 0x800) {

@@ -81,6 +81,9 @@ struct TextPosition {
 };
 std::optional<TextPosition> findInvalidUtf8(std::string_view text);
 
+// Appends the UTF-8 encoding of a Unicode code point (string escapes, chr()).
+void appendUtf8(std::string& out, uint32_t cp);
+
 class Lexer {
 public:
     // text must outlive the lexer; a leading UTF-8 byte-order mark is skipped.
