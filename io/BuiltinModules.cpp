@@ -7,6 +7,7 @@
 #include "io/Colors.h"
 #include "io/Degrees.h"
 #include "io/Evaluator.h"
+#include "io/SurfaceModule.h"
 
 namespace io {
 
@@ -480,6 +481,7 @@ const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {
         {"cylinder", cylinder},
         {"halfspace", halfspace},
         {"torus", torus},
+        {"surface", surfaceModule},
         {"union", unionModule},
         {"group", unionModule},
         {"render", unionModule},
@@ -499,7 +501,6 @@ const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {
         {"linear_extrude", unsupported},
         {"rotate_extrude", unsupported},
         {"import", unsupported},
-        {"surface", unsupported},
         {"polyhedron", unsupported},
         {"square", unsupported},
         {"circle", unsupported},
