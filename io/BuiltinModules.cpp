@@ -2,11 +2,13 @@
 // modules (camera, light, background, material, halfspace), and a clear error for each
 // OpenSCAD module csgray does not support yet.
 #include <cmath>
+#include <filesystem>
 #include <unordered_map>
 
 #include "io/Colors.h"
 #include "io/Degrees.h"
 #include "io/Evaluator.h"
+#include "io/PngReader.h"
 #include "io/SurfaceModule.h"
 
 namespace io {
@@ -386,13 +388,62 @@ Instance color(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
     return childrenGroup(e, b, ctx, inner);
 }
 
+// The index in Model::textures of the PNG written as `written` at argument i (relative to
+// the file that names it), read on first use; an unreadable file is an error there.
+int32_t textureArg(Evaluator& e, const BoundArgs& b, size_t i, const std::string& written) {
+    if (!e.filesAllowed())
+        e.fail(b.loc(i), "material(): cannot read texture \"" + written +
+                             "\": reading files is not allowed here");
+    std::filesystem::path path(written);
+    if (path.is_relative()) path = e.filePath(b.loc(i).file).parent_path() / path;
+    path = path.lexically_normal();
+    std::vector<Model::Texture>& textures = e.model().textures;
+    for (size_t k = 0; k < textures.size(); ++k)
+        if (textures[k].path == path.string()) return int32_t(k);
+    Model::Texture texture{path.string(), {}};
+    if (std::string error = readPng(path, texture.image); !error.empty())
+        e.fail(b.loc(i), "material(): texture " + error + "; expected texture=\"file.png\"");
+    textures.push_back(std::move(texture));
+    return int32_t(textures.size() - 1);
+}
+
+// material()'s pattern arguments (indices 8..11: pattern, color2, scale, texture). Fields
+// not given keep the enclosing material's, like the coefficients; texture= alone implies
+// pattern="texture".
+void materialPattern(Evaluator& e, const BoundArgs& b, Material& m) {
+    if (auto c = colorArg(e, b, 9, "color2")) m.color2 = *c;
+    m.scale = numberArg(e, b, 10, "scale", m.scale);
+    if (m.scale <= 0) badArgument(e, b, 10, "scale", "a number > 0 (world units)");
+    if (b.given(11)) {
+        if (!b[11].isString() || b[11].string().empty())
+            badArgument(e, b, 11, "texture", "a PNG file name");
+        m.texture = textureArg(e, b, 11, b[11].string());
+        m.pattern = Pattern::Texture;
+    }
+    if (!b.given(8)) return;
+    const std::string name = b[8].isString() ? b[8].string() : std::string();
+    if (name == "checker")
+        m.pattern = Pattern::Checker;
+    else if (name == "solid")
+        m.pattern = Pattern::Solid;
+    else if (name == "texture")
+        m.pattern = Pattern::Texture;
+    else
+        badArgument(e, b, 8, "pattern", "\"checker\", \"texture\" or \"solid\"");
+    if (m.pattern == Pattern::Texture && m.texture < 0)
+        e.fail(b.loc(8),
+               "material(): pattern=\"texture\" needs an image; expected "
+               "material(pattern=\"texture\", texture=\"file.png\", scale=s)");
+}
+
 Instance material(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                   const GeomState& state) {
-    BoundArgs b =
-        bind(e, s, ctx,
-             {"color", "ambient", "diffuse", "specular", "shininess", "reflect", "transmit", "ior"},
-             "material(color, ambient, diffuse, specular, shininess, reflect, transmit, "
-             "ior)");
+    BoundArgs b = bind(e, s, ctx,
+                       {"color", "ambient", "diffuse", "specular", "shininess", "reflect",
+                        "transmit", "ior", "pattern", "color2", "scale", "texture"},
+                       "material(color, ambient, diffuse, specular, shininess, reflect, "
+                       "transmit, ior, pattern=\"checker\"|\"texture\"|\"solid\", color2, "
+                       "scale, texture=\"file.png\")");
     // Fields not given keep the enclosing material's values (inner wins field by field).
     Material m = e.model().materials[state.material];
     if (auto c = colorArg(e, b, 0, "color")) m.color = *c;
@@ -405,6 +456,7 @@ Instance material(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ct
         if (*fields[k] < 0) badArgument(e, b, k + 1, names[k], "a number >= 0");
     }
     if (m.ior <= 0) badArgument(e, b, 7, "ior", "a number > 0");
+    materialPattern(e, b, m);
     GeomState inner = state;
     inner.material = e.internMaterial(m);
     return childrenGroup(e, b, ctx, inner);

@@ -185,6 +185,10 @@ public:
     Instance group(std::vector<csg::NodePtr> parts, bool anyPresent, uint32_t tag);
     Model& model() { return model_; }
     const std::string& fileName(uint32_t file) const { return sources_.name(file); }
+    // Where a file's data files (material textures) resolve from, and whether reading any
+    // is allowed (EvaluateOptions::allowFiles).
+    const std::filesystem::path& filePath(uint32_t file) const { return sources_.path(file); }
+    bool filesAllowed() const { return options_.allowFiles; }
 
     // ---- built-in modules (BuiltinModules.cpp) ----
     using BuiltinModule = Instance (*)(Evaluator&, const InstantiationStmt&, const ContextPtr&,

@@ -10,6 +10,7 @@
 
 #include "csg/Math.h"
 #include "csg/Tree.h"
+#include "io/PngWriter.h"
 
 namespace io {
 
@@ -32,6 +33,9 @@ struct Light {
     bool shadows = true;
 };
 
+// What colours a surface: color alone, or a planar pattern over it (material(pattern=...)).
+enum class Pattern : uint8_t { Solid, Checker, Texture };
+
 // A shading material (material(...) and color(...)); coefficients are unitless weights.
 struct Material {
     csg::Vec4 color{0.976, 0.843, 0.173, 1.0};  // RGBA in [0, 1]; OpenSCAD's default yellow
@@ -42,6 +46,12 @@ struct Material {
     double reflect = 0.0;     // fraction of light mirrored
     double transmit = 0.0;    // fraction of light refracted through
     double ior = 1.5;         // index of refraction (used when transmit > 0)
+    // Checker: squares of side scale (world units) alternating color and color2. Texture:
+    // Model::textures[texture] tiled over squares of side scale. Both are planar maps.
+    Pattern pattern = Pattern::Solid;
+    csg::Vec4 color2{0.1, 0.1, 0.1, 1.0};  // RGBA in [0, 1]
+    double scale = 1.0;                    // > 0
+    int32_t texture = -1;                  // index in Model::textures; -1: none
 
     bool operator==(const Material&) const = default;
 };
@@ -74,6 +84,13 @@ struct Model {
 
     // Indexed by csg::Tags::material; entry 0 is the neutral default Material{}.
     std::vector<Material> materials{Material{}};
+    // Images named by material(texture=...), each read once (path as resolved, for
+    // messages and for reading a file only once).
+    struct Texture {
+        std::string path;
+        Rgb8Image image;
+    };
+    std::vector<Texture> textures;
     // Indexed by csg::Tags::source; entry 0 is "unknown" (file "", line 0).
     std::vector<SourceInfo> sources{SourceInfo{}};
     // Every file that was read (the main file first), and the interned module paths.

@@ -20,10 +20,12 @@
 #include <thread>
 
 #include "io/Evaluate.h"
+#include "io/PngWriter.h"
 #include "viewer/render/Color.h"
 #include "viewer/render/EffectsPlan.h"
 #include "viewer/render/ImageOutput.h"
 #include "viewer/render/Materials.h"
+#include "viewer/render/Pattern.h"
 #include "viewer/render/RenderCamera.h"
 #include "viewer/render/SecondaryOrigin.h"
 #include "viewer/render/TileRenderer.h"
@@ -503,6 +505,178 @@ TEST(Tracer, AllocatesNothingPerRayOnceWarm) {
     frame();
     EXPECT_EQ(gAllocations.load() - before, 0u);
     EXPECT_GT(tracer.rays.shadow + tracer.rays.reflection + tracer.rays.refraction, 0u);
+    EXPECT_GT(sum.r, 0.0);
+}
+
+// ---- patterns (material(pattern="checker") and material(texture="file.png")) ----
+
+// Looking straight down at z = 0 with an orthographic camera: eye 10 above, up = +y, so
+// forward = -z and right = forward x up = +x. fov = 2 atan(0.2) makes the view 2 * 10 * 0.2 =
+// 4 units tall, so a square image of N pixels shows [-2, 2] x [-2, 2] and pixel (i, j) has its
+// centre at x = -2 + (i + 0.5) 4/N, y = 2 - (j + 0.5) 4/N. Ambient-only materials make a pixel
+// exactly the linear colour of the pattern there.
+std::string topDownScene(const std::string& material) {
+    return "camera(eye = [0, 0, 10], center = [0, 0, 0], up = [0, 1, 0], fov = 2 * atan(0.2), "
+           "projection = \"orthographic\");\n" +
+           material + " halfspace([0, 0, 1], 0);\n";
+}
+
+csg::Vec3 pixel(const RenderResult& r, int i, int j) {
+    const float* p = &r.image.rgb[(size_t(j) * r.image.width + i) * 3];
+    return {p[0], p[1], p[2]};
+}
+
+TEST(Patterns, CheckerHalfSpaceSeenFromAboveAlternatesByTheSquare) {
+    // Red and blue squares of side 1: blue where floor(x) + floor(y) is odd.
+    const LoadedScene s = load(topDownScene(
+        "material(color = [1, 0, 0], color2 = [0, 0, 1], pattern = \"checker\", scale = 1, "
+        "ambient = 1, diffuse = 0, specular = 0)"));
+    const Rendered r = render(s, 8, 8);
+    const csg::Vec3 red(1, 0, 0), blue(0, 0, 1);
+    // 8 pixels over 4 units: centres at +-0.25, +-0.75, ... (x to the right, y up).
+    struct Expected {
+        int i, j;
+        csg::Vec3 color;
+        const char* why;
+    };
+    const Expected expected[] = {
+        {0, 0, blue, "(-1.75, 1.75): floor -2 + 1 = -1, odd"},
+        {1, 0, blue, "(-1.25, 1.75): same square"},
+        {2, 0, red, "(-0.75, 1.75): -1 + 1 = 0, even"},
+        {4, 0, blue, "(0.25, 1.75): 0 + 1 = 1, odd"},
+        {0, 2, red, "(-1.75, 0.75): -2 + 0, even"},
+        {3, 3, blue, "(-0.25, 0.25): -1 + 0, odd"},
+        {4, 4, blue, "(0.25, -0.25): 0 - 1, odd"},
+        {4, 3, red, "(0.25, 0.25): 0 + 0, even"},
+        {7, 7, blue, "(1.75, -1.75): 1 - 2 = -1, odd"},
+    };
+    for (const Expected& e : expected)
+        EXPECT_EQ(pixel(r.result, e.i, e.j), e.color)
+            << "pixel " << e.i << "," << e.j << " at " << e.why;
+    // Every pixel is one of the two colours, and each row alternates every two pixels.
+    for (int j = 0; j < 8; ++j)
+        for (int i = 0; i + 2 < 8; i += 2)
+            EXPECT_NE(pixel(r.result, i, j), pixel(r.result, i + 2, j)) << i << "," << j;
+}
+
+TEST(Patterns, CheckerOnATiltedHalfSpaceUsesThePlanesOwnFrame) {
+    // The plane frame is orthonormal: moving one square along either in-plane axis flips the
+    // colour, and its frame is x, y itself on an axis-aligned plane.
+    const csg::Vec3 n = glm::normalize(csg::Vec3(0.3, -0.2, 1.0));
+    const csg::Vec2 origin = planarCoordinates(csg::Vec3(0.0), n, true);
+    EXPECT_EQ(origin, csg::Vec2(0.0));
+    const csg::Vec2 flat = planarCoordinates(csg::Vec3(1.5, -2.5, 7.0), csg::Vec3(0, 0, 1), true);
+    EXPECT_EQ(flat, csg::Vec2(1.5, -2.5));
+    std::mt19937_64 rng(4);
+    std::uniform_real_distribution<double> coord(-50.0, 50.0);
+    for (int k = 0; k < 1000; ++k) {
+        // Two points of the plane a distance d apart map to (u, v) a distance d apart.
+        csg::Vec3 a(coord(rng), coord(rng), coord(rng)), b(coord(rng), coord(rng), coord(rng));
+        a -= glm::dot(a, n) * n;
+        b -= glm::dot(b, n) * n;
+        const double d = glm::length(planarCoordinates(a, n, true) - planarCoordinates(b, n, true));
+        EXPECT_NEAR(d, glm::length(a - b), 1e-9 * (1.0 + glm::length(a - b)));
+    }
+}
+
+struct TempDir {
+    fs::path path;
+    explicit TempDir(const std::string& name)
+        : path(fs::temp_directory_path() / (name + "_" + std::to_string(getpid()))) {
+        fs::create_directories(path);
+    }
+    ~TempDir() { fs::remove_all(path); }
+};
+
+// Colours equal to 1e-9 (componentwise distance), printing the actual one.
+#define EXPECT_NEAR_RGB(actual, expected)                                 \
+    EXPECT_LT(glm::length(csg::Vec3(actual) - csg::Vec3(expected)), 1e-9) \
+        << #actual << " = " << (actual).x << "," << (actual).y << "," << (actual).z
+
+TEST(Patterns, PngTextureIsSampledAtKnownPoints) {
+    // A 2 x 2 texture over squares of side 2: red top-left, green top-right, blue bottom-left,
+    // white bottom-right. Texel centres are at u, v = 0.5 and 1.5 of each tile, v up, so the
+    // top row (red, green) is at v = 1.5.
+    TempDir dir("render_texture");
+    io::Rgb8Image image(2, 2);
+    const uint8_t texels[] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255};
+    std::copy(std::begin(texels), std::end(texels), image.pixels.begin());
+    ASSERT_EQ(io::writePng(dir.path / "tex.png", image), "");
+    // Read relative to the part file, not the working directory.
+    const std::string source = topDownScene(
+        "material(texture = \"tex.png\", scale = 2, ambient = 1, diffuse = 0, specular = 0)");
+    io::EvaluateResult evaluated = io::evaluateString(source, (dir.path / "part.scad").string());
+    ASSERT_TRUE(evaluated.ok()) << (evaluated.diagnostics.empty()
+                                        ? std::string()
+                                        : evaluated.diagnostics[0].message);
+    LoadedScene s;
+    s.model = std::move(*evaluated.model);
+    s.scene = csg::Scene::compile(s.model.root);
+    ASSERT_EQ(s.model.textures.size(), 1u);
+    EXPECT_EQ(s.model.materials.back().pattern, io::Pattern::Texture);
+
+    // 4 pixels over 4 units: centres at x, y = -1.5, -0.5, 0.5, 1.5, on texel centres.
+    const Rendered r = render(s, 4, 4);
+    const csg::Vec3 red(1, 0, 0), green(0, 1, 0), blue(0, 0, 1), white(1, 1, 1);
+    // Near, not equal: the camera's ray lands on a texel centre only to rounding, and the
+    // bilinear weights pass that on (~1e-15).
+    EXPECT_NEAR_RGB(pixel(r.result, 2, 0), red);    // (0.5, 1.5): tile (0, 0), top-left
+    EXPECT_NEAR_RGB(pixel(r.result, 3, 0), green);  // (1.5, 1.5): top-right
+    EXPECT_NEAR_RGB(pixel(r.result, 2, 1), blue);   // (0.5, 0.5): bottom-left
+    EXPECT_NEAR_RGB(pixel(r.result, 3, 1), white);  // (1.5, 0.5): bottom-right
+    EXPECT_NEAR_RGB(pixel(r.result, 0, 0), red);    // (-1.5, 1.5): the tile to the left, tiled
+    EXPECT_NEAR_RGB(pixel(r.result, 1, 3), white);  // (-0.5, -1.5): the tile below-left
+    // Half-way between texel centres the sample blends them (bilinear): red and green.
+    const csg::Vec3 mid = sampleTexture(r.plan.textures[0], csg::Vec2(1.0, 1.5), 0.5);
+    EXPECT_NEAR(mid.r, 0.5, 1e-12);
+    EXPECT_NEAR(mid.g, 0.5, 1e-12);
+    EXPECT_NEAR(mid.b, 0.0, 1e-12);
+}
+
+TEST(Patterns, MissingOrUnreadableTextureIsAnErrorAtItsArgument) {
+    TempDir dir("render_texture_missing");
+    std::ofstream(dir.path / "not_a.png") << "plain text";
+    for (const char* name : {"missing.png", "not_a.png"}) {
+        const std::string source = std::string("halfspace();\nmaterial(ambient = 1,\n") +
+                                   "    texture = \"" + name + "\") sphere(1);\n";
+        const io::EvaluateResult r = io::evaluateString(source, (dir.path / "part.scad").string());
+        ASSERT_FALSE(r.ok()) << name;
+        ASSERT_FALSE(r.diagnostics.empty());
+        const io::Diagnostic& d = r.diagnostics.front();
+        EXPECT_EQ(d.line, 3u) << d.message;
+        EXPECT_EQ(d.col, 5u) << d.message;
+        EXPECT_NE(d.message.find(name), std::string::npos) << d.message;
+        EXPECT_NE(d.message.find("texture"), std::string::npos) << d.message;
+    }
+    // pattern="texture" without an image, and a bad scale, are errors with the expected form.
+    for (const char* bad : {"material(pattern = \"texture\") sphere(1);",
+                            "material(pattern = \"checker\", scale = 0) sphere(1);",
+                            "material(pattern = \"stripes\") sphere(1);"}) {
+        const io::EvaluateResult r = io::evaluateString(bad, "bad.scad");
+        ASSERT_FALSE(r.ok()) << bad;
+        EXPECT_NE(r.diagnostics.front().message.find("expected"), std::string::npos)
+            << r.diagnostics.front().message;
+    }
+}
+
+TEST(Patterns, CheckerAllocatesNothingPerRay) {
+    const LoadedScene s = load(
+        "camera(eye = [3, -6, 4], center = [0, 0, 0]);\nlight([5, -5, 8]);\n"
+        "material(pattern = \"checker\", color2 = \"black\") halfspace([0, 0, 1], -1);\n"
+        "material(reflect = 0.5) sphere(1);\n");
+    const io::Camera camera = *s.model.camera;
+    const EffectsPlan plan = makeEffectsPlan(s.model, s.scene, camera, {});
+    const RenderCamera view(camera, 32, 32);
+    Tracer tracer(s.scene, plan);
+    csg::Vec3 sum(0.0);
+    auto frame = [&] {
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 32; ++x) sum += tracer.tracePrimary(view.ray(x + 0.5, y + 0.5));
+    };
+    frame();
+    const uint64_t before = gAllocations.load();
+    frame();
+    EXPECT_EQ(gAllocations.load() - before, 0u);
     EXPECT_GT(sum.r, 0.0);
 }
 

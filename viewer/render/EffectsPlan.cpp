@@ -62,6 +62,13 @@ EffectsPlan makeEffectsPlan(const io::Model& model, const csg::Scene& scene,
     plan.materials.resize(model.materials.empty() ? 1 : model.materials.size());
     for (size_t i = 0; i < model.materials.size(); ++i)
         plan.materials[i].shading = shadingMaterial(model.materials[i]);
+    // Textures are decoded here, once, so the tracer only looks texels up.
+    plan.textures.reserve(model.textures.size());
+    for (const io::Model::Texture& t : model.textures)
+        plan.textures.push_back(LinearTexture::fromSrgb(t.image));
+    for (PlannedMaterial& m : plan.materials)
+        if (m.shading.texture >= int32_t(plan.textures.size()))
+            m.shading.pattern = io::Pattern::Solid;  // a stale index: never read past the table
     for (uint32_t leaf = 0; leaf < scene.leafCount(); ++leaf) {
         const uint32_t tag = scene.leafTags(leaf).material;
         plan.materials[tag < plan.materials.size() ? tag : 0].used = true;

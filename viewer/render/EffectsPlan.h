@@ -20,6 +20,7 @@
 #include "io/Json.h"
 #include "io/Model.h"
 #include "viewer/render/Materials.h"
+#include "viewer/render/Pattern.h"
 
 namespace viewer::render {
 
@@ -53,7 +54,8 @@ struct EffectsPlan {
     std::vector<PlannedLight> lights;  // lights that can light something (radiance > 0)
     int droppedLights = 0;             // lights of the model with zero radiance
     std::vector<PlannedMaterial> materials;
-    csg::Vec3 background{0.0};  // linear RGB
+    std::vector<LinearTexture> textures;  // io::Model::textures, decoded to linear RGB
+    csg::Vec3 background{0.0};            // linear RGB
     csg::Vec3 ambientLight{1.0};
     bool convexScene = false;  // the whole solid is one convex set
     // Summaries over the materials in use and the lights.

@@ -14,6 +14,11 @@ ShadingMaterial shadingMaterial(const io::Material& m) {
     s.reflect = m.reflect;
     s.transmit = m.transmit;
     s.ior = m.ior > 0.0 ? m.ior : 1.0;  // the language rejects ior <= 0; stay finite anyway
+    s.pattern = m.pattern;
+    s.color2 = srgbToLinear(csg::Vec3(m.color2));
+    s.inverseScale = m.scale > 0.0 ? 1.0 / m.scale : 1.0;  // the language rejects scale <= 0
+    s.texture = m.texture;
+    if (s.pattern == io::Pattern::Texture && s.texture < 0) s.pattern = io::Pattern::Solid;
     return s;
 }
 

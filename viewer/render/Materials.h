@@ -20,6 +20,11 @@ struct ShadingMaterial {
     double reflect = 0.0;   // weight of the mirrored ray
     double transmit = 0.0;  // weight of the refracted ray
     double ior = 1.0;       // index of refraction against the surrounding air (1.0)
+    // A pattern replaces color by one looked up at the hit (viewer/render/Pattern.h).
+    io::Pattern pattern = io::Pattern::Solid;
+    csg::Vec3 color2{0.0};      // linear RGB: the checker's other colour
+    double inverseScale = 1.0;  // 1 / the pattern's square size in world units
+    int32_t texture = -1;       // index in EffectsPlan::textures (io::Model::textures)
 };
 
 ShadingMaterial shadingMaterial(const io::Material& m);

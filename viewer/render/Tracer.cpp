@@ -1,6 +1,7 @@
 #include "viewer/render/Tracer.h"
 
 #include <cmath>
+#include <variant>
 
 #include "viewer/render/SecondaryOrigin.h"
 
@@ -31,8 +32,10 @@ csg::Vec3 Tracer::trace(const csg::Ray& ray, RayKind kind, int depth, double wei
     // Local terms belong to the surface as seen from outside; the inside face of a glass part
     // is seen only through refraction, which carries its own light.
     if (entering || !m.refraction) {
-        color += s.ambient * s.color * plan_.ambientLight;
-        if (m.direct) color += directLight(m, surface.point, error, n, -dir);
+        const csg::Vec3 albedo =
+            s.pattern == io::Pattern::Solid ? s.color : patternColor(s, surface, hit->leaf);
+        color += s.ambient * albedo * plan_.ambientLight;
+        if (m.direct) color += directLight(m, albedo, surface.point, error, n, -dir);
     }
     if (depth >= plan_.settings.maxDepth) return color;
 
@@ -61,9 +64,18 @@ csg::Vec3 Tracer::trace(const csg::Ray& ray, RayKind kind, int depth, double wei
     return color;
 }
 
-csg::Vec3 Tracer::directLight(const PlannedMaterial& m, const csg::Vec3& point,
-                              const csg::Vec3& pointError, const csg::Vec3& n,
-                              const csg::Vec3& view) {
+csg::Vec3 Tracer::patternColor(const ShadingMaterial& s, const csg::SurfacePoint& surface,
+                               uint32_t leaf) const {
+    const bool halfSpace = std::holds_alternative<csg::HalfSpace>(scene_.leafPrimitive(leaf));
+    const csg::Vec2 uv = planarCoordinates(surface.point, surface.normal, halfSpace);
+    if (s.pattern == io::Pattern::Checker)
+        return checkerParity(uv, s.inverseScale) ? s.color2 : s.color;
+    return sampleTexture(plan_.textures[size_t(s.texture)], uv, s.inverseScale);
+}
+
+csg::Vec3 Tracer::directLight(const PlannedMaterial& m, const csg::Vec3& albedo,
+                              const csg::Vec3& point, const csg::Vec3& pointError,
+                              const csg::Vec3& n, const csg::Vec3& view) {
     const ShadingMaterial& s = m.shading;
     csg::Vec3 sum(0.0);
     for (const PlannedLight& light : plan_.lights) {
@@ -80,7 +92,7 @@ csg::Vec3 Tracer::directLight(const PlannedMaterial& m, const csg::Vec3& point,
         }
         const double distance = glm::length(toLight);
         const csg::Vec3 l = toLight / distance;
-        csg::Vec3 term = (s.diffuse * (nDotL / distance)) * s.color;
+        csg::Vec3 term = (s.diffuse * (nDotL / distance)) * albedo;
         if (m.specular) {
             // Blinn-Phong: the half vector between light and viewer against the normal.
             const csg::Vec3 h = glm::normalize(l + view);

@@ -52,8 +52,12 @@ public:
 
 private:
     csg::Vec3 trace(const csg::Ray& ray, RayKind kind, int depth, double weight);
-    csg::Vec3 directLight(const PlannedMaterial& m, const csg::Vec3& point,
+    // albedo: the material's colour at this point (its pattern already looked up).
+    csg::Vec3 directLight(const PlannedMaterial& m, const csg::Vec3& albedo, const csg::Vec3& point,
                           const csg::Vec3& pointError, const csg::Vec3& n, const csg::Vec3& view);
+    // The colour of a patterned material at a hit of `leaf` (Pattern.h's planar maps).
+    csg::Vec3 patternColor(const ShadingMaterial& s, const csg::SurfacePoint& surface,
+                           uint32_t leaf) const;
 
     const csg::Scene& scene_;
     const EffectsPlan& plan_;
