@@ -1,0 +1,367 @@
+// What each digit of accuracy costs: for every root solver, surface class and tolerance
+// setting, rays per second (solve() only) against the error distribution and the wrong root
+// counts, measured on the polynomials that real rays produce. A plain program (no Google
+// Benchmark): it writes a table, not timings of one call.
+//
+//   accuracy_report [-o DIR] [--rays N]     writes DIR/accuracy.csv and DIR/accuracy.md
+//
+// Notation: a job is one ray's polynomial p with its parameter range [lo, hi], exactly the
+// doubles a solver is given. The reference is the set of real roots of that same double p,
+// found in 50 digits (Boost.Multiprecision): so an error is the solver's own, not the
+// rounding of p's coefficients (that part is the same for every solver). error = |root -
+// reference| / max(1, |reference|); a ray whose root count differs from the reference's is a
+// wrong count and has no error. Tangencies have probability zero in these classes.
+#include <algorithm>
+#include <boost/multiprecision/cpp_bin_float.hpp>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "primitives/AlgebraicSurface.h"
+#include "primitives/Torus.h"
+
+namespace {
+
+using namespace csg;
+using Big = boost::multiprecision::cpp_bin_float_50;
+
+struct Job {
+    Polynomial p;
+    double lo, hi;
+    std::vector<double> reference;  // the 50-digit roots rounded to double
+};
+
+// ---- The 50-digit reference ----
+
+Big evalBig(const std::vector<Big>& c, const Big& t) {
+    Big y = c.back();
+    for (int i = int(c.size()) - 2; i >= 0; --i) y = y * t + c[i];
+    return y;
+}
+
+// The root of p in [a, b], where p(a), p(b) have opposite signs and p is monotone (no critical
+// point inside): Newton kept inside the shrinking bracket, bisection when it would leave it.
+Big monotoneRoot(const std::vector<Big>& c, const std::vector<Big>& dc, Big a, Big b) {
+    Big fa = evalBig(c, a);
+    Big t = (a + b) / 2;
+    for (int i = 0; i < 400; ++i) {
+        const Big f = evalBig(c, t);
+        if (f == 0) return t;
+        if ((f < 0) == (fa < 0)) {
+            a = t;
+            fa = f;
+        } else {
+            b = t;
+        }
+        const Big d = evalBig(dc, t);
+        Big next = d != 0 ? t - f / d : (a + b) / 2;
+        if (!(next > a && next < b)) next = (a + b) / 2;
+        if (abs(next - t) <= 1e-45 * (1 + abs(t)) || b - a <= 1e-45 * (1 + abs(t))) return next;
+        t = next;
+    }
+    return t;
+}
+
+// Real roots of c in [lo, hi], ascending: the critical points (roots of c', recursively)
+// split the range into monotone pieces, each holding at most one root.
+std::vector<Big> rootsBig(std::vector<Big> c, const Big& lo, const Big& hi) {
+    while (c.size() > 1 && c.back() == 0) c.pop_back();
+    if (c.size() <= 1) return {};
+    std::vector<Big> dc(c.size() - 1);
+    for (size_t i = 1; i < c.size(); ++i) dc[i - 1] = c[i] * int(i);
+    std::vector<Big> cuts = {lo};
+    for (const Big& r : rootsBig(dc, lo, hi))
+        if (r > cuts.back() && r < hi) cuts.push_back(r);
+    cuts.push_back(hi);
+    std::vector<Big> out;
+    for (size_t i = 0; i + 1 < cuts.size(); ++i) {
+        const Big fa = evalBig(c, cuts[i]), fb = evalBig(c, cuts[i + 1]);
+        if (fa == 0) {
+            if (out.empty() || out.back() != cuts[i]) out.push_back(cuts[i]);
+        } else if (fb != 0 && (fa < 0) != (fb < 0)) {
+            out.push_back(monotoneRoot(c, dc, cuts[i], cuts[i + 1]));
+        }
+    }
+    if (evalBig(c, hi) == 0 && (out.empty() || out.back() != hi)) out.push_back(hi);
+    return out;
+}
+
+void addReference(Job& j) {
+    std::vector<Big> c(size_t(j.p.degree() + 1));
+    for (int i = 0; i <= j.p.degree(); ++i) c[size_t(i)] = j.p[i];
+    for (const Big& r : rootsBig(c, Big(j.lo), Big(j.hi)))
+        j.reference.push_back(r.convert_to<double>());
+}
+
+// ---- Surface classes ----
+
+using Rng = std::mt19937_64;
+
+Vec3 randomIn(Rng& g, double r) {
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (;;) {
+        const Vec3 v(u(g), u(g), u(g));
+        if (glm::dot(v, v) <= 1.0) return r * v;
+    }
+}
+
+// Rays from 4 units away through the torus R = 1, r = 0.25 (as solvers_bench and Torus.cpp
+// solve them: from the point of the line nearest the centre).
+std::vector<Job> torusJobs(int n) {
+    Rng g(11);
+    const Torus torus{1.0, 0.25};
+    std::vector<Job> out;
+    while (int(out.size()) < n) {
+        const Vec3 o = 4.0 * glm::normalize(randomIn(g, 1.0));
+        const Vec3 u = glm::normalize(randomIn(g, 1.0) - o);
+        out.push_back({torus.quarticAlong(o - glm::dot(o, u) * u, u), -1.5, 1.5, {}});
+    }
+    return out;
+}
+
+// Rays through the product of degree / 2 origin-centred spheres (radii^2 0.25 .. 1.4): the
+// chord polynomial AlgebraicSurface hands its solver.
+std::vector<Job> shellJobs(int degree, int n) {
+    const ExactPolynomial x = ExactPolynomial::x(), y = ExactPolynomial::y(),
+                          z = ExactPolynomial::z();
+    const ExactPolynomial r2 = *x.times(x) + *y.times(y) + *z.times(z);
+    ExactPolynomial f = ExactPolynomial::constant(1.0);
+    for (int i = 0; i < degree / 2; ++i)
+        f = *f.times(r2 - ExactPolynomial::constant(0.25 + 1.15 * i / (degree / 2)));
+    const AlgebraicSurface s = AlgebraicSurface::make(f, {Vec3(-1.5), Vec3(1.5)});
+    Rng g(17 + uint64_t(degree));
+    std::vector<Job> out;
+    while (int(out.size()) < n) {
+        const Vec3 o = 4.0 * glm::normalize(randomIn(g, 1.0));
+        AlgebraicSurface::Chord c;
+        if (s.chord(o, randomIn(g, 1.5) - o, c)) out.push_back({c.poly, c.uLo, c.uHi, {}});
+    }
+    return out;
+}
+
+// A polynomial with the given real roots times (t^2 + 1)^pairs, coefficients rounded once.
+Polynomial fromRoots(const std::vector<double>& roots, int complexPairs) {
+    std::vector<Big> c = {Big(1)};
+    auto times = [&c](std::vector<Big> factor) {
+        std::vector<Big> out(c.size() + factor.size() - 1, Big(0));
+        for (size_t i = 0; i < c.size(); ++i)
+            for (size_t k = 0; k < factor.size(); ++k) out[i + k] += c[i] * factor[k];
+        c = out;
+    };
+    for (double r : roots) times({Big(-r), Big(1)});
+    for (int i = 0; i < complexPairs; ++i) times({Big(1), Big(0), Big(1)});
+    Polynomial p = Polynomial::ofDegree(int(c.size()) - 1);
+    for (size_t i = 0; i < c.size(); ++i) p[int(i)] = c[i].convert_to<double>();
+    return p;
+}
+
+// Separated real roots in [-4, 4] (at least 0.05 apart); with `pairs` complex pairs on top.
+std::vector<Job> separatedJobs(int degree, int n, uint64_t seed) {
+    Rng g(seed);
+    std::uniform_real_distribution<double> u(-4.0, 4.0);
+    std::vector<Job> out;
+    const int pairs = degree >= 4 ? 1 : 0;
+    while (int(out.size()) < n) {
+        std::vector<double> roots;
+        while (int(roots.size()) < degree - 2 * pairs) {
+            const double r = u(g);
+            bool ok = true;
+            for (double s : roots) ok = ok && std::abs(s - r) >= 0.05;
+            if (ok) roots.push_back(r);
+        }
+        out.push_back({fromRoots(roots, pairs), -5.0, 5.0, {}});
+    }
+    return out;
+}
+
+// Flocke's cluster: four roots 2 + k / 1000 (k distinct in 0..7), shifted at random.
+std::vector<Job> clusterJobs(int n) {
+    Rng g(23);
+    std::uniform_real_distribution<double> shift(-1.0, 1.0);
+    std::vector<Job> out;
+    while (int(out.size()) < n) {
+        std::vector<int> ks = {0, 1, 2, 3, 4, 5, 6, 7};
+        std::shuffle(ks.begin(), ks.end(), g);
+        const double s = shift(g);
+        std::vector<double> roots;
+        for (int i = 0; i < 4; ++i) roots.push_back(2.0 + s + ks[size_t(i)] / 1000.0);
+        out.push_back({fromRoots(roots, 0), -5.0, 5.0, {}});
+    }
+    return out;
+}
+
+// A pair of roots 1e-5 apart (a nearly tangent ray) among two separated ones, degree 4.
+std::vector<Job> nearDoubleJobs(int n) {
+    Rng g(29);
+    std::uniform_real_distribution<double> u(-3.0, 3.0);
+    std::vector<Job> out;
+    while (int(out.size()) < n) {
+        const double a = u(g), b = u(g), c = u(g);
+        if (std::abs(a - b) < 0.1 || std::abs(a - c) < 0.1 || std::abs(b - c) < 0.1) continue;
+        out.push_back({fromRoots({a, a + 1e-5, b, c}, 0), -5.0, 5.0, {}});
+    }
+    return out;
+}
+
+// Four roots over seven decades (1e-3 .. 1e4, random signs).
+std::vector<Job> wideRangeJobs(int n) {
+    Rng g(31);
+    std::uniform_real_distribution<double> decade(-3.0, 4.0);
+    std::vector<Job> out;
+    while (int(out.size()) < n) {
+        std::vector<double> roots;
+        for (int i = 0; i < 4; ++i)
+            roots.push_back((g() & 1 ? 1.0 : -1.0) * std::pow(10.0, decade(g)));
+        std::sort(roots.begin(), roots.end());
+        bool ok = true;
+        for (size_t i = 1; i < roots.size(); ++i)
+            ok = ok && roots[i] - roots[i - 1] > 1e-3 * std::abs(roots[i]);
+        if (ok) out.push_back({fromRoots(roots, 0), -2e4, 2e4, {}});
+    }
+    return out;
+}
+
+// ---- Measuring ----
+
+struct Row {
+    std::string surfaceClass;
+    int degree;
+    std::string solver;
+    double relTol;
+    double raysPerSecond;
+    double maxError, p99Error, medianError;
+    long wrongCounts;
+    long rays;
+};
+
+Row measure(const std::string& name, int degree, const std::vector<Job>& jobs, Solver solver,
+            double relTol) {
+    Row row{name, degree, solverName(solver), relTol, 0, 0, 0, 0, 0, long(jobs.size())};
+    double roots[Polynomial::kMaxDegree];
+    std::vector<double> errors;
+    for (const Job& j : jobs) {
+        const int n = solve(j.p, j.lo, j.hi, roots, solver, relTol);
+        if (n != int(j.reference.size())) {
+            ++row.wrongCounts;
+            continue;
+        }
+        double e = 0;
+        for (int i = 0; i < n; ++i)
+            e = std::max(e, std::abs(roots[i] - j.reference[size_t(i)]) /
+                                std::max(1.0, std::abs(j.reference[size_t(i)])));
+        errors.push_back(e);
+    }
+    std::sort(errors.begin(), errors.end());
+    if (!errors.empty()) {
+        row.maxError = errors.back();
+        row.p99Error = errors[size_t(0.99 * double(errors.size() - 1))];
+        row.medianError = errors[errors.size() / 2];
+    }
+    // Time: whole passes over the jobs until 50 ms have passed (at least 2 passes); only
+    // solve() runs inside the clock.
+    using Clock = std::chrono::steady_clock;
+    long passes = 0;
+    double sink = 0;
+    const auto start = Clock::now();
+    double seconds = 0;
+    do {
+        for (const Job& j : jobs) {
+            const int n = solve(j.p, j.lo, j.hi, roots, solver, relTol);
+            sink += n > 0 ? roots[0] : 0.0;
+        }
+        ++passes;
+        seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    } while (seconds < 0.05 || passes < 2);
+    if (sink == 1.2345) std::puts("");  // keeps the solves observable
+    row.raysPerSecond = double(passes) * double(jobs.size()) / seconds;
+    return row;
+}
+
+std::string sci(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.2e", v);
+    return b;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::filesystem::path dir = "accuracy";
+    int rays = 2000;
+    for (int i = 1; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "-o") && i + 1 < argc)
+            dir = argv[++i];
+        else if (!std::strcmp(argv[i], "--rays") && i + 1 < argc)
+            rays = std::max(10, std::atoi(argv[++i]));
+        else {
+            std::fprintf(stderr, "usage: accuracy_report [-o DIR] [--rays N]\n");
+            return 2;
+        }
+    }
+    std::filesystem::create_directories(dir);
+
+    struct Class {
+        std::string name;
+        int degree;
+        std::vector<Job> jobs;
+        bool sweepTolerance;  // false: the degree sweep, at full accuracy only
+    };
+    std::vector<Class> classes;
+    classes.push_back({"torus", 4, torusJobs(rays), true});
+    for (int d : {4, 8, 16}) classes.push_back({"shells", d, shellJobs(d, rays), true});
+    classes.push_back({"cluster", 4, clusterJobs(rays), true});
+    classes.push_back({"near-double", 4, nearDoubleJobs(rays), true});
+    classes.push_back({"wide-range", 4, wideRangeJobs(rays), true});
+    for (int d = 2; d <= 16; ++d)
+        classes.push_back({"degree-sweep", d, separatedJobs(d, rays / 2, 41 + uint64_t(d)), false});
+    for (Class& c : classes)
+        for (Job& j : c.jobs) addReference(j);
+
+    const double tolerances[] = {1e-3, 1e-6, 1e-9, 1e-12, 1e-15, 0.0};
+    std::vector<Row> rows;
+    for (const Class& c : classes)
+        for (Solver solver : kAllSolvers) {
+            // Closed forms exist up to degree 4 only (above, ClosedForm is Yuksel).
+            if (solver == Solver::ClosedForm && c.degree > 4) continue;
+            for (double tol : tolerances) {
+                if (!c.sweepTolerance && tol != 0.0) continue;
+                // The closed forms ignore the tolerance: one row is the whole story.
+                if (solver == Solver::ClosedForm && tol != 0.0) continue;
+                rows.push_back(measure(c.name, c.degree, c.jobs, solver, tol));
+                const Row& r = rows.back();
+                std::fprintf(
+                    stderr, "%-12s %2d %-16s tol %-7g %10.0f rays/s max %s p99 %s wrong %ld\n",
+                    r.surfaceClass.c_str(), r.degree, r.solver.c_str(), r.relTol, r.raysPerSecond,
+                    sci(r.maxError).c_str(), sci(r.p99Error).c_str(), r.wrongCounts);
+            }
+        }
+
+    std::ofstream csv(dir / "accuracy.csv");
+    csv << "class,degree,solver,rel_tol,rays_per_second,max_error,p99_error,median_error,"
+           "wrong_counts,rays\n";
+    for (const Row& r : rows)
+        csv << r.surfaceClass << ',' << r.degree << ',' << r.solver << ',' << r.relTol << ','
+            << r.raysPerSecond << ',' << r.maxError << ',' << r.p99Error << ',' << r.medianError
+            << ',' << r.wrongCounts << ',' << r.rays << '\n';
+
+    std::ofstream md(dir / "accuracy.md");
+    md << "# Root solver accuracy vs time\n\n"
+       << rays << " rays per class (half that per degree in the sweep); error = |root - "
+       << "reference| / max(1, |reference|) against the 50-digit roots of the same double "
+       << "polynomial; rel_tol 0 = roots to double precision. Written by bench/accuracy_report."
+       << "\n\n| class | degree | solver | rel_tol | rays/s | max error | p99 error | wrong "
+          "counts |\n|---|---:|---|---:|---:|---:|---:|---:|\n";
+    for (const Row& r : rows)
+        md << "| " << r.surfaceClass << " | " << r.degree << " | " << r.solver << " | "
+           << (r.relTol == 0 ? std::string("0") : sci(r.relTol)) << " | " << long(r.raysPerSecond)
+           << " | " << sci(r.maxError) << " | " << sci(r.p99Error) << " | " << r.wrongCounts
+           << " / " << r.rays << " |\n";
+    std::fprintf(stderr, "wrote %s and %s\n", (dir / "accuracy.csv").c_str(),
+                 (dir / "accuracy.md").c_str());
+    return 0;
+}
