@@ -93,4 +93,10 @@ inline constexpr double kMeshReferenceRadius = 0.05;
 // an independent sampling (csgray compare, another tool) also finds the mesh within T.
 inline constexpr double kMeshMeasureMargin = 0.8;
 
+// A crease vertex on a cell face closer than this to a crossing on the face is dropped (unit:
+// multiples of the cell size h). It would only make a sliver triangle whose corners round to
+// the same float in a GLB; sheet vertices keep this far inside their cell (float's relative 6e-8 of a coordinate is ~1e-5 h for parts ~100 h
+// across): 1e-3 h stays clear of that, and dropping it moves the mesh by at most 1e-3 h.
+inline constexpr double kMeshVertexSeparation = 1e-3;
+
 }  // namespace csg::tol

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "viewer/Cli.h"
+#include "viewer/CompareCommand.h"
+#include "viewer/ExportCommand.h"
 #include "viewer/Info.h"
 #include "viewer/Probe.h"
 #include "viewer/RenderCommand.h"
@@ -24,6 +26,8 @@ const char* const kTopHelp =
     "  probe    the spans of one ray or many rays through a part, as JSON\n"
     "  info     node counts, bounds and the evaluated CSG tree of a part, as JSON\n"
     "  render   a part to a PNG image\n"
+    "  export   a part to a mesh (GLB, glTF, OBJ) within a distance tolerance\n"
+    "  compare  a mesh against the part's exact surface: distances, volume, topology\n"
     "  view     an interactive window: progressive ray tracing, hot reload, click to probe\n"
     "\n"
     "Run 'csgray COMMAND --help' for a command's options. stdout carries only the\n"
@@ -55,6 +59,8 @@ int main(int argc, char** argv) {
         if (command == "probe") return viewer::probeCommand(rest);
         if (command == "info") return viewer::infoCommand(rest);
         if (command == "render") return viewer::renderCommand(rest);
+        if (command == "export") return viewer::exportCommand(rest);
+        if (command == "compare") return viewer::compareCommand(rest);
         if (command == "view") return viewer::window::viewCommand(rest);
         return usageError("unknown command '" + command + "'", "");
     } catch (const viewer::UsageError& e) {

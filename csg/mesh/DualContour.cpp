@@ -2,6 +2,7 @@
 
 #include <unordered_map>
 
+#include "csg/Tolerances.h"
 #include "csg/mesh/CellTopology.h"
 #include "csg/mesh/Qef.h"
 
@@ -86,8 +87,12 @@ private:
             const Node3 c = cellNode(index);
             const CellCycles& cycles = cellCycles(cellMask(c));
             sheetBase_.emplace(index, uint32_t(mesh_.positions.size()));
-            const Bounds3 box{spec_.node(c[0], c[1], c[2]),
-                              spec_.node(c[0] + 1, c[1] + 1, c[2] + 1)};
+            // The cell inset a hair, so sheet vertices of neighbouring cells (say both clamped
+            // onto a crease lying in their shared face) stay distinct points, also as floats.
+            const Vec3 inset(tol::kMeshVertexSeparation * spec_.h);
+            const Bounds3 box{spec_.node(c[0], c[1], c[2]) + inset,
+                              spec_.node(c[0] + 1, c[1] + 1, c[2] + 1) - inset};
+            Vec3 placed[4], mass[4];  // a cell has at most 4 sheets
             for (int q = 0; q < cycles.count; ++q) {
                 Qef3 qef;
                 for (int e = 0; e < 12; ++e) {
@@ -99,7 +104,21 @@ private:
                     const EdgeSample s = sample(a, n);
                     qef.add(s.point, s.normal);
                 }
-                addVertex(qef.solve(box), Vec3(0.0));
+                placed[q] = glm::clamp(qef.solve(box), box.lo, box.hi);
+                mass[q] = qef.massPoint();
+            }
+            // Two sheets whose features meet at one point (solids touching along an edge, a
+            // non-manifold part) would share a position: pull each toward its own patch, so the
+            // mesh is a manifold in space too, not only in its indices.
+            const double apart = tol::kMeshVertexSeparation * spec_.h;
+            for (int q = 0; q < cycles.count; ++q) {
+                for (int o = 0; o < cycles.count; ++o) {
+                    if (o == q || glm::length(placed[q] - placed[o]) > 2.0 * apart) continue;
+                    const Vec3 toward = mass[q] - placed[q];
+                    const double len = glm::length(toward);
+                    if (len > 0.0) placed[q] += toward * (std::min(len, 4.0 * apart) / len);
+                }
+                addVertex(placed[q], Vec3(0.0));
                 ++stats_.sheetVertices;
             }
         }
@@ -161,8 +180,12 @@ private:
         const Vec2 lo(lo3[u], lo3[v]), hi(lo3[u] + spec_.h, lo3[v] + spec_.h);
         Vec3 crease;
         uint32_t vertex = kNone;
+        // A crease point (almost) on one of the crossings adds nothing but a sliver triangle
+        // whose corners round to one point when written as float: skip it.
+        const double apart = tol::kMeshVertexSeparation * spec_.h;
         if (s0.measured && s1.measured &&
-            creaseOnFace(s0.point, s0.normal, s1.point, s1.normal, u, v, lo, hi, crease)) {
+            creaseOnFace(s0.point, s0.normal, s1.point, s1.normal, u, v, lo, hi, crease) &&
+            glm::length(crease - s0.point) > apart && glm::length(crease - s1.point) > apart) {
             crease[g] = lo3[g];
             vertex = addVertex(crease, Vec3(0.0));
         } else if (ambiguous) {

@@ -1,0 +1,60 @@
+#include "io/MeshFile.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "csg/mesh/MeshCheck.h"
+#include "io/MeshFileDetail.h"
+
+namespace io {
+
+MeshFormat meshFormatOf(const std::filesystem::path& file) {
+    std::string ext = file.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext == ".obj") return MeshFormat::Obj;
+    if (ext == ".stl") return MeshFormat::Stl;
+    if (ext == ".glb") return MeshFormat::Glb;
+    if (ext == ".gltf") return MeshFormat::Gltf;
+    return MeshFormat::Unknown;
+}
+
+std::optional<std::string> writeMesh(const std::filesystem::path& file,
+                                     const csg::TriangleMesh& mesh,
+                                     const std::vector<Material>& materials) {
+    switch (meshFormatOf(file)) {
+        case MeshFormat::Obj:
+            return detail::writeObj(file, mesh);
+        case MeshFormat::Glb:
+            return detail::writeGltf(file, mesh, materials, true);
+        case MeshFormat::Gltf:
+            return detail::writeGltf(file, mesh, materials, false);
+        case MeshFormat::Stl:
+        case MeshFormat::Unknown:
+            break;
+    }
+    return "cannot write this format (use .glb, .gltf or .obj)";
+}
+
+MeshReadResult readMesh(const std::filesystem::path& file) {
+    MeshReadResult result;
+    switch (meshFormatOf(file)) {
+        case MeshFormat::Obj:
+        case MeshFormat::Stl:
+            result = detail::readWithOpenMesh(file);
+            break;
+        case MeshFormat::Glb:
+            result = detail::readGltf(file, true);
+            break;
+        case MeshFormat::Gltf:
+            result = detail::readGltf(file, false);
+            break;
+        case MeshFormat::Unknown:
+            result.error = "unknown mesh format (expected .obj, .stl, .glb or .gltf)";
+            return result;
+    }
+    if (result.mesh) result.mesh = csg::weldExactDuplicates(*result.mesh);
+    return result;
+}
+
+}  // namespace io

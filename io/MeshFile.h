@@ -1,0 +1,41 @@
+// Mesh files: OBJ (OpenMesh IO), GLB and glTF (tinygltf) written atomically, and OBJ, STL
+// (OpenMesh IO), GLB and glTF (tinygltf) read back for comparison. Lengths are written as they
+// are in the part (OpenSCAD's unit, usually mm); nothing is rescaled.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "csg/mesh/TriangleMesh.h"
+#include "io/Model.h"
+
+namespace io {
+
+enum class MeshFormat { Unknown, Obj, Stl, Glb, Gltf };
+
+// By extension, case-insensitively.
+MeshFormat meshFormatOf(const std::filesystem::path& file);
+
+// Writes mesh to file in the format of its extension (OBJ, GLB or glTF; not STL), atomically:
+// on failure no file is left behind. materials is Model::materials, indexed by the mesh's
+// triangleMaterial. glTF gets one primitive per material, with pbrMetallicRoughness from the
+// material, and the part's Z-up frame rotated to glTF's Y-up at the root node. An empty mesh
+// writes a valid empty file. Returns the error, or nothing on success.
+std::optional<std::string> writeMesh(const std::filesystem::path& file,
+                                     const csg::TriangleMesh& mesh,
+                                     const std::vector<Material>& materials);
+
+struct MeshReadResult {
+    std::optional<csg::TriangleMesh> mesh;  // positions and triangles in the part's frame
+    std::string error;                      // when mesh is empty
+    bool unreadable = false;                // the file could not be opened (an I/O failure)
+};
+
+// Reads an OBJ, STL, GLB or glTF file. glTF node transforms are applied, so a csgray GLB
+// comes back in its Z-up part frame (the root rotation undone). Vertices with bit-identical
+// positions are merged (STL soups, per-material primitives), so topology can be checked.
+MeshReadResult readMesh(const std::filesystem::path& file);
+
+}  // namespace io

