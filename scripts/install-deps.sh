@@ -17,6 +17,10 @@ packages=(
     openscad              # CLI tests: samples load in OpenSCAD and round-trip through its .csg
 )
 
+# cli_mesh_test runs the Khronos glTF validator (npm gltf-validator) under Node. Any Node with
+# npm will do; only when there is none is Debian's installed.
+command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
+
 missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
