@@ -24,9 +24,10 @@ constexpr const char* kForm =
     "surface(f = \"polynomial in x, y, z\", bbox = [[x0, y0, z0], [x1, y1, z1]], "
     "solver = \"auto\", tolerance = 0)";
 
-// f deeper than this is refused: each level of the walk may hold one ExactPolynomial (17^3
-// double-double coefficients, 79 KB), so depth bounds the memory of the expansion.
-constexpr uint32_t kMaxDepth = 256;
+// The walk holds a left operand while it expands the right one; each held ExactPolynomial is
+// 17^3 double-double coefficients (79 KB), so right-nesting is bounded (64: 5 MB). A long
+// flat sum, however tall its tree (a fully expanded degree-16 F has 969 terms), holds one.
+constexpr int kMaxHeld = 64;
 
 // Where f's text sits in the .scad file, to turn a position inside f into a file location.
 struct FText {
@@ -49,6 +50,7 @@ public:
 
     ExactPolynomial build(const Expr& x) {
         e_.spend(text_.arg);
+        e_.checkStack(text_.arg);
         switch (x.kind) {
             case ExprKind::Number: {
                 const double v = static_cast<const NumberExpr&>(x).value;
@@ -84,21 +86,36 @@ public:
     }
 
 private:
+    // build(x) while one more operand is held by the caller.
+    ExactPolynomial buildHolding(const Expr& x, const Expr& at) {
+        if (++held_ > kMaxHeld)
+            e_.fail(text_.at(at.loc.line, at.loc.col),
+                    "surface(): f nests more than " + std::to_string(kMaxHeld) + " operands deep" +
+                        text_.where(at.loc.line, at.loc.col) +
+                        " (expand it, or write it with fewer parentheses)");
+        ExactPolynomial v = build(x);
+        --held_;
+        return v;
+    }
+
     ExactPolynomial binary(const BinaryExpr& b) {
         switch (b.op) {
             case BinaryOp::Add:
-                return build(*b.left) + build(*b.right);
-            case BinaryOp::Subtract:
-                return build(*b.left) - build(*b.right);
+            case BinaryOp::Subtract: {
+                // Left first, in sequence, so a left-leaning chain holds one operand at a time.
+                const ExactPolynomial l = build(*b.left);
+                const ExactPolynomial r = buildHolding(*b.right, b);
+                return b.op == BinaryOp::Add ? l + r : l - r;
+            }
             case BinaryOp::Multiply: {
                 const ExactPolynomial l = build(*b.left);
-                auto p = l.times(build(*b.right));
+                auto p = l.times(buildHolding(*b.right, b));
                 if (!p) tooHigh(b);
                 return *p;
             }
             case BinaryOp::Divide: {
                 const ExactPolynomial l = build(*b.left);
-                const ExactPolynomial r = build(*b.right);
+                const ExactPolynomial r = buildHolding(*b.right, b);
                 if (r.degree() > 0) notPolynomial(*b.right, "division by a polynomial");
                 const double v = r.coefficient(0, 0, 0);
                 if (v == 0.0 || !std::isfinite(v)) notPolynomial(*b.right, "division by zero");
@@ -108,7 +125,7 @@ private:
             }
             case BinaryOp::Power: {
                 const ExactPolynomial base = build(*b.left);
-                const ExactPolynomial r = build(*b.right);
+                const ExactPolynomial r = buildHolding(*b.right, b);
                 if (r.degree() > 0) notPolynomial(*b.right, "an exponent that is not a number");
                 const double k = r.coefficient(0, 0, 0);
                 // A constant base may take any power (2^0.5 is a number); a polynomial only
@@ -201,6 +218,7 @@ private:
 
     Evaluator& e_;
     const FText& text_;
+    int held_ = 0;
 };
 
 // The arguments by name or position, with the expression each came from (for f's location).
@@ -307,9 +325,6 @@ Instance surfaceModule(Evaluator& e, const InstantiationStmt& s, const ContextPt
         e.fail(text.at(d.line, d.col), "surface(): f is not an expression: " + d.message +
                                            text.where(d.line, d.col) + "; expected " + kForm);
     }
-    if (tree->depth > kMaxDepth)
-        e.fail(text.arg,
-               "surface(): f is nested deeper than " + std::to_string(kMaxDepth) + " levels");
     const ExactPolynomial poly = PolynomialBuilder(e, text).build(*tree);
 
     const csg::Bounds3 box = bboxArg(e, b);

@@ -99,6 +99,21 @@ TEST(IoSurface, DegreeSixteenIsAcceptedSeventeenIsNot) {
               "solves)");
 }
 
+TEST(IoSurface, LongSumsExpandButDeepRightNestingIsRefused) {
+    // A fully expanded polynomial is a long flat sum: a tall tree that holds one operand.
+    std::string sum = "x^2 + y^2 + z^2 - 4";
+    for (int i = 0; i < 2000; ++i) sum += " + 0*x*y";
+    EXPECT_NE(surfaceOf(run("surface(f = \"" + sum + "\", bbox = [[-3, -3, -3], [3, 3, 3]]);")),
+              nullptr);
+    // Right nesting holds an operand per level (79 KB each): bounded, with a located error.
+    std::string nested = "x";
+    for (int i = 0; i < 70; ++i) nested = "1 + (" + nested + ")";
+    const std::string e =
+        error("surface(f = \"" + nested + "\", bbox = [[-1, -1, -1], [1, 1, 1]]);");
+    EXPECT_NE(e.find("error: surface(): f nests more than 64 operands deep"), std::string::npos)
+        << e;
+}
+
 TEST(IoSurface, NonPolynomialFIsLocatedInsideTheString) {
     const std::string form =
         "; expected surface(f = \"polynomial in x, y, z\", bbox = [[x0, y0, "
