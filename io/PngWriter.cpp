@@ -53,6 +53,9 @@ std::string writePng(const std::filesystem::path& path, const Rgb8Image& image) 
                  PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                  PNG_FILTER_TYPE_DEFAULT);
     png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+    // zlib's fastest level: a rendered image comes out ~25% larger than at the default level
+    // in ~70% of the write time (csg_grid at 1600x1600: 460 -> 571 kB, 0.149 -> 0.105 s).
+    png_set_compression_level(png, 1);
     png_write_info(png, info);
     const size_t stride = size_t(image.width) * 3;
     for (int y = 0; y < image.height; ++y)
