@@ -1,9 +1,7 @@
 #include "viewer/CompareCommand.h"
 
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 
 #include "csg/Volume.h"
 #include "csg/mesh/MeshCheck.h"
@@ -169,10 +167,7 @@ int compareCommand(std::span<const std::string> args) {
             toMesh.mean, (unsigned long long)toMesh.samples, (unsigned long long)toMesh.unresolved);
         add("tolerance       %.6g: %s\n", tolerance, within ? "within" : "NOT within");
     }
-    if (std::fwrite(out.data(), 1, out.size(), stdout) != out.size() || std::fflush(stdout)) {
-        report.error("<stdout>", std::string("cannot write: ") + std::strerror(errno));
-        return kExitIo;
-    }
+    if (!report.writeStdout(out)) return kExitIo;
     return within ? kExitOk : kExitBadModel;
 }
 

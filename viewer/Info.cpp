@@ -5,9 +5,7 @@
 #include "viewer/Info.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <map>
 #include <unordered_map>
 
@@ -298,10 +296,7 @@ int infoCommand(std::span<const std::string> args) {
     render::writeEffectsPlan(json, render::makeEffectsPlan(part.model, part.scene, camera, {}));
     json.endObject();
     out += '\n';
-    if (std::fwrite(out.data(), 1, out.size(), stdout) != out.size() || std::fflush(stdout)) {
-        report.error("<stdout>", std::string("cannot write: ") + std::strerror(errno));
-        return kExitIo;
-    }
+    if (!report.writeStdout(out)) return kExitIo;
     return kExitOk;
 }
 

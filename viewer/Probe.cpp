@@ -106,10 +106,7 @@ int probeCommand(std::span<const std::string> args) {
     csg::QueryContext ctx;
     probe.append(out, *o.origin, glm::normalize(*o.dir), ctx);
     out += '\n';
-    if (std::fwrite(out.data(), 1, out.size(), stdout) != out.size() || std::fflush(stdout)) {
-        report.error("<stdout>", std::string("cannot write: ") + std::strerror(errno));
-        return kExitIo;
-    }
+    if (!report.writeStdout(out)) return kExitIo;
     return kExitOk;
 }
 

@@ -99,7 +99,7 @@ RayBatchResult probeRayBatch(std::FILE* input, const std::string& inputName, con
     auto flush = [&]() {
         if (block.empty()) return true;
         if (!runner.run(block)) {
-            report.error("<stdout>", std::string("cannot write: ") + std::strerror(errno));
+            report.stdoutFailed();
             result.exitCode = kExitIo;
             return false;
         }
@@ -147,7 +147,7 @@ RayBatchResult probeRayBatch(std::FILE* input, const std::string& inputName, con
     }
     flush();
     if (result.exitCode == kExitOk && std::fflush(stdout) != 0) {
-        report.error("<stdout>", std::string("cannot write: ") + std::strerror(errno));
+        report.stdoutFailed();
         result.exitCode = kExitIo;
     }
     return result;

@@ -1,6 +1,8 @@
 #include "viewer/Report.h"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 
 namespace viewer {
 
@@ -19,6 +21,17 @@ void Report::addAll(const std::vector<io::Diagnostic>& diagnostics) {
 
 void Report::error(std::string file, std::string message) {
     add(io::Diagnostic{std::move(file), 0, 0, io::Severity::Error, std::move(message)});
+}
+
+void Report::stdoutFailed() {
+    error("<stdout>", std::string("cannot write: ") + std::strerror(errno));
+}
+
+bool Report::writeStdout(const std::string& text) {
+    if (std::fwrite(text.data(), 1, text.size(), stdout) == text.size() && std::fflush(stdout) == 0)
+        return true;
+    stdoutFailed();
+    return false;
 }
 
 void Report::echo(const std::string& line) {

@@ -21,6 +21,10 @@ public:
     void addAll(const std::vector<io::Diagnostic>& diagnostics);
     // An error without a source position (an output file that cannot be written).
     void error(std::string file, std::string message);
+    // Reports that stdout could not be written (errno says why).
+    void stdoutFailed();
+    // Writes text to stdout and flushes it; on failure reports it and returns false.
+    bool writeStdout(const std::string& text);
     // An echo() line from the part: plain on stderr, or a note in JSON mode.
     void echo(const std::string& line);
     // Prints the JSON array (once); does nothing in text mode.
