@@ -16,7 +16,7 @@ constexpr int kSahMaxDepth = kBvhMaxDepth - 24;
 
 struct Builder {
     std::span<uint32_t> items;
-    const std::vector<Bounds3>& itemBounds;
+    const std::vector<CompiledNode>& itemNodes;
     uint32_t itemsOffset;
     std::vector<BvhNode>& nodes;
 
@@ -25,8 +25,8 @@ struct Builder {
         nodes.emplace_back();
         Bounds3 box, centroids;
         for (uint32_t i = lo; i < hi; ++i) {
-            box.extend(itemBounds[items[i]]);
-            centroids.extend(itemBounds[items[i]].center());
+            box.extend(itemNodes[items[i]].bounds);
+            centroids.extend(itemNodes[items[i]].bounds.center());
         }
         nodes[index].box = box;
         const uint32_t n = hi - lo;
@@ -41,7 +41,7 @@ struct Builder {
             std::array<Bounds3, kBins> binBox;
             std::array<uint32_t, kBins> binCount{};
             for (uint32_t i = lo; i < hi; ++i) {
-                const Bounds3& b = itemBounds[items[i]];
+                const Bounds3& b = itemNodes[items[i]].bounds;
                 const int bin = binOf(b.center()[axis], lo0, width);
                 binBox[bin].extend(b);
                 ++binCount[bin];
@@ -81,7 +81,7 @@ struct Builder {
             const double width = centroids.hi[bestAxis] - lo0;
             const auto split =
                 std::partition(items.begin() + lo, items.begin() + hi, [&](uint32_t it) {
-                    return binOf(itemBounds[it].center()[bestAxis], lo0, width) <= bestBin;
+                    return binOf(itemNodes[it].bounds.center()[bestAxis], lo0, width) <= bestBin;
                 });
             mid = static_cast<uint32_t>(split - items.begin());
         } else if (n <= 4 * kMaxLeafItems) {
@@ -115,9 +115,9 @@ struct Builder {
 
 }  // namespace
 
-uint32_t buildBvh(std::span<uint32_t> items, const std::vector<Bounds3>& itemBounds,
+uint32_t buildBvh(std::span<uint32_t> items, const std::vector<CompiledNode>& itemNodes,
                   uint32_t itemsOffset, std::vector<BvhNode>& nodes) {
-    Builder builder{items, itemBounds, itemsOffset, nodes};
+    Builder builder{items, itemNodes, itemsOffset, nodes};
     return builder.build(0, static_cast<uint32_t>(items.size()), 0);
 }
 

@@ -68,7 +68,6 @@ size_t countLeaves(const Node* node) {
 
 struct Compiler {
     Scene& scene;
-    std::vector<Bounds3> nodeBounds;  // mirror of nodes_[i].bounds for the BVH builder
 
     // Returns the compiled node index of `node` seen through worldFromParent, or kNoNode when
     // the subtree is empty.
@@ -161,26 +160,24 @@ struct Compiler {
         for (uint32_t c : children) u.bounds.extend(scene.nodes_[c].bounds);
         if (u.bounded >= kBvhMinChildren)
             u.bvhRoot =
-                buildBvh(std::span(children.data(), u.bounded), nodeBounds, u.first, scene.bvh_);
+                buildBvh(std::span(children.data(), u.bounded), scene.nodes_, u.first, scene.bvh_);
         scene.children_.insert(scene.children_.end(), children.begin(), children.end());
         return addNode(u);
     }
 
     uint32_t addNode(const CompiledNode& n) {
         scene.nodes_.push_back(n);
-        nodeBounds.push_back(n.bounds);
         return static_cast<uint32_t>(scene.nodes_.size() - 1);
     }
 };
 
 Scene Scene::compile(const NodePtr& root) {
     Scene scene;
-    Compiler compiler{scene, {}};
+    Compiler compiler{scene};
     const size_t leaves = countLeaves(root.get());
     scene.leaves_.reserve(leaves);
     scene.frames_.reserve(leaves);
     scene.nodes_.reserve(2 * leaves + 1);
-    compiler.nodeBounds.reserve(2 * leaves + 1);
     // The root is always a union (of the top-level objects): closest() relies on it.
     std::vector<uint32_t> top;
     if (root) {
