@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/ShellSurface.h"
 #include "primitives/AlgebraicSurface.h"
 #include "primitives/Torus.h"
 
@@ -139,13 +140,7 @@ std::vector<Job> torusJobs(int n) {
 // Rays through the product of degree / 2 origin-centred spheres (radii^2 0.25 .. 1.4): the
 // chord polynomial AlgebraicSurface hands its solver.
 std::vector<Job> shellJobs(int degree, int n) {
-    const ExactPolynomial x = ExactPolynomial::x(), y = ExactPolynomial::y(),
-                          z = ExactPolynomial::z();
-    const ExactPolynomial r2 = *x.times(x) + *y.times(y) + *z.times(z);
-    ExactPolynomial f = ExactPolynomial::constant(1.0);
-    for (int i = 0; i < degree / 2; ++i)
-        f = *f.times(r2 - ExactPolynomial::constant(0.25 + 1.15 * i / (degree / 2)));
-    const AlgebraicSurface s = AlgebraicSurface::make(f, {Vec3(-1.5), Vec3(1.5)});
+    const AlgebraicSurface s = shellSurface(degree);
     Rng g(17 + uint64_t(degree));
     std::vector<Job> out;
     while (int(out.size()) < n) {

@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "bench/ShellSurface.h"
 #include "primitives/AlgebraicSurface.h"
 #include "primitives/Torus.h"
 
@@ -52,13 +53,7 @@ const std::vector<Job>& shellJobs(int degree) {
     static std::vector<Job> cache[Polynomial::kMaxDegree + 1];
     std::vector<Job>& jobs = cache[degree];
     if (!jobs.empty()) return jobs;
-    const ExactPolynomial x = ExactPolynomial::x(), y = ExactPolynomial::y(),
-                          z = ExactPolynomial::z();
-    const ExactPolynomial r2 = *x.times(x) + *y.times(y) + *z.times(z);
-    ExactPolynomial f = ExactPolynomial::constant(1.0);
-    for (int i = 0; i < degree / 2; ++i)
-        f = *f.times(r2 - ExactPolynomial::constant(0.25 + 1.15 * i / (degree / 2)));
-    const AlgebraicSurface s = AlgebraicSurface::make(f, {Vec3(-1.5), Vec3(1.5)});
+    const AlgebraicSurface s = shellSurface(degree);
     std::mt19937_64 g(17 + uint64_t(degree));
     while (jobs.size() < 4096) {
         const Vec3 o = 4.0 * glm::normalize(randomIn(g, 1.0));
