@@ -99,4 +99,36 @@ inline constexpr double kMeshMeasureMargin = 0.8;
 // across): 1e-3 h stays clear of that, and dropping it moves the mesh by at most 1e-3 h.
 inline constexpr double kMeshVertexSeparation = 1e-3;
 
+// The algebraic patch methods (primitives/patch/Groebner.h, Resultant.h). The Groebner
+// reduction's small-value rule: after each elimination step (f -= k m g) a coefficient whose
+// magnitude is at most this fraction of the step's scale max(|f|, |k| |g|) is zero (unit:
+// relative). Why: the article computes in floating point, where a term that cancels exactly
+// in exact arithmetic leaves a residue of a few ulps of the step's scale; kept, it becomes a
+// spurious leading term (a wrong basis, often a constant: 1 in G, a false miss). A chain of
+// reductions (up to ~30 steps on a bicubic pair) grows the residue to ~1e-13; 1e-10 keeps a
+// margin of 10^3. The price, and the method's documented breakdown: a genuine coefficient
+// below 1e-10 of its step's scale is dropped too (bench/reports/patches.md).
+inline constexpr double kGroebnerSmallRel = 1e-10;
+
+// A root (u, v) of the algebraic methods counts when it lies in [0, 1]^2 widened by this
+// (unit: patch parameter), then is clamped onto it. Why: a crossing on a patch edge (shared
+// with a neighbour) is computed a few hundred ulps to either side; 1e-9 keeps a 10^4 margin
+// and moves a point by at most 1e-9 of the patch size, the span coincidence rule's size.
+inline constexpr double kPatchParamMargin = 1e-9;
+
+// A candidate (u, v) of the algebraic methods is a common root of the two plane equations
+// when |F_k(u, v)| is within this fraction of the sum of |terms| of F_k there (unit:
+// relative). Why: u comes from an eliminant whose coefficients carry the reduction's rounding
+// (up to ~1e-8 relative in the hard cases measured), v from a basis element evaluated there;
+// a candidate that is not a root (a root of a v-polynomial with no partner) leaves a residual
+// of the order of the terms themselves. 1e-6 sits between the two.
+inline constexpr double kPatchResidualRel = 1e-6;
+
+// Two crossings of one patch found by the algebraic methods whose (u, v) differ by at most
+// this in both parameters are one point (unit: patch parameter). Why: a tangent ray gives a
+// double root of the eliminant that the solvers report twice, and two basis elements can give
+// the same v; double roots in u are found only to ~sqrt(ulp) = 1e-8, so 1e-7 merges them while
+// two genuine crossings that close are a tangency at the span rule's resolution anyway.
+inline constexpr double kPatchSamePointParam = 1e-7;
+
 }  // namespace csg::tol
