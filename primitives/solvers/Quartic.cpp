@@ -174,11 +174,17 @@ static int quarticRoots(const Polynomial& input, double* roots, bool* verified, 
         const double fa = f[2 * k], fb = f[2 * k + 1];
         const int m = appendQuadraticFactorRoots(monic, 1.0, fa, fb, roots + n);
         if (m == 0 && verified) {
-            // A complex pair is confirmed when the quartic keeps the sign of its leading
-            // coefficient at the pair's real part; the other sign means lost real roots.
+            // A complex pair is confirmed when the quartic has, at the pair's real part x0,
+            // the sign of the other factor there (the pair's own factor is positive at x0); a
+            // provably opposite sign means lost real roots. Comparing with the leading
+            // coefficient alone would reject every pair whose real part lies between the other
+            // factor's real roots (a quarter of the torus rays of bench/scenes/torus_mirror).
+            const double x0 = -0.5 * fa;
+            const double other = (x0 + f[2 - 2 * k]) * x0 + f[3 - 2 * k];
             double bound;
-            const double v = monic.eval(-0.5 * fa, &bound);
-            if (v < -tol::kRootResidualFactor * bound) *verified = false;
+            const double v = monic.eval(x0, &bound);
+            const double noise = tol::kRootResidualFactor * bound;
+            if (other >= 0.0 ? v < -noise : v > noise) *verified = false;
         }
         n += m;
     }
