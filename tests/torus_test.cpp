@@ -320,8 +320,8 @@ TEST(Torus, ClosedFormQuarticConfirmsOrdinaryRays) {
     const int kLines = 20000;
     for (int i = 0; i < kLines; ++i) {
         const Vec3 o(rng.uniform(-6, 6), rng.uniform(-6, 6), rng.uniform(0, 12));
-        const Vec3 u = glm::normalize(
-            Vec3(rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-1, 1)) - o);
+        const Vec3 u =
+            glm::normalize(Vec3(rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-1, 1)) - o);
         const Vec3 b = o - glm::dot(o, u) * u;
         solveQuarticAll(torus.quarticAlong(b, u), roots, &verified);
         if (!verified) ++unconfirmed;
