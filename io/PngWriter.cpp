@@ -56,6 +56,10 @@ std::string writePng(const std::filesystem::path& path, const Rgb8Image& image) 
     // zlib's fastest level: a rendered image comes out ~25% larger than at the default level
     // in ~70% of the write time (csg_grid at 1600x1600: 460 -> 571 kB, 0.149 -> 0.105 s).
     png_set_compression_level(png, 1);
+    // One row filter, Up (each byte minus the one above), instead of libpng's adaptive choice
+    // among all five per row, which cost more than the compression itself: csg_grid at
+    // 1600x1600 writes in ~40% of the instructions and comes out slightly smaller (567 kB).
+    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_UP);
     png_write_info(png, info);
     const size_t stride = size_t(image.width) * 3;
     for (int y = 0; y < image.height; ++y)
