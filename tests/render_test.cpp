@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <atomic>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -442,7 +443,13 @@ TEST(Output, FastSrgbEncodingAgreesWithTheTransferFunction) {
         for (int i = 0; i < 16; ++i, f = std::nextafter(f, 2.0f)) v.push_back(f);
     }
     for (int i = 0; i <= 300000; ++i) v.push_back(float(i) / 300000.0f);
-    for (const float f : {-1.0f, 0.0f, 1.0f, 1.5f, 1e30f}) v.push_back(f);
+    for (const float f : {-1.0f, 0.0f, 1.0f, 1.5f, 1e30f, 1e-40f}) v.push_back(f);
+    // Both sides of every place where the top 16 bits of a positive float change (the
+    // encoder's lookup buckets), up to 2.
+    for (uint32_t top = 1; top <= (std::bit_cast<uint32_t>(2.0f) >> 16); ++top) {
+        v.push_back(std::bit_cast<float>(top << 16));
+        v.push_back(std::bit_cast<float>((top << 16) - 1));
+    }
     while (v.size() % 3) v.push_back(0.5f);
     image.width = int(v.size() / 3);
     image.height = 1;

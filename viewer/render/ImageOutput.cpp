@@ -37,8 +37,7 @@ std::string writePfm(const std::filesystem::path& path, const LinearImage& image
 io::Rgb8Image encodeSrgb(const LinearImage& image) {
     // The 8-bit code of a linear value is the number of code boundaries below it: boundary k
     // is the linear value whose sRGB encoding is (k + 0.5) / 255, where rounding moves from
-    // code k to k + 1. A binary search over 255 boundaries gives exactly linearToSrgb8 without
-    // a pow() per channel (which was 8% of a 1600x1600 render).
+    // code k to k + 1. Counting them gives exactly linearToSrgb8 without a pow() per channel.
     static const std::array<float, 255> boundaries = [] {
         std::array<float, 255> b{};
         for (int k = 0; k < 255; ++k) {
@@ -52,14 +51,36 @@ io::Rgb8Image encodeSrgb(const LinearImage& image) {
         }
         return b;
     }();
+    // The count is started from a table indexed by the top 16 bits of the float (sign,
+    // exponent, 7 mantissa bits): positive floats order as their bits do, so the code of the
+    // smallest float of each bucket is a lower bound, and at most a few boundaries lie inside
+    // one bucket. Floats from 1.0 (bucket kOne) up encode as 255.
+    constexpr uint32_t kOne = std::bit_cast<uint32_t>(1.0f) >> 16;
+    static const std::array<uint8_t, kOne> bucketStart = [] {
+        std::array<uint8_t, kOne> s{};
+        for (uint32_t i = 0; i < kOne; ++i) {
+            const float first = std::bit_cast<float>(i << 16);
+            s[i] = uint8_t(std::upper_bound(boundaries.begin(), boundaries.end(), first) -
+                           boundaries.begin());
+        }
+        return s;
+    }();
     io::Rgb8Image out(image.width, image.height);
     for (size_t i = 0; i < image.rgb.size(); ++i) {
         const float v = image.rgb[i];
         // NaN (never expected) encodes as 0, like a negative value.
-        out.pixels[i] = v > 0.0f
-                            ? uint8_t(std::upper_bound(boundaries.begin(), boundaries.end(), v) -
-                                      boundaries.begin())
-                            : 0;
+        if (!(v > 0.0f)) {
+            out.pixels[i] = 0;
+            continue;
+        }
+        const uint32_t bucket = std::bit_cast<uint32_t>(v) >> 16;
+        if (bucket >= kOne) {
+            out.pixels[i] = 255;
+            continue;
+        }
+        unsigned code = bucketStart[bucket];
+        while (code < 255 && boundaries[code] <= v) ++code;
+        out.pixels[i] = uint8_t(code);
     }
     return out;
 }
