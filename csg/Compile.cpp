@@ -68,6 +68,17 @@ size_t countLeaves(const Node* node) {
 
 struct Compiler {
     Scene& scene;
+    // The innermost difference or intersection being built, if any: a sheet under it is an
+    // error (it has no inside for the operation to use).
+    const Node* boolean = nullptr;
+    struct BooleanScope {
+        Compiler& compiler;
+        const Node* outer;
+        BooleanScope(Compiler& c, const Node& node) : compiler(c), outer(c.boolean) {
+            c.boolean = &node;
+        }
+        ~BooleanScope() { compiler.boolean = outer; }
+    };
 
     // Returns the compiled node index of `node` seen through worldFromParent, or kNoNode when
     // the subtree is empty.
@@ -86,6 +97,7 @@ struct Compiler {
                 return buildUnion(children);
             }
             case Op::Intersection: {
+                const BooleanScope scope(*this, node);
                 const uint32_t a = build(*node.left, worldFromNode);
                 if (a == kNoNode) return kNoNode;
                 const uint32_t b = build(*node.right, worldFromNode);
@@ -95,6 +107,7 @@ struct Compiler {
                 return addNode({NodeKind::Intersection, box, a, b});
             }
             case Op::Difference: {
+                const BooleanScope scope(*this, node);
                 const uint32_t a = build(*node.left, worldFromNode);
                 if (a == kNoNode) return kNoNode;
                 const uint32_t b = build(*node.right, worldFromNode);
@@ -135,6 +148,15 @@ struct Compiler {
                 if constexpr (HasValidation<std::decay_t<decltype(shape)>>) {
                     if (const char* why = shape.invalidReason())
                         throw CompileError(why, node.tags.source);
+                }
+                if constexpr (HasSheet<std::decay_t<decltype(shape)>>) {
+                    if (boolean && shape.isSheet())
+                        throw CompileError(
+                            std::string("a surface (solid=false) cannot be an operand of ") +
+                                opName(boolean->op) +
+                                ": it has no inside; use it as a top-level object, or declare a "
+                                "closed patch set solid=true",
+                            node.tags.source);
                 }
                 geometry.localBounds = shape.bounds();
                 box = worldBounds(shape, worldFromLocal);

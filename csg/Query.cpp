@@ -71,8 +71,20 @@ struct Evaluator {
         const Vec3 start = pointOnLine(o, d, shift);
         std::visit([&](const auto& shape) { shape.spans(start, d, local); }, leaf.shape);
 
-        // Clip to [t0, t1] and regularize; a primitive yields at most LocalSpans::kCapacity.
+        // A sheet's crossings are zero-length spans by nature: clipped, never regularized away.
         const size_t base = top;
+        if (local.sheet) {
+            Span* out = room(local.count);
+            size_t n = 0;
+            for (int i = 0; i < local.count; ++i) {
+                const Hit h{local.entries[i].tIn + shift, leafIndex, local.entries[i].faceIn,
+                            false, true};
+                if (h.t >= t0 && h.t <= t1) out[n++] = {h, h};
+            }
+            top = base + n;
+            return n;
+        }
+        // Clip to [t0, t1] and regularize; a primitive yields at most LocalSpans::kCapacity.
         SpanWriter writer(room(local.count), originScale);
         for (int i = 0; i < local.count; ++i) {
             const LocalSpans::Entry& e = local.entries[i];

@@ -20,6 +20,8 @@ SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
     const double len = glm::length(world);
     sp.normal = len > 0.0 ? world / len : n;
     if (hit.flipped) sp.normal = -sp.normal;
+    // A sheet has two sides and no outside: the one facing the ray's origin is shown.
+    if (hit.sheet && glm::dot(sp.normal, ray.d) > 0.0) sp.normal = -sp.normal;
     return sp;
 }
 

@@ -23,6 +23,10 @@ struct Hit {
     uint32_t leaf = 0;
     uint16_t face = kClipFace;
     bool flipped = false;
+    // The end of a zero-length span that is a crossing of a sheet: an open surface with no
+    // inside (a bezier_patch with solid=false). Its span has in == out; merges keep it where
+    // no solid covers it instead of dropping it as a sliver.
+    bool sheet = false;
 
     bool isSurface() const { return face != kClipFace; }
 };
@@ -37,14 +41,18 @@ struct Span {
 // infinite ends carry kClipFace. The leaf index is filled in by the caller.
 struct LocalSpans {
     // A convex primitive gives 1 span, a torus 2, a degree-16 algebraic surface cut by its
-    // box 9 (16 roots split the chord into 17 pieces, alternating, inside at both ends).
-    static constexpr int kCapacity = 9;
+    // box 9 (16 roots split the chord into 17 pieces, alternating, inside at both ends); a
+    // patch set one per crossing of a sheet or per pair of a solid's: the teapot's worst line
+    // crosses ~12 patches, 32 leaves room (further crossings of a line are dropped).
+    static constexpr int kCapacity = 32;
     struct Entry {
         double tIn, tOut;
         uint16_t faceIn, faceOut;
     };
     std::array<Entry, kCapacity> entries;
     int count = 0;
+    // Set by a sheet (PatchSet with solid=false): every entry is a crossing, tIn == tOut.
+    bool sheet = false;
 
     void add(double tIn, uint16_t faceIn, double tOut, uint16_t faceOut) {
         assert(count < kCapacity && "a primitive produced more spans than LocalSpans holds");

@@ -15,26 +15,91 @@ bool apply(SetOp op, bool inA, bool inB) {
     return false;
 }
 
-// A cursor over one operand's span ends, in order: in, out, in, out, ...
+// A cursor over one operand's solid span ends, in order: in, out, in, out, ... Sheet
+// crossings (Hit::sheet) enclose nothing, so they are no events of the solid: skipped here.
 struct Cursor {
     const Span* spans;
     size_t count;
     size_t index = 0;
     bool inside = false;
 
+    Cursor(const Span* s, size_t n) : spans(s), count(n) { skipSheets(); }
     bool done() const { return index == count; }
     const Hit& hit() const { return inside ? spans[index].out : spans[index].in; }
     void advance() {
-        if (inside) ++index;
+        if (inside) ++index, skipSheets();
         inside = !inside;
     }
+    void skipSheets() {
+        while (index < count && spans[index].in.sheet) ++index;
+    }
 };
+
+size_t countSheets(const Span* s, size_t n) {
+    size_t k = 0;
+    for (size_t i = 0; i < n; ++i) k += s[i].in.sheet;
+    return k;
+}
+
+// The index of the first sheet span at or after i, or n.
+size_t nextSheet(const Span* s, size_t n, size_t i) {
+    while (i < n && !s[i].in.sheet) ++i;
+    return i;
+}
+
+size_t mergeSolids(SetOp op, const Span* a, size_t na, const Span* b, size_t nb, Span* out,
+                   double originScale);
+
+// A union whose operands hold sheet crossings: the solids merge as always (into the tail of
+// out, past room for every sheet), then the sheets are merged in front of them in t order.
+// A sheet crossing is kept where no solid span covers or touches it (within the coincidence
+// slack: a surface inside a solid is hidden) and once among coincident ones (the left
+// operand's, by the tie-break).
+size_t mergeWithSheets(const Span* a, size_t na, const Span* b, size_t nb, size_t sheets,
+                       Span* out, double originScale) {
+    size_t read = sheets;
+    const size_t end = sheets + mergeSolids(SetOp::Union, a, na, b, nb, out + sheets, originScale);
+    size_t write = 0;  // never reaches read: fewer sheets are written than there is room for
+    size_t ia = nextSheet(a, na, 0), ib = nextSheet(b, nb, 0);
+    while (ia < na || ib < nb) {
+        const bool fromA = ib >= nb || (ia < na && a[ia].in.t <= b[ib].in.t);
+        const Span& sheet = fromA ? a[ia] : b[ib];
+        if (fromA)
+            ia = nextSheet(a, na, ia + 1);
+        else
+            ib = nextSheet(b, nb, ib + 1);
+        const double t = sheet.in.t;
+        while (read < end && out[read].out.t < t - coincidenceSlack(originScale, out[read].out.t, t))
+            out[write++] = out[read++];
+        if (read < end && out[read].in.t <= t + coincidenceSlack(originScale, out[read].in.t, t))
+            continue;  // covered by a solid
+        if (write > 0 && out[write - 1].in.sheet &&
+            t - out[write - 1].in.t <= coincidenceSlack(originScale, out[write - 1].in.t, t))
+            continue;  // the same crossing as the previous sheet's
+        out[write++] = sheet;
+    }
+    while (read < end) out[write++] = out[read++];
+    return write;
+}
 
 }  // namespace
 
 size_t mergeSpans(SetOp op, const Span* a, size_t na, const Span* b, size_t nb, Span* out,
                   double originScale) {
-    Cursor ca{a, na}, cb{b, nb};
+    // Sheets only ever meet unions (compile rejects them under difference and intersection;
+    // were one there, it would enclose nothing and vanish).
+    if (op == SetOp::Union) {
+        const size_t sheets = countSheets(a, na) + countSheets(b, nb);
+        if (sheets > 0) return mergeWithSheets(a, na, b, nb, sheets, out, originScale);
+    }
+    return mergeSolids(op, a, na, b, nb, out, originScale);
+}
+
+namespace {
+
+size_t mergeSolids(SetOp op, const Span* a, size_t na, const Span* b, size_t nb, Span* out,
+                   double originScale) {
+    Cursor ca(a, na), cb(b, nb);
     SpanWriter writer(out, originScale);
     const bool flipB = op == SetOp::Difference;
     bool inResult = false;
@@ -73,5 +138,7 @@ size_t mergeSpans(SetOp op, const Span* a, size_t na, const Span* b, size_t nb, 
     // so inResult is false here whenever the inputs were closed lists.
     return writer.count();
 }
+
+}  // namespace
 
 }  // namespace csg

@@ -10,6 +10,10 @@
 // together, and the boundary the result gets there is the left operand's hit, unless the
 // left hit is a clip end (kClipFace) and the right one a surface. Hence A u A = A, A n A = A,
 // A - A = {} with A's own hits, and clip ends introduced by narrowing never leak out.
+//
+// Sheets (Hit::sheet, the crossings of an open surface) are zero-length spans that no rule
+// above drops: a union keeps each one that no solid span covers; difference and intersection
+// never see one (compile rejects a sheet under them).
 #pragma once
 
 #include <cmath>

@@ -131,4 +131,54 @@ inline constexpr double kPatchResidualRel = 1e-6;
 // two genuine crossings that close are a tangency at the span rule's resolution anyway.
 inline constexpr double kPatchSamePointParam = 1e-7;
 
+// Bicubic Bezier patches (primitives/patch/). A crossing's (u, v) may lie this far outside
+// [0, 1]^2 and still count, then clamped onto it (unit: patch parameter). Newton converges to
+// a root on an edge or corner (a ray through a shared edge, the teapot's poles) to within a
+// few ulps, on either side; 1e-9 keeps a 10^6 margin over that, yet moves a point by at most
+// 1e-9 of the patch size, the same as span-end coincidence (kCoincidentRel).
+inline constexpr double kPatchParamSlack = 1e-9;
+
+// 2-D Newton on a patch stops when a step moves (u, v) by less than this (unit: patch
+// parameter, max norm). Why: near a simple root Newton doubles the correct digits per step, so
+// a step of 1e-13 means the iterate is already within ~1e-26 of what this step size can
+// express; t then carries only the rounding of evaluating S (a few ulps of the patch size).
+inline constexpr double kPatchNewtonStep = 1e-13;
+
+// Crossings of one patch set whose points on the ray are closer than this fraction of the
+// set's bounds diagonal are one crossing (unit: relative to the set's size). Why: a ray
+// through the shared edge of two patches (or a pole shared by four) is found by each of them,
+// at t that differ by the few-ulp rounding of each patch's Newton polish; 1e-9 covers that by
+// 10^5 and is the span coincidence rule's size (kCoincidentRel), so two distinct crossings
+// closer than this would have been fused as a sliver by the CSG merge anyway.
+inline constexpr double kPatchDedupeRel = 1e-9;
+
+// Bezier clipping hands a region to Newton polish once it is narrower than this in both u
+// and v (unit: patch parameter). Why: clipping converges quadratically near a simple root, so
+// regions shrink to this in a few steps; from 1e-6 Newton needs 2-3 steps. Smaller costs
+// clipping steps (each a de Casteljau restriction) that Newton does faster; larger risks two
+// close roots sharing one region (one would be lost).
+inline constexpr double kPatchClipWidth = 1e-6;
+
+// Subdivision + Newton: a sub-patch is flat when its control points lie within this fraction
+// of its own bounds diagonal from the plane of its corner diagonals (unit: relative). Why: a
+// line meets a patch this close to a plane at most once unless it grazes it within ~0.1
+// degrees, and Newton from the centre of such a patch stays inside its basin; 1e-3 reaches
+// it in ~5 halvings per direction on the teapot.
+inline constexpr double kPatchFlatRel = 1e-3;
+
+// Bezier clipping widens each clipped parameter range by this fraction of the region on both
+// sides (unit: relative to the region being clipped). Why: the hull's crossing with the ray is
+// computed from rounded plane distances, so a root exactly on a clip boundary could fall a
+// few ulps outside it and be lost; 1e-7 covers distances rounded to ~1e-9 of their spread and
+// slows convergence by nothing measurable (a clip shrinks a region by orders of magnitude).
+inline constexpr double kPatchClipMargin = 1e-7;
+
+// A patch normal dS/du x dS/dv shorter than this fraction of max(|dS/du| |dS/dv|, size^2)
+// is degenerate (unit: relative; size is the patch's box diagonal): collinear partials, or a
+// partial that is rounding noise (at a pole dS/dv is ~1e-16 of the size, not 0), where the
+// direction is taken as the limit from inside the patch instead. Why 1e-10: there the cross
+// product has lost ~6 of double's 16 digits to cancellation, still a fine direction; a
+// rounding-noise partial gives ~1e-16, far below.
+inline constexpr double kPatchNormalDegenerateRel = 1e-10;
+
 }  // namespace csg::tol

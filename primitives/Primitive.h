@@ -34,6 +34,14 @@ concept HasTightBounds = requires(const P& p, const Mat4& m) {
     { p.boundsUnder(m) } -> std::same_as<Bounds3>;
 };
 
+// Optional: a primitive that may be a sheet (an open surface with no inside, e.g. a Bezier
+// patch set with solid=false) says so. A sheet's spans() sets LocalSpans::sheet and lists each
+// crossing as [t, t]; inside() is false; compile rejects it under difference/intersection.
+template <class P>
+concept HasSheet = requires(const P& p) {
+    { p.isSheet() } -> std::same_as<bool>;
+};
+
 // Optional: a primitive whose parameters can be out of its domain (a negative radius, a
 // spindle torus) says why, or returns nullptr when they are fine. compile() turns a reason
 // into a CompileError at the node's source, so bad parameters never reach a ray.
