@@ -9,15 +9,29 @@
 #include "primitives/Box.h"
 #include "primitives/Cylinder.h"
 #include "primitives/HalfSpace.h"
+#include "primitives/PatchSet.h"
 #include "primitives/Sphere.h"
 #include "primitives/Torus.h"
 
 namespace csg {
 
-using Primitive = std::variant<Sphere, Box, Cylinder, HalfSpace, Torus, AlgebraicSurface>;
+using Primitive =
+    std::variant<Sphere, Box, Cylinder, HalfSpace, Torus, AlgebraicSurface, PatchSet>;
 
 static_assert(PrimitiveShape<Sphere> && PrimitiveShape<Box> && PrimitiveShape<Cylinder> &&
               PrimitiveShape<HalfSpace> && PrimitiveShape<Torus> &&
-              PrimitiveShape<AlgebraicSurface>);
+              PrimitiveShape<AlgebraicSurface> && PrimitiveShape<PatchSet>);
+
+// True for a sheet: an open surface with no inside (see HasSheet in Primitive.h).
+inline bool isSheet(const Primitive& p) {
+    return std::visit(
+        [](const auto& shape) {
+            if constexpr (HasSheet<std::decay_t<decltype(shape)>>)
+                return shape.isSheet();
+            else
+                return false;
+        },
+        p);
+}
 
 }  // namespace csg
