@@ -77,8 +77,8 @@ struct Evaluator {
             Span* out = room(local.count);
             size_t n = 0;
             for (int i = 0; i < local.count; ++i) {
-                const Hit h{local.entries[i].tIn + shift, leafIndex, local.entries[i].faceIn,
-                            false, true};
+                const Hit h{local.entries[i].tIn + shift, leafIndex, local.entries[i].faceIn, false,
+                            true};
                 if (h.t >= t0 && h.t <= t1) out[n++] = {h, h};
             }
             top = base + n;

@@ -55,8 +55,8 @@ size_t mergeSolids(SetOp op, const Span* a, size_t na, const Span* b, size_t nb,
 // A sheet crossing is kept where no solid span covers or touches it (within the coincidence
 // slack: a surface inside a solid is hidden) and once among coincident ones (the left
 // operand's, by the tie-break).
-size_t mergeWithSheets(const Span* a, size_t na, const Span* b, size_t nb, size_t sheets,
-                       Span* out, double originScale) {
+size_t mergeWithSheets(const Span* a, size_t na, const Span* b, size_t nb, size_t sheets, Span* out,
+                       double originScale) {
     size_t read = sheets;
     const size_t end = sheets + mergeSolids(SetOp::Union, a, na, b, nb, out + sheets, originScale);
     size_t write = 0;  // never reaches read: fewer sheets are written than there is room for
@@ -69,7 +69,8 @@ size_t mergeWithSheets(const Span* a, size_t na, const Span* b, size_t nb, size_
         else
             ib = nextSheet(b, nb, ib + 1);
         const double t = sheet.in.t;
-        while (read < end && out[read].out.t < t - coincidenceSlack(originScale, out[read].out.t, t))
+        while (read < end &&
+               out[read].out.t < t - coincidenceSlack(originScale, out[read].out.t, t))
             out[write++] = out[read++];
         if (read < end && out[read].in.t <= t + coincidenceSlack(originScale, out[read].in.t, t))
             continue;  // covered by a solid
