@@ -8,6 +8,7 @@
 #include "io/Colors.h"
 #include "io/Degrees.h"
 #include "io/Evaluator.h"
+#include "io/PatchModule.h"
 #include "io/PngReader.h"
 #include "io/SurfaceModule.h"
 
@@ -534,6 +535,8 @@ const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {
         {"halfspace", halfspace},
         {"torus", torus},
         {"surface", surfaceModule},
+        {"bezier_patch", bezierPatchModule},
+        {"bezier_patches", bezierPatchesModule},
         {"union", unionModule},
         {"group", unionModule},
         {"render", unionModule},

@@ -86,6 +86,7 @@ int compareCommand(std::span<const std::string> args) {
     Report report(common.jsonDiagnostics);
     LoadedPart part;
     if (const int code = loadPart(common, report, part); code != kExitOk) return code;
+    if (const int code = requireSolids(part, report, "compare"); code != kExitOk) return code;
     io::MeshReadResult read = io::readMesh(meshFile);
     if (!read.mesh) {
         report.error(meshFile, read.error);

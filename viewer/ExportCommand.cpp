@@ -73,6 +73,7 @@ int exportCommand(std::span<const std::string> args) {
     Report report(common.jsonDiagnostics);
     LoadedPart part;
     if (const int code = loadPart(common, report, part); code != kExitOk) return code;
+    if (const int code = requireSolids(part, report, "export"); code != kExitOk) return code;
 
     // Mesh the part.
     const auto start = std::chrono::steady_clock::now();

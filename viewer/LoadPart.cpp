@@ -38,4 +38,17 @@ int loadPart(const CommonOptions& options, Report& report, LoadedPart& part) {
     return kExitOk;
 }
 
+int requireSolids(const LoadedPart& part, Report& report, std::string_view command) {
+    for (uint32_t leaf = 0; leaf < part.scene.leafCount(); ++leaf) {
+        if (!csg::isSheet(part.scene.leafPrimitive(leaf))) continue;
+        report.add(io::diagnosticAt(
+            part.model, part.scene.leafTags(leaf).source, io::Severity::Error,
+            std::string(command) + ": a surface (solid=false) has no volume; only solids "
+                                   "can be meshed or measured (declare a closed patch set "
+                                   "solid=true)"));
+        return kExitBadModel;
+    }
+    return kExitOk;
+}
+
 }  // namespace viewer

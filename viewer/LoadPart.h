@@ -2,6 +2,8 @@
 // diagnostics, and compile the tree into a queryable scene (csg/).
 #pragma once
 
+#include <string_view>
+
 #include "csg/Scene.h"
 #include "io/Model.h"
 #include "viewer/Cli.h"
@@ -18,5 +20,10 @@ struct LoadedPart {
 // kExitIo when the part file cannot be read, kExitBadModel for errors in the part (including
 // a csg::CompileError, reported at the offending node's statement).
 int loadPart(const CommonOptions& options, Report& report, LoadedPart& part);
+
+// For commands that need volume (export's mesh, compare's volumes): kExitOk when every leaf is
+// a solid, else kExitBadModel after reporting an error at the first surface (a bezier_patch
+// with solid=false): a surface has no inside, so there is nothing to mesh or measure.
+int requireSolids(const LoadedPart& part, Report& report, std::string_view command);
 
 }  // namespace viewer

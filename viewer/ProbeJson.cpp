@@ -15,6 +15,7 @@ struct PrimitiveName {
     const char* operator()(const csg::Cylinder&) const { return "cylinder"; }
     const char* operator()(const csg::HalfSpace&) const { return "halfspace"; }
     const char* operator()(const csg::Torus&) const { return "torus"; }
+    const char* operator()(const csg::PatchSet&) const { return "bezier_patches"; }
     // A primitive registered since this list was written still gets a name.
     const char* operator()(const auto&) const { return "primitive"; }
 };
