@@ -43,6 +43,16 @@ inline constexpr double kSingularDetRel = 1e-12;
 // costs at most a few more bounds' worth.
 inline constexpr double kRootResidualFactor = 8.0;
 
+// Two candidate roots stay two when p at their midpoint exceeds this many times its rounding
+// bound (unit: multiples of the bound; solvers/Roots.h, hasProvableSign). Why 1: the bound is
+// rigorous, so beyond it the computed sign is the exact sign of the polynomial as stored, and
+// double precision has resolved the pair. kRootResidualFactor's margin for coefficients that
+// carry errors of their own is not applied here: it merged resolvable decimal clusters (four
+// roots 1e-3 apart near 3, |p| ~4 bounds between them) into one tangency. A caller whose
+// coefficients are computed (a ray's chord polynomial) judges its thin spans against that
+// error itself (AlgebraicSurface::spans).
+inline constexpr double kRootSeparationFactor = 1.0;
+
 // Fujiwara's root bound (solvers/Roots.h) is widened by this fraction (unit: relative). The
 // bound is attained (p = t - 5 has its root on it) and is computed with log2/exp2, a few ulps
 // off; 1e-9 covers that by 10^6 and only enlarges a range that holds no roots anyway.

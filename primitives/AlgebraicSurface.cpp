@@ -44,6 +44,11 @@ AlgebraicSurface AlgebraicSurface::make(const ExactPolynomial& f, const Bounds3&
             for (int l = 0; i + j + l <= n; ++l) g.at(i, j, l) *= k;
     data->g = g;
     for (int a = 0; a < 3; ++a) data->gradient[a] = g.partial(a);
+    data->magnitude = g;
+    for (int i = 0; i <= n; ++i)
+        for (int j = 0; i + j <= n; ++j)
+            for (int l = 0; i + j + l <= n; ++l)
+                data->magnitude.at(i, j, l) = std::abs(g.at(i, j, l));
     s.data = data;
     return s;
 }
@@ -89,6 +94,15 @@ bool AlgebraicSurface::chord(const Vec3& o, const Vec3& d, Chord& c) const {
     return true;
 }
 
+double AlgebraicSurface::chordErrorBound(const Vec3& q, const Vec3& hd, double u) const {
+    // Each coefficient of the chord polynomial is a sum of products of G's coefficients and
+    // the components of q and hd, formed by nested Horner in at most ~4 roundings per degree
+    // (plus G's own rounding from F): gamma(4n + 4) times the same sum taken over magnitudes,
+    // which is |G| at |q| + |u| |hd|, bounds its error at u.
+    const Vec3 at = glm::abs(q) + std::abs(u) * glm::abs(hd);
+    return tol::gamma(4 * data->g.degree() + 4) * data->magnitude(at);
+}
+
 void AlgebraicSurface::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     Chord c;
     if (!chord(o, d, c)) return;
@@ -109,9 +123,25 @@ void AlgebraicSurface::spans(const Vec3& o, const Vec3& d, LocalSpans& out) cons
         return i == 0 ? c.tIn : i == m - 1 ? c.tOut : c.tMid + u[i] * c.scale;
     };
     auto face = [&](int i) { return i == 0 ? c.faceIn : i == m - 1 ? c.faceOut : kSurfaceFace; };
+    bool inside[Polynomial::kMaxDegree + 1];
+    for (int i = 0; i + 1 < m; ++i) inside[i] = c.poly(0.5 * u[i] + 0.5 * u[i + 1]) <= 0.0;
+    // Step 3b: a piece between two roots whose neighbours agree takes their side unless G has
+    // a sign there that the chord's rounding cannot have made (a split tangency otherwise).
+    const Vec3 q = pointOnLine(o, d, c.tMid) - data->centre;
+    for (int i = 1; i + 2 < m; ++i) {
+        if (inside[i] == inside[i - 1] || inside[i + 1] != inside[i - 1]) continue;
+        bool resolved = false;
+        for (double w : {0.5, 0.25, 0.75}) {
+            const double x = (1.0 - w) * u[i] + w * u[i + 1];
+            double bound;
+            const double v = c.poly.eval(x, &bound);
+            resolved = resolved || std::abs(v) > bound + chordErrorBound(q, c.scale * d, x);
+        }
+        if (!resolved) inside[i] = inside[i - 1];
+    }
     int open = -1;  // breakpoint index where the current span began
     for (int i = 0; i + 1 < m; ++i) {
-        const bool in = c.poly(0.5 * u[i] + 0.5 * u[i + 1]) <= 0.0;
+        const bool in = inside[i];
         if (in && open < 0) open = i;
         if (!in && open >= 0) {
             if (out.count < LocalSpans::kCapacity) out.add(toT(open), face(open), toT(i), face(i));

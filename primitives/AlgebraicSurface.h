@@ -42,7 +42,11 @@ struct AlgebraicSurface {
     // The box.
     Bounds3 bounds() const;
     // Up to 9 spans (16 roots cut by the box); ends are box faces 0..5 or the surface, 6. A
-    // tangency (double root) neither opens nor closes a span.
+    // tangency (double root) neither opens nor closes a span, and neither does a pair of
+    // roots that the chord polynomial's own rounding may have split from one: a thin piece
+    // between two roots whose sign is within the chord's error bound (chordErrorBound) at its
+    // middle and quarter points takes its neighbours' side, so an even power such as
+    // (r^2 - 1)^2 or a tangent ray gives no sliver span.
     void spans(const Vec3& o, const Vec3& d, LocalSpans& out) const;
     bool inside(const Vec3& p) const;
     // Box faces: the face's axis. Surface: grad F / |grad F|; at a critical point (grad F =
@@ -59,6 +63,11 @@ struct AlgebraicSurface {
         uint16_t faceIn, faceOut;
     };
     bool chord(const Vec3& o, const Vec3& d, Chord& c) const;
+    // A bound on how far the chord polynomial's value at u (computed from q = the chord's
+    // middle point relative to the box centre and hd = scale * d) may be from G(q + u hd)
+    // through the rounding of its coefficients (unit: G's; not counting evaluation, which
+    // Polynomial::eval bounds).
+    double chordErrorBound(const Vec3& q, const Vec3& hd, double u) const;
 };
 
 // The immutable part, shared by copies.
@@ -67,6 +76,7 @@ struct AlgebraicData {
     Vec3 centre;
     Trivariate g;                   // G(q) = k F(centre + q), k > 0 a power of two
     Trivariate gradient[3];         // dG/dx, dG/dy, dG/dz
+    Trivariate magnitude;           // |G|: G's coefficients' magnitudes, for chord error bounds
     const char* invalid = nullptr;  // why the input is not a surface, or nullptr
 };
 

@@ -11,6 +11,12 @@ bool isNumericalZero(const Polynomial& p, double t) {
     return std::abs(v) <= tol::kRootResidualFactor * bound;
 }
 
+bool hasProvableSign(const Polynomial& p, double t) {
+    double bound;
+    const double v = p.eval(t, &bound);
+    return std::abs(v) > tol::kRootSeparationFactor * bound;
+}
+
 double polishRoot(const Polynomial& p, double x) {
     double v, dv;
     p.evalWithDerivative(x, v, dv);
@@ -126,7 +132,7 @@ int finalizeRoots(const Polynomial& p, double* roots, int n, double tlo, double 
         int j = i + 1;
         double sum = roots[i];
         while (j < n && (roots[j] == roots[j - 1] ||
-                         isNumericalZero(p, 0.5 * roots[j - 1] + 0.5 * roots[j]))) {
+                         !hasProvableSign(p, 0.5 * roots[j - 1] + 0.5 * roots[j]))) {
             sum += roots[j];
             ++j;
         }

@@ -4,7 +4,7 @@
 // The contract (see Solve.h): real roots in [tlo, thi], ascending; a root where p changes sign
 // (odd multiplicity, a crossing) is listed once, a root where it does not (even multiplicity,
 // a tangency) is listed twice with equal values. Roots whose separation p cannot resolve in
-// double precision (|p| between them is within its rounding bound) are one such root.
+// double precision (no value of p between them has a provable sign) are one such root.
 #pragma once
 
 #include "csg/Math.h"
@@ -15,6 +15,11 @@ namespace csg {
 // True when |p(t)| is within tol::kRootResidualFactor of its rounding-error bound, i.e. the
 // computed value has no trustworthy sign.
 bool isNumericalZero(const Polynomial& p, double t);
+
+// True when the computed p(t) exceeds tol::kRootSeparationFactor times its rounding-error
+// bound, so its sign is that of the exact value for the stored coefficients: two candidate
+// roots with such a value between them are two roots, however close (a decimal cluster).
+bool hasProvableSign(const Polynomial& p, double t);
 
 // Newton steps from x while they lower |p|; returns the best point seen. For a simple root
 // this converges quadratically to within an ulp or two.
@@ -85,8 +90,9 @@ private:
 int maxSignVariations(const double* c, const double* noise, int n);
 
 // Sorts the n candidates in roots (crossings once, tangencies twice), merges clusters that p
-// cannot resolve (a cluster of m candidates becomes one root listed once when m is odd, twice
-// when even), keeps those in [tlo, thi], and returns their count.
+// cannot resolve (neighbours without a provable sign of p at their midpoint; a cluster of m
+// candidates becomes one root listed once when m is odd, twice when even), keeps those in [tlo,
+// thi], and returns their count.
 int finalizeRoots(const Polynomial& p, double* roots, int n, double tlo, double thi);
 
 }  // namespace csg
