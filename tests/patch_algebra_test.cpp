@@ -74,6 +74,35 @@ TEST(PatchAlgebra, ArticlePatchesMatchTheCoplanarityOracle) {
     }
 }
 
+TEST(PatchAlgebra, PatchCubicInVIsSolvedAsItsTranspose) {
+    // Article patch 3 with u and v exchanged is cubic in v and linear in u: the method
+    // eliminates the linear parameter (u-degree 6 in the other one), and the crossings are
+    // those of the original patch with (u, v) swapped.
+    const BezierPatch patch = patchref::articlePatch(3);
+    BezierPatch swapped;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) swapped.points[4 * j + i] = patch.at(i, j);
+    std::mt19937_64 rng(13);
+    int crossings = 0;
+    for (int r = 0; r < 200; ++r) {
+        Vec3 o, d;
+        patchref::randomRay(rng, patch, o, d);
+        PatchCrossings a, b;
+        GroebnerStats sa, sb;
+        const int na = intersectByGroebner(patch, o, d, a, &sa);
+        const int nb = intersectByGroebner(swapped, o, d, b, &sb);
+        ASSERT_EQ(na, nb) << "ray " << r;
+        EXPECT_EQ(sb.uDegree, sa.uDegree) << "ray " << r;
+        for (int k = 0; k < na; ++k) {
+            EXPECT_LE(relError(b[k].t, a[k].t), 1e-12);
+            EXPECT_NEAR(b[k].u, a[k].v, 1e-9);
+            EXPECT_NEAR(b[k].v, a[k].u, 1e-9);
+        }
+        crossings += na;
+    }
+    EXPECT_GE(crossings, 30);
+}
+
 // ---- Closed forms ----
 
 // x = 2u - 1, y = 2v - 1 over [-1, 1]^2, and z = a x + b y (flat) or x^2 + y^2 (paraboloid).

@@ -6,6 +6,10 @@
 // from the patch point. Coefficients are doubles with the article's small-value rule
 // (tol::kGroebnerSmallRel). No heap: every polynomial is a fixed-capacity Bivariate.
 //
+// Variable order: lex v > u with v the parameter of lower degree in F1, F2 (a patch cubic in v
+// and linear in u is solved as its transpose and (u, v) swapped back), so the eliminant is in
+// the parameter of higher degree and the easy variable is the one eliminated.
+//
 // The steps, as in the article: R2, the mutual reduction of the pair (each reduced by the
 // other until neither changes); the S-polynomial loop (Buchberger; pairs whose leading terms
 // are coprime are skipped by Buchberger's first criterion, which cannot change the result);
