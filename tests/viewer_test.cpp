@@ -1,8 +1,11 @@
 // End-to-end tests of `csgray view` (issue 8): the window runs under Xvfb, started by the test
-// on a free display; xdotool sends it real X input (keys, a click). The window's test hook
-// CSGRAY_VIEW_DUMP writes every finished full-resolution frame to a PNG and says so on
-// stderr, which is how a test knows a frame is done and what it showed. Tests skip, saying
-// why, where Xvfb or xdotool is missing or no X server starts.
+// on a free display; xdotool sends it real X input (keys, clicks, drags, the wheel). The
+// window's test hook CSGRAY_VIEW_DUMP writes every finished full-resolution frame to a PNG and
+// says so on stderr, which is how a test knows a frame is done and what it showed, and writes
+// the text of the panel drawn over the picture to frame.png.panel.txt whenever the window
+// shows a changed panel. Frames are numbered by request: every camera move, key or reload
+// starts the next one. Tests skip, saying why, where Xvfb or xdotool is missing or no X server
+// starts.
 #include <gtest/gtest.h>
 #include <png.h>
 #include <signal.h>
@@ -132,6 +135,16 @@ const char* const kPart =
     "}\n"
     "translate([0, 12, 0]) sphere(r = 4);\n";
 
+// Three effects the S, M and T keys switch off: a floor that catches the spheres' shadows, a
+// mirror sphere and a glass one.
+const char* const kEffectsPart =
+    "camera(eye = [0, -20, 9], center = [0, 0, 0], up = [0, 0, 1], fov = 40);\n"
+    "light(position = [6, -8, 14]);\n"
+    "material(color = [0.8, 0.8, 0.8]) translate([0, 0, -3]) cube([30, 30, 1], center = true);\n"
+    "material(color = [0.9, 0.2, 0.2], reflect = 0.6) translate([-3.5, 0, 0]) sphere(2.5);\n"
+    "material(color = [0.2, 0.4, 0.9], transmit = 0.7, ior = 1.5) translate([3.5, 0, 0])\n"
+    "    sphere(2.5);\n";
+
 constexpr int kWidth = 160, kHeight = 120;
 
 // One `csgray view` under the display, its stderr in a file, frames dumped to frame.png.
@@ -163,6 +176,18 @@ protected:
         pid_ = spawn(command, dir_.path());
     }
     std::string err() const { return readFile(dir_ / "stderr.txt"); }
+    // The panel as the window last showed it (empty before the first present).
+    std::string panel() const {
+        const fs::path file = dir_ / "frame.png.panel.txt";
+        return fs::exists(file) ? readFile(file) : std::string();
+    }
+    bool waitForPanel(const std::function<bool(const std::string&)>& shows) {
+        return waitUntil([&] { return shows(panel()); }, 8s);
+    }
+    static bool has(const std::string& text, const std::string& part) {
+        return text.find(part) != std::string::npos;
+    }
+    Image frame() const { return readPng(dir_ / "frame.png"); }
     // Waits for the dump of a frame at least `request`.
     bool waitForFrame(int request) {
         return waitUntil(
@@ -227,6 +252,11 @@ TEST_F(ViewerTest, KeysAndClickReachTheWindow) {
     ASSERT_TRUE(waitForText("view: probe: ")) << err();
     EXPECT_NE(err().find("{\"ray\":{\"origin\""), std::string::npos) << err();
     EXPECT_NE(err().find("part.scad:"), std::string::npos) << "no source line in the probe";
+    // The panel lists the spans with their objects and source lines.
+    EXPECT_TRUE(waitForPanel([](const std::string& p) {
+        return has(p, "probe: probe at pixel 80,60: ") && has(p, "probe: span 1: t ") &&
+               has(p, "part.scad:") && has(p, "probe:       | ");
+    })) << panel();
 
     // O switches to orthographic: a new, different finest frame.
     ASSERT_EQ(xdotool("windowfocus %1 key o"), 0);
@@ -236,7 +266,16 @@ TEST_F(ViewerTest, KeysAndClickReachTheWindow) {
     // P saves a screenshot, named on stderr.
     ASSERT_EQ(xdotool("windowfocus %1 key p"), 0);
     ASSERT_TRUE(waitForText("view: screenshot saved to csgray-view-part-001.png")) << err();
-    EXPECT_EQ(readPng(dir_ / "csgray-view-part-001.png").width, kWidth);
+    // The picture alone: the panel drawn over it is not saved.
+    EXPECT_EQ(maxDifference(readPng(dir_ / "csgray-view-part-001.png"), frame()), 0);
+
+    // H hides the panel and shows it again.
+    ASSERT_EQ(xdotool("windowfocus %1 key h"), 0);
+    EXPECT_TRUE(waitForPanel([](const std::string& p) { return has(p, "visible: no"); }))
+        << panel();
+    ASSERT_EQ(xdotool("windowfocus %1 key h"), 0);
+    EXPECT_TRUE(waitForPanel([](const std::string& p) { return has(p, "visible: yes"); }))
+        << panel();
 
     // The window closes on the key press, so xdotool's key release may find no window: its
     // status says nothing here; the view's exit status does.
@@ -264,6 +303,10 @@ TEST_F(ViewerTest, EditReloadsAndSyntaxErrorKeepsTheLastGoodFrame) {
     ASSERT_TRUE(waitForText("view: reload failed")) << err();
     EXPECT_NE(err().find("part.scad:3:"), std::string::npos) << err();
     EXPECT_NE(err().find(": error: "), std::string::npos) << err();
+    // The window shows it too, over the last good picture.
+    EXPECT_TRUE(waitForPanel([](const std::string& p) {
+        return has(p, "visible: yes\nerror: part.scad:3:") && has(p, ": error: ");
+    })) << panel();
     std::this_thread::sleep_for(600ms);
     EXPECT_EQ(err().find("view: frame 3 written"), std::string::npos) << err();
     EXPECT_EQ(maxDifference(readPng(dir_ / "frame.png"), second), 0);
@@ -272,6 +315,75 @@ TEST_F(ViewerTest, EditReloadsAndSyntaxErrorKeepsTheLastGoodFrame) {
     writeFile(part_, kPart);
     ASSERT_TRUE(waitForFrame(3)) << err();
     EXPECT_LE(maxDifference(readPng(dir_ / "frame.png"), first), 2);
+    EXPECT_TRUE(waitForPanel([](const std::string& p) { return !has(p, "error:"); })) << panel();
+}
+
+TEST_F(ViewerTest, DragOrbitsWheelZoomsAndResetAndFrameRestoreTheView) {
+    if (!onPath("xdotool")) GTEST_SKIP() << "xdotool is not installed (Debian package xdotool)";
+    launch();
+    ASSERT_TRUE(waitForFrame(1)) << err();
+    const Image first = frame();
+
+    // A 40-pixel left drag (one motion event) turns the part: request 2, a different picture,
+    // and no probe (a drag is not a click).
+    ASSERT_EQ(xdotool("windowfocus %1 mousemove --window %1 60 60 mousedown 1 "
+                      "mousemove --window %1 100 60 mouseup 1"),
+              0);
+    ASSERT_TRUE(waitForFrame(2)) << err();
+    EXPECT_GT(maxDifference(frame(), first), 16);
+    EXPECT_EQ(err().find("view: probe: "), std::string::npos) << err();
+
+    // R: the initial view again (request 3).
+    ASSERT_EQ(xdotool("windowfocus %1 key r"), 0);
+    ASSERT_TRUE(waitForFrame(3)) << err();
+    EXPECT_LE(maxDifference(frame(), first), 2);
+
+    // Two wheel steps towards the part (requests 4 and 5): it fills more of the window.
+    ASSERT_EQ(xdotool("windowfocus %1 mousemove --window %1 80 60 click --repeat 2 4"), 0);
+    ASSERT_TRUE(waitForFrame(5)) << err();
+    EXPECT_GT(coverage(frame()), coverage(first) + 0.05);
+
+    // F fits the part again from the same direction: the initial framing (request 6).
+    ASSERT_EQ(xdotool("windowfocus %1 key f"), 0);
+    ASSERT_TRUE(waitForFrame(6)) << err();
+    EXPECT_LE(maxDifference(frame(), first), 2);
+}
+
+TEST_F(ViewerTest, EffectKeysSwitchShadowsReflectionAndRefraction) {
+    if (!onPath("xdotool")) GTEST_SKIP() << "xdotool is not installed (Debian package xdotool)";
+    writeFile(part_, kEffectsPart);
+    launch();
+    ASSERT_TRUE(waitForFrame(1)) << err();
+    ASSERT_TRUE(waitForPanel([](const std::string& p) {
+        return has(p, "status: 1x1 level") && has(p, "shadows reflection refraction");
+    })) << panel();
+    Image previous = frame();
+
+    // Each key switches its effect off: the next request's plan says so and the picture
+    // changes.
+    struct Step {
+        const char* key;
+        int request;
+        const char* off;
+    };
+    for (const Step& step :
+         {Step{"s", 2, "shadows"}, Step{"m", 3, "reflection"}, Step{"t", 4, "refraction"}}) {
+        SCOPED_TRACE(step.key);
+        ASSERT_EQ(xdotool(std::string("windowfocus %1 key ") + step.key), 0);
+        ASSERT_TRUE(waitForFrame(step.request)) << err();
+        EXPECT_TRUE(waitForPanel([&](const std::string& p) {
+            return has(p, "status: 1x1 level") && !has(p, step.off);
+        })) << panel();
+        const Image current = frame();
+        EXPECT_GT(maxDifference(current, previous), 16);
+        previous = current;
+    }
+    // S again: shadows are back.
+    ASSERT_EQ(xdotool("windowfocus %1 key s"), 0);
+    ASSERT_TRUE(waitForFrame(5)) << err();
+    EXPECT_TRUE(waitForPanel([](const std::string& p) {
+        return has(p, "status: 1x1 level") && has(p, "shadows") && !has(p, "reflection");
+    })) << panel();
 }
 
 }  // namespace

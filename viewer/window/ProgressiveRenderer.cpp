@@ -70,6 +70,17 @@ uint64_t ProgressiveRenderer::start(RenderRequest request) {
     return ++requestCount_;
 }
 
+void ProgressiveRenderer::hold() {
+    std::lock_guard lock(mutex_);
+    held_ = true;
+}
+
+void ProgressiveRenderer::release() {
+    std::lock_guard lock(mutex_);
+    held_ = false;
+    wake_.notify_all();
+}
+
 std::optional<ProgressiveFrame> ProgressiveRenderer::take() {
     std::lock_guard lock(mutex_);
     std::optional<ProgressiveFrame> frame = std::move(latest_);
@@ -119,6 +130,11 @@ void ProgressiveRenderer::run(std::stop_token stop) {
                 latest_ = std::move(frame);
             }
             if (onFrame_) onFrame_();
+            if (block == kBlockSizes[0]) {
+                std::unique_lock lock(mutex_);
+                wake_.wait(lock, stop, [this] { return !held_ || pending_.has_value(); });
+                if (stop.stop_requested() || pending_) break;
+            }
         }
     }
 }

@@ -68,6 +68,11 @@ public:
 
     // Replaces the current request (cancelling its level in flight). Returns its number.
     uint64_t start(RenderRequest request);
+    // Makes the renderer stop after the coarsest level of each request until release(): at
+    // start-up, the finer levels would only take the cores that SDL and the X server need to
+    // open the window the first level is waiting for.
+    void hold();
+    void release();
     // The latest finished level not taken yet, if any.
     std::optional<ProgressiveFrame> take();
 
@@ -81,6 +86,7 @@ private:
     std::optional<RenderRequest> pending_;
     uint64_t requestCount_ = 0;
     std::atomic<bool> cancel_{false};
+    bool held_ = false;  // guarded by mutex_
     std::optional<ProgressiveFrame> latest_;
     std::jthread thread_;  // last: it starts after everything it uses exists
 };

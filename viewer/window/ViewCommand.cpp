@@ -1,13 +1,17 @@
 #include "viewer/window/ViewCommand.h"
 
 #include <SDL.h>
+#include <time.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <thread>
 
+#include "io/AtomicFile.h"
 #include "viewer/Cli.h"
 #include "viewer/render/RenderCamera.h"
 #include "viewer/window/PartWatcher.h"
@@ -28,13 +32,15 @@ const char* const kViewHelp =
     "progressively: one ray per 8x8 pixels first, then 4x4, 2x2 and every pixel, refined\n"
     "while the view is still and restarted when it moves. The part is reloaded when it or a\n"
     "file it includes changes; an error keeps the last good part on screen, shows the\n"
-    "error in the title bar with a red border, and prints it on stderr.\n"
+    "error at the top of the window with a red border, and prints it on stderr. A panel\n"
+    "over the picture shows the status (level, rays per second, effects) at the bottom and\n"
+    "the last probe at the top left; screenshots never include it.\n"
     "\n"
     "mouse:  left drag orbit, right or middle drag pan, wheel zoom,\n"
     "        left click probe the ray under the pointer (JSON as `csgray probe`, on stderr)\n"
     "keys:   R reset view, F frame the part, O orthographic/perspective,\n"
     "        S shadows, M reflection, T refraction (on/off), P save a screenshot PNG\n"
-    "        (named on stderr), Q or Esc quit\n"
+    "        (named on stderr, without the panel), H hide/show the panel, Q or Esc quit\n"
     "\n"
     "options:\n"
     "  --size WxH             window size in pixels (default 800x600)\n"
@@ -43,7 +49,8 @@ const char* const kViewHelp =
     "\n"
     "environment:\n"
     "  CSGRAY_VIEW_DUMP=FILE  (for tests) write every finished full-resolution frame to\n"
-    "                         FILE as PNG and say so on stderr\n";
+    "                         FILE as PNG and say so on stderr, and the panel's text to\n"
+    "                         FILE.panel.txt whenever the window shows a changed panel\n";
 
 struct ViewOptions {
     CommonOptions common;
@@ -88,9 +95,8 @@ std::string formatRate(double raysPerSecond) {
 // Everything the event loop changes, and what it shows.
 class ViewSession {
 public:
-    ViewSession(const ViewOptions& options, ViewWindow& window, Clock::time_point started)
+    ViewSession(const ViewOptions& options, Clock::time_point started)
         : options_(options),
-          window_(window),
           started_(started),
           width_(options.width),
           height_(options.height),
@@ -100,14 +106,41 @@ public:
         if (const char* dump = std::getenv("CSGRAY_VIEW_DUMP")) dumpFile_ = dump;
     }
 
-    // Returns the exit code.
-    int run(std::shared_ptr<const LoadedPart> part) {
-        part_ = std::move(part);
+    // The first load, and the first render request when it succeeds. Needs no window: it
+    // runs while SDL starts. False (diagnostics printed) when the part is bad.
+    bool begin() {
+        LoadOutcome first = loadForView(options_.common);
+        if (!first.part) return false;
+        if (options_.verbose)
+            std::fprintf(stderr, "view: loaded and compiled in %.1f ms, %.1f ms after main\n",
+                         first.seconds * 1e3, millisecondsSince(started_));
+        part_ = std::move(first.part);
         camera_.emplace(initialCamera());
         watcher_.watch(part_->model.files);
+        renderer_.hold();
         restart();
+        return true;
+    }
+
+    // The event loop, after begin() succeeded. Returns the exit code.
+    int run(ViewWindow& window) {
+        window_ = &window;
+        wakeReady_ = true;
+        renderer_.release();
         Clock::time_point lastPoll = Clock::now();
         while (!quit_) {
+            // What is ready is shown before waiting: the first levels may have finished while
+            // the window was being made.
+            if (auto outcome = watcher_.take()) reloaded(std::move(*outcome));
+            if (auto frame = renderer_.take()) shown(std::move(*frame));
+            if (restartPending_) restart();
+            if (redraw_) {
+                window_->setPanel(panel_);
+                window_->present();
+                dumpPanel();
+                redraw_ = false;
+                reportFirstFrame();
+            }
             SDL_Event event;
             if (SDL_WaitEventTimeout(&event, 50)) {
                 handle(event);
@@ -118,13 +151,6 @@ public:
                 watcher_.poll();
                 lastPoll = Clock::now();
             }
-            if (auto outcome = watcher_.take()) reloaded(std::move(*outcome));
-            if (auto frame = renderer_.take()) shown(std::move(*frame));
-            if (restartPending_) restart();
-            if (redraw_) {
-                window_.present();
-                redraw_ = false;
-            }
         }
         return exitCode_;
     }
@@ -134,8 +160,10 @@ private:
         return o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
     }
 
-    // Wakes SDL_WaitEventTimeout from another thread (SDL_PushEvent is thread-safe).
+    // Wakes SDL_WaitEventTimeout from another thread (SDL_PushEvent is thread-safe). Before
+    // run() there is no event loop to wake (and SDL may still be starting): run() looks first.
     void wake() {
+        if (!wakeReady_) return;
         SDL_Event event{};
         event.type = wakeEvent_;
         SDL_PushEvent(&event);
@@ -240,6 +268,10 @@ private:
             case SDLK_p:
                 screenshot();
                 return;
+            case SDLK_h:
+                panel_.visible = !panel_.visible;
+                redraw_ = true;
+                return;
             default:
                 return;
         }
@@ -251,6 +283,7 @@ private:
         std::fprintf(stderr, "%s\n", result.json.c_str());
         std::fprintf(stderr, "view: %s (pixel %d,%d)\n", result.summary.c_str(), x, y);
         probeSummary_ = result.summary;
+        panel_.probe = result.lines;
         updateTitle();
     }
 
@@ -272,7 +305,7 @@ private:
         if (!outcome.part) {
             loadError_ = outcome.firstError;
             std::fprintf(stderr, "view: reload failed; the last good part stays on screen\n");
-            window_.setErrorBorder(true);
+            window_->setErrorBorder(true);
             updateTitle();
             redraw_ = true;
             return;
@@ -281,7 +314,8 @@ private:
                      outcome.seconds * 1e3);
         part_ = std::move(outcome.part);
         loadError_.clear();
-        window_.setErrorBorder(false);
+        window_->setErrorBorder(false);
+        updateTitle();
         camera_->setInitial(initialCamera());
         watcher_.watch(part_->model.files);
         restart();
@@ -289,19 +323,12 @@ private:
     }
 
     void shown(ProgressiveFrame frame) {
-        window_.setImage(frame.image);
+        window_->setImage(frame.image);
         redraw_ = true;
         const double rate = frame.rays.total() / std::max(frame.renderSeconds, 1e-9);
         status_ = std::to_string(frame.blockSize) + "x" + std::to_string(frame.blockSize) +
                   " level, " + formatRate(rate) + ", " + frame.plan;
-        if (!firstFrameReported_) {
-            firstFrameReported_ = true;
-            std::fprintf(stderr,
-                         "view: first frame (%dx%d blocks) %.1f ms after the render started, "
-                         "%.1f ms after launch\n",
-                         frame.blockSize, frame.blockSize, frame.sinceRequest * 1e3,
-                         millisecondsSince(started_));
-        }
+        if (!firstFrame_) firstFrame_ = FirstFrame{frame.blockSize, frame.sinceRequest};
         if (options_.verbose)
             std::fprintf(stderr,
                          "view: level %dx%d: %d x %d rays in %.1f ms (%s), %.1f ms "
@@ -321,17 +348,51 @@ private:
         updateTitle();
     }
 
+    // The title bar and the panel say the same: error, status, probe.
     void updateTitle() {
+        std::string status = status_;
+        if (camera_->camera().projection == io::Projection::Orthographic) status += ", ortho";
         std::string title = "csgray view " + options_.common.part;
         if (!loadError_.empty()) title = loadError_ + "  |  " + title;
-        if (!status_.empty()) title += "  |  " + status_;
-        if (camera_->camera().projection == io::Projection::Orthographic) title += ", ortho";
+        if (!status_.empty()) title += "  |  " + status;
         if (!probeSummary_.empty()) title += "  |  " + probeSummary_;
-        window_.setTitle(title);
+        window_->setTitle(title);
+        panel_.error = loadError_;
+        panel_.status = status;
+        redraw_ = true;
+    }
+
+    // Once, when the first frame is on screen. The wall-clock time lets a launcher measure
+    // from before the process existed (bench/view_startup.py).
+    void reportFirstFrame() {
+        if (!firstFrame_ || firstFrameReported_) return;
+        firstFrameReported_ = true;
+        const double wall =
+            std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
+                .count();
+        std::fprintf(stderr,
+                     "view: first frame (%dx%d blocks) presented at %.6f s, %.1f ms after the "
+                     "render started, %.1f ms after main\n",
+                     firstFrame_->blockSize, firstFrame_->blockSize, wall,
+                     firstFrame_->sinceRequest * 1e3, millisecondsSince(started_));
+    }
+
+    // The test hook's view of the panel: what the window shows, written when it changes.
+    void dumpPanel() {
+        if (dumpFile_.empty() || panel_ == dumpedPanel_) return;
+        dumpedPanel_ = panel_;
+        io::AtomicFile file(dumpFile_ + ".panel.txt");
+        const std::string text = panelText(panel_);
+        if (file.ok() && std::fwrite(text.data(), 1, text.size(), file.stream()) == text.size() &&
+            file.commit())
+            return;
+        std::fprintf(stderr, "%s.panel.txt: error: %s\n", dumpFile_.c_str(),
+                     file.error().empty() ? "cannot write" : file.error().c_str());
     }
 
     const ViewOptions& options_;
-    ViewWindow& window_;
+    ViewWindow* window_ = nullptr;  // set by run()
+    std::atomic<bool> wakeReady_{false};
     Clock::time_point started_;
     int width_, height_;
     Uint32 wakeEvent_;
@@ -345,8 +406,14 @@ private:
     Uint8 dragButton_ = 0;
     double dragDistance_ = 0.0;
     std::optional<ProgressiveFrame> lastFrame_;
+    struct FirstFrame {
+        int blockSize;
+        double sinceRequest;  // seconds
+    };
+    std::optional<FirstFrame> firstFrame_;
     bool firstFrameReported_ = false;
     std::string status_, loadError_, probeSummary_, dumpFile_;
+    Panel panel_, dumpedPanel_;
     // Last: their threads call wake(), so they stop before the rest is destroyed.
     ProgressiveRenderer renderer_;
     PartWatcher watcher_;
@@ -356,25 +423,43 @@ private:
 
 int viewCommand(std::span<const std::string> args) {
     const Clock::time_point started = Clock::now();
+    // The process's CPU time so far: exec, dynamic loading (SDL and the X11 libraries) and
+    // static initialisation, which no clock inside the program sees start.
+    timespec cpuNow{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &cpuNow);
+    const double cpuBeforeMain = double(cpuNow.tv_sec) * 1e3 + double(cpuNow.tv_nsec) * 1e-6;
     const ViewOptions options = parseViewOptions(args);
     if (options.common.help) {
         std::fputs(kViewHelp, stdout);
         std::fputs(kCommonOptionsHelp, stdout);
         return kExitOk;
     }
+    // Start-up in parallel: SDL's video start (tens of milliseconds of X11 set-up) on this
+    // thread, the part's evaluation, compilation and first coarse levels on others. The
+    // window itself is made only once the part loaded: a bad part exits with no window.
+    std::optional<ViewWindow> window;  // outlives the session, whose threads wake its loop
+    ViewSession session(options, started);
+    bool loaded = false;
+    std::thread loader([&] { loaded = session.begin(); });
+    window.emplace();
+    loader.join();
     // The first load decides whether there is anything to show; later errors keep it.
-    LoadOutcome first = loadForView(options.common);
-    if (!first.part) return kExitBadModel;
-    if (options.verbose)
-        std::fprintf(stderr, "view: loaded and compiled in %.1f ms\n", first.seconds * 1e3);
-
-    ViewWindow window("csgray view " + options.common.part, options.width, options.height);
-    if (!window.ok()) {
-        std::fprintf(stderr, "csgray: error: %s\n", window.error().c_str());
+    if (!loaded) return kExitBadModel;
+    if (window->ok())
+        window->open("csgray view " + options.common.part, options.width, options.height);
+    if (!window->ok()) {
+        std::fprintf(stderr, "csgray: error: %s\n", window->error().c_str());
         return kExitIo;
     }
-    ViewSession session(options, window, started);
-    return session.run(std::move(first.part));
+    if (options.verbose) {
+        const ViewWindow::StartupTimes& t = window->startupTimes();
+        std::fprintf(stderr,
+                     "view: startup: SDL_Init %.1f ms (%.1f ms CPU), window %.1f ms, renderer "
+                     "%.1f ms (%s); %.1f ms after main, which started after %.1f ms of CPU\n",
+                     t.init, t.initCpu, t.window, t.renderer, t.driver.c_str(),
+                     millisecondsSince(started), cpuBeforeMain);
+    }
+    return session.run(*window);
 }
 
 }  // namespace viewer::window

@@ -2,31 +2,82 @@
 
 #include <SDL.h>
 
+#include <time.h>
+
+#include <chrono>
+
 namespace viewer::window {
 
-ViewWindow::ViewWindow(const std::string& title, int width, int height) {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// CPU time of the calling thread: on a loaded machine, what a step costs, whatever it waited.
+double threadCpuMilliseconds() {
+    timespec now{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+    return double(now.tv_sec) * 1e3 + double(now.tv_nsec) * 1e-6;
+}
+
+}  // namespace
+
+ViewWindow::ViewWindow() {
+    // What the window draws is one texture stretched by nearest neighbour and a few hundred
+    // rectangles: SDL's software renderer presents that in about a millisecond at 800x600 and
+    // is ready in under one, where its OpenGL renderer took 120-200 ms to create under Xvfb
+    // (Mesa's llvmpipe) and compiled shaders on the first present. So: software, straight to
+    // the X11 framebuffer (no GL window texture behind it). SDL_RENDER_DRIVER and
+    // SDL_FRAMEBUFFER_ACCELERATION in the environment still win over these hints.
+    SDL_SetHint(SDL_HINT_RENDER_DRIVER, "software");
+    SDL_SetHint(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0");
+    // A preview window has no reason to keep the screen awake (OpenSCAD's does not either);
+    // inhibiting the screen saver also costs a D-Bus round trip at start-up.
+    SDL_SetHint(SDL_HINT_VIDEO_ALLOW_SCREENSAVER, "1");
+    // Blocks, not blur: a coarse level should look like what it is.
+    SDL_SetHint(SDL_HINT_RENDER_SCALE_QUALITY, "0");
+    const Clock::time_point step = Clock::now();
+    const double cpu = threadCpuMilliseconds();
     if (SDL_Init(SDL_INIT_VIDEO) != 0) {
         error_ = std::string("cannot open a window: ") + SDL_GetError();
         return;
     }
-    // Blocks, not blur: a coarse level should look like what it is.
-    SDL_SetHint(SDL_HINT_RENDER_SCALE_QUALITY, "0");
+    videoStarted_ = true;
+    startup_.init = millisecondsSince(step);
+    startup_.initCpu = threadCpuMilliseconds() - cpu;
+}
+
+bool ViewWindow::open(const std::string& title, int width, int height) {
+    if (!videoStarted_) return false;
+    Clock::time_point step = Clock::now();
     window_ = SDL_CreateWindow(title.c_str(), SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED,
                                width, height, SDL_WINDOW_RESIZABLE);
     if (!window_) {
         error_ = std::string("cannot open a window: ") + SDL_GetError();
-        return;
+        return false;
     }
+    startup_.window = millisecondsSince(step);
+    step = Clock::now();
     renderer_ = SDL_CreateRenderer(window_, -1, 0);
     if (!renderer_) renderer_ = SDL_CreateRenderer(window_, -1, SDL_RENDERER_SOFTWARE);
-    if (!renderer_) error_ = std::string("cannot draw in the window: ") + SDL_GetError();
+    if (!renderer_) {
+        error_ = std::string("cannot draw in the window: ") + SDL_GetError();
+        return false;
+    }
+    startup_.renderer = millisecondsSince(step);
+    SDL_RendererInfo info;
+    if (SDL_GetRendererInfo(renderer_, &info) == 0) startup_.driver = info.name;
+    return true;
 }
 
 ViewWindow::~ViewWindow() {
     if (texture_) SDL_DestroyTexture(texture_);
     if (renderer_) SDL_DestroyRenderer(renderer_);
     if (window_) SDL_DestroyWindow(window_);
-    SDL_Quit();
+    if (videoStarted_) SDL_Quit();
 }
 
 void ViewWindow::setImage(const io::Rgb8Image& image) {
@@ -56,6 +107,7 @@ void ViewWindow::present() {
         SDL_SetRenderDrawColor(renderer_, 220, 30, 30, 255);
         SDL_RenderFillRects(renderer_, sides, 4);
     }
+    painter_.draw(renderer_, panel_);
     SDL_RenderPresent(renderer_);
 }
 
