@@ -145,6 +145,16 @@ std::map<std::string, std::vector<ProbeCase>> analyticCases() {
         {{-30, 0, 1}, px, {{30 - (15 - 2.0 / 16), 27}, {32, 30 + (15 - 2.0 / 16)}}},
         {{-30, 0, 8}, px, {{16, 27}, {32, 44}}},
     };
+
+    // teapot: a surface, so each crossing is a zero-length span. Down the axis: the knob's pole
+    // (0, 0, 3.15) and the bottom's pole (0, 0, 0), each shared by four patches. Along y at
+    // x = 0, z = 0.9: the body's widest row (control points (0, -+2, 0.9), on the edges shared
+    // by its upper and lower patches and by neighbouring quadrants); handle and spout lie at
+    // |x| >= 1.5.
+    cases["teapot.scad"] = {
+        {{0, 0, 10}, mz, {{10 - 3.15, 10 - 3.15}, {10, 10}}},
+        {{0, -10, 0.9}, py, {{8, 8}, {12, 12}}},
+    };
     return cases;
 }
 
@@ -199,6 +209,11 @@ const std::vector<std::string> kOpenScadSamples = {
     "flange.scad", "hinge.scad",    "dice.scad",    "table.scad",     "knob.scad"};
 
 INSTANTIATE_TEST_SUITE_P(Samples, SampleSpans, ::testing::ValuesIn(kOpenScadSamples),
+                         sampleTestName);
+
+// Samples in csgray's own language extensions (no OpenSCAD round trip for them).
+const std::vector<std::string> kCsgraySamples = {"teapot.scad"};
+INSTANTIATE_TEST_SUITE_P(CsgraySamples, SampleSpans, ::testing::ValuesIn(kCsgraySamples),
                          sampleTestName);
 
 TEST(SampleSpans, EverySampleHasHandDerivedRays) {
