@@ -437,6 +437,7 @@ int viewCommand(std::span<const std::string> args) {
     // Start-up in parallel: SDL's video start (tens of milliseconds of X11 set-up) on this
     // thread, the part's evaluation, compilation and first coarse levels on others. The
     // window itself is made only once the part loaded: a bad part exits with no window.
+    ViewWindow::prepareProcess();
     std::optional<ViewWindow> window;  // outlives the session, whose threads wake its loop
     ViewSession session(options, started);
     bool loaded = false;

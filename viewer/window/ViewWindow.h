@@ -23,6 +23,9 @@ public:
     // can run while the part loads; open() then makes the window. ok() is false (and error()
     // says why) when no display is usable.
     ViewWindow();
+    // Call once before the process starts any thread (it sets environment variables, which is
+    // not thread-safe): makes SDL's X11 start-up skip work the window does not need.
+    static void prepareProcess();
     // Opens the window with SDL's software renderer (see ViewWindow.cpp for why). Returns ok().
     bool open(const std::string& title, int width, int height);
     ~ViewWindow();
