@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "viewer/BenchCommand.h"
 #include "viewer/Cli.h"
 #include "viewer/CompareCommand.h"
 #include "viewer/ExportCommand.h"
@@ -29,6 +30,7 @@ const char* const kTopHelp =
     "  export   a part to a mesh (GLB, glTF, OBJ) within a distance tolerance\n"
     "  compare  a mesh against the part's exact surface: distances, volume, topology\n"
     "  view     an interactive window: progressive ray tracing, hot reload, click to probe\n"
+    "  bench    accuracy: the root solvers' accuracy-versus-time report\n"
     "\n"
     "Run 'csgray COMMAND --help' for a command's options. stdout carries only the\n"
     "requested output; diagnostics go to stderr. Exit codes: 0 ok, 1 bad model or input,\n"
@@ -62,6 +64,7 @@ int main(int argc, char** argv) {
         if (command == "export") return viewer::exportCommand(rest);
         if (command == "compare") return viewer::compareCommand(rest);
         if (command == "view") return viewer::window::viewCommand(rest);
+        if (command == "bench") return viewer::benchCommand(rest);
         return usageError("unknown command '" + command + "'", "");
     } catch (const viewer::UsageError& e) {
         return usageError(e.what(), command);

@@ -1,9 +1,6 @@
-// What each digit of accuracy costs: for every root solver, surface class and tolerance
-// setting, rays per second (solve() only) against the error distribution and the wrong root
-// counts, measured on the polynomials that real rays produce. A plain program (no Google
-// Benchmark): it writes a table, not timings of one call.
-//
-//   accuracy_report [-o DIR] [--rays N]     writes DIR/accuracy.csv and DIR/accuracy.md
+// What each digit of accuracy costs (AccuracyReport.h): for every root solver, surface class and
+// tolerance setting, rays per second (solve() only) against the error distribution and the
+// wrong root counts, measured on the polynomials that real rays produce.
 //
 // Notation: a job is one ray's polynomial p with its parameter range [lo, hi], exactly the
 // doubles a solver is given. The reference is the set of real roots of that same double p,
@@ -14,6 +11,7 @@
 // count is also reported as "resolvable" or not: on some rays (tight clusters) p between two
 // roots is smaller than its own rounding error in double, so no double solver can see them.
 #include <algorithm>
+#include <array>
 #include <boost/multiprecision/cpp_bin_float.hpp>
 #include <chrono>
 #include <cstdio>
@@ -21,16 +19,22 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
+#include "bench/AccuracyReport.h"
+
+#include "bench/AccuracyPlots.h"
+#include "bench/ScalarYuksel.h"
 #include "bench/ShellSurface.h"
 #include "primitives/AlgebraicSurface.h"
 #include "primitives/Torus.h"
 
+namespace csg {
 namespace {
 
-using namespace csg;
 using Big = boost::multiprecision::cpp_bin_float_50;
 
 struct Job {
@@ -41,6 +45,9 @@ struct Job {
     // bound in double (Polynomial::eval): no double evaluation can see the sign change
     // there, so a wrong count on this ray is double precision's limit, not the solver's.
     bool resolvable = true;
+    // p's coefficients as float and as double arrays, for the float-vs-double rows.
+    std::array<float, Polynomial::kMaxDegree + 1> pf{};
+    std::array<double, Polynomial::kMaxDegree + 1> pd{};
 };
 
 // ---- The 50-digit reference ----
@@ -103,6 +110,8 @@ void addReference(Job& j) {
     for (int i = 0; i <= j.p.degree(); ++i) c[size_t(i)] = j.p[i];
     const std::vector<Big> roots = rootsBig(c, Big(j.lo), Big(j.hi));
     for (const Big& r : roots) j.reference.push_back(r.convert_to<double>());
+    for (int i = 0; i <= j.p.degree(); ++i)
+        j.pf[size_t(i)] = float(j.p[i]), j.pd[size_t(i)] = j.p[i];
     for (size_t i = 0; i + 1 < roots.size(); ++i) {
         const Big mid = (roots[i] + roots[i + 1]) / 2;
         double bound = 0;
@@ -235,25 +244,16 @@ std::vector<Job> wideRangeJobs(int n) {
 
 // ---- Measuring ----
 
-struct Row {
-    std::string surfaceClass;
-    int degree;
-    std::string solver;
-    double relTol;
-    double raysPerSecond;
-    double maxError, p99Error, medianError;
-    long wrongCounts;
-    long wrongResolvable;  // wrong counts on rays double precision can resolve (Job)
-    long rays;
-};
-
-Row measure(const std::string& name, int degree, const std::vector<Job>& jobs, Solver solver,
-            double relTol) {
-    Row row{name, degree, solverName(solver), relTol, 0, 0, 0, 0, 0, 0, long(jobs.size())};
+// Errors and counts of solveOne(job, roots) -> count over the jobs, then its rate: whole passes
+// over the jobs until minSeconds have passed (at least 2); only solveOne runs inside the clock.
+template <class SolveOne>
+AccuracyRow measure(AccuracyRow row, const std::vector<Job>& jobs, double minSeconds,
+                    SolveOne solveOne) {
+    row.rays = long(jobs.size());
     double roots[Polynomial::kMaxDegree];
     std::vector<double> errors;
     for (const Job& j : jobs) {
-        const int n = solve(j.p, j.lo, j.hi, roots, solver, relTol);
+        const int n = solveOne(j, roots);
         if (n != int(j.reference.size())) {
             ++row.wrongCounts;
             row.wrongResolvable += j.resolvable ? 1 : 0;
@@ -271,8 +271,6 @@ Row measure(const std::string& name, int degree, const std::vector<Job>& jobs, S
         row.p99Error = errors[size_t(0.99 * double(errors.size() - 1))];
         row.medianError = errors[errors.size() / 2];
     }
-    // Time: whole passes over the jobs until 50 ms have passed (at least 2 passes); only
-    // solve() runs inside the clock.
     using Clock = std::chrono::steady_clock;
     long passes = 0;
     double sink = 0;
@@ -280,15 +278,43 @@ Row measure(const std::string& name, int degree, const std::vector<Job>& jobs, S
     double seconds = 0;
     do {
         for (const Job& j : jobs) {
-            const int n = solve(j.p, j.lo, j.hi, roots, solver, relTol);
+            const int n = solveOne(j, roots);
             sink += n > 0 ? roots[0] : 0.0;
         }
         ++passes;
         seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    } while (seconds < 0.05 || passes < 2);
-    if (sink == 1.2345) std::puts("");  // keeps the solves observable
+    } while (seconds < minSeconds || passes < 2);
+    if (sink == 1.2345) std::fputs("", stderr);  // keeps the solves observable
     row.raysPerSecond = double(passes) * double(jobs.size()) / seconds;
     return row;
+}
+
+AccuracyRow measureSolver(const std::string& name, int degree, const std::vector<Job>& jobs,
+                          Solver solver, double relTol, double minSeconds) {
+    return measure({name, degree, solverName(solver), "double", relTol}, jobs, minSeconds,
+                   [solver, relTol](const Job& j, double* roots) {
+                       return solve(j.p, j.lo, j.hi, roots, solver, relTol);
+                   });
+}
+
+// The same Yuksel code (ScalarYuksel.h) on p's coefficients rounded to T, range and roots in
+// T: what the scalar type alone costs and buys.
+template <class T>
+AccuracyRow measureScalar(const std::string& name, int degree, const std::vector<Job>& jobs,
+                          double minSeconds) {
+    const char* type = std::is_same_v<T, float> ? "float" : "double";
+    return measure({name, degree, std::string("yuksel<") + type + ">", type, 0.0}, jobs, minSeconds,
+                   [](const Job& j, double* roots) {
+                       const T* c;
+                       if constexpr (std::is_same_v<T, float>)
+                           c = j.pf.data();
+                       else
+                           c = j.pd.data();
+                       T r[Polynomial::kMaxDegree];
+                       const int n = yukselRootsT<T>(c, j.p.degree(), T(j.lo), T(j.hi), r);
+                       for (int i = 0; i < n; ++i) roots[i] = double(r[i]);
+                       return n;
+                   });
 }
 
 std::string sci(double v) {
@@ -297,22 +323,93 @@ std::string sci(double v) {
     return b;
 }
 
-}  // namespace
+std::string ratio(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.2f", v);
+    return b;
+}
 
-int main(int argc, char** argv) {
-    std::filesystem::path dir = "accuracy";
-    int rays = 2000;
-    for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "-o") && i + 1 < argc)
-            dir = argv[++i];
-        else if (!std::strcmp(argv[i], "--rays") && i + 1 < argc)
-            rays = std::max(10, std::atoi(argv[++i]));
-        else {
-            std::fprintf(stderr, "usage: accuracy_report [-o DIR] [--rays N]\n");
-            return 2;
+std::string fixed0(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.0f", v);
+    return b;
+}
+
+// Writes text to path through a temporary name, so a failed write leaves no partial file.
+bool writeFile(const std::filesystem::path& path, const std::string& text, std::string* error) {
+    const std::filesystem::path tmp = path.string() + ".tmp";
+    {
+        std::ofstream f(tmp, std::ios::binary);
+        f << text;
+        f.flush();
+        if (!f) {
+            *error = "cannot write " + tmp.string();
+            std::error_code ec;
+            std::filesystem::remove(tmp, ec);
+            return false;
         }
     }
-    std::filesystem::create_directories(dir);
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) *error = "cannot write " + path.string() + ": " + ec.message();
+    return !ec;
+}
+
+std::string csvText(const std::vector<AccuracyRow>& rows) {
+    std::ostringstream csv;
+    csv << "class,degree,solver,scalar,rel_tol,rays_per_second,max_error,p99_error,median_error,"
+           "wrong_counts,wrong_resolvable,rays\n";
+    for (const AccuracyRow& r : rows)
+        csv << r.surfaceClass << ',' << r.degree << ',' << r.solver << ',' << r.scalar << ','
+            << r.relTol << ',' << r.raysPerSecond << ',' << r.maxError << ',' << r.p99Error << ','
+            << r.medianError << ',' << r.wrongCounts << ',' << r.wrongResolvable << ',' << r.rays
+            << '\n';
+    return csv.str();
+}
+
+std::string markdownText(const std::vector<AccuracyRow>& rows, int rays) {
+    std::ostringstream md;
+    md << "# Root solver accuracy vs time\n\n"
+       << rays << " rays per class (half that per degree in the sweep); error = |root - "
+       << "reference| / max(1, |reference|) against the 50-digit roots of the same double "
+       << "polynomial; rel_tol 0 = roots to double precision. Written by `csgray bench accuracy`"
+       << " (bench/AccuracyReport.cpp); plots: accuracy_pareto.svg, degree_sweep.svg.\n\n";
+    // Float against double first: the same solver code (ScalarYuksel.h), two scalar types.
+    md << "## float vs double (the same Yuksel code, roots to full precision of the type)\n\n"
+       << "| class | degree | float rays/s | double rays/s | float/double time | float max "
+          "error | double max error | float p99 | double p99 | float wrong | double wrong "
+          "|\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (size_t i = 0; i + 1 < rows.size(); ++i) {
+        const AccuracyRow& f = rows[i];
+        const AccuracyRow& d = rows[i + 1];
+        if (f.solver != "yuksel<float>" || d.solver != "yuksel<double>") continue;
+        md << "| " << f.surfaceClass << " | " << f.degree << " | " << fixed0(f.raysPerSecond)
+           << " | " << fixed0(d.raysPerSecond) << " | " << ratio(d.raysPerSecond / f.raysPerSecond)
+           << " | " << sci(f.maxError) << " | " << sci(d.maxError) << " | " << sci(f.p99Error)
+           << " | " << sci(d.p99Error) << " | " << f.wrongCounts << " / " << f.rays << " | "
+           << d.wrongCounts << " / " << d.rays << " |\n";
+    }
+    md << "\n## Every row\n\n| class | degree | solver | rel_tol | rays/s | max error | p99 error "
+          "| wrong counts | of them resolvable |\n|---|---:|---|---:|---:|---:|---:|---:|---:|\n";
+    for (const AccuracyRow& r : rows)
+        md << "| " << r.surfaceClass << " | " << r.degree << " | " << r.solver << " | "
+           << (r.relTol == 0 ? std::string("0") : sci(r.relTol)) << " | " << fixed0(r.raysPerSecond)
+           << " | " << sci(r.maxError) << " | " << sci(r.p99Error) << " | " << r.wrongCounts
+           << " / " << r.rays << " | " << r.wrongResolvable << " |\n";
+    return md.str();
+}
+
+}  // namespace
+
+bool writeAccuracyReport(const AccuracyReportOptions& options, std::string* error) {
+    const std::filesystem::path& dir = options.dir;
+    const int rays = std::max(10, options.rays);
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec || !std::filesystem::is_directory(dir)) {
+        *error = "cannot create directory " + dir.string() + (ec ? ": " + ec.message() : "");
+        return false;
+    }
 
     struct Class {
         std::string name;
@@ -327,20 +424,32 @@ int main(int argc, char** argv) {
     classes.push_back({"near-double", 4, nearDoubleJobs(rays), true});
     classes.push_back({"wide-range", 4, wideRangeJobs(rays), true});
     for (int d = 2; d <= 16; ++d)
-        classes.push_back({"degree-sweep", d, separatedJobs(d, rays / 2, 41 + uint64_t(d)), false});
+        classes.push_back(
+            {"degree-sweep", d, separatedJobs(d, std::max(5, rays / 2), 41 + uint64_t(d)), false});
     for (Class& c : classes) {
         long unresolvable = 0;
         for (Job& j : c.jobs) {
             addReference(j);
             unresolvable += j.resolvable ? 0 : 1;
         }
-        std::fprintf(stderr, "%s %d: %ld of %zu rays not resolvable in double\n", c.name.c_str(),
-                     c.degree, unresolvable, c.jobs.size());
+        if (options.progress)
+            std::fprintf(stderr, "%s %d: %ld of %zu rays not resolvable in double\n",
+                         c.name.c_str(), c.degree, unresolvable, c.jobs.size());
     }
 
     const double tolerances[] = {1e-3, 1e-6, 1e-9, 1e-12, 1e-15, 0.0};
-    std::vector<Row> rows;
-    for (const Class& c : classes)
+    std::vector<AccuracyRow> rows;
+    auto report = [&](const AccuracyRow& r) {
+        rows.push_back(r);
+        if (!options.progress) return;
+        std::fprintf(stderr,
+                     "%-12s %2d %-16s tol %-7g %10.0f rays/s max %s p99 %s wrong %ld (%ld "
+                     "resolvable)\n",
+                     r.surfaceClass.c_str(), r.degree, r.solver.c_str(), r.relTol, r.raysPerSecond,
+                     sci(r.maxError).c_str(), sci(r.p99Error).c_str(), r.wrongCounts,
+                     r.wrongResolvable);
+    };
+    for (const Class& c : classes) {
         for (Solver solver : kAllSolvers) {
             // Closed forms exist up to degree 4 only (above, ClosedForm is Yuksel).
             if (solver == Solver::ClosedForm && c.degree > 4) continue;
@@ -348,38 +457,24 @@ int main(int argc, char** argv) {
                 if (!c.sweepTolerance && tol != 0.0) continue;
                 // The closed forms ignore the tolerance: one row is the whole story.
                 if (solver == Solver::ClosedForm && tol != 0.0) continue;
-                rows.push_back(measure(c.name, c.degree, c.jobs, solver, tol));
-                const Row& r = rows.back();
-                std::fprintf(stderr,
-                             "%-12s %2d %-16s tol %-7g %10.0f rays/s max %s p99 %s wrong %ld (%ld "
-                             "resolvable)\n",
-                             r.surfaceClass.c_str(), r.degree, r.solver.c_str(), r.relTol,
-                             r.raysPerSecond, sci(r.maxError).c_str(), sci(r.p99Error).c_str(),
-                             r.wrongCounts, r.wrongResolvable);
+                report(measureSolver(c.name, c.degree, c.jobs, solver, tol, options.minSeconds));
             }
         }
+        report(measureScalar<float>(c.name, c.degree, c.jobs, options.minSeconds));
+        report(measureScalar<double>(c.name, c.degree, c.jobs, options.minSeconds));
+    }
 
-    std::ofstream csv(dir / "accuracy.csv");
-    csv << "class,degree,solver,rel_tol,rays_per_second,max_error,p99_error,median_error,"
-           "wrong_counts,wrong_resolvable,rays\n";
-    for (const Row& r : rows)
-        csv << r.surfaceClass << ',' << r.degree << ',' << r.solver << ',' << r.relTol << ','
-            << r.raysPerSecond << ',' << r.maxError << ',' << r.p99Error << ',' << r.medianError
-            << ',' << r.wrongCounts << ',' << r.wrongResolvable << ',' << r.rays << '\n';
-
-    std::ofstream md(dir / "accuracy.md");
-    md << "# Root solver accuracy vs time\n\n"
-       << rays << " rays per class (half that per degree in the sweep); error = |root - "
-       << "reference| / max(1, |reference|) against the 50-digit roots of the same double "
-       << "polynomial; rel_tol 0 = roots to double precision. Written by bench/accuracy_report."
-       << "\n\n| class | degree | solver | rel_tol | rays/s | max error | p99 error | wrong "
-          "counts | of them resolvable |\n|---|---:|---|---:|---:|---:|---:|---:|---:|\n";
-    for (const Row& r : rows)
-        md << "| " << r.surfaceClass << " | " << r.degree << " | " << r.solver << " | "
-           << (r.relTol == 0 ? std::string("0") : sci(r.relTol)) << " | " << long(r.raysPerSecond)
-           << " | " << sci(r.maxError) << " | " << sci(r.p99Error) << " | " << r.wrongCounts
-           << " / " << r.rays << " | " << r.wrongResolvable << " |\n";
-    std::fprintf(stderr, "wrote %s and %s\n", (dir / "accuracy.csv").c_str(),
-                 (dir / "accuracy.md").c_str());
-    return 0;
+    if (!writeFile(dir / "accuracy.csv", csvText(rows), error) ||
+        !writeFile(dir / "accuracy.md", markdownText(rows, rays), error) ||
+        !writeFile(dir / "accuracy_pareto.svg", paretoSvg(rows), error) ||
+        !writeFile(dir / "degree_sweep.svg", degreeSweepSvg(rows), error))
+        return false;
+    if (options.progress)
+        std::fprintf(stderr,
+                     "wrote accuracy.csv, accuracy.md, accuracy_pareto.svg and "
+                     "degree_sweep.svg in %s\n",
+                     dir.c_str());
+    return true;
 }
+
+}  // namespace csg
