@@ -186,6 +186,24 @@ struct Evaluator {
         return n > 0;
     }
 
+    // any() over the root with the cached top-level object tried first; a union's answer is
+    // the OR of its children's, so the order changes only when the search stops.
+    bool anyCached(ObjectCache& cache) {
+        const CompiledNode& root = scene.nodes_[scene.root_];
+        const double t0 = ray.tmin;
+        double t1 = ray.tmax;
+        if (root.kind != NodeKind::Union) return any(scene.root_, t0, t1);
+        if (cache.node != kNoNode && any(cache.node, t0, t1)) return true;
+        if (!touches(root.bounds, t0, t1)) return false;
+        bool found = false;
+        forEachChild(root, t0, t1, [&](uint32_t child) {
+            if (child == cache.node || !any(child, t0, t1)) return true;
+            cache.node = child;
+            return !(found = true);
+        });
+        return found;
+    }
+
     // First surface end of the root union's spans. Front-to-back over the top-level objects,
     // lowering t1 to the best entry so far, which is exact as long as the ray starts outside
     // every object; a ray that starts inside one falls back to the whole span list.
@@ -240,6 +258,11 @@ std::optional<Hit> Scene::closest(const Ray& ray, QueryContext& ctx) const {
 bool Scene::occluded(const Ray& ray, QueryContext& ctx) const {
     ++ctx.stats.rays;
     return Evaluator(*this, ctx, ray).any(root_, ray.tmin, ray.tmax);
+}
+
+bool Scene::occluded(const Ray& ray, QueryContext& ctx, ObjectCache& cache) const {
+    ++ctx.stats.rays;
+    return Evaluator(*this, ctx, ray).anyCached(cache);
 }
 
 }  // namespace csg

@@ -87,12 +87,15 @@ TEST(Query, SpansAgreeWithPointMembershipOnRandomTrees) {
     EXPECT_GT(nonEmpty, kTrees * kRaysPerTree / 5);
 }
 
-// closest() is the first surface end of spans(); occluded() is "spans is not empty".
+// closest() is the first surface end of spans(); occluded() is "spans is not empty", with or
+// without an ObjectCache (kept across the tree's rays, so it is often stale).
 TEST(Query, ClosestAndOccludedAgreeWithSpans) {
     std::mt19937_64 rng(77);
     QueryContext ctx;
+    int cachedAnswers = 0;
     for (int tree = 0; tree < 100; ++tree) {
         const Scene scene = Scene::compile(randomTree(rng, 6));
+        ObjectCache cache;
         RandomRays rays(1000 + tree);
         for (int r = 0; r < 300; ++r) {
             const Ray ray = rays.next();
@@ -116,8 +119,13 @@ TEST(Query, ClosestAndOccludedAgreeWithSpans) {
                 EXPECT_EQ(got->leaf, want->leaf);
             }
             ASSERT_EQ(scene.occluded(ray, ctx), wantOccluded) << "tree " << tree << " ray " << r;
+            const uint32_t before = cache.node;
+            ASSERT_EQ(scene.occluded(ray, ctx, cache), wantOccluded)
+                << "tree " << tree << " ray " << r << " (cached)";
+            if (wantOccluded && before == cache.node) ++cachedAnswers;
         }
     }
+    EXPECT_GT(cachedAnswers, 1000);  // the cached object did answer, not only the BVH walk
 }
 
 // Normals returned for hits are unit, finite and face the outside of the solid.

@@ -78,7 +78,8 @@ csg::Vec3 Tracer::directLight(const PlannedMaterial& m, const csg::Vec3& albedo,
                               const csg::Vec3& n, const csg::Vec3& view) {
     const ShadingMaterial& s = m.shading;
     csg::Vec3 sum(0.0);
-    for (const PlannedLight& light : plan_.lights) {
+    for (size_t i = 0; i < plan_.lights.size(); ++i) {
+        const PlannedLight& light = plan_.lights[i];
         const csg::Vec3 toLight = light.position - point;
         const double nDotL = glm::dot(n, toLight);
         if (nDotL <= 0.0) continue;  // the light is behind the surface
@@ -88,7 +89,7 @@ csg::Vec3 Tracer::directLight(const PlannedMaterial& m, const csg::Vec3& albedo,
             const csg::Vec3 origin = offsetRayOrigin(point, pointError, n, toLight);
             const csg::Ray shadow{origin, light.position - origin, 0.0, 1.0};
             ++rays.shadow;
-            if (scene_.occluded(shadow, context)) continue;
+            if (scene_.occluded(shadow, context, occluders_[i])) continue;
         }
         const double distance = glm::length(toLight);
         const csg::Vec3 l = toLight / distance;

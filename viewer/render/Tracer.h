@@ -16,6 +16,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "csg/Scene.h"
 #include "viewer/render/EffectsPlan.h"
@@ -41,7 +42,8 @@ struct PathLog {
 
 class Tracer {
 public:
-    Tracer(const csg::Scene& scene, const EffectsPlan& plan) : scene_(scene), plan_(plan) {}
+    Tracer(const csg::Scene& scene, const EffectsPlan& plan)
+        : scene_(scene), plan_(plan), occluders_(plan.lights.size()) {}
 
     // The linear RGB radiance along a primary ray (unit d), background included.
     csg::Vec3 tracePrimary(const csg::Ray& ray);
@@ -61,6 +63,7 @@ private:
 
     const csg::Scene& scene_;
     const EffectsPlan& plan_;
+    std::vector<csg::ObjectCache> occluders_;  // per light: what last shadowed this thread
 };
 
 }  // namespace viewer::render
