@@ -5,6 +5,9 @@
 //
 //   patch_bench [--rays N]      N rays per class (default 1000)
 //
+// Rays of the teapot class go through a random point of one patch's control-point box, from
+// outside it (as PatchSet calls a method only for a patch whose box the ray meets).
+//
 // Notation: the reference of a ray is every crossing any method reports, each refined by
 // 50-digit Newton on S(u, v) = o + t d (tests/PatchReference.h) and merged when the refined
 // points agree; a reported crossing that does not refine to a point in [0, 1]^2 is spurious.
@@ -22,13 +25,13 @@
 #include <string>
 #include <vector>
 
+#include "io/Diagnostic.h"
+#include "io/Evaluate.h"
+#include "primitives/PatchSet.h"
 #include "primitives/patch/Groebner.h"
+#include "primitives/patch/Intersect.h"
 #include "primitives/patch/Resultant.h"
 #include "tests/PatchReference.h"
-#if __has_include("primitives/patch/Intersect.h")
-#include "primitives/patch/Intersect.h"
-#define CSGRAY_HAVE_PATCH_DISPATCH 1
-#endif
 
 namespace {
 
@@ -59,24 +62,20 @@ int groebner(const BezierPatch& p, const Vec3& o, const Vec3& d, PatchCrossings&
 int resultant(const BezierPatch& p, const Vec3& o, const Vec3& d, PatchCrossings& out) {
     return intersectByResultant(p, o, d, out);
 }
-#ifdef CSGRAY_HAVE_PATCH_DISPATCH
 int clip(const BezierPatch& p, const Vec3& o, const Vec3& d, PatchCrossings& out) {
     return intersectPatch(PatchMethod::Clip, p, o, d, out);
 }
 int newton(const BezierPatch& p, const Vec3& o, const Vec3& d, PatchCrossings& out) {
     return intersectPatch(PatchMethod::Newton, p, o, d, out);
 }
-#endif
 
 std::vector<Method> methods() {
     std::vector<Method> m = {{"groebner", groebner},
                              {"groebner (no polish)", groebnerRaw},
                              {"resultant", resultant},
                              {"resultant (no polish)", resultantRaw}};
-#ifdef CSGRAY_HAVE_PATCH_DISPATCH
     m.push_back({"clip", clip});
     m.push_back({"newton", newton});
-#endif
     return m;
 }
 
@@ -278,6 +277,29 @@ void breakdownTable(int count) {
     }
 }
 
+// The patches of the first patch set in a part file, loaded through the io library as the
+// command line does (an empty list, with the reason on stderr, when that fails).
+std::vector<BezierPatch> patchesOf(const char* file) {
+    const io::EvaluateResult r = io::evaluateFile(file);
+    if (!r.ok()) {
+        for (const auto& diagnostic : r.diagnostics)
+            std::fprintf(stderr, "%s\n", io::formatDiagnostic(diagnostic).c_str());
+        return {};
+    }
+    std::vector<const csg::Node*> stack = {r.model->root.get()};
+    while (!stack.empty()) {
+        const csg::Node* node = stack.back();
+        stack.pop_back();
+        if (!node) continue;
+        if (const PatchSet* set = std::get_if<PatchSet>(&node->primitive); set && set->data)
+            return set->data->patches;
+        stack.push_back(node->left.get());
+        stack.push_back(node->right.get());
+    }
+    std::fprintf(stderr, "patch_bench: %s holds no bezier_patches\n", file);
+    return {};
+}
+
 std::vector<Ray> raysThrough(std::mt19937_64& rng, const std::vector<BezierPatch>& patches,
                              int count) {
     std::vector<Ray> rays;
@@ -325,6 +347,9 @@ int main(int argc, char** argv) {
         rays.push_back(r);
     }
     runClass("random bicubic patches", random, rays);
+    const std::vector<BezierPatch> teapot = patchesOf(CSGRAY_SOURCE_DIR "/samples/teapot.scad");
+    if (!teapot.empty())
+        runClass("Utah teapot (samples/teapot.scad)", teapot, raysThrough(rng, teapot, count));
     breakdownTable(std::max(20, count / 5));
     return 0;
 }

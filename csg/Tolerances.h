@@ -120,12 +120,6 @@ inline constexpr double kMeshVertexSeparation = 1e-3;
 // below 1e-10 of its step's scale is dropped too (bench/reports/patches.md).
 inline constexpr double kGroebnerSmallRel = 1e-10;
 
-// A root (u, v) of the algebraic methods counts when it lies in [0, 1]^2 widened by this
-// (unit: patch parameter), then is clamped onto it. Why: a crossing on a patch edge (shared
-// with a neighbour) is computed a few hundred ulps to either side; 1e-9 keeps a 10^4 margin
-// and moves a point by at most 1e-9 of the patch size, the span coincidence rule's size.
-inline constexpr double kPatchParamMargin = 1e-9;
-
 // A candidate (u, v) of the algebraic methods is a common root of the two plane equations
 // when |F_k(u, v)| is within this fraction of the sum of |terms| of F_k there (unit:
 // relative). Why: u comes from an eliminant whose coefficients carry the reduction's rounding

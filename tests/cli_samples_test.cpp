@@ -155,6 +155,16 @@ std::map<std::string, std::vector<ProbeCase>> analyticCases() {
         {{0, 0, 10}, mz, {{10 - 3.15, 10 - 3.15}, {10, 10}}},
         {{0, -10, 0.9}, py, {{8, 8}, {12, 12}}},
     };
+    // The article-style patches (method "groebner"), from their monomial forms
+    // (tests/PatchReference.h): S(1/2, 1/2) = (19/32, 15/32, 1/4), (37/64, 5/8, 5/32) and
+    // (81/128, 81/128, 31/128), each crossed once by a vertical line; beside the patch, none.
+    cases["article_patch1.scad"] = {{{19.0 / 32, 15.0 / 32, 10}, mz, {{10 - 0.25, 10 - 0.25}}},
+                                    {{5, 5, 10}, mz, {}}};
+    cases["article_patch2.scad"] = {
+        {{37.0 / 64, 5.0 / 8, 10}, mz, {{10 - 5.0 / 32, 10 - 5.0 / 32}}}, {{5, 5, 10}, mz, {}}};
+    cases["article_patch3.scad"] = {
+        {{81.0 / 128, 81.0 / 128, 10}, mz, {{10 - 31.0 / 128, 10 - 31.0 / 128}}},
+        {{5, 5, 10}, mz, {}}};
     return cases;
 }
 
@@ -212,7 +222,8 @@ INSTANTIATE_TEST_SUITE_P(Samples, SampleSpans, ::testing::ValuesIn(kOpenScadSamp
                          sampleTestName);
 
 // Samples in csgray's own language extensions (no OpenSCAD round trip for them).
-const std::vector<std::string> kCsgraySamples = {"teapot.scad"};
+const std::vector<std::string> kCsgraySamples = {"teapot.scad", "article_patch1.scad",
+                                                 "article_patch2.scad", "article_patch3.scad"};
 INSTANTIATE_TEST_SUITE_P(CsgraySamples, SampleSpans, ::testing::ValuesIn(kCsgraySamples),
                          sampleTestName);
 

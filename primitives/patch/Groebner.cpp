@@ -251,7 +251,7 @@ int intersectLexVU(const BezierPatch& patch, const PlaneEquations& planes, const
         for (int j = 0; j <= pick->degreeV(); ++j) inV[j] = c[j];
         double vs[Bivariate::kMaxDegreeV + 1];
         const int vCount =
-            solve(inV.trimmed(), -tol::kPatchParamMargin, 1.0 + tol::kPatchParamMargin, vs);
+            solve(inV.trimmed(), -tol::kPatchParamSlack, 1.0 + tol::kPatchParamSlack, vs);
         for (int k = 0; k < vCount && n < kMaxPatchCrossings; ++k) accept(u, vs[k]);
     }
     return finishCrossings(out, n);

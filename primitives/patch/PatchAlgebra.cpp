@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "csg/Tolerances.h"
+#include "primitives/patch/RayPlanes.h"
 #include "primitives/solvers/Solve.h"
 
 namespace csg {
@@ -81,21 +82,16 @@ void subdivide(const WidePolynomial& p, Coeffs c, int n, double a, double b, int
 }  // namespace
 
 PlaneEquations planeEquations(const BezierPatch& patch, const Vec3& o, const Vec3& d) {
-    // n_1 across d and the axis d leans on least (never parallel to d), n_2 completes the frame.
-    const Vec3 ad = glm::abs(d);
-    const Vec3 axis = ad.x <= ad.y && ad.x <= ad.z ? Vec3(1, 0, 0)
-                      : ad.y <= ad.z               ? Vec3(0, 1, 0)
-                                                   : Vec3(0, 0, 1);
-    const Vec3 n1 = glm::normalize(glm::cross(d, axis));
-    const Vec3 n2 = glm::normalize(glm::cross(d, n1));
-    return {Bivariate::planeDistance(patch, n1, o), Bivariate::planeDistance(patch, n2, o)};
+    const RayPlanes planes(o, d);  // the frame every patch method uses
+    return {Bivariate::planeDistance(patch, planes.n1, o),
+            Bivariate::planeDistance(patch, planes.n2, o)};
 }
 
 int unitParameterRoots(const WidePolynomial& input, double* roots) {
     WidePolynomial p = input;
     while (p.degree > 0 && p.c[p.degree] == 0.0) --p.degree;
     if (p.degree == 0) return 0;
-    const double lo = -tol::kPatchParamMargin, hi = 1.0 + tol::kPatchParamMargin;
+    const double lo = -tol::kPatchParamSlack, hi = 1.0 + tol::kPatchParamSlack;
     if (p.degree <= Polynomial::kMaxDegree) {
         Polynomial q = Polynomial::ofDegree(p.degree);
         for (int i = 0; i <= p.degree; ++i) q[i] = p.c[i];
@@ -125,7 +121,7 @@ int unitParameterRoots(const WidePolynomial& input, double* roots) {
 }
 
 bool isCommonRoot(const PlaneEquations& planes, double u, double v) {
-    const double lo = -tol::kPatchParamMargin, hi = 1.0 + tol::kPatchParamMargin;
+    const double lo = -tol::kPatchParamSlack, hi = 1.0 + tol::kPatchParamSlack;
     if (!(u >= lo && u <= hi && v >= lo && v <= hi)) return false;
     return std::abs(planes.f1(u, v)) <= tol::kPatchResidualRel * planes.f1.termMagnitude(u, v) &&
            std::abs(planes.f2(u, v)) <= tol::kPatchResidualRel * planes.f2.termMagnitude(u, v);
@@ -142,7 +138,7 @@ void polishRoot(const PlaneEquations& planes, double& u, double& v) {
         const double nu = u - (f1 * g2.y - f2 * g1.y) / det;
         const double nv = v - (g1.x * f2 - g2.x * f1) / det;
         const double next = std::max(std::abs(planes.f1(nu, nv)), std::abs(planes.f2(nu, nv)));
-        const double lo = -tol::kPatchParamMargin, hi = 1.0 + tol::kPatchParamMargin;
+        const double lo = -tol::kPatchParamSlack, hi = 1.0 + tol::kPatchParamSlack;
         if (!(next < residual) || !(nu >= lo && nu <= hi && nv >= lo && nv <= hi)) return;
         u = nu;
         v = nv;

@@ -1,8 +1,9 @@
 // Steps the two algebraic patch methods (Groebner.h, Resultant.h) share: the ray as two
 // plane equations on the patch, real roots in u of a polynomial that may exceed the solvers'
 // degree 16, the check that a candidate (u, v) is a common root, and the final crossing list.
-// Notation: F_k(u, v) = n_k . (S(u, v) - o) with n_1, n_2 unit, orthogonal to d and to each
-// other, so F_1 = F_2 = 0 exactly on the line; t = d . (S(u, v) - o) / |d|^2.
+// Notation: F_k(u, v) = n_k . (S(u, v) - o) with n_1, n_2 of RayPlanes (RayPlanes.h): unit,
+// orthogonal to d and to each other, so F_1 = F_2 = 0 exactly on the line;
+// t = d . (S(u, v) - o) / |d|^2.
 #pragma once
 
 #include "csg/Tolerances.h"
@@ -28,14 +29,14 @@ struct WidePolynomial {
     int degree = 0;  // nominal: trimmed by unitParameterRoots
 };
 
-// The real roots of p in [-kPatchParamMargin, 1 + kPatchParamMargin], ascending, each once
+// The real roots of p in [-kPatchParamSlack, 1 + kPatchParamSlack], ascending, each once
 // (a double root may appear twice; finishCrossings merges the points). Degree <= 16 goes to
 // the root-solver issue's solve() (Solver::Auto); above, Bernstein subdivision on a local
 // wider array (the same rule as solvers/Bernstein.h: 0 sign changes, no root; 1, one root).
 // roots holds p.degree entries. A zero polynomial has no isolated roots: returns 0.
 int unitParameterRoots(const WidePolynomial& p, double* roots);
 
-// True when (u, v) lies in the closed unit square widened by kPatchParamMargin and both
+// True when (u, v) lies in the closed unit square widened by kPatchParamSlack and both
 // plane equations vanish there to within kPatchResidualRel of their terms' size.
 bool isCommonRoot(const PlaneEquations& planes, double u, double v);
 

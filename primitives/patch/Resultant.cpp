@@ -188,7 +188,7 @@ int intersectByResultant(const BezierPatch& patch, const Vec3& o, const Vec3& d,
         for (int j = 0; j <= b.n; ++j) inV[j] = c[j];
         double vs[3];
         const int vCount =
-            solve(inV.trimmed(), -tol::kPatchParamMargin, 1.0 + tol::kPatchParamMargin, vs);
+            solve(inV.trimmed(), -tol::kPatchParamSlack, 1.0 + tol::kPatchParamSlack, vs);
         for (int k = 0; k < vCount && n < kMaxPatchCrossings; ++k) accept(u, vs[k]);
     }
     return finishCrossings(out, n);
