@@ -122,13 +122,14 @@ int intersectByClip(const BezierPatch& patch, const Vec3& o, const Vec3& d, Patc
         r.u0 = r.v0 = 0.0, r.u1 = r.v1 = 1.0;
     }
     int n = 0;
+    const double gap = tol::kPatchDedupeRel * patchSize(patch) / glm::length(d);
     for (int steps = 0; pending > 0 && steps < kMaxSteps; ++steps) {
         Region r = stack[--pending];
         // Step 1: a small region: Newton from its centre finds the crossing in it.
         if (r.u1 - r.u0 <= tol::kPatchClipWidth && r.v1 - r.v0 <= tol::kPatchClipWidth) {
             double u = 0.5 * (r.u0 + r.u1), v = 0.5 * (r.v0 + r.v1);
-            if (n < kMaxPatchCrossings && newtonOnRay(patch, planes, u, v))
-                out[n++] = {planes.rayParameter(patch.eval(u, v)), u, v};
+            if (newtonOnRay(patch, planes, u, v))
+                addCrossing(out, n, {planes.rayParameter(patch.eval(u, v)), u, v}, gap);
             continue;
         }
         // Step 2: clip both directions against the hull of the current net.

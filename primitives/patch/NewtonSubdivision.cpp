@@ -73,6 +73,7 @@ int intersectByNewton(const BezierPatch& patch, const Vec3& o, const Vec3& d, Pa
     int pending = 0;
     stack[pending++] = {patch, 0.0, 1.0, 0.0, 1.0, 0};
     int n = 0;
+    const double gap = tol::kPatchDedupeRel * patchSize(patch) / glm::length(d);
     while (pending > 0) {
         Piece p = stack[--pending];
         // Step 1: the piece's control box must meet the line.
@@ -96,7 +97,7 @@ int intersectByNewton(const BezierPatch& patch, const Vec3& o, const Vec3& d, Pa
         const double mu = kOwnMargin * (p.u1 - p.u0) + tol::kPatchParamSlack,
                      mv = kOwnMargin * (p.v1 - p.v0) + tol::kPatchParamSlack;
         if (u < p.u0 - mu || u > p.u1 + mu || v < p.v0 - mv || v > p.v1 + mv) continue;
-        if (n < kMaxPatchCrossings) out[n++] = {planes.rayParameter(patch.eval(u, v)), u, v};
+        addCrossing(out, n, {planes.rayParameter(patch.eval(u, v)), u, v}, gap);
     }
     return sortAndDedupe(out.data(), n, d, patchSize(patch));
 }

@@ -4,6 +4,8 @@
 // the patch meets the line where f_k(u, v) = n_k . (S(u, v) - o) are both zero.
 #pragma once
 
+#include <cmath>
+
 #include "primitives/patch/BezierPatch.h"
 
 namespace csg {
@@ -25,6 +27,14 @@ struct RayPlanes {
 // the root clamped onto the square. A singular Jacobian (the ray tangent to the patch, or a
 // pole) ends the iteration as not converged unless the residual is already at rounding level.
 bool newtonOnRay(const BezierPatch& patch, const RayPlanes& planes, double& u, double& v);
+
+// Appends c to out[0, n) unless a crossing within `gap` in t is there already (a root found
+// again from a neighbouring region) or out is full. gap: tol::kPatchDedupeRel * size / |d|.
+inline void addCrossing(PatchCrossings& out, int& n, const PatchCrossing& c, double gap) {
+    for (int k = 0; k < n; ++k)
+        if (std::abs(out[k].t - c.t) <= gap) return;
+    if (n < kMaxPatchCrossings) out[n++] = c;
+}
 
 // Sorts out[0, n) by t and drops crossings whose points on the ray lie within
 // tol::kPatchDedupeRel * size of the previous one's. Returns the new count.
