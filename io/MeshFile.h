@@ -1,6 +1,7 @@
-// Mesh files: OBJ (OpenMesh IO), GLB and glTF (tinygltf) written atomically, and OBJ, STL
-// (OpenMesh IO), GLB and glTF (tinygltf) read back for comparison. Lengths are written as they
-// are in the part (OpenSCAD's unit, usually mm); nothing is rescaled.
+// Mesh files: OBJ (checked by OpenMesh, normals split at creases), GLB and glTF (tinygltf)
+// written atomically, and OBJ, STL (OpenMesh IO), GLB and glTF (tinygltf) read back for
+// comparison. Lengths are written as they are in the part (OpenSCAD's unit, usually mm);
+// nothing is rescaled.
 #pragma once
 
 #include <filesystem>

@@ -1,7 +1,9 @@
 // glTF 2.0 through tinygltf: one buffer; per material one primitive with its own compact
 // vertex range (POSITION and NORMAL as float VEC3, indices as uint32), so every accessor's
 // min/max is exact for the floats written and every block is 4-byte aligned. The part's Z-up
-// frame becomes glTF's Y-up by a -90 degree rotation about x at the root node.
+// frame becomes glTF's Y-up by a -90 degree rotation about x at the root node. Vertices are
+// split along creases (csg/mesh/CreaseNormals.h) so edges shade flat; readers that check
+// topology weld by position (readMesh does).
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -10,6 +12,7 @@
 #include <map>
 #include <sstream>
 
+#include "csg/mesh/CreaseNormals.h"
 #include "io/AtomicFile.h"
 #include "io/MeshFileDetail.h"
 
@@ -107,8 +110,9 @@ void addPrimitive(tinygltf::Model& model, tinygltf::Mesh& gmesh, const csg::Tria
 }  // namespace
 
 std::optional<std::string> writeGltf(const std::filesystem::path& file,
-                                     const csg::TriangleMesh& mesh,
+                                     const csg::TriangleMesh& welded,
                                      const std::vector<Material>& materials, bool binary) {
+    const csg::TriangleMesh mesh = csg::splitAtCreases(welded, csg::kShadingCreaseDegrees);
     tinygltf::Model model;
     model.asset.version = "2.0";
     model.asset.generator = "csgray";

@@ -1,12 +1,14 @@
-// OBJ through OpenMesh IO: the mesh is built as an OpenMesh TriMesh (which itself refuses a
-// face that would make an edge or vertex non-manifold, a second check of dual contouring)
-// and written to memory, then to the target atomically.
-#include <OpenMesh/Core/IO/MeshIO.hh>
+// OBJ: the mesh is first built as an OpenMesh TriMesh (which refuses a face that would make an
+// edge or vertex non-manifold, a second check of dual contouring), then written as text with
+// one `v` per welded vertex (a closed mesh for printing) and one `vn` per crease-split vertex
+// (csg/mesh/CreaseNormals.h), faces as `f v//vn`: OpenMesh's OBJ writer has one normal per
+// vertex, so it could not shade box edges flat without cutting the mesh open along them.
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-#include <OpenMesh/Core/System/omstream.hh>
 
-#include <sstream>
+#include <cstdio>
+#include <string>
 
+#include "csg/mesh/CreaseNormals.h"
 #include "io/AtomicFile.h"
 #include "io/MeshFileDetail.h"
 
@@ -16,39 +18,45 @@ using OmMesh = OpenMesh::TriMesh_ArrayKernelT<>;
 
 std::optional<std::string> writeObj(const std::filesystem::path& file,
                                     const csg::TriangleMesh& mesh) {
-    // Step 1: the OpenMesh mesh, with the exact vertex normals.
-    OmMesh om;
-    om.request_vertex_normals();
-    std::vector<OmMesh::VertexHandle> handles;
-    handles.reserve(mesh.positions.size());
-    for (size_t i = 0; i < mesh.positions.size(); ++i) {
-        const csg::Vec3& p = mesh.positions[i];
-        handles.push_back(om.add_vertex(OmMesh::Point(float(p.x), float(p.y), float(p.z))));
-        if (!mesh.normals.empty()) {
-            const csg::Vec3& n = mesh.normals[i];
-            om.set_normal(handles.back(), OmMesh::Normal(float(n.x), float(n.y), float(n.z)));
+    // Step 1: the OpenMesh mesh, as the manifold check.
+    {
+        OmMesh om;
+        std::vector<OmMesh::VertexHandle> handles;
+        handles.reserve(mesh.positions.size());
+        for (const csg::Vec3& p : mesh.positions)
+            handles.push_back(om.add_vertex(OmMesh::Point(float(p.x), float(p.y), float(p.z))));
+        for (const auto& tri : mesh.triangles) {
+            const auto face = om.add_face(handles[tri[0]], handles[tri[1]], handles[tri[2]]);
+            if (!face.is_valid()) return "the mesh is not manifold: OpenMesh rejected a face";
         }
     }
-    for (const auto& tri : mesh.triangles) {
-        const auto face = om.add_face(handles[tri[0]], handles[tri[1]], handles[tri[2]]);
-        if (!face.is_valid()) return "the mesh is not manifold: OpenMesh rejected a face";
-    }
 
-    // Step 2: OBJ text in memory (OpenMesh's progress log would clutter stderr) (9 significant
-    // digits: float positions read back exactly).
-    std::ostringstream text;
-    text << "# csgray mesh export: " << mesh.triangles.size() << " triangles\n";
-    OpenMesh::IO::Options options = OpenMesh::IO::Options::Default;
-    if (!mesh.normals.empty()) options += OpenMesh::IO::Options::VertexNormal;
-    omlog().disable();
-    if (!mesh.empty() && !OpenMesh::IO::write_mesh(om, text, ".obj", options, 9))
-        return "OpenMesh could not write the OBJ";
+    // Step 2: the text (9 significant digits: float positions read back exactly). The split
+    // mesh keeps triangle order and corners, so its corner indices name the normals.
+    const csg::TriangleMesh shaded = csg::splitAtCreases(mesh, csg::kShadingCreaseDegrees);
+    std::string text =
+        "# csgray mesh export: " + std::to_string(mesh.triangles.size()) + " triangles\n";
+    char line[128];
+    for (const csg::Vec3& p : mesh.positions) {
+        std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", float(p.x), float(p.y), float(p.z));
+        text += line;
+    }
+    for (const csg::Vec3& n : shaded.normals) {
+        std::snprintf(line, sizeof line, "vn %.6g %.6g %.6g\n", n.x, n.y, n.z);
+        text += line;
+    }
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const auto& v = mesh.triangles[t];
+        const auto& n = shaded.triangles[t];
+        std::snprintf(line, sizeof line, "f %u//%u %u//%u %u//%u\n", v[0] + 1, n[0] + 1, v[1] + 1,
+                      n[1] + 1, v[2] + 1, n[2] + 1);
+        text += line;
+    }
 
     // Step 3: atomically to the target.
     AtomicFile out(file);
     if (!out.ok()) return out.error();
-    const std::string bytes = text.str();
-    if (std::fwrite(bytes.data(), 1, bytes.size(), out.stream()) != bytes.size()) {
+    if (std::fwrite(text.data(), 1, text.size(), out.stream()) != text.size()) {
         out.fail("cannot write");
         return out.error();
     }

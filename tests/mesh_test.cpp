@@ -8,9 +8,12 @@
 
 #include "csg/Volume.h"
 #include "csg/mesh/CellTopology.h"
+#include "csg/mesh/CreaseNormals.h"
+#include "csg/mesh/HermiteGrid.h"
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/MeshDistance.h"
 #include "csg/mesh/Qef.h"
+#include "csg/mesh/Simplify.h"
 #include "csg/mesh/Tessellate.h"
 #include "csg/mesh/TriangleBvh.h"
 #include "io/Evaluate.h"
@@ -141,6 +144,115 @@ TEST(Tessellate, BoxIsExactWithSharpCorners) {
     EXPECT_EQ(c.result.passes, 1);
 }
 
+// Every point of a box's mesh must lie on one of its six planes.
+double offBoxSurface(const Vec3& p, const Vec3& lo, const Vec3& hi) {
+    double best = INFINITY;
+    for (int a = 0; a < 3; ++a)
+        best = std::min({best, std::abs(p[a] - lo[a]), std::abs(p[a] - hi[a])});
+    return best;
+}
+
+TEST(Simplify, BoxFacesCollapseToAFewTrianglesAndStayExact) {
+    const Vec3 lo(0.1, 0.2, 0.3), hi(2.1, 1.2, 1.8);
+    const Scene scene = Scene::compile(leaf(Box{lo, hi}));
+    const TriangleMesh grid = tessellateAt(scene, 0.05, 0);
+    SimplifyStats stats;
+    const TriangleMesh coarse = simplify(grid, 1e-3, &stats);
+    EXPECT_TRUE(stats.built);
+    EXPECT_GT(grid.triangles.size(), 5000u);
+    // Corners and edge points are QEF and crossing vertices; the faces need no inner vertex.
+    EXPECT_LE(coarse.triangles.size(), 200u) << "from " << grid.triangles.size();
+    EXPECT_TRUE(checkTopology(coarse).closedManifold());
+    EXPECT_NEAR(signedVolume(coarse), 2.0 * 1.0 * 1.5, 1e-9);
+    for (const Vec3& p : coarse.positions) ASSERT_LT(offBoxSurface(p, lo, hi), 1e-9);
+    ASSERT_EQ(coarse.normals.size(), coarse.positions.size());
+}
+
+TEST(Simplify, MaterialBordersStay) {
+    // Two unit boxes side by side with different materials: the shared face is interior, and
+    // the border where the two materials meet on the outside must keep its vertices.
+    const Scene scene =
+        Scene::compile(unite(leaf(Box{Vec3(0.0), Vec3(1.0)}, Tags{.material = 1}),
+                             leaf(Box{Vec3(1, 0, 0), Vec3(2, 1, 1)}, Tags{.material = 2})));
+    const TriangleMesh grid = tessellateAt(scene, 0.05, 0);
+    const TriangleMesh coarse = simplify(grid, 1e-3);
+    EXPECT_LT(coarse.triangles.size(), grid.triangles.size() / 10);
+    EXPECT_TRUE(checkTopology(coarse).closedManifold());
+    ASSERT_EQ(coarse.triangleMaterial.size(), coarse.triangles.size());
+    // Away from the border (a cell wide) each triangle has the material of the box it lies on;
+    // and the area of each material is what the grid's mesh had, as the border is not moved
+    // and both boxes are flat.
+    auto areas = [](const TriangleMesh& m) {
+        std::array<double, 3> area{};
+        for (size_t t = 0; t < m.triangles.size(); ++t) {
+            const auto& tri = m.triangles[t];
+            const Vec3 a = m.positions[tri[0]], b = m.positions[tri[1]], c = m.positions[tri[2]];
+            const double x = (a.x + b.x + c.x) / 3.0;
+            if (std::abs(x - 1.0) > 0.05) {
+                EXPECT_EQ(m.triangleMaterial[t], x < 1.0 ? 1u : 2u) << "centroid x " << x;
+            }
+            area[std::min<size_t>(m.triangleMaterial[t], 2)] +=
+                0.5 * glm::length(glm::cross(b - a, c - a));
+        }
+        return area;
+    };
+    const auto before = areas(grid), after = areas(coarse);
+    EXPECT_NEAR(after[1], 5.0, 4 * 0.05);  // five faces of each unit box, border within a cell
+    EXPECT_NEAR(after[1], before[1], 1e-9);
+    EXPECT_NEAR(after[2], before[2], 1e-9);
+    EXPECT_EQ(after[0], 0.0);
+}
+
+TEST(CreaseNormals, BoxSplitsIntoFlatFacesAndSphereStaysSmooth) {
+    const Vec3 lo(0.1, 0.2, 0.3), hi(2.1, 1.2, 1.8);
+    const TriangleMesh box =
+        simplify(tessellateAt(Scene::compile(leaf(Box{lo, hi})), 0.1, 0), 1e-3);
+    const TriangleMesh split = splitAtCreases(box, kShadingCreaseDegrees);
+    ASSERT_EQ(split.triangles.size(), box.triangles.size());
+    ASSERT_EQ(split.normals.size(), split.positions.size());
+    // Every corner's normal is its face's axis normal, pointing out.
+    for (size_t t = 0; t < split.triangles.size(); ++t)
+        for (int c = 0; c < 3; ++c) {
+            const uint32_t v = split.triangles[t][size_t(c)];
+            const Vec3 p = split.positions[v], n = split.normals[v];
+            ASSERT_EQ(p, box.positions[box.triangles[t][size_t(c)]]);
+            int axis = 0;
+            for (int a = 1; a < 3; ++a)
+                if (std::abs(n[a]) > std::abs(n[axis])) axis = a;
+            ASSERT_NEAR(std::abs(n[axis]), 1.0, 1e-9) << "triangle " << t;
+            const double mid = 0.5 * (lo[axis] + hi[axis]);
+            // The whole triangle lies on the face plane the normal names.
+            for (int k = 0; k < 3; ++k) {
+                const Vec3 q = box.positions[box.triangles[t][size_t(k)]];
+                ASSERT_NEAR(q[axis], n[axis] > 0 ? hi[axis] : lo[axis], 1e-9);
+            }
+            ASSERT_EQ(n[axis] > 0, p[axis] > mid);
+        }
+    // Welding by position gives the closed box back.
+    EXPECT_TRUE(checkTopology(weldExactDuplicates(split)).closedManifold());
+
+    const TriangleMesh sphere =
+        tessellate(Scene::compile(leaf(Sphere{1.0})), {.tolerance = 0.01}).mesh;
+    const TriangleMesh smooth = splitAtCreases(sphere, kShadingCreaseDegrees);
+    EXPECT_EQ(smooth.positions.size(), sphere.positions.size());
+}
+
+TEST(HermiteGrid, WallsAndGapsThinnerThanACellAreCounted) {
+    const double h = 0.1;
+    // A gap of 0.3 h between two boxes, and a wall of 0.3 h: both give edges crossed twice.
+    const Scene gap = Scene::compile(
+        unite(leaf(Box{Vec3(0.0), Vec3(1.0)}), leaf(Box{Vec3(1.03, 0, 0), Vec3(2, 1, 1)})));
+    const Scene wall = Scene::compile(leaf(Box{Vec3(0.0), Vec3(1.0, 1.0, 0.03)}));
+    const Scene plain = Scene::compile(leaf(Box{Vec3(0.0), Vec3(1.0)}));
+    for (const Scene* s : {&gap, &wall}) {
+        const HermiteGrid grid = HermiteGrid::cast(*s, makeGrid(s->bounds(), h), 0);
+        EXPECT_GT(grid.thinEdges(), 50u);
+        EXPECT_GT(grid.thinAt().x, -1e-9);
+    }
+    const HermiteGrid grid = HermiteGrid::cast(plain, makeGrid(plain.bounds(), h), 0);
+    EXPECT_EQ(grid.thinEdges(), 0u);
+}
+
 TEST(Tessellate, SphereWithinTolerance) {
     const Scene scene = Scene::compile(leaf(Sphere{1.0}));
     const double tol = 0.005;
@@ -247,11 +359,11 @@ TEST(Tessellate, EverySampleMeshesWithinTolerance) {
         EXPECT_LE(back.max, nearContact ? 3 * tol : tol)
             << "surface to mesh at " << back.worst.x << "," << back.worst.y << "," << back.worst.z;
         std::printf(
-            "  %-20s T=%.4g h=%.4g passes=%d tris=%zu mesh->surf=%.3g surf->mesh=%.3g "
-            "dV/V=%.2e\n",
+            "  %-20s T=%.4g h=%.4g passes=%d tris=%zu (grid %llu) mesh->surf=%.3g "
+            "surf->mesh=%.3g dV/V=%.2e\n",
             entry.path().filename().c_str(), tol, c.result.cellSize, c.result.passes,
-            c.result.mesh.triangles.size(), c.result.error.max, back.max,
-            (c.volume - exact) / exact);
+            c.result.mesh.triangles.size(), (unsigned long long)c.result.gridTriangles,
+            c.result.error.max, back.max, (c.volume - exact) / exact);
         ++count;
     }
     EXPECT_GE(count, 10);

@@ -21,9 +21,12 @@ const char* const kExportHelp =
     "give the exact surface crossings and normals on every grid edge; dual contouring with a\n"
     "QEF per cell keeps sharp edges and corners; the mesh is a closed, outward-oriented\n"
     "2-manifold. The grid is refined until the measured distance between mesh and surface\n"
-    "(both ways, sampled) is within the tolerance. GLB/glTF: one primitive per material,\n"
-    "Y-up (the Z-up part is rotated at the root node). The file is written atomically; an\n"
-    "empty part gives an empty file and a warning. A one-line summary goes to stderr.\n"
+    "(both ways, sampled) is within the tolerance; then flat and gently curved regions are\n"
+    "coarsened by edge collapses within what is left of the tolerance, and measured again.\n"
+    "Normals are split along creases sharper than 40 degrees (box edges shade flat, curved\n"
+    "faces smooth). GLB/glTF: one primitive per material, Y-up (the Z-up part is rotated at\n"
+    "the root node). The file is written atomically; an empty part gives an empty file and\n"
+    "a warning. A one-line summary goes to stderr.\n"
     "\n"
     "options:\n"
     "  -o FILE            the mesh file; the format follows the extension\n"
@@ -31,6 +34,7 @@ const char* const kExportHelp =
     "                     the bounding box diagonal)\n"
     "  --max-cells N      cap on the grid's cells (default 16777216); when it binds, the\n"
     "                     mesh is written with a warning and the error reached\n"
+    "  --no-simplify      keep the grid's mesh (no coarsening of flat regions)\n"
     "  --threads N        worker threads (default: all cores)\n"
     "  --quiet            no summary on stderr\n";
 
@@ -51,6 +55,8 @@ int exportCommand(std::span<const std::string> args) {
             options.maxCells = uint64_t(parsePositiveNumber(*n, "--max-cells"));
         } else if (auto th = cursor.option("--threads")) {
             options.threads = parsePositiveInt(*th, "--threads", 1024);
+        } else if (cursor.flag("--no-simplify")) {
+            options.simplify = false;
         } else if (cursor.flag("--quiet")) {
             quiet = true;
         } else if (!cursor.common(common)) {
@@ -96,6 +102,17 @@ int exportCommand(std::span<const std::string> args) {
                     "tolerance " + std::to_string(result.tolerance) + " not reached" +
                         (result.capped ? " within --max-cells" : "") + ": measured " +
                         std::to_string(std::max(result.error.max, result.backError.max))});
+    if (!result.mesh.empty() && !result.toleranceMet && result.contour.thinEdges > 0) {
+        // The likely cause, where the grid shows it: features thinner than a cell.
+        const csg::Vec3 at = result.contour.thinAt;
+        char where[160];
+        std::snprintf(where, sizeof where, "%.6g, %.6g, %.6g", at.x, at.y, at.z);
+        report.add({common.part, 0, 0, io::Severity::Warning,
+                    std::to_string(result.contour.thinEdges) +
+                        " grid edges cross a wall or gap thinner than the cell (" +
+                        std::to_string(result.cellSize) + "), e.g. near (" + where +
+                        "): the mesh fuses or drops them there"});
+    }
 
     // Write it.
     if (auto error = io::writeMesh(output, result.mesh, part.model.materials)) {
@@ -103,12 +120,14 @@ int exportCommand(std::span<const std::string> args) {
         return kExitIo;
     }
     if (!quiet)
-        std::fprintf(stderr,
-                     "csgray: export: %s: %zu triangles, %zu vertices, cell %.6g, %d pass(es), "
-                     "mesh->surface %.3g, surface->mesh %.3g (tolerance %.3g), %.2f s\n",
-                     output.c_str(), result.mesh.triangles.size(), result.mesh.positions.size(),
-                     result.cellSize, result.passes, result.error.max, result.backError.max,
-                     result.tolerance, seconds);
+        std::fprintf(
+            stderr,
+            "csgray: export: %s: %zu triangles (grid %llu%s), %zu vertices, cell %.6g, "
+            "%d pass(es), mesh->surface %.3g, surface->mesh %.3g (tolerance %.3g), "
+            "%.2f s\n",
+            output.c_str(), result.mesh.triangles.size(), (unsigned long long)result.gridTriangles,
+            result.simplified ? ", simplified" : "", result.mesh.positions.size(), result.cellSize,
+            result.passes, result.error.max, result.backError.max, result.tolerance, seconds);
     return kExitOk;
 }
 

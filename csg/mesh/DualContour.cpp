@@ -267,7 +267,10 @@ private:
 
 TriangleMesh dualContour(const HermiteGrid& grid, DualContourStats* stats) {
     DualContourStats local;
-    return Contourer(grid, stats ? *stats : local).run();
+    DualContourStats& s = stats ? *stats : local;
+    s.thinEdges = grid.thinEdges();
+    s.thinAt = grid.thinAt();
+    return Contourer(grid, s).run();
 }
 
 }  // namespace csg

@@ -23,6 +23,8 @@ struct DualContourStats {
     uint64_t sheetVertices = 0;     // QEF vertices (cells crossed by two sheets count twice)
     uint64_t faceVertices = 0;      // crease points on cell faces
     uint64_t missingCrossings = 0;  // sign changes whose ray saw no crossing (midpoint used)
+    uint64_t thinEdges = 0;  // edges crossed more than once: thinner than a cell (HermiteGrid)
+    Vec3 thinAt{0.0};        // one of them
 };
 
 // The mesh of the grid's surface; empty when no node is inside.

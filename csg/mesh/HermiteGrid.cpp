@@ -35,6 +35,8 @@ inline int prevAxis(int a) {
 struct RowResult {
     std::vector<Crossing> crossings;
     std::vector<uint32_t> counts;  // per line of the row
+    uint64_t thinEdges = 0;        // see HermiteGrid::thinEdges()
+    Vec3 thinAt{0.0};
 };
 
 }  // namespace
@@ -81,6 +83,12 @@ HermiteGrid HermiteGrid::cast(const Scene& scene, const GridSpec& spec, int thre
                     }
                 }
                 row.counts[size_t(ib)] = uint32_t(row.crossings.size() - before);
+                // Two crossings on one grid edge: a wall or gap thinner than the cell there.
+                for (size_t x = before + 1; x < row.crossings.size(); ++x) {
+                    const Crossing &p = row.crossings[x - 1], &q = row.crossings[x];
+                    if (std::ceil(p.t / spec.h) != std::ceil(q.t / spec.h)) continue;
+                    if (row.thinEdges++ == 0) row.thinAt = 0.5 * (p.point + q.point);
+                }
                 // Signs from the z lines only: one authority per node keeps cells consistent.
                 if (a == 2) {
                     size_t s = 0;
@@ -107,6 +115,8 @@ HermiteGrid HermiteGrid::cast(const Scene& scene, const GridSpec& spec, int thre
         start.reserve(size_t(nb) * nc + 1);
         start.push_back(0);
         for (RowResult& row : rows) {
+            if (row.thinEdges && grid.thinEdges_ == 0) grid.thinAt_ = row.thinAt;
+            grid.thinEdges_ += row.thinEdges;
             all.insert(all.end(), row.crossings.begin(), row.crossings.end());
             for (uint32_t count : row.counts) start.push_back(start.back() + count);
             row = RowResult{};

@@ -53,6 +53,11 @@ public:
     // The first crossing on edge (axis, node) within (t(node), t(node + 1)], or nullptr.
     const Crossing* crossing(int axis, std::array<int, 3> node) const;
     uint64_t rays() const { return rays_; }
+    // Grid edges that a line crosses more than once (only the first crossing is used): a
+    // wall or gap thinner than one cell, which the mesh fuses or loses there. thinAt() is the
+    // midpoint of one such pair of crossings (the first in axis, row, line order).
+    uint64_t thinEdges() const { return thinEdges_; }
+    Vec3 thinAt() const { return thinAt_; }
 
 private:
     GridSpec spec_;
@@ -60,6 +65,8 @@ private:
     std::array<std::vector<Crossing>, 3> crossings_;  // per axis, line by line, ascending t
     std::array<std::vector<uint64_t>, 3> lineStart_;  // per axis, lineCount + 1 offsets
     uint64_t rays_ = 0;
+    uint64_t thinEdges_ = 0;
+    Vec3 thinAt_{0.0};
 };
 
 }  // namespace csg

@@ -1,10 +1,12 @@
 #include "csg/mesh/Tessellate.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "csg/Tolerances.h"
 #include "csg/mesh/HermiteGrid.h"
+#include "csg/mesh/Simplify.h"
 
 namespace csg {
 
@@ -16,6 +18,41 @@ TriangleMesh tessellateAt(const Scene& scene, double h, int threads, uint64_t* r
     if (rays) *rays += grid.rays();
     return dualContour(grid, stats);
 }
+
+namespace {
+
+// Simplifying may use at least this fraction of the tolerance even when the grid's mesh already
+// measures close to the margin (unit: relative to T). Flat regions need almost none (their
+// collapses move nothing off the plane), and the result is measured and rejected if it is over.
+constexpr double kSimplifyMinBudget = 0.1;
+
+// The simplification step of tessellate() (see Tessellate.h); result holds the grid's mesh and
+// its measurements, and keeps them unless a simplified mesh measures within bounds.
+void simplifyWithinBudget(const Scene& scene, TessellateResult& result,
+                          const DistanceOptions& measure) {
+    const double target = tol::kMeshMeasureMargin * result.tolerance;
+    const double allowedTo = std::max(target, result.error.max);
+    const double allowedBack = std::max(target, result.backError.max);
+    double budget = std::max(target - std::max(result.error.max, result.backError.max),
+                             kSimplifyMinBudget * result.tolerance);
+    for (int attempt = 0; attempt < 2; ++attempt, budget *= 0.25) {
+        TriangleMesh coarse = simplify(result.mesh, budget);
+        if (coarse.triangles.size() == result.mesh.triangles.size()) return;
+        const DistanceStats to = meshToSurface(scene, coarse, measure);
+        if (!(to.max <= allowedTo)) continue;
+        const TriangleBvh bvh(coarse);
+        const DistanceStats back = surfaceToMesh(scene, coarse, bvh, kSurfaceRaysPerAxis, measure);
+        if (!(back.max <= allowedBack)) continue;
+        result.mesh = std::move(coarse);
+        result.error = to;
+        result.backError = back;
+        result.toleranceMet = std::max(to.max, back.max) <= result.tolerance;
+        result.simplified = true;
+        return;
+    }
+}
+
+}  // namespace
 
 TessellateResult tessellate(const Scene& scene, const TessellateOptions& options) {
     TessellateResult result;
@@ -76,6 +113,8 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
         // only in proportion to h, and one pass too fine costs less than one pass more.
         h *= std::clamp(0.85 * ratio, 0.25, 0.85);
     }
+    result.gridTriangles = result.mesh.triangles.size();
+    if (options.simplify && !result.mesh.empty()) simplifyWithinBudget(scene, result, measure);
     return result;
 }
 

@@ -11,6 +11,12 @@
 // linear law: the worst errors sit at curved creases such as a hole's rim, where a cell's QEF
 // vertex is clamped or falls back to the mass point, and those shrink in proportion to h) until
 // the measurement is within T, the cell cap is reached, or maxPasses passes have run.
+//
+// Then the grid's mesh is coarsened where it is flat or gently curved (Simplify.h) within the
+// error budget the grid left (kMeshMeasureMargin T minus the measured error, at least
+// kSimplifyMinBudget T), and measured again both ways; a simplified mesh that measures worse
+// than the margin (or than the grid's mesh, when that was already over) is retried with a
+// quarter of the budget, then dropped for the grid's mesh.
 #pragma once
 
 #include <cstdint>
@@ -33,7 +39,8 @@ struct TessellateOptions {
     // Cap on the grid's cells (the work and memory of one pass grow with it).
     uint64_t maxCells = uint64_t(1) << 24;
     int maxPasses = 4;
-    int threads = 0;  // 0: all cores
+    bool simplify = true;  // coarsen flat regions after the grid passes (Simplify.h)
+    int threads = 0;       // 0: all cores
 };
 
 struct TessellateResult {
@@ -46,8 +53,10 @@ struct TessellateResult {
     DistanceStats error;      // mesh to surface of the result, as measured
     DistanceStats backError;  // surface to mesh (kSurfaceRaysPerAxis^2 lines per axis)
     DualContourStats contour;
-    bool toleranceMet = false;  // error.max and backError.max <= tolerance
-    bool capped = false;        // maxCells stopped the refinement
+    bool toleranceMet = false;   // error.max and backError.max <= tolerance
+    bool capped = false;         // maxCells stopped the refinement
+    uint64_t gridTriangles = 0;  // triangles of the grid's mesh, before simplification
+    bool simplified = false;     // the simplified mesh was kept
 };
 
 // Throws std::invalid_argument for an unbounded scene (a bare half-space). An empty scene

@@ -1,0 +1,37 @@
+// Coarsening a dual-contoured mesh where the surface is flat or gently curved: the uniform grid
+// puts a fan of triangles on every crossed grid edge, so a box face of n x n cells carries
+// ~4 n^2 triangles that all lie in one plane.
+//
+// OpenMesh's decimater by halfedge collapse: a collapse moves one vertex onto a neighbour, so
+// every kept vertex is one of the input's (exact crossings and QEF feature points stay where
+// dual contouring put them). A collapse is allowed only when
+//   - OpenMesh's link condition holds (the mesh stays a closed 2-manifold),
+//   - the kept vertex is within maxDeviation of every plane of the input triangles merged into
+//     it (Garland-Heckbert quadrics, unweighted: a sum of squared plane distances bounds each
+//     one, so a crease or corner cannot be cut),
+//   - the removed vertex is within maxDeviation of the triangles that replace its fan,
+//   - no triangle of the fan turns by more than kMaxFanTurn (no fold-overs),
+//   - the removed vertex touches triangles of one material only (material borders stay).
+// Collapses go cheapest first (quadric error, then edge length, so flat regions coarsen
+// evenly). The result is checked by the caller against the exact surface (Tessellate.cpp):
+// these rules bound the deviation from the *input mesh* locally, not the distance to the part.
+#pragma once
+
+#include <cstdint>
+
+#include "csg/mesh/TriangleMesh.h"
+
+namespace csg {
+
+struct SimplifyStats {
+    uint64_t trianglesBefore = 0;
+    uint64_t trianglesAfter = 0;
+    bool built = false;  // false: OpenMesh refused a face (the input is not manifold); unchanged
+};
+
+// The simplified mesh; normals and materials of kept vertices and triangles are carried over.
+// maxDeviation <= 0 or an empty mesh returns the input unchanged.
+TriangleMesh simplify(const TriangleMesh& mesh, double maxDeviation,
+                      SimplifyStats* stats = nullptr);
+
+}  // namespace csg
