@@ -9,7 +9,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "primitives/solvers/Cubic.h"
 #include "primitives/solvers/Roots.h"
@@ -17,6 +19,11 @@
 namespace csg {
 
 namespace {
+
+// 2^k for |k| <= 1022 (a normal double), built from its bits.
+double powerOfTwo(int k) {
+    return std::bit_cast<double>(uint64_t(1023 + k) << 52);
+}
 
 // The factor coefficients (a1, b1, a2, b2).
 using Factors = std::array<double, 4>;
@@ -116,12 +123,17 @@ static int quarticRoots(const Polynomial& input, double* roots, bool* verified, 
         return solveCubicAll(p[3], p[2], p[1], p[0], roots);
     }
     int n = 0;
-    if (allowShift && a != 0.0) {
+    // Roots huddled within spread s < |c| / 4 of their centroid c = -a/4 make the monic
+    // constant term d = q(-c) = c^4 + O(c^4 (1/16 + 1/64 + 1/256)), so |d| > 0.9 c^4: a
+    // quartic with |d| < c^4 / 2 (every torus ray, whose c is ~0) skips the Taylor shift.
+    const double centre = -0.25 * a;
+    const double centre4 = (centre * centre) * (centre * centre);
+    const bool mayHuddle = !(std::isfinite(centre4) && std::abs(d) < 0.5 * centre4);
+    if (allowShift && a != 0.0 && mayHuddle) {
         // Step 1a: roots huddled around their centroid -a/4, far from 0 compared with their
         // spread (Flocke's cluster {2, 2.001, 2.002, 2.003}), make the resolvent
         // ill-conditioned; in y = t + a/4 they are spread around 0 and well resolved. The
         // Taylor shift costs only the rounding that evaluating p near the cluster costs anyway.
-        const double centre = -0.25 * a;
         const Polynomial q = p.shifted(centre);
         const double spread =
             std::max({std::sqrt(std::abs(q[2] / lead)), std::cbrt(std::abs(q[1] / lead)),
@@ -144,8 +156,14 @@ static int quarticRoots(const Polynomial& input, double* roots, bool* verified, 
     const double size = std::max({std::abs(a), std::sqrt(std::abs(b)), std::cbrt(std::abs(c)),
                                   std::sqrt(std::sqrt(std::abs(d)))});
     const int e = std::ilogb(size);
-    a = std::ldexp(a, -e), b = std::ldexp(b, -2 * e), c = std::ldexp(c, -3 * e);
-    d = std::ldexp(d, -4 * e);
+    if (std::abs(e) <= 255) {
+        // Products with exact powers of two round as ldexp does, without its library calls.
+        const double down = powerOfTwo(-e), down2 = down * down;
+        a *= down, b *= down2, c *= down2 * down, d *= down2 * down2;
+    } else {
+        a = std::ldexp(a, -e), b = std::ldexp(b, -2 * e), c = std::ldexp(c, -3 * e);
+        d = std::ldexp(d, -4 * e);
+    }
     const Polynomial monic{d, c, b, a, 1.0};
 
     // Step 3: the largest root of the resolvent, for which alpha^2 >= 0 (at phi = b - a^2/4
@@ -169,7 +187,7 @@ static int quarticRoots(const Polynomial& input, double* roots, bool* verified, 
     refineFactors(f, a, b, c, d);
 
     // Step 5: the roots of each factor, scaled back and polished on the original quartic.
-    const double s = std::ldexp(1.0, e);
+    const double s = std::abs(e) <= 255 ? powerOfTwo(e) : std::ldexp(1.0, e);
     for (int k = 0; k < 2; ++k) {
         const double fa = f[2 * k], fb = f[2 * k + 1];
         const int m = appendQuadraticFactorRoots(monic, 1.0, fa, fb, roots + n);
