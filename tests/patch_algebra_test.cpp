@@ -35,13 +35,16 @@ TEST(PatchAlgebra, ArticlePatchesHaveTheArticlesEliminantDegrees) {
     const int kRays = 400;
     for (int kind = 1; kind <= 3; ++kind) {
         const BezierPatch patch = patchref::articlePatch(kind);
-        int exact = 0;
+        int exact = 0, resultantExact = 0;
         for (int r = 0; r < kRays; ++r) {
             Vec3 o, d;
             patchref::randomRay(rng, patch, o, d);
             PatchCrossings out;
             GroebnerStats s;
             intersectByGroebner(patch, o, d, out, &s);
+            ResultantStats rs;
+            intersectByResultant(patch, o, d, out, &rs);
+            resultantExact += rs.uDegree == 2 * kind;
             exact += !s.breakdown && s.uDegree == 2 * kind && s.basisSize == 2;
         }
         // Degenerate rays (a ray parallel to a ruling, a plane equation losing its v-term)
@@ -49,6 +52,8 @@ TEST(PatchAlgebra, ArticlePatchesHaveTheArticlesEliminantDegrees) {
         std::printf("article patch %d: %d / %d rays with basis size 2 and u-degree %d\n", kind,
                     exact, kRays, 2 * kind);
         EXPECT_GE(exact, kRays * 97 / 100) << "kind " << kind;
+        // The resultant has the same degree once the small-value rule trims its top.
+        EXPECT_GE(resultantExact, kRays * 97 / 100) << "kind " << kind;
     }
 }
 
@@ -294,11 +299,22 @@ TEST(PatchAlgebra, ResultantIsTheSylvesterDeterminant) {
         const PlaneEquations planes = planeEquations(patch, o, d);
         const std::array<double, 19> res = resultantInU(planes.f1, planes.f2);
         for (double u : {0.0, 0.17, 0.5, 0.83, 1.0}) {
-            double value = 0.0;
-            for (int i = 18; i >= 0; --i) value = value * u + res[i];
+            double value = 0.0, terms = 0.0;
+            for (int i = 18; i >= 0; --i) {
+                value = value * u + res[i];
+                terms = terms * u + std::abs(res[i]);
+            }
             const auto a = planes.f1.atU(u), b = planes.f2.atU(u);
             const double expected = -sylvester(a, b);  // det Bezout = -Res for cubics
-            EXPECT_NEAR(value, expected, 1e-9 * std::max(1.0, std::abs(expected)))
+            // Both sides round at the size of the terms that cancel: the resultant's monomial
+            // terms at u, and (|a| |b|)^3 in the elimination (Res is homogeneous of degree 3
+            // in a and in b). 1e-12 of those is ~10^4 ulps.
+            double ma = 0.0, mb = 0.0;
+            for (int k = 0; k < 4; ++k) {
+                ma = std::max(ma, std::abs(a[k]));
+                mb = std::max(mb, std::abs(b[k]));
+            }
+            EXPECT_NEAR(value, expected, 1e-12 * (terms + std::pow(ma * mb, 3)))
                 << "trial " << trial << " u " << u;
         }
     }

@@ -231,7 +231,7 @@ int intersectLexVU(const BezierPatch& patch, const PlaneEquations& planes, const
     auto accept = [&](double u, double v) {
         if (!isCommonRoot(planes, u, v)) return;
         if (options.polish) polishRoot(planes, u, v);
-        addCrossing(patch, o, d, u, v, out, n);
+        appendCrossing(patch, o, d, u, v, out, n);
     };
     for (int r = 0; r < uCount && n < kMaxPatchCrossings; ++r) {
         const double u = us[r];

@@ -146,8 +146,8 @@ void polishRoot(const PlaneEquations& planes, double& u, double& v) {
     }
 }
 
-void addCrossing(const BezierPatch& patch, const Vec3& o, const Vec3& d, double u, double v,
-                 PatchCrossings& out, int& n) {
+void appendCrossing(const BezierPatch& patch, const Vec3& o, const Vec3& d, double u, double v,
+                    PatchCrossings& out, int& n) {
     u = std::clamp(u, 0.0, 1.0);
     v = std::clamp(v, 0.0, 1.0);
     const double t = glm::dot(d, patch.eval(u, v) - o) / glm::dot(d, d);

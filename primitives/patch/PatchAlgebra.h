@@ -47,8 +47,8 @@ bool isCommonRoot(const PlaneEquations& planes, double u, double v);
 void polishRoot(const PlaneEquations& planes, double& u, double& v);
 
 // Appends the crossing at (u, v), clamped to [0, 1]^2, with its t. n < kMaxPatchCrossings.
-void addCrossing(const BezierPatch& patch, const Vec3& o, const Vec3& d, double u, double v,
-                 PatchCrossings& out, int& n);
+void appendCrossing(const BezierPatch& patch, const Vec3& o, const Vec3& d, double u, double v,
+                    PatchCrossings& out, int& n);
 
 // Sorts out[0..n) by t and merges points closer than kPatchSamePointParam in (u, v) (double
 // roots, a root found from two basis elements); returns the new count.

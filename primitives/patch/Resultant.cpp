@@ -157,7 +157,12 @@ int intersectByResultant(const BezierPatch& patch, const Vec3& o, const Vec3& d,
     WidePolynomial p;
     p.degree = degree;
     std::copy(res.begin(), res.end(), p.c.begin());
-    while (p.degree > 0 && p.c[p.degree] == 0.0) --p.degree;
+    // The small-value rule on the leading coefficients: a patch of lower degree in u (the
+    // article-style ones) leaves rounding residue where the resultant's top coefficients are
+    // zero, which would only add roots far outside [0, 1] but misstate the degree.
+    double largest = 0.0;
+    for (int i = 0; i <= p.degree; ++i) largest = std::max(largest, std::abs(p.c[i]));
+    while (p.degree > 0 && std::abs(p.c[p.degree]) <= options.smallRel * largest) --p.degree;
     const bool zero = p.degree == 0 && p.c[0] == 0.0;
     if (stats) stats->uDegree = zero ? -1 : p.degree;
     if (zero) return 0;  // F1, F2 share a factor (or do not involve v): no isolated crossings
@@ -171,7 +176,7 @@ int intersectByResultant(const BezierPatch& patch, const Vec3& o, const Vec3& d,
     auto accept = [&](double u, double v) {
         if (!isCommonRoot(planes, u, v)) return;
         if (options.polish) polishRoot(planes, u, v);
-        addCrossing(patch, o, d, u, v, out, n);
+        appendCrossing(patch, o, d, u, v, out, n);
     };
     for (int r = 0; r < uCount && n < kMaxPatchCrossings; ++r) {
         const double u = us[r];
