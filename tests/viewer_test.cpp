@@ -231,6 +231,27 @@ protected:
 
 VirtualDisplay* ViewerTest::display_ = nullptr;
 
+// No X server needed: without any display SDL would fall back to its offscreen driver, a
+// window nobody sees in a viewer that never ends. The view says so and exits 3 instead.
+TEST(ViewerWithoutDisplay, SaysSoAndExitsWithThree) {
+    ScratchDir dir;
+    writeFile(dir / "part.scad", kPart);
+    const pid_t pid = spawn("exec env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER " +
+                                shellQuote(CSGRAY_EXE) + " view part.scad 2>stderr.txt",
+                            dir.path());
+    int status = 0;
+    const bool exited = waitUntil([&] { return ::waitpid(pid, &status, WNOHANG) == pid; }, 10s);
+    if (!exited) {
+        ::kill(-pid, SIGKILL);
+        ::waitpid(pid, nullptr, 0);
+    }
+    ASSERT_TRUE(exited) << "the view kept running with no display";
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 3);
+    EXPECT_NE(readFile(dir / "stderr.txt").find("cannot open a window: no display"),
+              std::string::npos)
+        << readFile(dir / "stderr.txt");
+}
+
 TEST_F(ViewerTest, FinestFrameShowsThePartAsRenderDoes) {
     launch();
     ASSERT_TRUE(waitForFrame(1)) << err();

@@ -6,6 +6,8 @@
 #include <time.h>
 
 #include <chrono>
+#include <cstdlib>
+#include <string>
 
 namespace viewer::window {
 
@@ -55,6 +57,14 @@ ViewWindow::ViewWindow() {
         return;
     }
     videoStarted_ = true;
+    // Without a display SDL falls back to its offscreen driver: a window nobody can see, and
+    // a viewer that never ends. Only when asked for (SDL_VIDEODRIVER) is that a window.
+    const char* driver = SDL_GetCurrentVideoDriver();
+    if (driver && !std::getenv("SDL_VIDEODRIVER") &&
+        (std::string(driver) == "offscreen" || std::string(driver) == "dummy")) {
+        error_ = "cannot open a window: no display (neither DISPLAY nor WAYLAND_DISPLAY works)";
+        return;
+    }
     startup_.init = millisecondsSince(step);
     startup_.initCpu = threadCpuMilliseconds() - cpu;
 }
@@ -79,6 +89,8 @@ bool ViewWindow::open(const std::string& title, int width, int height) {
     startup_.renderer = millisecondsSince(step);
     SDL_RendererInfo info;
     if (SDL_GetRendererInfo(renderer_, &info) == 0) startup_.driver = info.name;
+    if (const char* video = SDL_GetCurrentVideoDriver())
+        startup_.driver += std::string(" on ") + video;
     return true;
 }
 
