@@ -65,6 +65,20 @@ double Torus::polishOnTube(const Vec3& b, const Vec3& u, double s, double lo, do
     return s;
 }
 
+double Torus::tubeValue(const Vec3& b, const Vec3& u, double s, double* errorBound) const {
+    const Vec3 p = pointOnLine(b, u, s);
+    const double rho = radial(p.x, p.y);
+    const double dr = rho - majorRadius;
+    const double az = std::abs(p.z), r = minorRadius;
+    // Rounding: p is off by an ulp of |p| per component, rho by ~2 more of rho, which move
+    // G by |grad G| = 2 sqrt(dr^2 + z^2) times that; the products and sums add a few ulps of
+    // their terms. 4 ulps of the sum of those magnitudes covers them.
+    *errorBound = 4.0 * tol::kUlp *
+                  ((std::abs(dr) + az) * (rho + majorRadius + glm::length(p)) + dr * dr +
+                   (az + r) * (az + r));
+    return dr * dr + (p.z - r) * (p.z + r);
+}
+
 void Torus::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     const double R = majorRadius, r = minorRadius;
     const double len = glm::length(d);
@@ -117,8 +131,25 @@ void Torus::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
         roots[i] = polishOnTube(b, u, roots[i], lo, hi);
     }
     if (n % 2 == 0) {
-        for (int i = 0; i + 1 < n; i += 2)
-            out.add(tBase + roots[i] / len, 0, tBase + roots[i + 1] / len, 0);
+        // Step 4: the quartic's coefficient rounding splits a tangent line's double root into
+        // two close roots as often as into a complex pair. A span whose middle is not inside
+        // by more than the tube form's rounding error is such a split (dropped), and so is a
+        // gap between spans whose middle is not outside by more (the spans are joined).
+        double ends[4];
+        int m = 0;
+        for (int i = 0; i + 1 < n; i += 2) {
+            double err;
+            if (roots[i] != roots[i + 1] &&
+                !(tubeValue(b, u, 0.5 * roots[i] + 0.5 * roots[i + 1], &err) < -err))
+                continue;
+            if (m > 0 && !(tubeValue(b, u, 0.5 * ends[m - 1] + 0.5 * roots[i], &err) > err)) {
+                ends[m - 1] = roots[i + 1];
+                continue;
+            }
+            ends[m++] = roots[i], ends[m++] = roots[i + 1];
+        }
+        for (int i = 0; i + 1 < m; i += 2)
+            out.add(tBase + ends[i] / len, 0, tBase + ends[i + 1] / len, 0);
         return;
     }
     for (int i = 0; i + 1 < n; ++i)
