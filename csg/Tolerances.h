@@ -135,6 +135,14 @@ inline constexpr double kPatchResidualRel = 1e-6;
 // two genuine crossings that close are a tangency at the span rule's resolution anyway.
 inline constexpr double kPatchSamePointParam = 1e-7;
 
+// The Groebner method's fallback for v (PatchAlgebra.h, planeRootsInV) polishes (u, v) from
+// the eliminant's root u; the result counts only when u moved by at most this (unit: patch
+// parameter). Why: a near-double root of the eliminant (two crossings at nearly the same u) is
+// found only to ~sqrt of its coefficients' relative error, up to 1.6e-6 measured on the
+// paraboloid; a polish that moves u further has set off towards another crossing (0.2 away in
+// the case that made this rule). 1e-4 keeps a 60x margin on the first and rejects the second.
+inline constexpr double kPatchRootDriftParam = 1e-4;
+
 // Bicubic Bezier patches (primitives/patch/). A crossing's (u, v) may lie this far outside
 // [0, 1]^2 and still count, then clamped onto it (unit: patch parameter). Newton converges to
 // a root on an edge or corner (a ray through a shared edge, the teapot's poles) to within a

@@ -110,29 +110,53 @@ TEST(PatchAlgebra, PatchCubicInVIsSolvedAsItsTranspose) {
 
 // ---- Closed forms ----
 
-// x = 2u - 1, y = 2v - 1 over [-1, 1]^2, and z = a x + b y (flat) or x^2 + y^2 (paraboloid).
-BezierPatch graphPatch(bool paraboloid) {
+// x = 2u - 1, y = 2v - 1 over [-1, 1]^2, and z = 0.5 x + 0.25 y - 0.75 (flat), x^2 + y^2
+// (paraboloid) or x^2 (a parabolic cylinder: the cylinder-like patch).
+enum class Graph { Flat, Paraboloid, Cylinder };
+
+BezierPatch graphPatch(Graph g) {
     std::array<std::array<Vec3, 4>, 4> a{};
-    a[0][0] = Vec3(-1, -1, paraboloid ? 2.0 : -0.75);
-    a[1][0] = Vec3(2, 0, paraboloid ? -4.0 : 1.0);
-    a[0][1] = Vec3(0, 2, paraboloid ? -4.0 : 0.5);
-    if (paraboloid) {
-        a[2][0] = Vec3(0, 0, 4);
-        a[0][2] = Vec3(0, 0, 4);
+    a[1][0] = Vec3(2, 0, 0);
+    a[0][1] = Vec3(0, 2, 0);
+    a[0][0] = Vec3(-1, -1, 0);
+    switch (g) {
+        case Graph::Flat:  // 0.5 (2u - 1) + 0.25 (2v - 1) - 0.75
+            a[0][0].z = -1.5;
+            a[1][0].z = 1.0;
+            a[0][1].z = 0.5;
+            break;
+        case Graph::Paraboloid:  // (2u - 1)^2 + (2v - 1)^2
+            a[0][0].z = 2.0;
+            a[1][0].z = -4.0;
+            a[0][1].z = -4.0;
+            a[2][0] = Vec3(0, 0, 4);
+            a[0][2] = Vec3(0, 0, 4);
+            break;
+        case Graph::Cylinder:  // (2u - 1)^2
+            a[0][0].z = 1.0;
+            a[1][0].z = -4.0;
+            a[2][0] = Vec3(0, 0, 4);
+            break;
     }
     return patchref::fromMonomials(a);
 }
 
-// The t of the line's crossings with the graph over [-1, 1]^2, ascending.
-int closedForm(bool paraboloid, const Vec3& o, const Vec3& d, double* ts) {
+const char* graphName(Graph g) {
+    return g == Graph::Flat ? "flat" : g == Graph::Paraboloid ? "paraboloid" : "cylinder";
+}
+
+// The t of the line's crossings with the graph over [-1, 1]^2, ascending; -1 for a ray that
+// passes within 1e-6 of the patch's rim (its count there is a coin toss).
+int closedForm(Graph g, const Vec3& o, const Vec3& d, double* ts) {
     double roots[2];
     int n = 0;
-    if (!paraboloid) {  // z - 0.5 x - 0.25 y = 0: linear in t
-        const double a = d.z - 0.5 * d.x - 0.25 * d.y, b = o.z - 0.5 * o.x - 0.25 * o.y;
+    if (g == Graph::Flat) {  // z - 0.5 x - 0.25 y + 0.75 = 0: linear in t
+        const double a = d.z - 0.5 * d.x - 0.25 * d.y, b = o.z - 0.5 * o.x - 0.25 * o.y + 0.75;
         if (a != 0.0) roots[n++] = -b / a;
-    } else {  // (ox + t dx)^2 + (oy + t dy)^2 - (oz + t dz) = 0, the stable quadratic
-        const double A = d.x * d.x + d.y * d.y, B = 2 * (o.x * d.x + o.y * d.y) - d.z,
-                     C = o.x * o.x + o.y * o.y - o.z;
+    } else {  // (ox + t dx)^2 [+ (oy + t dy)^2] - (oz + t dz) = 0, the stable quadratic
+        const double ky = g == Graph::Paraboloid ? 1.0 : 0.0;
+        const double A = d.x * d.x + ky * d.y * d.y, B = 2 * (o.x * d.x + ky * o.y * d.y) - d.z,
+                     C = o.x * o.x + ky * o.y * o.y - o.z;
         const double disc = B * B - 4 * A * C;
         if (A > 0.0 && disc >= 0.0) {
             const double q = -0.5 * (B + std::copysign(std::sqrt(disc), B));
@@ -143,7 +167,6 @@ int closedForm(bool paraboloid, const Vec3& o, const Vec3& d, double* ts) {
     int kept = 0;
     for (int k = 0; k < n; ++k) {
         const Vec3 p = o + roots[k] * d;
-        // Rays within 1e-6 of the patch's rim are left out: their count is a coin toss.
         if (std::abs(p.x) <= 1.0 - 1e-6 && std::abs(p.y) <= 1.0 - 1e-6)
             ts[kept++] = roots[k];
         else if (std::abs(p.x) < 1.0 + 1e-6 && std::abs(p.y) < 1.0 + 1e-6)
@@ -153,20 +176,21 @@ int closedForm(bool paraboloid, const Vec3& o, const Vec3& d, double* ts) {
     return kept;
 }
 
-TEST(PatchAlgebra, FlatAndParaboloidPatchesMatchClosedForms) {
-    for (const bool paraboloid : {false, true}) {
-        const BezierPatch patch = graphPatch(paraboloid);
-        std::mt19937_64 rng(paraboloid ? 21 : 22);
-        const int kRays = 20000;
+// The closed-form check: 1e-9 relative in t over 1e5 rays per patch.
+TEST(PatchAlgebra, FlatParaboloidAndCylinderPatchesMatchClosedForms) {
+    for (const Graph g : {Graph::Flat, Graph::Paraboloid, Graph::Cylinder}) {
+        const BezierPatch patch = graphPatch(g);
+        std::mt19937_64 rng(21 + int(g));
+        const int kRays = 100000;
         int checked = 0, hits = 0, grazing = 0;
         double worst[2] = {0.0, 0.0};
         for (int r = 0; r < kRays; ++r) {
             Vec3 o, d;
             patchref::randomRay(rng, patch, o, d);
             double ts[2];
-            const int nRef = closedForm(paraboloid, o, d, ts);
+            const int nRef = closedForm(g, o, d, ts);
             if (nRef < 0) continue;
-            // A ray nearly grazing the paraboloid is left out and counted: two crossings
+            // A ray nearly grazing the quadric is left out and counted: two crossings
             // closer than 1e-3 (relative) are ill-conditioned for any method in double (the
             // error grows like ulp / separation; 5.8e-8 measured at a 1e-5 separation).
             if (nRef == 2 && relError(ts[1], ts[0]) < 1e-3) {
@@ -190,7 +214,7 @@ TEST(PatchAlgebra, FlatAndParaboloidPatchesMatchClosedForms) {
         std::printf(
             "%s: %d rays (%d near-grazing left out), %d crossings, max rel t error "
             "groebner %.2e resultant %.2e\n",
-            paraboloid ? "paraboloid" : "flat", checked, grazing, hits, worst[0], worst[1]);
+            graphName(g), checked, grazing, hits, worst[0], worst[1]);
         EXPECT_GE(checked, kRays * 9 / 10);
         EXPECT_GE(hits, checked / 4);
     }

@@ -127,6 +127,37 @@ bool isCommonRoot(const PlaneEquations& planes, double u, double v) {
            std::abs(planes.f2(u, v)) <= tol::kPatchResidualRel * planes.f2.termMagnitude(u, v);
 }
 
+int planeRootsInV(const PlaneEquations& planes, double u, double smallRel, double* vs) {
+    int count = 0;
+    for (const Bivariate* f : {&planes.f1, &planes.f2}) {
+        const auto c = f->atU(u);
+        double size = 0.0;
+        for (double x : c) size = std::max(size, std::abs(x));
+        int degree = Bivariate::kMaxDegreeV;
+        while (degree > 0 && std::abs(c[degree]) <= smallRel * size) --degree;
+        if (degree == 0) continue;
+        Polynomial inV = Polynomial::ofDegree(degree);
+        for (int j = 0; j <= degree; ++j) inV[j] = c[j];
+        count += solve(inV, -tol::kPatchParamSlack, 1.0 + tol::kPatchParamSlack, vs + count);
+    }
+    return count;
+}
+
+void crossingsFromPlaneRoots(const BezierPatch& patch, const PlaneEquations& planes, const Vec3& o,
+                             const Vec3& d, double u, const AlgebraOptions& options,
+                             PatchCrossings& out, int& n) {
+    double vs[2 * Bivariate::kMaxDegreeV];
+    const int count = planeRootsInV(planes, u, options.smallRel, vs);
+    for (int k = 0; k < count && n < kMaxPatchCrossings; ++k) {
+        double pu = u, pv = vs[k];
+        if (options.polish) {
+            polishRoot(planes, pu, pv);
+            if (std::abs(pu - u) > tol::kPatchRootDriftParam) continue;
+        }
+        if (isCommonRoot(planes, pu, pv)) appendCrossing(patch, o, d, pu, pv, out, n);
+    }
+}
+
 void polishRoot(const PlaneEquations& planes, double& u, double& v) {
     constexpr int kPolishSteps = 4;  // quadratic convergence: 4 steps take 1e-4 to rounding
     double residual = std::max(std::abs(planes.f1(u, v)), std::abs(planes.f2(u, v)));

@@ -40,6 +40,19 @@ int unitParameterRoots(const WidePolynomial& p, double* roots);
 // plane equations vanish there to within kPatchResidualRel of their terms' size.
 bool isCommonRoot(const PlaneEquations& planes, double u, double v);
 
+// The roots v in [0, 1] (widened by tol::kPatchParamSlack) of F1(u, .) and of F2(u, .), each
+// at its degree in v under the small-value rule (smallRel): candidates for v at a root u when
+// the method's own v is lost (two crossings at nearly the same u make the basis element or
+// the Bezout null vector ill-conditioned). vs holds 2 * Bivariate::kMaxDegreeV entries.
+int planeRootsInV(const PlaneEquations& planes, double u, double smallRel, double* vs);
+
+// The crossings at a root u whose v the method lost: each root of planeRootsInV, polished
+// (when options.polish) as long as u moves by at most tol::kPatchRootDriftParam, kept when it
+// is a common root; appended to out[n..).
+void crossingsFromPlaneRoots(const BezierPatch& patch, const PlaneEquations& planes, const Vec3& o,
+                             const Vec3& d, double u, const AlgebraOptions& options,
+                             PatchCrossings& out, int& n);
+
 // Up to kPolishSteps Newton steps on (F1, F2) = 0 from the algebraic root (u, v), each kept
 // only while it lowers max |F_k|. Why: where two crossings share nearly the same u, the
 // eliminant (or resultant) has a near-double root, found only to ~sqrt(ulp) in u; Newton in

@@ -169,8 +169,7 @@ int intersectByResultant(const BezierPatch& patch, const Vec3& o, const Vec3& d,
     double us[18];
     const int uCount = unitParameterRoots(p, us);
 
-    // Step 2: v at each u, from the Bezout null vector; when two crossings share u (rank 1),
-    // the roots of F1(u, .) that F2 shares.
+    // Step 2: v at each u, from the Bezout null vector; else (below) from the plane equations.
     int n = 0;
     // A candidate the method found is validated as it is, then polished (polishRoot).
     auto accept = [&](double u, double v) {
@@ -180,21 +179,14 @@ int intersectByResultant(const BezierPatch& patch, const Vec3& o, const Vec3& d,
     };
     for (int r = 0; r < uCount && n < kMaxPatchCrossings; ++r) {
         const double u = us[r];
+        const int before = n;
         double v;
-        if (nullVectorV(b, u, v)) {
-            accept(u, v);
-            continue;
-        }
-        // Of F1(u, .), F2(u, .) at their common degree n in v, the one whose leading
-        // coefficient is larger there (the other's may vanish at this u).
-        const auto c1 = planes.f1.atU(u), c2 = planes.f2.atU(u);
-        const auto& c = std::abs(c1[b.n]) >= std::abs(c2[b.n]) ? c1 : c2;
-        Polynomial inV = Polynomial::ofDegree(std::max(b.n, 1));
-        for (int j = 0; j <= b.n; ++j) inV[j] = c[j];
-        double vs[3];
-        const int vCount =
-            solve(inV.trimmed(), -tol::kPatchParamSlack, 1.0 + tol::kPatchParamSlack, vs);
-        for (int k = 0; k < vCount && n < kMaxPatchCrossings; ++k) accept(u, vs[k]);
+        if (nullVectorV(b, u, v)) accept(u, v);
+        if (n > before) continue;
+        // B(u) has rank < 2 (two crossings share this u), or its null vector's v was lost (two
+        // crossings at nearly the same u make it ill-conditioned): the plane equations' own
+        // roots in v, polished and checked.
+        crossingsFromPlaneRoots(patch, planes, o, d, u, options, out, n);
     }
     return finishCrossings(out, n);
 }
