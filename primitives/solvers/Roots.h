@@ -4,7 +4,7 @@
 // The contract (see Solve.h): real roots in [tlo, thi], ascending; a root where p changes sign
 // (odd multiplicity, a crossing) is listed once, a root where it does not (even multiplicity,
 // a tangency) is listed twice with equal values. Roots whose separation p cannot resolve in
-// double precision (no value of p between them has a provable sign) are one such root.
+// double precision (p at their midpoint has no provable sign) are one such root.
 #pragma once
 
 #include "csg/Math.h"
