@@ -1,6 +1,10 @@
 // The Whitted renderer (viewer/render/): the effects plan (which rays are cast, counted
 // exactly), scale invariance of secondary-ray origins, refraction through a difference's cut
 // face, the PNG it writes (decoded back with libpng), and Ctrl-C leaving no file.
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
 #include <gtest/gtest.h>
 #include <png.h>
 #include <signal.h>
@@ -430,6 +434,40 @@ TEST(Output, PngIsSrgbEncodedAndDecodesBack) {
     std::vector<float> floats(size_t(pw) * ph * 3);
     in.read(reinterpret_cast<char*>(floats.data()), std::streamsize(floats.size() * 4));
     EXPECT_FLOAT_EQ(floats[(size_t(16) * 48 + 24) * 3], 0.5f);
+    fs::remove_all(dir);
+}
+
+TEST(Output, ExrHoldsTheLinearFloatsAndWritesAtomically) {
+    // A shaded sphere: many distinct floats, read back with OpenEXR's own reader.
+    const LoadedScene s = load(R"(
+        camera(eye=[0, -6, 2], center=[0, 0, 0], up=[0, 0, 1], fov=40);
+        light([4, -4, 6]);
+        sphere(1);
+    )");
+    const Rendered r = render(s, 40, 30);
+    const fs::path dir =
+        fs::temp_directory_path() / ("render_test_exr_" + std::to_string(getpid()));
+    fs::create_directories(dir);
+    const fs::path exr = dir / "out.exr";
+    ASSERT_EQ(writeImage(exr, ImageFormat::Exr, r.result.image), "");
+    Imf::InputFile in(exr.c_str());
+    const Imath::Box2i window = in.header().dataWindow();
+    ASSERT_EQ(window.max.x - window.min.x + 1, 40);
+    ASSERT_EQ(window.max.y - window.min.y + 1, 30);
+    std::vector<float> rgb(size_t(40) * 30 * 3, -1.0f);
+    Imf::FrameBuffer frame;
+    const char* names[3] = {"R", "G", "B"};
+    for (int c = 0; c < 3; ++c)
+        frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(rgb.data() + c),
+                                          3 * sizeof(float), 3 * sizeof(float) * 40));
+    in.setFrameBuffer(frame);
+    in.readPixels(window.min.y, window.max.y);
+    EXPECT_EQ(rgb, r.result.image.rgb);  // FLOAT channels, lossless compression: bit for bit
+    // An unwritable target is an error and leaves nothing behind.
+    const fs::path missing = dir / "no-such-dir" / "out.exr";
+    EXPECT_NE(writeImage(missing, ImageFormat::Exr, r.result.image), "");
+    EXPECT_FALSE(fs::exists(missing));
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
     fs::remove_all(dir);
 }
 

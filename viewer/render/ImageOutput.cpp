@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "io/AtomicFile.h"
+#include "viewer/render/ExrOutput.h"
 #include "viewer/render/Color.h"
 
 namespace viewer::render {
@@ -88,6 +89,7 @@ io::Rgb8Image encodeSrgb(const LinearImage& image) {
 std::string writeImage(const std::filesystem::path& path, ImageFormat format,
                        const LinearImage& image) {
     if (format == ImageFormat::Pfm) return writePfm(path, image);
+    if (format == ImageFormat::Exr) return writeExr(path, image);
     return io::writePng(path, encodeSrgb(image));
 }
 

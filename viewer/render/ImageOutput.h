@@ -1,6 +1,7 @@
 // Writing a finished render: PNG (8-bit, sRGB-encoded from linear light, through
-// io/PngWriter) or PFM (32-bit float linear RGB, the simplest HDR format, for comparisons and
-// compositing). Both go through io/AtomicFile: a failed or interrupted write leaves no file.
+// io/PngWriter), PFM (32-bit float linear RGB, the simplest HDR format, for comparisons) or
+// OpenEXR (the same floats, compressed; ExrOutput.h). All go through io/AtomicFile: a failed
+// or interrupted write leaves no file.
 #pragma once
 
 #include <filesystem>
@@ -11,7 +12,7 @@
 
 namespace viewer::render {
 
-enum class ImageFormat { Png, Pfm };
+enum class ImageFormat { Png, Pfm, Exr };
 
 // Linear RGB to 8-bit sRGB (the transfer function, not a plain 2.2 power).
 io::Rgb8Image encodeSrgb(const LinearImage& image);

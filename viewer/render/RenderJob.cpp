@@ -29,8 +29,8 @@ const char* const kRenderJobHelp =
     "atomically: on failure or Ctrl-C (exit 130) no file and no partial file is left.\n"
     "\n"
     "options:\n"
-    "  -o, --output FILE      the image to write (.png, or .pfm for linear float RGB)\n"
-    "  --format png|pfm       the image format (default: by the output's extension)\n"
+    "  -o, --output FILE      the image to write (.png; .pfm or .exr for linear float RGB)\n"
+    "  --format png|pfm|exr   the image format (default: by the output's extension)\n"
     "  --size WxH             image size in pixels (default 800x600)\n"
     "  --aa N                 N x N stratified samples per pixel, deterministic (default 1)\n"
     "  --threads N            rendering threads (default: all cores)\n"
@@ -182,16 +182,20 @@ RenderJobOptions parseRenderJobOptions(std::span<const std::string> args) {
             format = "png";
         else if (extension == ".pfm")
             format = "pfm";
+        else if (extension == ".exr")
+            format = "exr";
         else
             throw UsageError("render: cannot tell the format of '" + o.output +
-                             "'; use a .png or .pfm name, or --format png|pfm");
+                             "'; use a .png, .pfm or .exr name, or --format png|pfm|exr");
     }
     if (format == "png")
         o.format = ImageFormat::Png;
     else if (format == "pfm")
         o.format = ImageFormat::Pfm;
+    else if (format == "exr")
+        o.format = ImageFormat::Exr;
     else
-        throw UsageError("--format: expected png or pfm, got '" + format + "'");
+        throw UsageError("--format: expected png, pfm or exr, got '" + format + "'");
     if (int64_t(o.width) * o.height > int64_t(1) << 28)
         throw UsageError("--size: at most 2^28 pixels");
     return o;
