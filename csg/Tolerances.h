@@ -135,12 +135,15 @@ inline constexpr double kPatchResidualRel = 1e-6;
 // two genuine crossings that close are a tangency at the span rule's resolution anyway.
 inline constexpr double kPatchSamePointParam = 1e-7;
 
-// The Groebner method's fallback for v (PatchAlgebra.h, planeRootsInV) polishes (u, v) from
-// the eliminant's root u; the result counts only when u moved by at most this (unit: patch
-// parameter). Why: a near-double root of the eliminant (two crossings at nearly the same u) is
-// found only to ~sqrt of its coefficients' relative error, up to 1.6e-6 measured on the
-// paraboloid; a polish that moves u further has set off towards another crossing (0.2 away in
-// the case that made this rule). 1e-4 keeps a 60x margin on the first and rejects the second.
+// The algebraic methods' fallback for v at a near-double root u (PatchAlgebra.h,
+// crossingsFromPlaneRoots). Two roots of the eliminant (or resultant) within this of each other
+// are a near-double root: there v from the basis element or Bezout null vector is
+// ill-conditioned, so v comes from the plane equations, polished in (u, v), and the result
+// counts only when u moved by at most this (unit: patch parameter). Why: such a root is found
+// only to ~sqrt of its coefficients' relative error, up to 1.6e-6 measured on the paraboloid
+// (its two roots 1.6e-6 apart); a polish that moves u further has set off towards another
+// crossing (0.2 away in the case that made this rule). 1e-4 keeps a 60x margin on the first,
+// rejects the second, and leaves the fallback's cost to the rare rays that need it.
 inline constexpr double kPatchRootDriftParam = 1e-4;
 
 // Bicubic Bezier patches (primitives/patch/). A crossing's (u, v) may lie this far outside

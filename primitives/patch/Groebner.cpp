@@ -254,8 +254,9 @@ int intersectLexVU(const BezierPatch& patch, const PlaneEquations& planes, const
             solve(inV.trimmed(), -tol::kPatchParamSlack, 1.0 + tol::kPatchParamSlack, vs);
         const int before = n;
         for (int k = 0; k < vCount && n < kMaxPatchCrossings; ++k) accept(u, vs[k]);
-        if (n > before || !options.polish) continue;
-        // No v from the basis: where two crossings share nearly the same u, the element's
+        if (n > before || !options.polish || !hasCloseNeighbour(us, uCount, r)) continue;
+        // No v from the basis at a near-double root: where two crossings share nearly the
+        // same u (the eliminant has two roots within tol::kPatchRootDriftParam), the element's
         // coefficients are huge and cancel (v = c0(u) / c1(u) with both ~1e6), so a u right
         // to 1e-8 gives v off by 1e-2. The plane equations themselves are well conditioned in
         // v: their roots there, polished in (u, v) together (with polish only: unpolished,

@@ -143,6 +143,11 @@ int planeRootsInV(const PlaneEquations& planes, double u, double smallRel, doubl
     return count;
 }
 
+bool hasCloseNeighbour(const double* roots, int count, int i) {
+    return (i > 0 && roots[i] - roots[i - 1] <= tol::kPatchRootDriftParam) ||
+           (i + 1 < count && roots[i + 1] - roots[i] <= tol::kPatchRootDriftParam);
+}
+
 void crossingsFromPlaneRoots(const BezierPatch& patch, const PlaneEquations& planes, const Vec3& o,
                              const Vec3& d, double u, const AlgebraOptions& options,
                              PatchCrossings& out, int& n) {

@@ -49,6 +49,10 @@ int planeRootsInV(const PlaneEquations& planes, double u, double smallRel, doubl
 // The crossings at a root u whose v the method lost: each root of planeRootsInV, polished
 // (when options.polish) as long as u moves by at most tol::kPatchRootDriftParam, kept when it
 // is a common root; appended to out[n..).
+// True when roots[i] has a neighbour in roots[0..count) (ascending) within
+// tol::kPatchRootDriftParam: a near-double root, where v from the method is ill-conditioned.
+bool hasCloseNeighbour(const double* roots, int count, int i);
+
 void crossingsFromPlaneRoots(const BezierPatch& patch, const PlaneEquations& planes, const Vec3& o,
                              const Vec3& d, double u, const AlgebraOptions& options,
                              PatchCrossings& out, int& n);

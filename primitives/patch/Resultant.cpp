@@ -181,11 +181,12 @@ int intersectByResultant(const BezierPatch& patch, const Vec3& o, const Vec3& d,
         const double u = us[r];
         const int before = n;
         double v;
-        if (nullVectorV(b, u, v)) accept(u, v);
-        if (n > before) continue;
-        // B(u) has rank < 2 (two crossings share this u), or its null vector's v was lost (two
-        // crossings at nearly the same u make it ill-conditioned): the plane equations' own
-        // roots in v, polished and checked.
+        const bool rank2 = nullVectorV(b, u, v);
+        if (rank2) accept(u, v);
+        if (n > before || (rank2 && !hasCloseNeighbour(us, uCount, r))) continue;
+        // B(u) has rank < 2 (two crossings share this u), or u is a near-double root (two
+        // crossings at nearly the same u) where the null vector's v is ill-conditioned: the
+        // plane equations' own roots in v, polished and checked.
         crossingsFromPlaneRoots(patch, planes, o, d, u, options, out, n);
     }
     return finishCrossings(out, n);
