@@ -334,7 +334,9 @@ TEST(Tessellate, EverySampleMeshesWithinTolerance) {
         const bool nearContact = entry.path().filename() == "csg_grid.scad";
         TessellateOptions options;
         options.tolerance = tol;
-        options.maxCells = uint64_t(1) << 22;
+        // csg_grid's mesh is capped lower: its fused gaps keep it refining to the cap, and
+        // a coarser cap checks the same promises in a quarter of the time.
+        options.maxCells = uint64_t(1) << (nearContact ? 20 : 22);
         Checked c;
         c.result = tessellate(scene, options);
         c.topo = checkTopology(c.result.mesh);
