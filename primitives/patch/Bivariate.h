@@ -14,7 +14,8 @@
 
 namespace csg {
 
-// One monomial u^u v^v; a leading term when it names the largest nonzero coefficient.
+// The monomial u^(this->u) v^(this->v): exponents; a leading term names the largest nonzero
+// coefficient of a polynomial.
 struct Monomial {
     int u = 0, v = 0;
     bool divides(const Monomial& m) const { return u <= m.u && v <= m.v; }

@@ -16,6 +16,13 @@
 // the emptiness test (a nonzero constant in G: the planes never meet on the patch's complex
 // extension, a miss); then the reduced basis (elements whose leading term another's divides
 // are dropped, the rest reduced by each other), whose v-free element is the eliminant.
+// Beyond the article (AlgebraOptions::polish, on by default): each (u, v) is polished by
+// Newton on (F1, F2), and at a near-double root u, where the basis element's v is
+// ill-conditioned, v comes from the plane equations instead (PatchAlgebra.h).
+//
+// Cost: no heap, but ~100 KB of stack per call (the basis under construction and the reduced
+// one: 2 x kCapacity Bivariates of 1 KB each); bench/reports/patches.md has the times and where
+// the method breaks down (general bicubic patches: on every ray).
 #pragma once
 
 #include "csg/Tolerances.h"
