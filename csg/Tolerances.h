@@ -109,6 +109,30 @@ inline constexpr double kMeshMeasureMargin = 0.8;
 // across): 1e-3 h stays clear of that, and dropping it moves the mesh by at most 1e-3 h.
 inline constexpr double kMeshVertexSeparation = 1e-3;
 
+// Simplifying a grid mesh (csg/mesh/Tessellate.cpp) may spend at least this fraction of the
+// tolerance even when the grid's mesh already measures close to the margin (unit: relative to
+// T): the grid mesh's errors sit at a few creases, collapses that would add to them are caught
+// by measuring the result (and rejected), while flat and gently curved regions elsewhere coarsen.
+inline constexpr double kSimplifyMinBudget = 0.1;
+
+// The fallback simplification budget, and the only one when the grid's mesh is already over
+// the margin (unit: relative to T): only collapses within plane rounding of exactly flat regions
+// and straight creases pass (coordinates carry ~1e-16 relative rounding, 1e-6 T is far above
+// it). They leave the surface where it was, so the simplified mesh is as far from the part as
+// the grid's; measuring it again only samples other points of that same surface, so it is held
+// to T (or the grid mesh's own figure), not to the margin.
+inline constexpr double kSimplifyFlatBudget = 1e-6;
+
+// A collapse may turn a triangle of its fan by at most this much (unit: cosine; 60 degrees):
+// more means it folds the surface over a neighbour rather than flattening a gently curved patch.
+inline constexpr double kSimplifyMaxFanTurnCos = 0.5;
+
+// Neighbouring mesh triangles whose normals differ by more than this meet at a crease, and the
+// exported normals are split there (unit: degrees). 40 is within the 30-45 most tools use for
+// "auto smooth": a part's designed edges (90 degree box edges, 45 degree chamfers) split, while
+// a mesh within tolerance of a curved surface turns by far less between neighbours.
+inline constexpr double kShadingCreaseDegrees = 40.0;
+
 // The algebraic patch methods (primitives/patch/Groebner.h, Resultant.h). The Groebner
 // reduction's small-value rule: after each elimination step (f -= k m g) a coefficient whose
 // magnitude is at most this fraction of the step's scale max(|f|, |k| |g|) is zero (unit:

@@ -112,7 +112,7 @@ void addPrimitive(tinygltf::Model& model, tinygltf::Mesh& gmesh, const csg::Tria
 std::optional<std::string> writeGltf(const std::filesystem::path& file,
                                      const csg::TriangleMesh& welded,
                                      const std::vector<Material>& materials, bool binary) {
-    const csg::TriangleMesh mesh = csg::splitAtCreases(welded, csg::kShadingCreaseDegrees);
+    const csg::TriangleMesh mesh = csg::splitAtCreases(welded, csg::tol::kShadingCreaseDegrees);
     tinygltf::Model model;
     model.asset.version = "2.0";
     model.asset.generator = "csgray";

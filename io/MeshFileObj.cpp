@@ -33,7 +33,7 @@ std::optional<std::string> writeObj(const std::filesystem::path& file,
 
     // Step 2: the text (9 significant digits: float positions read back exactly). The split
     // mesh keeps triangle order and corners, so its corner indices name the normals.
-    const csg::TriangleMesh shaded = csg::splitAtCreases(mesh, csg::kShadingCreaseDegrees);
+    const csg::TriangleMesh shaded = csg::splitAtCreases(mesh, csg::tol::kShadingCreaseDegrees);
     std::string text =
         "# csgray mesh export: " + std::to_string(mesh.triangles.size()) + " triangles\n";
     char line[128];

@@ -207,7 +207,7 @@ TEST(CreaseNormals, BoxSplitsIntoFlatFacesAndSphereStaysSmooth) {
     const Vec3 lo(0.1, 0.2, 0.3), hi(2.1, 1.2, 1.8);
     const TriangleMesh box =
         simplify(tessellateAt(Scene::compile(leaf(Box{lo, hi})), 0.1, 0), 1e-3);
-    const TriangleMesh split = splitAtCreases(box, kShadingCreaseDegrees);
+    const TriangleMesh split = splitAtCreases(box, tol::kShadingCreaseDegrees);
     ASSERT_EQ(split.triangles.size(), box.triangles.size());
     ASSERT_EQ(split.normals.size(), split.positions.size());
     // Every corner's normal is its face's axis normal, pointing out.
@@ -233,7 +233,7 @@ TEST(CreaseNormals, BoxSplitsIntoFlatFacesAndSphereStaysSmooth) {
 
     const TriangleMesh sphere =
         tessellate(Scene::compile(leaf(Sphere{1.0})), {.tolerance = 0.01}).mesh;
-    const TriangleMesh smooth = splitAtCreases(sphere, kShadingCreaseDegrees);
+    const TriangleMesh smooth = splitAtCreases(sphere, tol::kShadingCreaseDegrees);
     EXPECT_EQ(smooth.positions.size(), sphere.positions.size());
 }
 

@@ -4,20 +4,16 @@
 // tools). Positions are copied bit for bit, so welding by position gives back the closed mesh.
 #pragma once
 
+#include "csg/Tolerances.h"
 #include "csg/mesh/TriangleMesh.h"
 
 namespace csg {
 
-// Neighbouring triangles whose normals differ by more than this meet at a crease (unit:
-// degrees). 40 is within the 30-45 most tools use by default: a part's designed edges (90
-// degree box edges, 45 degree chamfers) split, while a mesh within tolerance of a curved
-// surface turns by far less between neighbours and stays smooth.
-inline constexpr double kShadingCreaseDegrees = 40.0;
-
 // Triangles around a vertex that are joined through edges whose dihedral angle is at most
-// creaseDegrees share one output vertex. Its normal is the input normal when the vertex has a
-// single group and one was given (the exact surface normal for crossing vertices), else the
-// angle-weighted mean of the group's triangle normals. Triangle order and materials are kept.
+// creaseDegrees (callers pass tol::kShadingCreaseDegrees) share one output vertex. Its normal is
+// the input normal when the vertex has a single group and one was given (the exact surface
+// normal for crossing vertices), else the angle-weighted mean of the group's triangle normals.
+// Triangle order and materials are kept.
 TriangleMesh splitAtCreases(const TriangleMesh& mesh, double creaseDegrees);
 
 }  // namespace csg

@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "csg/Tolerances.h"
+
 namespace csg {
 
 namespace {
@@ -23,9 +25,6 @@ struct SimplifyTraits : OpenMesh::DefaultTraits {
 };
 using OmMesh = OpenMesh::TriMesh_ArrayKernelT<SimplifyTraits>;
 
-// A triangle of a collapse's fan may turn by at most this much (60 degrees): more means the
-// collapse folds the surface over a neighbour rather than flattening a gently curved patch.
-constexpr double kMaxFanTurnCos = 0.5;
 // A collapse may leave the kept vertex with at most this many neighbours. The decimater
 // re-rates every edge around the kept vertex after each collapse, at a cost that grows with
 // the square of its valence, so letting a flat face shrink to one fan of hundreds of
@@ -120,7 +119,7 @@ public:
             const Vec3 after = glm::cross(b - p1, c - p1);
             const double lb = glm::length(before), la = glm::length(after);
             if (!(la > 0.0)) return float(Base::ILLEGAL_COLLAPSE);
-            if (lb > 0.0 && glm::dot(before, after) < kMaxFanTurnCos * lb * la)
+            if (lb > 0.0 && glm::dot(before, after) < tol::kSimplifyMaxFanTurnCos * lb * la)
                 return float(Base::ILLEGAL_COLLAPSE);
             nearest = std::min(nearest, distanceSquaredToTriangle(p0, p1, b, c));
         }

@@ -10,7 +10,7 @@
 //     it (Garland-Heckbert quadrics, unweighted: a sum of squared plane distances bounds each
 //     one, so a crease or corner cannot be cut),
 //   - the removed vertex is within maxDeviation of the triangles that replace its fan,
-//   - no triangle of the fan turns by more than kMaxFanTurn (no fold-overs),
+//   - no triangle of the fan turns by more than tol::kSimplifyMaxFanTurnCos (no fold-overs),
 //   - the removed vertex touches triangles of one material only (material borders stay).
 // Collapses go cheapest first (quadric error, then edge length, so flat regions coarsen
 // evenly). The result is checked by the caller against the exact surface (Tessellate.cpp):

@@ -22,18 +22,6 @@ TriangleMesh tessellateAt(const Scene& scene, double h, int threads, uint64_t* r
 
 namespace {
 
-// Simplifying may use at least this fraction of the tolerance even when the grid's mesh already
-// measures close to the margin (unit: relative to T): the errors of the grid's mesh sit at a few
-// creases, and the collapses that would add to them are caught by measuring the result (and
-// rejected), while flat and gently curved regions elsewhere coarsen.
-constexpr double kSimplifyMinBudget = 0.1;
-// The fallback budget, and the only one when the grid's mesh left less than kSimplifyMinBudget
-// (unit: relative to T): only collapses within plane rounding of exactly flat regions and
-// straight creases pass. They leave the surface where it was, so the simplified mesh is as far
-// from the part as the grid's; measuring it again only samples other points of that same
-// surface, so it is held to T (or the grid mesh's own figure), not to the margin.
-constexpr double kSimplifyFlatBudget = 1e-6;
-
 // The simplification step of tessellate() (see Tessellate.h); result holds the grid's mesh and
 // its measurements, and keeps them unless a simplified mesh measures within bounds.
 void simplifyWithinBudget(const Scene& scene, TessellateResult& result,
@@ -41,15 +29,15 @@ void simplifyWithinBudget(const Scene& scene, TessellateResult& result,
     const double target = tol::kMeshMeasureMargin * result.tolerance;
     // An unresolved surface-to-mesh sample (+inf: a gap the grid fused, HermiteGrid::thinEdges)
     // is not a budget the collapses could spend; the finite figures are.
-    const double back = std::isfinite(result.backError.max) ? result.backError.max : 0.0;
-    const double worst = std::max(result.error.max, back);
+    const double finiteBack = std::isfinite(result.backError.max) ? result.backError.max : 0.0;
+    const double worst = std::max(result.error.max, finiteBack);
     std::vector<double> budgets;
     if (worst <= target)
-        budgets.push_back(std::max(target - worst, kSimplifyMinBudget * result.tolerance));
-    budgets.push_back(kSimplifyFlatBudget * result.tolerance);
+        budgets.push_back(std::max(target - worst, tol::kSimplifyMinBudget * result.tolerance));
+    budgets.push_back(tol::kSimplifyFlatBudget * result.tolerance);
     for (const double budget : budgets) {
         const double bound =
-            budget > kSimplifyFlatBudget * result.tolerance ? target : result.tolerance;
+            budget > tol::kSimplifyFlatBudget * result.tolerance ? target : result.tolerance;
         const double allowedTo = std::max(bound, result.error.max);
         const double allowedBack = std::max(bound, result.backError.max);
         TriangleMesh coarse = simplify(result.mesh, budget);

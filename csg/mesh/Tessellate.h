@@ -14,7 +14,7 @@
 //
 // Then the grid's mesh is coarsened where it is flat or gently curved (Simplify.h) within the
 // error budget the grid left (kMeshMeasureMargin T minus the measured error, at least
-// kSimplifyMinBudget T; none when the grid's mesh is already over the margin), and measured
+// tol::kSimplifyMinBudget T; none when the grid's mesh is already over the margin), and measured
 // again both ways; a simplified mesh that measures worse than the margin (or than the grid's
 // mesh, when that was already over) is retried with flat regions and straight creases only
 // (held to T: the surface does not move), then dropped for the grid's mesh.
