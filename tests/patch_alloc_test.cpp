@@ -2,30 +2,14 @@
 // queries (and the normal at each hit) on the Utah teapot, for each intersection method.
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cstdio>
-#include <cstdlib>
-#include <new>
 #include <random>
 
 #include "csg/Scene.h"
 #include "io/Evaluate.h"
+#include "tests/CountingNew.h"
 
-namespace {
-std::atomic<long> allocations{0};
-}
-
-void* operator new(std::size_t size) {
-    ++allocations;
-    if (void* p = std::malloc(size ? size : 1)) return p;
-    throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept {
-    std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-    std::free(p);
-}
+using csg::testing::allocations;
 
 namespace csg {
 namespace {

@@ -1,28 +1,11 @@
 // No heap allocation per ray in the steady state: a counting operator new watches the queries.
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
-
 #include "csg/Scene.h"
+#include "tests/CountingNew.h"
 #include "tests/TreeOracle.h"
 
-namespace {
-std::atomic<long> allocations{0};
-}
-
-void* operator new(std::size_t size) {
-    ++allocations;
-    if (void* p = std::malloc(size ? size : 1)) return p;
-    throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept {
-    std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-    std::free(p);
-}
+using csg::testing::allocations;
 
 namespace csg {
 namespace {
