@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <unordered_map>
 
+#include "io/BoundArgs.h"
 #include "io/Colors.h"
 #include "io/Degrees.h"
 #include "io/Evaluator.h"
@@ -19,93 +20,41 @@ namespace {
 using csg::Mat4;
 using csg::Vec3;
 
-// A built-in call's arguments matched to its parameter names (OpenSCAD's rules: positional
-// in order, then by name; $-arguments pass through to the children).
-struct BoundArgs {
-    const InstantiationStmt& call;
-    std::string form;  // the expected form, for messages: "cube(size, center)"
-    std::vector<Value> values;
-    std::vector<Loc> locs;
-    ArgValues all;
-
-    const Value& operator[](size_t i) const { return values[i]; }
-    bool given(size_t i) const { return !values[i].isUndef(); }
-    Loc loc(size_t i) const { return locs[i]; }
-};
-
-BoundArgs bind(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
-               std::initializer_list<std::string_view> params, std::string form) {
-    BoundArgs b{s, form, std::vector<Value>(params.size()), std::vector<Loc>(params.size(), s.loc),
-                e.evalArgs(s.args, ctx)};
-    size_t positional = 0;
-    for (const ArgValue& a : b.all) {
-        if (a.name.empty()) {
-            if (positional >= params.size())
-                e.fail(a.loc, "too many arguments to " + s.name + "(); expected " + form);
-            b.locs[positional] = a.loc;
-            b.values[positional++] = a.value;
-            continue;
-        }
-        if (a.name[0] == '$') continue;  // $fn, $fa, $fs: accepted, surfaces are exact
-        size_t k = 0;
-        for (std::string_view p : params) {
-            if (p == a.name) break;
-            ++k;
-        }
-        if (k == params.size()) {
-            e.warn(a.loc,
-                   "unknown parameter '" + a.name + "' of " + s.name + "(); expected " + form);
-            continue;
-        }
-        b.values[k] = a.value;
-        b.locs[k] = a.loc;
-    }
-    return b;
-}
-
-[[noreturn]] void badArgument(Evaluator& e, const BoundArgs& b, size_t i, std::string_view name,
-                              std::string_view what) {
-    e.fail(b.loc(i), b.call.name + "(): '" + std::string(name) + "' must be " + std::string(what) +
-                         ", got " + b[i].brief() + "; expected " + b.form);
-}
-
-double numberArg(Evaluator& e, const BoundArgs& b, size_t i, std::string_view name, double dflt) {
+double numberArg(Evaluator& e, const BoundArgs& b, size_t i, double dflt) {
     if (!b.given(i)) return dflt;
-    if (!b[i].isNumber() || !std::isfinite(b[i].number()))
-        badArgument(e, b, i, name, "a finite number");
+    if (!b[i].isNumber() || !std::isfinite(b[i].number())) b.bad(e, i, "a finite number");
     return b[i].number();
 }
 
-bool boolArg(Evaluator& e, const BoundArgs& b, size_t i, std::string_view name, bool dflt) {
+bool boolArg(Evaluator& e, const BoundArgs& b, size_t i, bool dflt) {
     if (!b.given(i)) return dflt;
-    if (!b[i].isBool()) badArgument(e, b, i, name, "true or false");
+    if (!b[i].isBool()) b.bad(e, i, "true or false");
     return b[i].asBool();
 }
 
 // A vector of 2 or 3 finite numbers (missing entries take `fill`), or with allowScalar a
 // number for all three.
-Vec3 vecArg(Evaluator& e, const BoundArgs& b, size_t i, std::string_view name, Vec3 dflt,
-            double fill, bool allowScalar, bool allow2 = true) {
+Vec3 vecArg(Evaluator& e, const BoundArgs& b, size_t i, Vec3 dflt, double fill, bool allowScalar,
+            bool allow2 = true) {
     if (!b.given(i)) return dflt;
     const Value& v = b[i];
     if (allowScalar && v.isNumber() && std::isfinite(v.number())) return Vec3(v.number());
     const char* what = allowScalar ? (allow2 ? "a number or a vector of 2 or 3 numbers"
                                              : "a number or a vector of 3 numbers")
                                    : "a vector of 2 or 3 numbers";
-    if (!v.isVector()) badArgument(e, b, i, name, what);
+    if (!v.isVector()) b.bad(e, i, what);
     const ValueList& l = v.list();
-    if (l.size() != 3 && !(allow2 && l.size() == 2)) badArgument(e, b, i, name, what);
+    if (l.size() != 3 && !(allow2 && l.size() == 2)) b.bad(e, i, what);
     Vec3 out(fill);
     for (size_t k = 0; k < l.size(); ++k) {
-        if (!l[k].isNumber() || !std::isfinite(l[k].number())) badArgument(e, b, i, name, what);
+        if (!l[k].isNumber() || !std::isfinite(l[k].number())) b.bad(e, i, what);
         out[static_cast<int>(k)] = l[k].number();
     }
     return out;
 }
 
 // An RGBA color from a name, a hex string or a vector of 3 or 4 numbers.
-std::optional<csg::Vec4> colorArg(Evaluator& e, const BoundArgs& b, size_t i,
-                                  std::string_view name) {
+std::optional<csg::Vec4> colorArg(Evaluator& e, const BoundArgs& b, size_t i) {
     if (!b.given(i)) return std::nullopt;
     const Value& v = b[i];
     if (v.isString()) {
@@ -118,12 +67,12 @@ std::optional<csg::Vec4> colorArg(Evaluator& e, const BoundArgs& b, size_t i,
     if (v.isVector() && (v.list().size() == 3 || v.list().size() == 4)) {
         csg::Vec4 c(1.0);
         for (size_t k = 0; k < v.list().size(); ++k) {
-            if (!v.list()[k].isNumber()) badArgument(e, b, i, name, "a color");
+            if (!v.list()[k].isNumber()) b.bad(e, i, "a color");
             c[static_cast<int>(k)] = v.list()[k].number();
         }
         return c;
     }
-    badArgument(e, b, i, name, "a color name, \"#rrggbb\" or [r, g, b] / [r, g, b, a]");
+    b.bad(e, i, "a color name, \"#rrggbb\" or [r, g, b] / [r, g, b, a]");
 }
 
 Instance childrenGroup(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
@@ -145,9 +94,9 @@ uint32_t leafTag(Evaluator& e, const InstantiationStmt& s, const GeomState& stat
 
 Instance cube(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
               const GeomState& state) {
-    BoundArgs b = bind(e, s, ctx, {"size", "center"}, "cube(size, center)");
-    const Vec3 size = vecArg(e, b, 0, "size", Vec3(1.0), 0.0, true, false);
-    const bool center = boolArg(e, b, 1, "center", false);
+    BoundArgs b = bindArgs(e, s, ctx, {"size", "center"}, "cube(size, center)");
+    const Vec3 size = vecArg(e, b, 0, Vec3(1.0), 0.0, true, false);
+    const bool center = boolArg(e, b, 1, false);
     if (size.x <= 0 || size.y <= 0 || size.z <= 0) {
         e.warn(s.loc, "cube() with a size that is not positive in every axis is empty");
         return csg::NodePtr();
@@ -158,9 +107,9 @@ Instance cube(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
 
 Instance sphere(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                 const GeomState& state) {
-    BoundArgs b = bind(e, s, ctx, {"r", "d"}, "sphere(r | d)");
-    double r = numberArg(e, b, 0, "r", 1.0);
-    if (b.given(1)) r = numberArg(e, b, 1, "d", 2.0) / 2.0;  // d wins over r, as in OpenSCAD
+    BoundArgs b = bindArgs(e, s, ctx, {"r", "d"}, "sphere(r | d)");
+    double r = numberArg(e, b, 0, 1.0);
+    if (b.given(1)) r = numberArg(e, b, 1, 2.0) / 2.0;  // d wins over r, as in OpenSCAD
     if (r <= 0) {
         e.warn(s.loc, "sphere() with a radius that is not positive is empty");
         return csg::NodePtr();
@@ -170,24 +119,24 @@ Instance sphere(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
 
 Instance cylinder(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                   const GeomState& state) {
-    BoundArgs b = bind(e, s, ctx, {"h", "r1", "r2", "center", "r", "d", "d1", "d2"},
-                       "cylinder(h, r|d, r1|d1, r2|d2, center)");
-    const double h = numberArg(e, b, 0, "h", 1.0);
+    BoundArgs b = bindArgs(e, s, ctx, {"h", "r1", "r2", "center", "r", "d", "d1", "d2"},
+                           "cylinder(h, r|d, r1|d1, r2|d2, center)");
+    const double h = numberArg(e, b, 0, 1.0);
     // OpenSCAD's precedence: d over r, d1 over r1, d2 over r2; r1/r2 over r.
     double r1 = 1.0, r2 = 1.0;
     if (b.given(5))
-        r1 = r2 = numberArg(e, b, 5, "d", 2.0) / 2.0;
+        r1 = r2 = numberArg(e, b, 5, 2.0) / 2.0;
     else if (b.given(4))
-        r1 = r2 = numberArg(e, b, 4, "r", 1.0);
+        r1 = r2 = numberArg(e, b, 4, 1.0);
     if (b.given(6))
-        r1 = numberArg(e, b, 6, "d1", 2.0) / 2.0;
+        r1 = numberArg(e, b, 6, 2.0) / 2.0;
     else if (b.given(1))
-        r1 = numberArg(e, b, 1, "r1", 1.0);
+        r1 = numberArg(e, b, 1, 1.0);
     if (b.given(7))
-        r2 = numberArg(e, b, 7, "d2", 2.0) / 2.0;
+        r2 = numberArg(e, b, 7, 2.0) / 2.0;
     else if (b.given(2))
-        r2 = numberArg(e, b, 2, "r2", 1.0);
-    const bool center = boolArg(e, b, 3, "center", false);
+        r2 = numberArg(e, b, 2, 1.0);
+    const bool center = boolArg(e, b, 3, false);
     if (h <= 0 || r1 < 0 || r2 < 0 || (r1 == 0 && r2 == 0)) {
         e.warn(s.loc, "cylinder() with a height or radii that are not positive is empty");
         return csg::NodePtr();
@@ -202,13 +151,11 @@ Instance cylinder(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ct
 // fallback: anything but R > r > 0 is an error naming the expected form.
 Instance torus(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                const GeomState& state) {
-    BoundArgs b = bind(e, s, ctx, {"R", "r", "D", "d"}, "torus(R, r) with R > r > 0");
+    BoundArgs b = bindArgs(e, s, ctx, {"R", "r", "D", "d"}, "torus(R, r) with R > r > 0");
     if (!(b.given(0) || b.given(2)) || !(b.given(1) || b.given(3)))
         e.fail(s.loc, "torus() needs both radii; expected " + b.form + " (or D, d for diameters)");
-    const double major =
-        b.given(2) ? numberArg(e, b, 2, "D", 0.0) / 2.0 : numberArg(e, b, 0, "R", 0.0);
-    const double minor =
-        b.given(3) ? numberArg(e, b, 3, "d", 0.0) / 2.0 : numberArg(e, b, 1, "r", 0.0);
+    const double major = b.given(2) ? numberArg(e, b, 2, 0.0) / 2.0 : numberArg(e, b, 0, 0.0);
+    const double minor = b.given(3) ? numberArg(e, b, 3, 0.0) / 2.0 : numberArg(e, b, 1, 0.0);
     const csg::Torus shape{major, minor};
     if (shape.invalidReason())
         e.fail(s.loc, "torus(): R = " + formatNumber(major) + ", r = " + formatNumber(minor) +
@@ -218,10 +165,10 @@ Instance torus(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
 
 Instance halfspace(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                    const GeomState& state) {
-    BoundArgs b = bind(e, s, ctx, {"normal", "offset"}, "halfspace(normal, offset)");
-    const Vec3 normal = vecArg(e, b, 0, "normal", Vec3(0, 0, 1), 0.0, false, false);
-    const double offset = numberArg(e, b, 1, "offset", 0.0);
-    if (normal == Vec3(0.0)) badArgument(e, b, 0, "normal", "a non-zero vector");
+    BoundArgs b = bindArgs(e, s, ctx, {"normal", "offset"}, "halfspace(normal, offset)");
+    const Vec3 normal = vecArg(e, b, 0, Vec3(0, 0, 1), 0.0, false, false);
+    const double offset = numberArg(e, b, 1, 0.0);
+    if (normal == Vec3(0.0)) b.bad(e, 0, "a non-zero vector");
     return csg::leaf(csg::HalfSpace{normal, offset}, {leafTag(e, s, state), state.material});
 }
 
@@ -230,14 +177,14 @@ Instance halfspace(Evaluator& e, const InstantiationStmt& s, const ContextPtr& c
 Instance unionModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                      const GeomState& state) {
     // union, group and render are the same to a ray caster.
-    BoundArgs b = bind(e, s, ctx, {"convexity"}, (s.name + "() { ... }").c_str());
+    BoundArgs b = bindArgs(e, s, ctx, {"convexity"}, (s.name + "() { ... }").c_str());
     return childrenGroup(e, b, ctx, state);
 }
 
 Instance booleanModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                        const GeomState& state, bool isDifference) {
     BoundArgs b =
-        bind(e, s, ctx, {}, isDifference ? "difference() { ... }" : "intersection() { ... }");
+        bindArgs(e, s, ctx, {}, isDifference ? "difference() { ... }" : "intersection() { ... }");
     GeomState inner = state;
     inner.modulePath = e.childPath(state, s.name);
     bool any = false;
@@ -280,8 +227,8 @@ Instance applyTransform(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
 
 Instance translate(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                    const GeomState& state) {
-    BoundArgs b = bind(e, s, ctx, {"v"}, "translate(v)");
-    const Vec3 v = vecArg(e, b, 0, "v", Vec3(0.0), 0.0, false);
+    BoundArgs b = bindArgs(e, s, ctx, {"v"}, "translate(v)");
+    const Vec3 v = vecArg(e, b, 0, Vec3(0.0), 0.0, false);
     return applyTransform(e, b, ctx, state, glm::translate(Mat4(1.0), v));
 }
 
@@ -304,17 +251,17 @@ Mat4 rotationAbout(const Vec3& axis, double degrees) {
 
 Instance rotate(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                 const GeomState& state) {
-    BoundArgs b = bind(e, s, ctx, {"a", "v"}, "rotate(a) or rotate([x, y, z]) or rotate(a, v)");
+    BoundArgs b = bindArgs(e, s, ctx, {"a", "v"}, "rotate(a) or rotate([x, y, z]) or rotate(a, v)");
     Mat4 m(1.0);
     if (b.given(0) && b[0].isVector()) {
         // rotate([x, y, z]) = Rz * Ry * Rx: about x first.
-        const Vec3 angles = vecArg(e, b, 0, "a", Vec3(0.0), 0.0, false);
+        const Vec3 angles = vecArg(e, b, 0, Vec3(0.0), 0.0, false);
         m = rotationAbout(Vec3(0, 0, 1), angles.z) * rotationAbout(Vec3(0, 1, 0), angles.y) *
             rotationAbout(Vec3(1, 0, 0), angles.x);
     } else if (b.given(0)) {
-        const double a = numberArg(e, b, 0, "a", 0.0);
+        const double a = numberArg(e, b, 0, 0.0);
         Vec3 axis(0, 0, 1);
-        if (b.given(1)) axis = vecArg(e, b, 1, "v", axis, 0.0, false, false);
+        if (b.given(1)) axis = vecArg(e, b, 1, axis, 0.0, false, false);
         // A zero axis rotates nothing, as in OpenSCAD.
         if (axis != Vec3(0.0)) m = rotationAbout(axis, a);
     }
@@ -323,8 +270,8 @@ Instance rotate(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
 
 Instance scale(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                const GeomState& state) {
-    BoundArgs b = bind(e, s, ctx, {"v"}, "scale(v)");
-    const Vec3 v = vecArg(e, b, 0, "v", Vec3(1.0), 1.0, true);
+    BoundArgs b = bindArgs(e, s, ctx, {"v"}, "scale(v)");
+    const Vec3 v = vecArg(e, b, 0, Vec3(1.0), 1.0, true);
     if (v.x == 0 || v.y == 0 || v.z == 0)
         e.fail(b.loc(0), "scale(" + b[0].brief() +
                              ") is singular (a zero factor flattens the solid); expected scale(v) "
@@ -334,8 +281,8 @@ Instance scale(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
 
 Instance mirror(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                 const GeomState& state) {
-    BoundArgs b = bind(e, s, ctx, {"v"}, "mirror(v)");
-    const Vec3 v = vecArg(e, b, 0, "v", Vec3(1, 0, 0), 0.0, false);
+    BoundArgs b = bindArgs(e, s, ctx, {"v"}, "mirror(v)");
+    const Vec3 v = vecArg(e, b, 0, Vec3(1, 0, 0), 0.0, false);
     Mat4 m(1.0);
     if (v != Vec3(0.0)) {
         // Householder reflection I - 2 n n^T across the plane through the origin normal to v.
@@ -348,19 +295,18 @@ Instance mirror(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
 
 Instance multmatrix(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                     const GeomState& state) {
-    BoundArgs b = bind(e, s, ctx, {"m"}, "multmatrix(m) with m a 4x4 or 3x4 matrix of rows");
+    BoundArgs b = bindArgs(e, s, ctx, {"m"}, "multmatrix(m) with m a 4x4 or 3x4 matrix of rows");
     Mat4 m(1.0);
     if (b.given(0)) {
         const Value& v = b[0];
         const char* what = "a 4x4 or 3x4 matrix (a vector of rows of 4 numbers)";
-        if (!v.isVector() || v.list().size() < 3 || v.list().size() > 4)
-            badArgument(e, b, 0, "m", what);
+        if (!v.isVector() || v.list().size() < 3 || v.list().size() > 4) b.bad(e, 0, what);
         for (size_t row = 0; row < v.list().size(); ++row) {
             const Value& r = v.list()[row];
-            if (!r.isVector() || r.list().size() != 4) badArgument(e, b, 0, "m", what);
+            if (!r.isVector() || r.list().size() != 4) b.bad(e, 0, what);
             for (size_t col = 0; col < 4; ++col) {
                 if (!r.list()[col].isNumber() || !std::isfinite(r.list()[col].number()))
-                    badArgument(e, b, 0, "m", what);
+                    b.bad(e, 0, what);
                 m[static_cast<int>(col)][static_cast<int>(row)] = r.list()[col].number();
             }
         }
@@ -380,11 +326,11 @@ Instance multmatrix(Evaluator& e, const InstantiationStmt& s, const ContextPtr& 
 
 Instance color(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                const GeomState& state) {
-    BoundArgs b = bind(e, s, ctx, {"c", "alpha"}, "color(c, alpha)");
+    BoundArgs b = bindArgs(e, s, ctx, {"c", "alpha"}, "color(c, alpha)");
     GeomState inner = state;
     Material m = e.model().materials[state.material];
-    if (auto c = colorArg(e, b, 0, "c")) m.color = *c;
-    if (b.given(1)) m.color.a = numberArg(e, b, 1, "alpha", 1.0);
+    if (auto c = colorArg(e, b, 0)) m.color = *c;
+    if (b.given(1)) m.color.a = numberArg(e, b, 1, 1.0);
     inner.material = e.internMaterial(m);
     return childrenGroup(e, b, ctx, inner);
 }
@@ -412,12 +358,11 @@ int32_t textureArg(Evaluator& e, const BoundArgs& b, size_t i, const std::string
 // not given keep the enclosing material's, like the coefficients; texture= alone implies
 // pattern="texture".
 void materialPattern(Evaluator& e, const BoundArgs& b, Material& m) {
-    if (auto c = colorArg(e, b, 9, "color2")) m.color2 = *c;
-    m.scale = numberArg(e, b, 10, "scale", m.scale);
-    if (m.scale <= 0) badArgument(e, b, 10, "scale", "a number > 0 (world units)");
+    if (auto c = colorArg(e, b, 9)) m.color2 = *c;
+    m.scale = numberArg(e, b, 10, m.scale);
+    if (m.scale <= 0) b.bad(e, 10, "a number > 0 (world units)");
     if (b.given(11)) {
-        if (!b[11].isString() || b[11].string().empty())
-            badArgument(e, b, 11, "texture", "a PNG file name");
+        if (!b[11].isString() || b[11].string().empty()) b.bad(e, 11, "a PNG file name");
         m.texture = textureArg(e, b, 11, b[11].string());
         m.pattern = Pattern::Texture;
     }
@@ -430,7 +375,7 @@ void materialPattern(Evaluator& e, const BoundArgs& b, Material& m) {
     else if (name == "texture")
         m.pattern = Pattern::Texture;
     else
-        badArgument(e, b, 8, "pattern", "\"checker\", \"texture\" or \"solid\"");
+        b.bad(e, 8, "\"checker\", \"texture\" or \"solid\"");
     if (m.pattern == Pattern::Texture && m.texture < 0)
         e.fail(b.loc(8),
                "material(): pattern=\"texture\" needs an image; expected "
@@ -439,24 +384,22 @@ void materialPattern(Evaluator& e, const BoundArgs& b, Material& m) {
 
 Instance material(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                   const GeomState& state) {
-    BoundArgs b = bind(e, s, ctx,
-                       {"color", "ambient", "diffuse", "specular", "shininess", "reflect",
-                        "transmit", "ior", "pattern", "color2", "scale", "texture"},
-                       "material(color, ambient, diffuse, specular, shininess, reflect, "
-                       "transmit, ior, pattern=\"checker\"|\"texture\"|\"solid\", color2, "
-                       "scale, texture=\"file.png\")");
+    BoundArgs b = bindArgs(e, s, ctx,
+                           {"color", "ambient", "diffuse", "specular", "shininess", "reflect",
+                            "transmit", "ior", "pattern", "color2", "scale", "texture"},
+                           "material(color, ambient, diffuse, specular, shininess, reflect, "
+                           "transmit, ior, pattern=\"checker\"|\"texture\"|\"solid\", color2, "
+                           "scale, texture=\"file.png\")");
     // Fields not given keep the enclosing material's values (inner wins field by field).
     Material m = e.model().materials[state.material];
-    if (auto c = colorArg(e, b, 0, "color")) m.color = *c;
+    if (auto c = colorArg(e, b, 0)) m.color = *c;
     double* fields[] = {&m.ambient, &m.diffuse,  &m.specular, &m.shininess,
                         &m.reflect, &m.transmit, &m.ior};
-    const char* names[] = {"ambient", "diffuse",  "specular", "shininess",
-                           "reflect", "transmit", "ior"};
     for (size_t k = 0; k < 7; ++k) {
-        *fields[k] = numberArg(e, b, k + 1, names[k], *fields[k]);
-        if (*fields[k] < 0) badArgument(e, b, k + 1, names[k], "a number >= 0");
+        *fields[k] = numberArg(e, b, k + 1, *fields[k]);
+        if (*fields[k] < 0) b.bad(e, k + 1, "a number >= 0");
     }
-    if (m.ior <= 0) badArgument(e, b, 7, "ior", "a number > 0");
+    if (m.ior <= 0) b.bad(e, 7, "a number > 0");
     materialPattern(e, b, m);
     GeomState inner = state;
     inner.material = e.internMaterial(m);
@@ -472,24 +415,22 @@ Instance noChildren(Evaluator& e, const InstantiationStmt& s) {
 
 Instance camera(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                 const GeomState& state) {
-    BoundArgs b = bind(e, s, ctx, {"eye", "center", "up", "fov", "projection"},
-                       "camera(eye, center, up, fov, projection)");
+    BoundArgs b = bindArgs(e, s, ctx, {"eye", "center", "up", "fov", "projection"},
+                           "camera(eye, center, up, fov, projection)");
     Camera c;
-    c.eye =
-        csg::transformPoint(state.worldFromHere, vecArg(e, b, 0, "eye", c.eye, 0.0, false, false));
-    c.center = csg::transformPoint(state.worldFromHere,
-                                   vecArg(e, b, 1, "center", c.center, 0.0, false, false));
-    c.up =
-        csg::transformVector(state.worldFromHere, vecArg(e, b, 2, "up", c.up, 0.0, false, false));
-    c.fov = numberArg(e, b, 3, "fov", c.fov);
-    if (c.fov <= 0 || c.fov >= 180) badArgument(e, b, 3, "fov", "an angle in (0, 180) degrees");
+    c.eye = csg::transformPoint(state.worldFromHere, vecArg(e, b, 0, c.eye, 0.0, false, false));
+    c.center =
+        csg::transformPoint(state.worldFromHere, vecArg(e, b, 1, c.center, 0.0, false, false));
+    c.up = csg::transformVector(state.worldFromHere, vecArg(e, b, 2, c.up, 0.0, false, false));
+    c.fov = numberArg(e, b, 3, c.fov);
+    if (c.fov <= 0 || c.fov >= 180) b.bad(e, 3, "an angle in (0, 180) degrees");
     if (b.given(4)) {
         if (b[4].isString() && b[4].string() == "perspective")
             c.projection = Projection::Perspective;
         else if (b[4].isString() && b[4].string() == "orthographic")
             c.projection = Projection::Orthographic;
         else
-            badArgument(e, b, 4, "projection", "\"perspective\" or \"orthographic\"");
+            b.bad(e, 4, "\"perspective\" or \"orthographic\"");
     }
     if (c.eye == c.center) e.fail(s.loc, "camera(): eye and center are the same point");
     if (e.model().camera) e.warn(s.loc, "more than one camera(); the last one is used");
@@ -499,24 +440,24 @@ Instance camera(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
 
 Instance light(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                const GeomState& state) {
-    BoundArgs b = bind(e, s, ctx, {"position", "color", "intensity", "shadows"},
-                       "light(position, color, intensity, shadows)");
+    BoundArgs b = bindArgs(e, s, ctx, {"position", "color", "intensity", "shadows"},
+                           "light(position, color, intensity, shadows)");
     Light l;
-    l.position = csg::transformPoint(state.worldFromHere,
-                                     vecArg(e, b, 0, "position", l.position, 0.0, false, false));
-    if (auto c = colorArg(e, b, 1, "color")) l.color = Vec3(*c);
-    l.intensity = numberArg(e, b, 2, "intensity", l.intensity);
-    if (l.intensity < 0) badArgument(e, b, 2, "intensity", "a number >= 0");
-    l.shadows = boolArg(e, b, 3, "shadows", l.shadows);
+    l.position =
+        csg::transformPoint(state.worldFromHere, vecArg(e, b, 0, l.position, 0.0, false, false));
+    if (auto c = colorArg(e, b, 1)) l.color = Vec3(*c);
+    l.intensity = numberArg(e, b, 2, l.intensity);
+    if (l.intensity < 0) b.bad(e, 2, "a number >= 0");
+    l.shadows = boolArg(e, b, 3, l.shadows);
     e.model().lights.push_back(l);
     return noChildren(e, s);
 }
 
 Instance background(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                     const GeomState&) {
-    BoundArgs b = bind(e, s, ctx, {"color"}, "background(color)");
+    BoundArgs b = bindArgs(e, s, ctx, {"color"}, "background(color)");
     if (!b.given(0)) e.fail(s.loc, "background() needs a color; expected background(color)");
-    if (auto c = colorArg(e, b, 0, "color")) e.model().background = Vec3(*c);
+    if (auto c = colorArg(e, b, 0)) e.model().background = Vec3(*c);
     return noChildren(e, s);
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string_view>
 
+#include "io/BoundArgs.h"
 #include "primitives/PatchSet.h"
 #include "primitives/patch/Intersect.h"
 
@@ -16,47 +17,8 @@ constexpr const char* kPatchesForm =
     "bezier_patches(points = [[x, y, z], ...], patches = [[16 indices], ...], method = "
     "\"clip\", solid = false)";
 
-// The arguments by name or position (names in order), each with its location.
-struct Args {
-    const InstantiationStmt& call;
-    const char* form;
-    std::vector<std::string_view> names;
-    std::vector<Value> values;
-    std::vector<Loc> locs;
-
-    [[noreturn]] void bad(Evaluator& e, size_t i, const std::string& what) const {
-        e.fail(locs[i], call.name + "(): '" + std::string(names[i]) + "' must be " + what +
-                            ", got " + values[i].brief() + "; expected " + form);
-    }
-};
-
-Args bindArgs(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx, const char* form,
-              std::vector<std::string_view> names) {
-    Args b{s, form, names, std::vector<Value>(names.size()), std::vector<Loc>(names.size(), s.loc)};
-    size_t positional = 0;
-    for (const ArgValue& a : e.evalArgs(s.args, ctx)) {
-        size_t k = 0;
-        if (a.name.empty()) {
-            k = positional++;
-            if (k >= names.size())
-                e.fail(a.loc, "too many arguments to " + s.name + "(); expected " + form);
-        } else {
-            if (a.name[0] == '$') continue;  // $fn and friends: patches are exact
-            while (k < names.size() && names[k] != a.name) ++k;
-            if (k == names.size()) {
-                e.warn(a.loc,
-                       "unknown parameter '" + a.name + "' of " + s.name + "(); expected " + form);
-                continue;
-            }
-        }
-        b.values[k] = a.value;
-        b.locs[k] = a.loc;
-    }
-    return b;
-}
-
 // A list of 3-D points: exactly `count` of them when count > 0, else at least one.
-std::vector<csg::Vec3> pointsArg(Evaluator& e, const Args& b, size_t i, size_t count) {
+std::vector<csg::Vec3> pointsArg(Evaluator& e, const BoundArgs& b, size_t i, size_t count) {
     const std::string what = count > 0 ? "a list of " + std::to_string(count) + " points [x, y, z]"
                                        : "a non-empty list of points [x, y, z]";
     if (b.values[i].isUndef())
@@ -82,7 +44,7 @@ std::vector<csg::Vec3> pointsArg(Evaluator& e, const Args& b, size_t i, size_t c
     return points;
 }
 
-csg::PatchMethod methodArg(Evaluator& e, const Args& b, size_t i) {
+csg::PatchMethod methodArg(Evaluator& e, const BoundArgs& b, size_t i) {
     if (b.values[i].isUndef()) return csg::PatchMethod::Clip;
     std::string names;
     for (csg::PatchMethod m : csg::kAllPatchMethods)
@@ -95,14 +57,15 @@ csg::PatchMethod methodArg(Evaluator& e, const Args& b, size_t i) {
     return *m;
 }
 
-bool solidArg(Evaluator& e, const Args& b, size_t i) {
+bool solidArg(Evaluator& e, const BoundArgs& b, size_t i) {
     if (b.values[i].isUndef()) return false;
     if (!b.values[i].isBool()) b.bad(e, i, "true or false");
     return b.values[i].asBool();
 }
 
-Instance finish(Evaluator& e, const InstantiationStmt& s, const GeomState& state, const Args& b,
-                std::vector<csg::BezierPatch> patches, csg::PatchMethod method, bool solid) {
+Instance finish(Evaluator& e, const InstantiationStmt& s, const GeomState& state,
+                const BoundArgs& b, std::vector<csg::BezierPatch> patches, csg::PatchMethod method,
+                bool solid) {
     if (!s.children.empty()) e.warn(s.loc, s.name + "() takes no children; they are ignored");
     const csg::PatchSet set = csg::PatchSet::make(std::move(patches), method, solid);
     if (const char* why = set.invalidReason())
@@ -114,7 +77,7 @@ Instance finish(Evaluator& e, const InstantiationStmt& s, const GeomState& state
 
 Instance bezierPatchModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                            const GeomState& state) {
-    const Args b = bindArgs(e, s, ctx, kPatchForm, {"points", "method", "solid"});
+    const BoundArgs b = bindArgs(e, s, ctx, {"points", "method", "solid"}, kPatchForm);
     const std::vector<csg::Vec3> points = pointsArg(e, b, 0, 16);
     csg::BezierPatch patch;
     for (int k = 0; k < 16; ++k) patch.points[k] = points[k];
@@ -123,7 +86,7 @@ Instance bezierPatchModule(Evaluator& e, const InstantiationStmt& s, const Conte
 
 Instance bezierPatchesModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                              const GeomState& state) {
-    const Args b = bindArgs(e, s, ctx, kPatchesForm, {"points", "patches", "method", "solid"});
+    const BoundArgs b = bindArgs(e, s, ctx, {"points", "patches", "method", "solid"}, kPatchesForm);
     const std::vector<csg::Vec3> points = pointsArg(e, b, 0, 0);
     // patches: lists of 16 whole indices into points.
     if (b.values[1].isUndef()) e.fail(s.loc, s.name + "() needs 'patches'; expected " + b.form);

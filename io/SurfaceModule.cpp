@@ -11,6 +11,7 @@
 #include <cmath>
 #include <string_view>
 
+#include "io/BoundArgs.h"
 #include "io/Parser.h"
 #include "primitives/AlgebraicSurface.h"
 
@@ -221,72 +222,28 @@ private:
     int held_ = 0;
 };
 
-// The arguments by name or position, with the expression each came from (for f's location).
-struct SurfaceArgs {
-    static constexpr std::string_view kNames[] = {"f", "bbox", "solver", "tolerance"};
-    Value values[4];
-    Loc locs[4];
-    const Expr* exprs[4] = {};
-};
-
-SurfaceArgs bindArgs(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx) {
-    SurfaceArgs b;
-    for (Loc& l : b.locs) l = s.loc;
-    const ArgValues values = e.evalArgs(s.args, ctx);
-    size_t positional = 0;
-    for (size_t i = 0; i < values.size(); ++i) {
-        const ArgValue& a = values[i];
-        size_t k = 0;
-        if (a.name.empty()) {
-            k = positional++;
-            if (k >= 4)
-                e.fail(a.loc, std::string("too many arguments to surface(); expected ") + kForm);
-        } else {
-            if (a.name[0] == '$') continue;  // $fn and friends: the surface is exact
-            if (a.name == "file")
-                e.fail(a.loc, std::string("surface(file = ...): OpenSCAD's heightmaps are not "
-                                          "supported; csgray's surface() is ") +
-                                  kForm);
-            while (k < 4 && SurfaceArgs::kNames[k] != a.name) ++k;
-            if (k == 4) {
-                e.warn(a.loc, "unknown parameter '" + a.name + "' of surface(); expected " + kForm);
-                continue;
-            }
-        }
-        b.values[k] = a.value;
-        b.locs[k] = a.loc;
-        b.exprs[k] = s.args[i].value.get();
-    }
-    return b;
-}
-
-[[noreturn]] void bad(Evaluator& e, const SurfaceArgs& b, int i, const char* what) {
-    e.fail(b.locs[i], "surface(): '" + std::string(SurfaceArgs::kNames[i]) + "' must be " + what +
-                          ", got " + b.values[i].brief() + "; expected " + kForm);
-}
-
-csg::Bounds3 bboxArg(Evaluator& e, const SurfaceArgs& b) {
+csg::Bounds3 bboxArg(Evaluator& e, const BoundArgs& b) {
     const char* what = "[[x0, y0, z0], [x1, y1, z1]] with x0 < x1, y0 < y1, z0 < z1";
     if (b.values[1].isUndef())
         e.fail(b.locs[1], std::string("surface() needs a bounding box bbox; expected ") + kForm);
     const Value& v = b.values[1];
-    if (!v.isVector() || v.list().size() != 2) bad(e, b, 1, what);
+    if (!v.isVector() || v.list().size() != 2) b.bad(e, 1, what);
     csg::Vec3 corner[2];
     for (int c = 0; c < 2; ++c) {
         const Value& p = v.list()[c];
-        if (!p.isVector() || p.list().size() != 3) bad(e, b, 1, what);
+        if (!p.isVector() || p.list().size() != 3) b.bad(e, 1, what);
         for (int k = 0; k < 3; ++k) {
             const Value& n = p.list()[k];
-            if (!n.isNumber() || !std::isfinite(n.number())) bad(e, b, 1, what);
+            if (!n.isNumber() || !std::isfinite(n.number())) b.bad(e, 1, what);
             corner[c][k] = n.number();
         }
     }
     for (int k = 0; k < 3; ++k)
-        if (!(corner[0][k] < corner[1][k])) bad(e, b, 1, what);
+        if (!(corner[0][k] < corner[1][k])) b.bad(e, 1, what);
     return {corner[0], corner[1]};
 }
 
-csg::Solver solverArg(Evaluator& e, const SurfaceArgs& b) {
+csg::Solver solverArg(Evaluator& e, const BoundArgs& b) {
     if (b.values[2].isUndef()) return csg::Solver::Auto;
     std::string names;
     for (csg::Solver s : csg::kAllSolvers)
@@ -302,12 +259,17 @@ csg::Solver solverArg(Evaluator& e, const SurfaceArgs& b) {
 
 Instance surfaceModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                        const GeomState& state) {
-    const SurfaceArgs b = bindArgs(e, s, ctx);
+    for (const Argument& a : s.args)
+        if (a.name == "file")
+            e.fail(a.loc, std::string("surface(file = ...): OpenSCAD's heightmaps are not "
+                                      "supported; csgray's surface() is ") +
+                              kForm);
+    const BoundArgs b = bindArgs(e, s, ctx, {"f", "bbox", "solver", "tolerance"}, kForm);
 
     // f: parsed by the language's own parser as a source of its own.
     if (b.values[0].isUndef())
         e.fail(s.loc, std::string("surface() needs a polynomial f; expected ") + kForm);
-    if (!b.values[0].isString()) bad(e, b, 0, "a string");
+    if (!b.values[0].isString()) b.bad(e, 0, "a string");
     const std::string& f = b.values[0].string();
     FText text{b.locs[0], false, 0};
     if (b.exprs[0] && b.exprs[0]->kind == ExprKind::String &&
@@ -332,7 +294,7 @@ Instance surfaceModule(Evaluator& e, const InstantiationStmt& s, const ContextPt
     double tolerance = 0.0;
     if (!b.values[3].isUndef()) {
         if (!b.values[3].isNumber() || !(b.values[3].number() >= 0 && b.values[3].number() < 1))
-            bad(e, b, 3, "a number in [0, 1) (0: roots to double precision)");
+            b.bad(e, 3, "a number in [0, 1) (0: roots to double precision)");
         tolerance = b.values[3].number();
     }
 

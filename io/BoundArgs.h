@@ -1,0 +1,36 @@
+// A built-in module call's arguments matched to its parameter names, by OpenSCAD's rules:
+// positional arguments in order, then named ones; $-arguments ($fn, $fa, $fs) are left to the
+// children; an unknown name is a warning, one positional argument too many an error.
+#pragma once
+
+#include <initializer_list>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/Evaluator.h"
+
+namespace io {
+
+struct BoundArgs {
+    const InstantiationStmt& call;
+    std::string form;  // the expected form, for messages: "cube(size, center)"
+    std::vector<std::string_view> names;
+    std::vector<Value> values;       // undef where not given
+    std::vector<Loc> locs;           // the call's location where not given
+    std::vector<const Expr*> exprs;  // the expression each came from; null where not given
+    ArgValues all;                   // every argument as evaluated, $-arguments included
+
+    const Value& operator[](size_t i) const { return values[i]; }
+    bool given(size_t i) const { return !values[i].isUndef(); }
+    Loc loc(size_t i) const { return locs[i]; }
+
+    // "name(): 'param' must be <what>, got <value>; expected <form>" at the argument.
+    [[noreturn]] void bad(Evaluator& e, size_t i, std::string_view what) const;
+};
+
+// names are the parameters in positional order; form is quoted in every message.
+BoundArgs bindArgs(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+                   std::initializer_list<std::string_view> names, std::string form);
+
+}  // namespace io
