@@ -227,12 +227,6 @@ int intersectLexVU(const BezierPatch& patch, const PlaneEquations& planes, const
     // Step 6: back-substitution. At each u, v from the basis element of lowest v-degree whose
     // leading coefficient does not vanish there (the original F1 when none qualifies).
     int n = 0;
-    // A candidate the method found is validated as it is, then polished (polishRoot).
-    auto accept = [&](double u, double v) {
-        if (!isCommonRoot(planes, u, v)) return;
-        if (options.polish) polishRoot(planes, u, v);
-        appendCrossing(patch, o, d, u, v, out, n);
-    };
     for (int r = 0; r < uCount && n < kMaxPatchCrossings; ++r) {
         const double u = us[r];
         const Bivariate* pick = &planes.f1;
@@ -253,7 +247,8 @@ int intersectLexVU(const BezierPatch& patch, const PlaneEquations& planes, const
         const int vCount =
             solve(inV.trimmed(), -tol::kPatchParamSlack, 1.0 + tol::kPatchParamSlack, vs);
         const int before = n;
-        for (int k = 0; k < vCount && n < kMaxPatchCrossings; ++k) accept(u, vs[k]);
+        for (int k = 0; k < vCount && n < kMaxPatchCrossings; ++k)
+            acceptMethodRoot(patch, planes, o, d, u, vs[k], options, out, n);
         if (n > before || !options.polish || !hasCloseNeighbour(us, uCount, r)) continue;
         // No v from the basis at a near-double root: where two crossings share nearly the
         // same u (the eliminant has two roots within tol::kPatchRootDriftParam), the element's

@@ -148,6 +148,14 @@ bool hasCloseNeighbour(const double* roots, int count, int i) {
            (i + 1 < count && roots[i + 1] - roots[i] <= tol::kPatchRootDriftParam);
 }
 
+void acceptMethodRoot(const BezierPatch& patch, const PlaneEquations& planes, const Vec3& o,
+                      const Vec3& d, double u, double v, const AlgebraOptions& options,
+                      PatchCrossings& out, int& n) {
+    if (!isCommonRoot(planes, u, v)) return;
+    if (options.polish) polishRoot(planes, u, v);
+    appendCrossing(patch, o, d, u, v, out, n);
+}
+
 void crossingsFromPlaneRoots(const BezierPatch& patch, const PlaneEquations& planes, const Vec3& o,
                              const Vec3& d, double u, const AlgebraOptions& options,
                              PatchCrossings& out, int& n) {

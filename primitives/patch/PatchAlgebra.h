@@ -46,13 +46,19 @@ bool isCommonRoot(const PlaneEquations& planes, double u, double v);
 // the Bezout null vector ill-conditioned). vs holds 2 * Bivariate::kMaxDegreeV entries.
 int planeRootsInV(const PlaneEquations& planes, double u, double smallRel, double* vs);
 
-// The crossings at a root u whose v the method lost: each root of planeRootsInV, polished
-// (when options.polish) as long as u moves by at most tol::kPatchRootDriftParam, kept when it
-// is a common root; appended to out[n..).
 // True when roots[i] has a neighbour in roots[0..count) (ascending) within
 // tol::kPatchRootDriftParam: a near-double root, where v from the method is ill-conditioned.
 bool hasCloseNeighbour(const double* roots, int count, int i);
 
+// The crossing at a root (u, v) the method found: checked as found (isCommonRoot), then
+// polished (when options.polish) and appended to out[n..).
+void acceptMethodRoot(const BezierPatch& patch, const PlaneEquations& planes, const Vec3& o,
+                      const Vec3& d, double u, double v, const AlgebraOptions& options,
+                      PatchCrossings& out, int& n);
+
+// The crossings at a root u whose v the method lost: each root of planeRootsInV, polished
+// (when options.polish) as long as u moves by at most tol::kPatchRootDriftParam, kept when it
+// is a common root; appended to out[n..).
 void crossingsFromPlaneRoots(const BezierPatch& patch, const PlaneEquations& planes, const Vec3& o,
                              const Vec3& d, double u, const AlgebraOptions& options,
                              PatchCrossings& out, int& n);

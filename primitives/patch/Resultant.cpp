@@ -171,18 +171,12 @@ int intersectByResultant(const BezierPatch& patch, const Vec3& o, const Vec3& d,
 
     // Step 2: v at each u, from the Bezout null vector; else (below) from the plane equations.
     int n = 0;
-    // A candidate the method found is validated as it is, then polished (polishRoot).
-    auto accept = [&](double u, double v) {
-        if (!isCommonRoot(planes, u, v)) return;
-        if (options.polish) polishRoot(planes, u, v);
-        appendCrossing(patch, o, d, u, v, out, n);
-    };
     for (int r = 0; r < uCount && n < kMaxPatchCrossings; ++r) {
         const double u = us[r];
         const int before = n;
         double v;
         const bool rank2 = nullVectorV(b, u, v);
-        if (rank2) accept(u, v);
+        if (rank2) acceptMethodRoot(patch, planes, o, d, u, v, options, out, n);
         if (n > before || (rank2 && !hasCloseNeighbour(us, uCount, r))) continue;
         // B(u) has rank < 2 (two crossings share this u), or u is a near-double root (two
         // crossings at nearly the same u) where the null vector's v is ill-conditioned: the
