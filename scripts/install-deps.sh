@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Installs every Debian package csgray needs to build, test and benchmark.
+# Usage: scripts/install-deps.sh [PACKAGE...]   (with packages: only those)
 # Idempotent: when everything is present it prints nothing and exits 0.
 set -euo pipefail
 
@@ -21,6 +22,9 @@ packages=(
 # cli_mesh_test runs the Khronos glTF validator (npm gltf-validator) under Node. Any Node with
 # npm will do; only when there is none is Debian's installed.
 command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
+
+# With arguments, just those packages instead (scripts/fuzz.sh: clang and its sanitizer runtime).
+[ $# -eq 0 ] || packages=("$@")
 
 missing=()
 for p in "${packages[@]}"; do
