@@ -8,8 +8,8 @@
 #   bench/peer_render.sh [SIZE] [THREADS]     defaults: 1600 (a SIZE x SIZE image), nproc
 #
 # Needs a built csgray (CSGRAY=path, default build/viewer/csgray) and POV-Ray (Debian
-# `povray`; installed here with apt-get when missing: benchmarks are not part of the test
-# set-up). Not a timed test: run it on an idle machine and look at `uptime` first.
+# `povray`; installed by `scripts/install-deps.sh povray` when missing: benchmarks are not part
+# of the test set-up). Not a timed test: run it on an idle machine and look at `uptime` first.
 set -euo pipefail
 
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -21,14 +21,7 @@ threads="${2:-$(nproc)}"
 csgray="${CSGRAY:-$root/build/viewer/csgray}"
 [ -x "$csgray" ] || { echo "no csgray at $csgray (build it, or set CSGRAY)" >&2; exit 1; }
 
-if ! command -v povray >/dev/null; then
-    echo "installing povray (apt-get)..." >&2
-    if [ "$(id -u)" -eq 0 ]; then
-        DEBIAN_FRONTEND=noninteractive apt-get install -y -q povray >&2
-    else
-        sudo DEBIAN_FRONTEND=noninteractive apt-get install -y -q povray >&2
-    fi
-fi
+command -v povray >/dev/null || "$root/scripts/install-deps.sh" povray
 
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
