@@ -74,10 +74,7 @@ int solveBernstein(const Polynomial& input, double tlo, double thi, double* root
     first.a = tlo, first.b = thi, first.depth = 0, first.fresh = true;
     toBernstein(p, tlo, thi, first.c.data(), first.noise.data());
     for (double end : {tlo, thi})
-        if (p(end) == 0.0) {
-            found[count++] = end;
-            if (isNumericalZero(dp, end)) found[count++] = end;
-        }
+        listExactZero(p, dp, end, found.data(), &count);
     while (top > 0 && count < capacity) {
         Piece piece = stack[--top];
         // Step 1: the variation count bounds the roots in the open piece (counting a
@@ -107,21 +104,14 @@ int solveBernstein(const Polynomial& input, double tlo, double thi, double* root
             undecided.add(piece.a, piece.b, p, found.data(), &count);
             continue;
         }
-        if (p(m) == 0.0) {
-            found[count++] = m;
-            if (isNumericalZero(dp, m)) found[count++] = m;
-        }
+        listExactZero(p, dp, m, found.data(), &count);
         Piece& right = stack[top++];
         right.a = m, right.b = piece.b, right.depth = piece.depth + 1, right.fresh = false;
         right.noise = piece.noise;
         split(piece.c, n, right.c);
         stack[top++] = {piece.a, m, piece.depth + 1, false, piece.c, piece.noise};
     }
-    count += undecided.resolve(p, found.data() + count);
-    count = finalizeRoots(p, found.data(), count, tlo, thi);
-    count = std::min(count, p.degree());
-    std::copy(found.begin(), found.begin() + count, roots);
-    return count;
+    return finishSubdivision(p, undecided, found.data(), count, tlo, thi, roots);
 }
 
 }  // namespace csg

@@ -75,14 +75,8 @@ int solveDescartes(const Polynomial& input, double tlo, double thi, double* root
     UndecidedPieces undecided;
     int top = 0, n = 0;
     stack[top++] = {0.0, 0};
-    if (p(tlo) == 0.0) {
-        found[n++] = tlo;
-        if (isNumericalZero(dp, tlo)) found[n++] = tlo;
-    }
-    if (p(thi) == 0.0) {
-        found[n++] = thi;
-        if (isNumericalZero(dp, thi)) found[n++] = thi;
-    }
+    listExactZero(p, dp, tlo, found.data(), &n);
+    listExactZero(p, dp, thi, found.data(), &n);
     while (top > 0 && n < capacity) {
         const Piece piece = stack[--top];
         const double b = piece.a + std::ldexp(1.0, -piece.depth);
@@ -107,18 +101,11 @@ int solveDescartes(const Polynomial& input, double tlo, double thi, double* root
             undecided.add(ta, tb, p, found.data(), &n);
             continue;
         }
-        if (p(tm) == 0.0) {
-            found[n++] = tm;
-            if (isNumericalZero(dp, tm)) found[n++] = tm;
-        }
+        listExactZero(p, dp, tm, found.data(), &n);
         stack[top++] = {m, piece.depth + 1};
         stack[top++] = {piece.a, piece.depth + 1};
     }
-    n += undecided.resolve(p, found.data() + n);
-    n = finalizeRoots(p, found.data(), n, tlo, thi);
-    n = std::min(n, p.degree());
-    std::copy(found.begin(), found.begin() + n, roots);
-    return n;
+    return finishSubdivision(p, undecided, found.data(), n, tlo, thi, roots);
 }
 
 }  // namespace csg

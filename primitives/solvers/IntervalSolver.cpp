@@ -29,10 +29,7 @@ int solveIntervalSubdivision(const Polynomial& input, double tlo, double thi, do
     int top = 0, n = 0;
     stack[top++] = {tlo, thi, 0};
     // A root exactly at tlo is on no piece's open interior; list it here (split points below).
-    if (p(tlo) == 0.0) {
-        found[n++] = tlo;
-        if (isNumericalZero(dp, tlo)) found[n++] = tlo;
-    }
+    listExactZero(p, dp, tlo, found.data(), &n);
     while (top > 0 && n < capacity) {
         const Piece piece = stack[--top];
         const double m = 0.5 * piece.a + 0.5 * piece.b;
@@ -70,18 +67,11 @@ int solveIntervalSubdivision(const Polynomial& input, double tlo, double thi, do
         }
         // Step 4: halve; a root exactly on the split point is listed now (twice when p' is
         // numerically zero there too: a tangency). Right half first, so roots come out ascending.
-        if (p(m) == 0.0) {
-            found[n++] = m;
-            if (isNumericalZero(dp, m)) found[n++] = m;
-        }
+        listExactZero(p, dp, m, found.data(), &n);
         stack[top++] = {m, piece.b, piece.depth + 1};
         stack[top++] = {piece.a, m, piece.depth + 1};
     }
-    n += undecided.resolve(p, found.data() + n);
-    n = finalizeRoots(p, found.data(), n, tlo, thi);
-    n = std::min(n, p.degree());
-    std::copy(found.begin(), found.begin() + n, roots);
-    return n;
+    return finishSubdivision(p, undecided, found.data(), n, tlo, thi, roots);
 }
 
 }  // namespace csg

@@ -154,4 +154,13 @@ int finalizeRoots(const Polynomial& p, double* roots, int n, double tlo, double 
     return out;
 }
 
+int finishSubdivision(const Polynomial& p, UndecidedPieces& undecided, double* found, int n,
+                      double tlo, double thi, double* roots) {
+    n += undecided.resolve(p, found + n);
+    n = finalizeRoots(p, found, n, tlo, thi);
+    n = std::min(n, p.degree());
+    std::copy(found, found + n, roots);
+    return n;
+}
+
 }  // namespace csg

@@ -41,6 +41,16 @@ double refineBracketed(const Polynomial& p, double lo, double hi, double relTol 
 // evaluated where t^n overflows (the cause of the misses on the quartic {1e53, 1e50, ...}).
 double rootBound(const Polynomial& p);
 
+// A subdivision solver's check of a point on no piece's open interior (a range end or a split
+// point): an exact zero of p there is listed once, twice when p' (dp) is numerically zero too
+// (a tangency). Appends to out at *n.
+inline void listExactZero(const Polynomial& p, const Polynomial& dp, double t, double* out,
+                          int* n) {
+    if (p(t) != 0.0) return;
+    out[(*n)++] = t;
+    if (isNumericalZero(dp, t)) out[(*n)++] = t;
+}
+
 // The subdivision solvers' answer for an interval [a, b] they may not or need not split
 // further (at double resolution, at the asked tolerance, or where p is rounding noise
 // throughout) and that may hold roots: one crossing, refined, when p changes sign over it; one
@@ -94,5 +104,11 @@ int maxSignVariations(const double* c, const double* noise, int n);
 // candidates becomes one root listed once when m is odd, twice when even), keeps those in [tlo,
 // thi], and returns their count.
 int finalizeRoots(const Polynomial& p, double* roots, int n, double tlo, double thi);
+
+// The subdivision solvers' common last step: resolves the undecided pieces into the n
+// candidates in found, finalizes them over [tlo, thi], keeps at most p's degree and copies
+// them to roots. Returns their count.
+int finishSubdivision(const Polynomial& p, UndecidedPieces& undecided, double* found, int n,
+                      double tlo, double thi, double* roots);
 
 }  // namespace csg
