@@ -157,6 +157,7 @@ struct Compiler {
                                 ": it has no inside; use it as a top-level object, or declare a "
                                 "closed patch set solid=true",
                             node.tags.source);
+                    if (shape.isSheet()) scene.hasSheets_ = true;
                 }
                 geometry.localBounds = shape.bounds();
                 box = worldBounds(shape, worldFromLocal);

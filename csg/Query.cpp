@@ -104,7 +104,9 @@ struct Evaluator {
         top = base + na + nb;
         Span* out = room(na + nb);
         Span* s = stack().data();
-        const size_t n = mergeSpans(op, s + base, na, s + base + na, nb, out, originScale);
+        // Without sheets in the scene (known at compile), skip mergeSpans' scan for them.
+        const auto merge = scene.hasSheets_ ? mergeSpans : mergeSolidSpans;
+        const size_t n = merge(op, s + base, na, s + base + na, nb, out, originScale);
         std::copy(out, out + n, s + base);
         top = base + n;
         return n;

@@ -112,6 +112,7 @@ private:
     std::vector<uint32_t> children_;  // child node indices of n-ary unions
     std::vector<BvhNode> bvh_;
     uint32_t root_ = 0;
+    bool hasSheets_ = false;  // a leaf is a sheet: unions must look for sheet crossings
 };
 
 }  // namespace csg

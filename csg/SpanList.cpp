@@ -47,9 +47,6 @@ size_t nextSheet(const Span* s, size_t n, size_t i) {
     return i;
 }
 
-size_t mergeSolids(SetOp op, const Span* a, size_t na, const Span* b, size_t nb, Span* out,
-                   double originScale);
-
 // A union whose operands hold sheet crossings: the solids merge as always (into the tail of
 // out, past room for every sheet), then the sheets are merged in front of them in t order.
 // A sheet crossing is kept where no solid span covers or touches it (within the coincidence
@@ -58,7 +55,7 @@ size_t mergeSolids(SetOp op, const Span* a, size_t na, const Span* b, size_t nb,
 size_t mergeWithSheets(const Span* a, size_t na, const Span* b, size_t nb, size_t sheets, Span* out,
                        double originScale) {
     size_t read = sheets;
-    const size_t end = sheets + mergeSolids(SetOp::Union, a, na, b, nb, out + sheets, originScale);
+    const size_t end = sheets + mergeSolidSpans(SetOp::Union, a, na, b, nb, out + sheets, originScale);
     size_t write = 0;  // never reaches read: fewer sheets are written than there is room for
     size_t ia = nextSheet(a, na, 0), ib = nextSheet(b, nb, 0);
     while (ia < na || ib < nb) {
@@ -93,13 +90,11 @@ size_t mergeSpans(SetOp op, const Span* a, size_t na, const Span* b, size_t nb, 
         const size_t sheets = countSheets(a, na) + countSheets(b, nb);
         if (sheets > 0) return mergeWithSheets(a, na, b, nb, sheets, out, originScale);
     }
-    return mergeSolids(op, a, na, b, nb, out, originScale);
+    return mergeSolidSpans(op, a, na, b, nb, out, originScale);
 }
 
-namespace {
-
-size_t mergeSolids(SetOp op, const Span* a, size_t na, const Span* b, size_t nb, Span* out,
-                   double originScale) {
+size_t mergeSolidSpans(SetOp op, const Span* a, size_t na, const Span* b, size_t nb, Span* out,
+                       double originScale) {
     Cursor ca(a, na), cb(b, nb);
     SpanWriter writer(out, originScale);
     const bool flipB = op == SetOp::Difference;
@@ -139,7 +134,5 @@ size_t mergeSolids(SetOp op, const Span* a, size_t na, const Span* b, size_t nb,
     // so inResult is false here whenever the inputs were closed lists.
     return writer.count();
 }
-
-}  // namespace
 
 }  // namespace csg

@@ -66,4 +66,9 @@ private:
 size_t mergeSpans(SetOp op, const Span* a, size_t na, const Span* b, size_t nb, Span* out,
                   double originScale);
 
+// mergeSpans for lists known to hold no sheet crossings (a scene compiled without sheets):
+// the same result, without scanning the operands for sheets on every merge.
+size_t mergeSolidSpans(SetOp op, const Span* a, size_t na, const Span* b, size_t nb, Span* out,
+                       double originScale);
+
 }  // namespace csg
