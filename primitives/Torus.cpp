@@ -100,14 +100,15 @@ void Torus::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
         return;
     }
     const double a = u.x * u.x + u.y * u.y;
+    const double rhoB = radial(b.x, b.y);
     if (a > 0.0) {
         const double outer = R + r;
         double c0, c1;
         const double f = b.x * u.x + b.y * u.y;
-        const double k = (radial(b.x, b.y) - outer) * (radial(b.x, b.y) + outer);
+        const double k = (rhoB - outer) * (rhoB + outer);
         if (solveQuadratic(a, 2.0 * f, k, c0, c1) < 2) return;
         sLo = std::max(sLo, c0), sHi = std::min(sHi, c1);
-    } else if (radial(b.x, b.y) > R + r) {
+    } else if (rhoB > R + r) {
         return;
     }
     if (!(sLo <= sHi)) return;
