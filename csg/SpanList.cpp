@@ -55,7 +55,8 @@ size_t nextSheet(const Span* s, size_t n, size_t i) {
 size_t mergeWithSheets(const Span* a, size_t na, const Span* b, size_t nb, size_t sheets, Span* out,
                        double originScale) {
     size_t read = sheets;
-    const size_t end = sheets + mergeSolidSpans(SetOp::Union, a, na, b, nb, out + sheets, originScale);
+    const size_t end =
+        sheets + mergeSolidSpans(SetOp::Union, a, na, b, nb, out + sheets, originScale);
     size_t write = 0;  // never reaches read: fewer sheets are written than there is room for
     size_t ia = nextSheet(a, na, 0), ib = nextSheet(b, nb, 0);
     while (ia < na || ib < nb) {

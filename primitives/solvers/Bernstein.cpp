@@ -73,8 +73,7 @@ int solveBernstein(const Polynomial& input, double tlo, double thi, double* root
     Piece& first = stack[top++];
     first.a = tlo, first.b = thi, first.depth = 0, first.fresh = true;
     toBernstein(p, tlo, thi, first.c.data(), first.noise.data());
-    for (double end : {tlo, thi})
-        listExactZero(p, dp, end, found.data(), &count);
+    for (double end : {tlo, thi}) listExactZero(p, dp, end, found.data(), &count);
     while (top > 0 && count < capacity) {
         Piece piece = stack[--top];
         // Step 1: the variation count bounds the roots in the open piece (counting a
