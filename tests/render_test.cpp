@@ -533,24 +533,37 @@ TEST(Threads, ImageDoesNotDependOnTheThreadCount) {
     EXPECT_EQ(one.result.rays.total(), three.result.rays.total());
 }
 
-TEST(Tracer, AllocatesNothingPerRayOnceWarm) {
-    // Every effect at once: shadows, reflection, refraction through a cut glass part.
-    const LoadedScene s = load(scaledScene(1.0));
+// Every pixel's primary ray of the scene's camera, traced twice by one Tracer: the heap
+// allocations of the second frame (the first is the warm-up, where the context's scratch grows
+// to its largest ray), the tracer's ray counts and the colour sum over both frames.
+struct WarmFrame {
+    uint64_t allocations;
+    RayCounts rays;
+    csg::Vec3 sum;
+};
+WarmFrame traceTwice(const LoadedScene& s, int width, int height) {
     const io::Camera camera = *s.model.camera;
     const EffectsPlan plan = makeEffectsPlan(s.model, s.scene, camera, {});
-    const RenderCamera view(camera, 64, 48);
+    const RenderCamera view(camera, width, height);
     Tracer tracer(s.scene, plan);
     csg::Vec3 sum(0.0);
     auto frame = [&] {
-        for (int y = 0; y < 48; ++y)
-            for (int x = 0; x < 64; ++x) sum += tracer.tracePrimary(view.ray(x + 0.5, y + 0.5));
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x)
+                sum += tracer.tracePrimary(view.ray(x + 0.5, y + 0.5));
     };
-    frame();  // warm-up: the context's scratch grows to its largest ray
+    frame();
     const uint64_t before = gAllocations.load();
     frame();
-    EXPECT_EQ(gAllocations.load() - before, 0u);
-    EXPECT_GT(tracer.rays.shadow + tracer.rays.reflection + tracer.rays.refraction, 0u);
-    EXPECT_GT(sum.r, 0.0);
+    return {gAllocations.load() - before, tracer.rays, sum};
+}
+
+TEST(Tracer, AllocatesNothingPerRayOnceWarm) {
+    // Every effect at once: shadows, reflection, refraction through a cut glass part.
+    const WarmFrame f = traceTwice(load(scaledScene(1.0)), 64, 48);
+    EXPECT_EQ(f.allocations, 0u);
+    EXPECT_GT(f.rays.shadow + f.rays.reflection + f.rays.refraction, 0u);
+    EXPECT_GT(f.sum.r, 0.0);
 }
 
 // ---- patterns (material(pattern="checker") and material(texture="file.png")) ----
@@ -709,20 +722,9 @@ TEST(Patterns, CheckerAllocatesNothingPerRay) {
         "camera(eye = [3, -6, 4], center = [0, 0, 0]);\nlight([5, -5, 8]);\n"
         "material(pattern = \"checker\", color2 = \"black\") halfspace([0, 0, 1], -1);\n"
         "material(reflect = 0.5) sphere(1);\n");
-    const io::Camera camera = *s.model.camera;
-    const EffectsPlan plan = makeEffectsPlan(s.model, s.scene, camera, {});
-    const RenderCamera view(camera, 32, 32);
-    Tracer tracer(s.scene, plan);
-    csg::Vec3 sum(0.0);
-    auto frame = [&] {
-        for (int y = 0; y < 32; ++y)
-            for (int x = 0; x < 32; ++x) sum += tracer.tracePrimary(view.ray(x + 0.5, y + 0.5));
-    };
-    frame();
-    const uint64_t before = gAllocations.load();
-    frame();
-    EXPECT_EQ(gAllocations.load() - before, 0u);
-    EXPECT_GT(sum.r, 0.0);
+    const WarmFrame f = traceTwice(s, 32, 32);
+    EXPECT_EQ(f.allocations, 0u);
+    EXPECT_GT(f.sum.r, 0.0);
 }
 
 // ---- the command line ----
