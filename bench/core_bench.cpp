@@ -29,36 +29,36 @@ void reportWork(benchmark::State& state, const BenchScene& scene, const QuerySta
     state.counters["compile_ms"] = 1e3 * scene.compileSeconds;
 }
 
-void closestBenchmark(benchmark::State& state, const std::string& sceneKey) {
+// Every ray of the scene through `query`, which returns a count of what the ray found (hits,
+// spans); reports the work counters and that count per ray as counter `perRay`.
+template <class Query>
+void queryBenchmark(benchmark::State& state, const std::string& sceneKey, const char* perRay,
+                    Query query) {
     const BenchScene& scene = cachedScene(sceneKey);
     QueryContext context;
-    size_t hits = 0;
-    for (auto _ : state) {
-        for (const Ray& ray : scene.rays) {
-            const std::optional<Hit> hit = scene.scene.closest(ray, context);
-            hits += hit.has_value();
-            benchmark::DoNotOptimize(hit);
-        }
-    }
+    size_t found = 0;
+    for (auto _ : state)
+        for (const Ray& ray : scene.rays) found += query(scene.scene, ray, context);
     reportWork(state, scene, context.stats);
-    state.counters["hits/ray"] =
-        static_cast<double>(hits) / static_cast<double>(context.stats.rays);
+    state.counters[perRay] = static_cast<double>(found) / static_cast<double>(context.stats.rays);
+}
+
+void closestBenchmark(benchmark::State& state, const std::string& sceneKey) {
+    queryBenchmark(state, sceneKey, "hits/ray",
+                   [](const Scene& scene, const Ray& ray, QueryContext& context) {
+                       const std::optional<Hit> hit = scene.closest(ray, context);
+                       benchmark::DoNotOptimize(hit);
+                       return size_t(hit.has_value());
+                   });
 }
 
 void spansBenchmark(benchmark::State& state, const std::string& sceneKey) {
-    const BenchScene& scene = cachedScene(sceneKey);
-    QueryContext context;
-    size_t spanCount = 0;
-    for (auto _ : state) {
-        for (const Ray& ray : scene.rays) {
-            const std::span<const Span> spans = scene.scene.spans(ray, context);
-            spanCount += spans.size();
-            benchmark::DoNotOptimize(spans.data());
-        }
-    }
-    reportWork(state, scene, context.stats);
-    state.counters["spans/ray"] =
-        static_cast<double>(spanCount) / static_cast<double>(context.stats.rays);
+    queryBenchmark(state, sceneKey, "spans/ray",
+                   [](const Scene& scene, const Ray& ray, QueryContext& context) {
+                       const std::span<const Span> spans = scene.spans(ray, context);
+                       benchmark::DoNotOptimize(spans.data());
+                       return spans.size();
+                   });
 }
 
 // Scene::compile alone: the tree is built before the timed loop (once per repetition), and
