@@ -37,6 +37,7 @@
 
 #include "csg/Scene.h"
 #include "primitives/AlgebraicSurface.h"
+#include "tests/EnvCount.h"
 
 namespace csg {
 namespace {
@@ -47,8 +48,7 @@ constexpr double kMergeGap = 1e-9;     // unit: u
 constexpr double kResolvedGap = 1e-6;  // unit: u
 
 int raysPerClass() {
-    const char* env = std::getenv("CSGRAY_ALGEBRAIC_RAYS");
-    return env && std::atoi(env) > 0 ? std::atoi(env) : 2000;
+    return csg::testing::countFromEnv("CSGRAY_ALGEBRAIC_RAYS", 2000);
 }
 
 // ---- Surfaces built from origin-centred spheres ----

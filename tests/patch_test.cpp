@@ -23,6 +23,7 @@
 #include "csg/Volume.h"
 #include "primitives/PatchSet.h"
 #include "primitives/patch/Intersect.h"
+#include "tests/EnvCount.h"
 
 namespace csg {
 namespace {
@@ -30,8 +31,7 @@ namespace {
 using Real = long double;
 
 int raysPerPatch() {
-    const char* env = std::getenv("CSGRAY_PATCH_RAYS");
-    return env && std::atoi(env) > 0 ? std::atoi(env) : 100000;
+    return csg::testing::countFromEnv("CSGRAY_PATCH_RAYS", 100000);
 }
 
 // ---- The closed-form patches ----

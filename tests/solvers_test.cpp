@@ -25,6 +25,7 @@
 
 #include "primitives/solvers/Polynomial.h"
 #include "primitives/solvers/Solve.h"
+#include "tests/EnvCount.h"
 
 namespace csg {
 namespace {
@@ -260,8 +261,7 @@ const ClassSpec kClasses[] = {
 // 1e5 per class by default (the floor); CSGRAY_SOLVER_CASES=N overrides it, for a quick
 // run while working on one solver or for a larger sweep.
 int randomPerClass() {
-    const char* env = std::getenv("CSGRAY_SOLVER_CASES");
-    return env && std::atoi(env) > 0 ? std::atoi(env) : 100000;
+    return csg::testing::countFromEnv("CSGRAY_SOLVER_CASES", 100000);
 }
 
 TEST(Solvers, RandomClassesAgainstExactReference) {
