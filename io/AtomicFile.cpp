@@ -91,4 +91,15 @@ bool AtomicFile::commit() {
     return true;
 }
 
+std::string writeFileAtomically(const std::filesystem::path& target, std::string_view bytes) {
+    AtomicFile file(target);
+    if (!file.ok()) return file.error();
+    if (std::fwrite(bytes.data(), 1, bytes.size(), file.stream()) != bytes.size()) {
+        file.fail("cannot write '" + target.string() + "': short write");
+        return file.error();
+    }
+    if (!file.commit()) return file.error();
+    return {};
+}
+
 }  // namespace io

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 namespace io {
 
@@ -37,5 +38,9 @@ private:
     std::FILE* file_ = nullptr;
     std::string error_;
 };
+
+// Writes bytes to target through an AtomicFile. Returns "" on success, else why it failed
+// (the target is then left as it was).
+std::string writeFileAtomically(const std::filesystem::path& target, std::string_view bytes);
 
 }  // namespace io

@@ -155,14 +155,7 @@ std::optional<std::string> writeGltf(const std::filesystem::path& file,
     tinygltf::TinyGLTF writer;
     if (!writer.WriteGltfSceneToStream(&model, bytes, !binary, binary))
         return "tinygltf could not serialize the glTF";
-    AtomicFile out(file);
-    if (!out.ok()) return out.error();
-    const std::string data = bytes.str();
-    if (std::fwrite(data.data(), 1, data.size(), out.stream()) != data.size()) {
-        out.fail("cannot write");
-        return out.error();
-    }
-    if (!out.commit()) return out.error();
+    if (std::string error = writeFileAtomically(file, bytes.view()); !error.empty()) return error;
     return std::nullopt;
 }
 

@@ -54,13 +54,7 @@ std::optional<std::string> writeObj(const std::filesystem::path& file,
     }
 
     // Step 3: atomically to the target.
-    AtomicFile out(file);
-    if (!out.ok()) return out.error();
-    if (std::fwrite(text.data(), 1, text.size(), out.stream()) != text.size()) {
-        out.fail("cannot write");
-        return out.error();
-    }
-    if (!out.commit()) return out.error();
+    if (std::string error = writeFileAtomically(file, text); !error.empty()) return error;
     return std::nullopt;
 }
 

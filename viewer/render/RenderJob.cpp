@@ -129,17 +129,6 @@ std::string statsJson(const RenderJobOptions& o, int threads, const PhaseSeconds
     return out;
 }
 
-std::string writeText(const std::string& path, const std::string& text) {
-    io::AtomicFile file(path);
-    if (!file.ok()) return file.error();
-    if (std::fwrite(text.data(), 1, text.size(), file.stream()) != text.size()) {
-        file.fail("cannot write '" + path + "': short write");
-        return file.error();
-    }
-    if (!file.commit()) return file.error();
-    return {};
-}
-
 }  // namespace
 
 RenderJobOptions parseRenderJobOptions(std::span<const std::string> args) {
@@ -242,7 +231,7 @@ int runRenderJob(const RenderJobOptions& o) {
 
     if (!o.statsFile.empty()) {
         const std::string json = statsJson(o, image.threads, seconds, result, plan);
-        if (const std::string error = writeText(o.statsFile, json); !error.empty()) {
+        if (const std::string error = io::writeFileAtomically(o.statsFile, json); !error.empty()) {
             report.error(o.statsFile, error);
             return kExitIo;
         }

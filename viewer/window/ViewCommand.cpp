@@ -381,13 +381,10 @@ private:
     void dumpPanel() {
         if (dumpFile_.empty() || panel_ == dumpedPanel_) return;
         dumpedPanel_ = panel_;
-        io::AtomicFile file(dumpFile_ + ".panel.txt");
-        const std::string text = panelText(panel_);
-        if (file.ok() && std::fwrite(text.data(), 1, text.size(), file.stream()) == text.size() &&
-            file.commit())
-            return;
-        std::fprintf(stderr, "%s.panel.txt: error: %s\n", dumpFile_.c_str(),
-                     file.error().empty() ? "cannot write" : file.error().c_str());
+        const std::string error =
+            io::writeFileAtomically(dumpFile_ + ".panel.txt", panelText(panel_));
+        if (!error.empty())
+            std::fprintf(stderr, "%s.panel.txt: error: %s\n", dumpFile_.c_str(), error.c_str());
     }
 
     const ViewOptions& options_;
