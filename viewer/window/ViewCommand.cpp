@@ -152,7 +152,7 @@ public:
                 lastPoll = Clock::now();
             }
         }
-        return exitCode_;
+        return kExitOk;
     }
 
 private:
@@ -184,8 +184,7 @@ private:
         request.width = width_;
         request.height = height_;
         request.effects = effects_;
-        requestStarted_ = Clock::now();
-        currentRequest_ = renderer_.start(std::move(request));
+        renderer_.start(std::move(request));
     }
 
     void handle(const SDL_Event& event) {
@@ -396,10 +395,7 @@ private:
     std::shared_ptr<const LoadedPart> part_;
     std::optional<ViewCamera> camera_;
     EffectToggles effects_;
-    Clock::time_point requestStarted_;
-    uint64_t currentRequest_ = 0;
     bool restartPending_ = false, redraw_ = false, quit_ = false;
-    int exitCode_ = kExitOk;
     Uint8 dragButton_ = 0;
     double dragDistance_ = 0.0;
     std::optional<ProgressiveFrame> lastFrame_;
