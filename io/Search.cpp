@@ -30,19 +30,13 @@ std::vector<std::string_view> codePointsOf(const std::string& s) {
     return out;
 }
 
-// How many matches to return per searched value: OpenSCAD converts the argument to an
-// unsigned int; anything that is not a non-negative finite number counts as 0 (all).
-size_t matchesWanted(const ArgValues& a) {
-    if (a.size() < 3) return 1;
-    const Value& v = a[2].value;
+// Argument i as OpenSCAD converts it to an unsigned int: `absent` when it is not given,
+// 0 when it is not a non-negative number, at most 2^32 - 1.
+size_t unsignedArg(const ArgValues& a, size_t i, size_t absent) {
+    if (a.size() <= i) return absent;
+    const Value& v = a[i].value;
     if (!v.isNumber() || !(v.number() >= 0)) return 0;
     return v.number() >= 4294967295.0 ? 4294967295u : static_cast<size_t>(v.number());
-}
-
-size_t columnWanted(const ArgValues& a) {
-    if (a.size() < 4 || !a[3].value.isNumber() || !(a[3].value.number() >= 0)) return 0;
-    const double c = a[3].value.number();
-    return c >= 4294967295.0 ? 4294967295u : static_cast<size_t>(c);
 }
 
 // The indices of table entries matching one value, collected as OpenSCAD does: with
@@ -87,8 +81,9 @@ Value builtinSearch(Evaluator& e, const ArgValues& a, Loc loc) {
     }
     const Value& find = a[0].value;
     const Value& table = a[1].value;
-    const size_t wanted = matchesWanted(a);
-    const size_t column = columnWanted(a);
+    // How many matches to return per searched value (0: all), and the column to compare.
+    const size_t wanted = unsignedArg(a, 2, 1);
+    const size_t column = unsignedArg(a, 3, 0);
     const ValueList noEntries;
     const ValueList& entries = table.isVector() ? table.list() : noEntries;
     ValueList out;
@@ -106,16 +101,17 @@ Value builtinSearch(Evaluator& e, const ArgValues& a, Loc loc) {
 
     if (find.isString()) {
         const auto characters = codePointsOf(find.string());
-        if (table.isString()) {
-            const auto tableCharacters = codePointsOf(table.string());
+        // Each character of find against keys, one key per table entry.
+        auto searchCharacters = [&](const auto& keys) {
             for (std::string_view c : characters) {
-                e.spend(loc, tableCharacters.size());
-                for (size_t j = 0; j < tableCharacters.size(); ++j)
-                    if (tableCharacters[j] == c && !collect.add(j)) break;
+                e.spend(loc, keys.size());
+                for (size_t j = 0; j < keys.size(); ++j)
+                    if (keys[j] == c && !collect.add(j)) break;
                 collect.finish();
             }
             return e.makeList(std::move(out), loc);
-        }
+        };
+        if (table.isString()) return searchCharacters(codePointsOf(table.string()));
         // Against a table of lists: the first character of each entry's column as str()
         // would print it. An entry without that column ends the search with [].
         std::vector<std::string> firsts;
@@ -132,13 +128,7 @@ Value builtinSearch(Evaluator& e, const ArgValues& a, Loc loc) {
             const auto cps = codePointsOf(text);
             firsts.emplace_back(cps.empty() ? std::string() : std::string(cps[0]));
         }
-        for (std::string_view c : characters) {
-            e.spend(loc, firsts.size());
-            for (size_t j = 0; j < firsts.size(); ++j)
-                if (firsts[j] == c && !collect.add(j)) break;
-            collect.finish();
-        }
-        return e.makeList(std::move(out), loc);
+        return searchCharacters(firsts);
     }
 
     if (find.isVector()) {
