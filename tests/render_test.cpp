@@ -38,21 +38,10 @@
 
 extern char** environ;
 
-// Counts every heap allocation of the test binary, for the no-allocation-per-ray test. GCC
-// cannot see that this operator new is malloc, hence the pragma for the matching free.
+// Counts every heap allocation of the test binary, for the no-allocation-per-ray tests. GCC
+// cannot see that the counting operator new is malloc, hence the pragma for the matching free.
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-static std::atomic<uint64_t> gAllocations{0};
-void* operator new(size_t size) {
-    gAllocations.fetch_add(1, std::memory_order_relaxed);
-    if (void* p = std::malloc(size ? size : 1)) return p;
-    throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept {
-    std::free(p);
-}
-void operator delete(void* p, size_t) noexcept {
-    std::free(p);
-}
+#include "tests/CountingNew.h"
 
 namespace viewer::render {
 namespace {
@@ -537,7 +526,7 @@ TEST(Threads, ImageDoesNotDependOnTheThreadCount) {
 // allocations of the second frame (the first is the warm-up, where the context's scratch grows
 // to its largest ray), the tracer's ray counts and the colour sum over both frames.
 struct WarmFrame {
-    uint64_t allocations;
+    long allocations;
     RayCounts rays;
     csg::Vec3 sum;
 };
@@ -553,15 +542,15 @@ WarmFrame traceTwice(const LoadedScene& s, int width, int height) {
                 sum += tracer.tracePrimary(view.ray(x + 0.5, y + 0.5));
     };
     frame();
-    const uint64_t before = gAllocations.load();
+    const long before = csg::testing::allocations.load();
     frame();
-    return {gAllocations.load() - before, tracer.rays, sum};
+    return {csg::testing::allocations.load() - before, tracer.rays, sum};
 }
 
 TEST(Tracer, AllocatesNothingPerRayOnceWarm) {
     // Every effect at once: shadows, reflection, refraction through a cut glass part.
     const WarmFrame f = traceTwice(load(scaledScene(1.0)), 64, 48);
-    EXPECT_EQ(f.allocations, 0u);
+    EXPECT_EQ(f.allocations, 0);
     EXPECT_GT(f.rays.shadow + f.rays.reflection + f.rays.refraction, 0u);
     EXPECT_GT(f.sum.r, 0.0);
 }
@@ -723,7 +712,7 @@ TEST(Patterns, CheckerAllocatesNothingPerRay) {
         "material(pattern = \"checker\", color2 = \"black\") halfspace([0, 0, 1], -1);\n"
         "material(reflect = 0.5) sphere(1);\n");
     const WarmFrame f = traceTwice(s, 32, 32);
-    EXPECT_EQ(f.allocations, 0u);
+    EXPECT_EQ(f.allocations, 0);
     EXPECT_GT(f.sum.r, 0.0);
 }
 
