@@ -10,7 +10,8 @@ namespace cli {
 namespace {
 
 // The validator's report for a file, or nothing (with why) when node or the npm package is
-// missing; the package is installed by `cmake --build BUILD --target gltf_validator`.
+// missing (a skip) or the validator failed (a test failure); the package is installed by
+// `cmake --build BUILD --target gltf_validator`.
 std::optional<nlohmann::json> validate(const fs::path& file, std::string& why) {
     const fs::path modules = GLTF_VALIDATOR_DIR;
     if (std::system("node --version >/dev/null 2>&1") != 0) {
@@ -29,6 +30,9 @@ std::optional<nlohmann::json> validate(const fs::path& file, std::string& why) {
     const int status = std::system(command.c_str());
     const std::string text = readFile(out);
     if (status != 0) {
+        // node and the package are there, so a run that fails (an unreadable or malformed
+        // file the validator throws on) is a failure of the test, not a reason to skip it.
+        ADD_FAILURE() << "glTF validator failed on " << file << ": " << text;
         why = "validator failed: " + text;
         return std::nullopt;
     }
@@ -36,7 +40,8 @@ std::optional<nlohmann::json> validate(const fs::path& file, std::string& why) {
 }
 
 // Expects the validator to report no errors and no warnings on a file; false (with why) when
-// the validator is missing or failed, so the caller may skip.
+// there is no report (validator missing: the caller may skip; validator failed: already a
+// failure).
 bool validatorAccepts(const fs::path& file, std::string& why) {
     const std::optional<nlohmann::json> report = validate(file, why);
     if (!report) return false;
