@@ -7,6 +7,8 @@
 // Notation: t is the parameter of o + t d; R, r the major and minor radii.
 #include <gtest/gtest.h>
 
+#include <boost/multiprecision/cpp_bin_float.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -359,5 +361,102 @@ TEST(Torus, ClosedFormQuarticConfirmsOrdinaryRays) {
     EXPECT_LE(unconfirmed, kLines / 1000) << unconfirmed << " of " << kLines << " lines";
 }
 
+// ---- Accuracy against a 50-digit reference ----
+
+using Big = boost::multiprecision::cpp_bin_float_50;
+
+Big evalBig(const std::vector<Big>& c, const Big& t) {
+    Big y = c.back();
+    for (int i = int(c.size()) - 2; i >= 0; --i) y = y * t + c[i];
+    return y;
+}
+
+// The real roots of c in [lo, hi], ascending, in 50 digits: the roots of c' (recursively) cut
+// the range into monotone pieces, each holding at most one root, found by bisection.
+std::vector<Big> rootsBig(std::vector<Big> c, const Big& lo, const Big& hi) {
+    while (c.size() > 1 && c.back() == 0) c.pop_back();
+    if (c.size() <= 1) return {};
+    std::vector<Big> dc(c.size() - 1);
+    for (size_t i = 1; i < c.size(); ++i) dc[i - 1] = c[i] * int(i);
+    std::vector<Big> cuts = {lo};
+    for (const Big& r : rootsBig(dc, lo, hi))
+        if (r > cuts.back() && r < hi) cuts.push_back(r);
+    cuts.push_back(hi);
+    std::vector<Big> out;
+    for (size_t i = 0; i + 1 < cuts.size(); ++i) {
+        Big a = cuts[i], b = cuts[i + 1];
+        const Big fa = evalBig(c, a), fb = evalBig(c, b);
+        if (fa == 0 || fb == 0 || (fa < 0) == (fb < 0)) continue;
+        for (int k = 0; k < 180 && b - a > Big(1e-45) * (1 + abs(a)); ++k) {
+            const Big m = (a + b) / 2;
+            ((evalBig(c, m) < 0) == (fa < 0) ? a : b) = m;
+        }
+        out.push_back((a + b) / 2);
+    }
+    return out;
+}
+
+// The torus quartic F along o + t d, expanded exactly (to 50 digits) from the double inputs.
+std::vector<Big> torusQuarticBig(const Torus& torus, const Vec3& o, const Vec3& d) {
+    const Big R = torus.majorRadius, r = torus.minorRadius;
+    const Big ox = o.x, oy = o.y, oz = o.z, dx = d.x, dy = d.y, dz = d.z;
+    // q(t) = |o + t d|^2 + R^2 - r^2 and h(t) = x^2 + y^2, as {t^0, t^1, t^2}.
+    const Big q[3] = {ox * ox + oy * oy + oz * oz + R * R - r * r,
+                      2 * (ox * dx + oy * dy + oz * dz), dx * dx + dy * dy + dz * dz};
+    const Big h[3] = {ox * ox + oy * oy, 2 * (ox * dx + oy * dy), dx * dx + dy * dy};
+    std::vector<Big> c(5, Big(0));
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) c[size_t(i + j)] += q[i] * q[j];
+    for (int i = 0; i < 3; ++i) c[size_t(i)] -= 4 * R * R * h[i];
+    return c;
+}
+
+// Span ends of random lines against the real roots of the exact quartic of the same double
+// line: the relative error of t, over lines whose roots are at least 1e-4 of the torus size
+// apart (a closer pair is a near-tangency, conditioned like sqrt(ulp) in any method). Also
+// every such line must have the reference's number of ends. Prints the figures for the
+// accuracy record (bench/README.md, torus rows).
+TEST(Torus, SpanEndsAgainstFiftyDigitReference) {
+    Rng rng(77);
+    for (const Torus torus : {Torus{2.0, 1.0}, Torus{1.0, 0.25}, Torus{1.0, 1e-3}}) {
+        const double size = torus.majorRadius + torus.minorRadius;
+        double maxRel = 0.0;
+        int lines = 0, ends = 0, wrongCount = 0;
+        for (int i = 0; i < 3000; ++i) {
+            const Vec3 o = rng.unit() * (3.0 * size);
+            // Aimed near the tube, so that thin tori are hit as often as thick ones.
+            const double angle = rng.uniform(0.0, 6.283185307179586);
+            const Vec3 target = torus.majorRadius * Vec3(std::cos(angle), std::sin(angle), 0.0) +
+                                rng.unit() * (1.2 * torus.minorRadius * rng.uniform());
+            const Vec3 d = glm::normalize(target - o) * std::pow(10.0, rng.uniform(-1, 1));
+            const double reach = 8.0 * size / glm::length(d);
+            const std::vector<Big> want = rootsBig(torusQuarticBig(torus, o, d), -reach, reach);
+            bool separated = want.size() % 2 == 0;
+            for (size_t k = 0; k + 1 < want.size(); ++k)
+                separated &= (want[k + 1] - want[k]) * glm::length(d) > 1e-4 * size;
+            if (!separated) continue;
+            ++lines;
+            std::vector<double> got;
+            for (const auto& [in, out] : solid(spansOf(torus, o, d)))
+                got.push_back(in), got.push_back(out);
+            if (got.size() != want.size()) {
+                ++wrongCount;
+                continue;
+            }
+            for (size_t k = 0; k < got.size(); ++k) {
+                const Big rel = abs((Big(got[k]) - want[k]) / want[k]);
+                maxRel = std::max(maxRel, rel.convert_to<double>());
+                ++ends;
+            }
+        }
+        std::printf(
+            "torus R=%g r=%g: %d lines, %d span ends, max relative t error %.3g, "
+            "wrong count %d\n",
+            torus.majorRadius, torus.minorRadius, lines, ends, maxRel, wrongCount);
+        EXPECT_EQ(wrongCount, 0);
+        EXPECT_LE(maxRel, 1e-13);
+        EXPECT_GT(ends, 2000);
+    }
+}
 }  // namespace
 }  // namespace csg
