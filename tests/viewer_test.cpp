@@ -274,6 +274,15 @@ TEST(ViewerWithoutDisplay, SaysSoAndExitsWithThree) {
         << readFile(dir / "stderr.txt");
 }
 
+// A part that cannot be read is an I/O failure, exit 3 as for the other commands, found before
+// any window is needed.
+TEST(ViewerWithoutDisplay, UnreadablePartExitsWithThree) {
+    ScratchDir dir;
+    const RunResult r = runCsgray({"view", "missing.scad"}, dir.path());
+    EXPECT_EQ(r.exitCode, 3) << r.err;
+    EXPECT_NE(r.err.find("missing.scad: error: cannot open the part"), std::string::npos) << r.err;
+}
+
 TEST_F(ViewerTest, FinestFrameShowsThePartAsRenderDoes) {
     launch();
     ASSERT_TRUE(waitForFrame(1)) << err();
@@ -360,6 +369,21 @@ TEST_F(ViewerTest, EditReloadsAndSyntaxErrorKeepsTheLastGoodFrame) {
     ASSERT_TRUE(waitForFrame(3)) << err();
     EXPECT_LE(maxDifference(readPng(dir_ / "frame.png"), first), 2);
     EXPECT_TRUE(waitForPanel([](const std::string& p) { return !has(p, "error:"); })) << panel();
+}
+
+// An edit that includes a new, broken file: the file the error names was never read by a good
+// load, yet fixing it alone (the part itself unchanged) reloads the view.
+TEST_F(ViewerTest, FixingTheFileAnErrorNamesReloads) {
+    launch();
+    ASSERT_TRUE(waitForFrame(1)) << err();
+    writeFile(dir_ / "extra.scad", "translate([0, -12, 0]) sphere(r = 3;\n");
+    writeFile(part_, std::string(kPart) + "include <extra.scad>\n");
+    ASSERT_TRUE(waitForText("view: reload failed")) << err();
+    EXPECT_NE(err().find("extra.scad:1:"), std::string::npos) << err();
+
+    writeFile(dir_ / "extra.scad", "translate([0, -12, 0]) sphere(r = 3);\n");
+    ASSERT_TRUE(waitForText("view: reloaded part.scad")) << err();
+    ASSERT_TRUE(waitForFrame(2)) << err();
 }
 
 TEST_F(ViewerTest, DragOrbitsWheelZoomsAndResetAndFrameRestoreTheView) {

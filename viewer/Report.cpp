@@ -7,6 +7,7 @@
 namespace viewer {
 
 void Report::add(io::Diagnostic diagnostic) {
+    diagnostics_.push_back(diagnostic);
     if (json_) {
         collected_.push_back(std::move(diagnostic));
         return;

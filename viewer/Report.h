@@ -29,11 +29,15 @@ public:
     void echo(const std::string& line);
     // Prints the JSON array (once); does nothing in text mode.
     void finish();
+    // Every diagnostic added so far (not echo lines), in order, in either mode: for a caller
+    // that also shows them elsewhere (the view's title and which files it watches).
+    const std::vector<io::Diagnostic>& diagnostics() const { return diagnostics_; }
 
 private:
     bool json_;
     bool finished_ = false;
-    std::vector<io::Diagnostic> collected_;
+    std::vector<io::Diagnostic> collected_;  // JSON mode: diagnostics and echo notes
+    std::vector<io::Diagnostic> diagnostics_;
 };
 
 }  // namespace viewer

@@ -1,40 +1,28 @@
 #include "viewer/window/PartWatcher.h"
 
+#include <algorithm>
 #include <chrono>
-#include <cstdio>
 
-#include "io/Evaluate.h"
+#include "viewer/Report.h"
 
 namespace viewer::window {
 
-namespace {
-
-void printDiagnostic(const io::Diagnostic& diagnostic, LoadOutcome& outcome) {
-    const std::string text = io::formatDiagnostic(diagnostic);
-    std::fprintf(stderr, "%s\n", text.c_str());
-    if (diagnostic.severity == io::Severity::Error && outcome.firstError.empty())
-        outcome.firstError = text;
-}
-
-}  // namespace
-
 LoadOutcome loadForView(const CommonOptions& options) {
-    // The same steps as loadPart, but the first error is kept for the window's title.
     const auto start = std::chrono::steady_clock::now();
     LoadOutcome outcome;
-    io::EvaluateOptions evaluateOptions;
-    evaluateOptions.defines = options.defines;
-    io::EvaluateResult result = io::evaluateFile(options.part, evaluateOptions);
-    for (const io::Diagnostic& d : result.diagnostics) printDiagnostic(d, outcome);
-    if (result.ok()) {
+    {
+        // Text mode, whatever --diagnostics says: a view reloads many times, and one JSON
+        // array per load would not make stderr one JSON document anyway.
+        Report report(false);
         auto part = std::make_shared<LoadedPart>();
-        part->model = std::move(*result.model);
-        try {
-            part->scene = csg::Scene::compile(part->model.root);
-            outcome.part = std::move(part);
-        } catch (const csg::CompileError& e) {
-            printDiagnostic(io::diagnosticAt(part->model, e.source, io::Severity::Error, e.what()),
-                            outcome);
+        outcome.exitCode = loadPart(options, report, *part);
+        if (outcome.exitCode == kExitOk) outcome.part = std::move(part);
+        for (const io::Diagnostic& d : report.diagnostics()) {
+            if (d.severity == io::Severity::Error && outcome.firstError.empty())
+                outcome.firstError = io::formatDiagnostic(d);
+            if (!d.file.empty() && std::find(outcome.namedFiles.begin(), outcome.namedFiles.end(),
+                                             d.file) == outcome.namedFiles.end())
+                outcome.namedFiles.push_back(d.file);
         }
     }
     if (!outcome.part && outcome.firstError.empty())
@@ -42,6 +30,12 @@ LoadOutcome loadForView(const CommonOptions& options) {
     outcome.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return outcome;
+}
+
+std::vector<std::string> filesRead(const io::Model& model) {
+    std::vector<std::string> files = model.files;
+    for (const io::Model::Texture& texture : model.textures) files.push_back(texture.path);
+    return files;
 }
 
 PartWatcher::PartWatcher(CommonOptions options, std::function<void()> onLoaded)

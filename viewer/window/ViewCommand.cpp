@@ -107,19 +107,19 @@ public:
     }
 
     // The first load, and the first render request when it succeeds. Needs no window: it
-    // runs while SDL starts. False (diagnostics printed) when the part is bad.
-    bool begin() {
+    // runs while SDL starts. Else loadPart's exit code (diagnostics printed).
+    int begin() {
         LoadOutcome first = loadForView(options_.common);
-        if (!first.part) return false;
+        if (!first.part) return first.exitCode;
         if (options_.verbose)
             std::fprintf(stderr, "view: loaded and compiled in %.1f ms, %.1f ms after main\n",
                          first.seconds * 1e3, millisecondsSince(started_));
         part_ = std::move(first.part);
         camera_.emplace(initialCamera());
-        watcher_.watch(part_->model.files);
+        watcher_.watch(filesRead(part_->model));
         renderer_.hold();
         restart();
-        return true;
+        return kExitOk;
     }
 
     // The event loop, after begin() succeeded. Returns the exit code.
@@ -304,6 +304,9 @@ private:
         if (!outcome.part) {
             loadError_ = outcome.firstError;
             std::fprintf(stderr, "view: reload failed; the last good part stays on screen\n");
+            std::vector<std::string> files = filesRead(part_->model);
+            files.insert(files.end(), outcome.namedFiles.begin(), outcome.namedFiles.end());
+            watcher_.watch(files);
             window_->setErrorBorder(true);
             updateTitle();
             redraw_ = true;
@@ -316,7 +319,7 @@ private:
         window_->setErrorBorder(false);
         updateTitle();
         camera_->setInitial(initialCamera());
-        watcher_.watch(part_->model.files);
+        watcher_.watch(filesRead(part_->model));
         restart();
         redraw_ = true;
     }
@@ -433,12 +436,12 @@ int viewCommand(std::span<const std::string> args) {
     ViewWindow::prepareProcess();
     std::optional<ViewWindow> window;  // outlives the session, whose threads wake its loop
     ViewSession session(options, started);
-    bool loaded = false;
+    int loaded = kExitOk;
     std::thread loader([&] { loaded = session.begin(); });
     window.emplace();
     loader.join();
     // The first load decides whether there is anything to show; later errors keep it.
-    if (!loaded) return kExitBadModel;
+    if (loaded != kExitOk) return loaded;
     if (window->ok())
         window->open("csgray view " + options.common.part, options.width, options.height);
     if (!window->ok()) {
