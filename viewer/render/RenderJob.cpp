@@ -5,6 +5,8 @@
 #include <charconv>
 #include <chrono>
 #include <cstdio>
+#include <optional>
+#include <string_view>
 #include <thread>
 
 #include "io/AtomicFile.h"
@@ -51,6 +53,19 @@ double parseWeight(std::string_view text) {
         throw UsageError("--min-weight: expected a number in [0, 1], got '" + std::string(text) +
                          "'");
     return value;
+}
+
+// Each image format's --format name, which is also its file extension.
+std::optional<ImageFormat> formatNamed(std::string_view name) {
+    struct Named {
+        std::string_view name;
+        ImageFormat format;
+    };
+    static constexpr Named kFormats[] = {
+        {"png", ImageFormat::Png}, {"pfm", ImageFormat::Pfm}, {"exr", ImageFormat::Exr}};
+    for (const Named& f : kFormats)
+        if (f.name == name) return f.format;
+    return std::nullopt;
 }
 
 std::string lowerExtension(const std::string& path) {
@@ -165,26 +180,19 @@ RenderJobOptions parseRenderJobOptions(std::span<const std::string> args) {
     if (o.common.help) return o;
     requirePart(o.common, "render");
     if (o.output.empty()) throw UsageError("render needs an output file: -o OUT.png");
-    if (format.empty()) {
+    if (!format.empty()) {
+        const std::optional<ImageFormat> named = formatNamed(format);
+        if (!named) throw UsageError("--format: expected png, pfm or exr, got '" + format + "'");
+        o.format = *named;
+    } else {
         const std::string extension = lowerExtension(o.output);
-        if (extension == ".png")
-            format = "png";
-        else if (extension == ".pfm")
-            format = "pfm";
-        else if (extension == ".exr")
-            format = "exr";
-        else
+        const std::optional<ImageFormat> named =
+            formatNamed(extension.empty() ? extension : extension.substr(1));
+        if (!named)
             throw UsageError("render: cannot tell the format of '" + o.output +
                              "'; use a .png, .pfm or .exr name, or --format png|pfm|exr");
+        o.format = *named;
     }
-    if (format == "png")
-        o.format = ImageFormat::Png;
-    else if (format == "pfm")
-        o.format = ImageFormat::Pfm;
-    else if (format == "exr")
-        o.format = ImageFormat::Exr;
-    else
-        throw UsageError("--format: expected png, pfm or exr, got '" + format + "'");
     if (int64_t(o.width) * o.height > int64_t(1) << 28)
         throw UsageError("--size: at most 2^28 pixels");
     return o;
