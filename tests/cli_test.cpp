@@ -19,7 +19,9 @@ TEST(Help, TopLevelAndEverySubcommand) {
                                                  {"probe", "--help"},
                                                  {"info", "--help"},
                                                  {"render", "--help"},
-                                                 {"probe", "-h"}}) {
+                                                 {"probe", "-h"},
+                                                 {"bench", "--help"},
+                                                 {"bench", "accuracy", "-h"}}) {
         const RunResult r = runCsgray(args, dir.path());
         EXPECT_EQ(r.exitCode, 0) << args[0];
         EXPECT_NE(r.out.find("usage: csgray"), std::string::npos) << r.out;
@@ -44,8 +46,15 @@ TEST(Usage, BadCommandLinesExitWithTwo) {
         {"render", kEmblem, "-o", (dir / "x.jpg").string()},  // unsupported format
         {"render", kEmblem, "-o", (dir / "x.png").string(), "--size", "0x10"},
         {"render", kEmblem, "-o", (dir / "x.png").string(), "--size", "big"},
+        {"render", kEmblem, "-o", (dir / "x.png").string(), "--format", "jpg"},
         {"info", kEmblem, "-D", "novalue"},
         {"info", kEmblem, "--diagnostics=xml"},
+        {"bench"},                                             // no report
+        {"bench", "accuracy"},                                 // no -o
+        {"bench", "accuracy", "-o", "r", "--min-time", "61"},  // above 60 s
+        {"bench", "accuracy", "-o", "r", "--min-time", "1s"},
+        {"bench", "accuracy", "-o", "r", "-D", "x=1"},
+        {"bench", "speed", "-o", "r"},
     };
     for (const auto& args : bad) {
         const RunResult r = runCsgray(args, dir.path());

@@ -1,7 +1,7 @@
 #include "viewer/BenchCommand.h"
 
 #include <cstdio>
-#include <cstdlib>
+#include <string>
 
 #include "bench/AccuracyReport.h"
 #include "viewer/Cli.h"
@@ -29,37 +29,34 @@ const char* const kHelp =
 }  // namespace
 
 int benchCommand(std::span<const std::string> args) {
-    if (args.empty()) throw UsageError("bench needs a report name: accuracy");
-    if (args[0] == "--help" || args[0] == "-h") {
-        std::fputs(kHelp, stdout);
-        return kExitOk;
-    }
-    if (args[0] != "accuracy") throw UsageError("unknown bench report '" + args[0] + "'");
+    std::string report;
     csg::AccuracyReportOptions options;
-    bool haveDir = false;
-    ArgCursor cursor(args.subspan(1));
+    bool help = false, haveDir = false;
+    ArgCursor cursor(args);
     while (!cursor.done()) {
         if (cursor.flag("--help") || cursor.flag("-h")) {
-            std::fputs(kHelp, stdout);
-            return kExitOk;
-        }
-        if (auto dir = cursor.option("-o")) {
+            help = true;
+        } else if (auto dir = cursor.option("-o")) {
             options.dir = *dir;
             haveDir = true;
         } else if (auto rays = cursor.option("--rays")) {
             options.rays = parsePositiveInt(*rays, "--rays", 10000000);
         } else if (auto t = cursor.option("--min-time")) {
-            char* end = nullptr;
-            options.minSeconds = std::strtod(t->c_str(), &end);
-            if (t->empty() || *end != '\0' || !(options.minSeconds >= 0.0) ||
-                options.minSeconds > 60.0)
-                throw UsageError("--min-time expects seconds from 0 to 60, got '" + *t + "'");
+            options.minSeconds = parseNumberIn(*t, "--min-time", 0.0, 60.0);
         } else if (cursor.flag("--quiet")) {
             options.progress = false;
+        } else if (report.empty() && !cursor.peek().starts_with("-")) {
+            report = cursor.take();
+            if (report != "accuracy") throw UsageError("unknown bench report '" + report + "'");
         } else {
             throw UsageError("unknown option '" + cursor.peek() + "'");
         }
     }
+    if (help) {
+        std::fputs(kHelp, stdout);
+        return kExitOk;
+    }
+    if (report.empty()) throw UsageError("bench needs a report name: accuracy");
     if (!haveDir) throw UsageError("bench accuracy needs -o DIR");
     std::string error;
     if (!csg::writeAccuracyReport(options, &error)) {

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 
 namespace viewer {
 
@@ -112,6 +113,17 @@ int parsePositiveInt(std::string_view text, std::string_view what, int maxValue)
     if (r.ec != std::errc() || r.ptr != text.data() + text.size() || value <= 0 || value > maxValue)
         throw UsageError(std::string(what) + " expects an integer from 1 to " +
                          std::to_string(maxValue) + ", got '" + std::string(text) + "'");
+    return value;
+}
+
+double parseNumberIn(std::string_view text, std::string_view what, double low, double high) {
+    const double value = parseNumber(text, what);
+    if (value < low || value > high) {
+        char range[64];
+        std::snprintf(range, sizeof range, "%g to %g", low, high);
+        throw UsageError(std::string(what) + " expects a number from " + range + ", got '" +
+                         std::string(text) + "'");
+    }
     return value;
 }
 

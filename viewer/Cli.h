@@ -60,6 +60,8 @@ csg::Vec3 parseVec3(std::string_view text, std::string_view what);
 std::pair<int, int> parseSize(std::string_view text, std::string_view what);
 // A positive integer up to maxValue.
 int parsePositiveInt(std::string_view text, std::string_view what, int maxValue);
+// A finite number from low to high (both included).
+double parseNumberIn(std::string_view text, std::string_view what, double low, double high);
 
 // Throws UsageError unless the part was given (and help was not asked for).
 void requirePart(const CommonOptions& options, std::string_view command);

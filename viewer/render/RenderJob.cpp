@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <optional>
@@ -44,16 +43,6 @@ const char* const kRenderJobHelp =
     "  --quiet                no progress on stderr\n";
 
 namespace {
-
-double parseWeight(std::string_view text) {
-    double value = 0.0;
-    const auto r = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (r.ec != std::errc() || r.ptr != text.data() + text.size() || !(value >= 0.0) ||
-        !(value <= 1.0))
-        throw UsageError("--min-weight: expected a number in [0, 1], got '" + std::string(text) +
-                         "'");
-    return value;
-}
 
 // Each image format's --format name, which is also its file extension.
 std::optional<ImageFormat> formatNamed(std::string_view name) {
@@ -162,7 +151,7 @@ RenderJobOptions parseRenderJobOptions(std::span<const std::string> args) {
         } else if (auto aa = cursor.option("--aa")) {
             o.samplesPerAxis = parsePositiveInt(*aa, "--aa", 16);
         } else if (auto weight = cursor.option("--min-weight")) {
-            o.plan.minWeight = parseWeight(*weight);
+            o.plan.minWeight = parseNumberIn(*weight, "--min-weight", 0.0, 1.0);
         } else if (auto depth = cursor.option("--max-depth")) {
             o.plan.maxDepth = *depth == "0" ? 0 : parsePositiveInt(*depth, "--max-depth", 64);
         } else if (auto stats = cursor.option("--stats")) {
