@@ -727,7 +727,10 @@ TEST(RenderCommand, StatsFileHasRaysQueriesPhasesAndThePlan) {
         std::string(CSGRAY_EXE) + " render '" + (dir / "mirrors.scad").string() + "' -o '" +
         (dir / "out.png").string() + "' --size 20x10 --quiet --stats '" +
         (dir / "stats.json").string() + "' 2>'" + (dir / "stderr").string() + "'";
+    const auto launched = std::chrono::steady_clock::now();
     ASSERT_EQ(std::system(command.c_str()), 0);
+    const double wallSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - launched).count();
     const nlohmann::json stats = nlohmann::json::parse(std::ifstream(dir / "stats.json"));
     EXPECT_EQ(stats["rays"]["primary"], 200);
     EXPECT_EQ(stats["rays"]["reflection"], 8 * 200);
@@ -735,8 +738,21 @@ TEST(RenderCommand, StatsFileHasRaysQueriesPhasesAndThePlan) {
     EXPECT_EQ(stats["rays"]["refraction"], 0);
     EXPECT_EQ(stats["queries"]["rays"], 9 * 200);
     EXPECT_GT(stats["queries"]["nodeVisits"].get<uint64_t>(), 0u);
-    for (const char* phase : {"loadAndCompile", "plan", "render", "write", "total"})
-        EXPECT_GE(stats["seconds"][phase].get<double>(), 0.0) << phase;
+    // The phases are consecutive parts of one process's run: none is negative, they add up
+    // to the total, and the total fits in the wall time the test saw from outside (a phase
+    // summed over threads, or in the wrong unit, would not). Reading the part, tracing 1,800
+    // rays and writing the PNG each take measurable time.
+    double phaseSum = 0.0;
+    for (const char* phase : {"loadAndCompile", "plan", "render", "write"}) {
+        const double seconds = stats["seconds"][phase].get<double>();
+        EXPECT_GE(seconds, 0.0) << phase;
+        phaseSum += seconds;
+    }
+    const double total = stats["seconds"]["total"].get<double>();
+    EXPECT_NEAR(total, phaseSum, 1e-9);
+    EXPECT_LE(total, wallSeconds);
+    for (const char* phase : {"loadAndCompile", "render", "write"})
+        EXPECT_GT(stats["seconds"][phase].get<double>(), 0.0) << phase;
     EXPECT_EQ(stats["plan"]["reflection"], true);
     EXPECT_EQ(stats["plan"]["refraction"], false);
     EXPECT_EQ(stats["plan"]["materials"][1]["reflection"], true);
