@@ -1,6 +1,7 @@
 // End-to-end tests of `csgray export` and `csgray compare`: every sample exports to a GLB that
 // the Khronos glTF validator accepts without errors or warnings and that compare finds within
 // the tolerance, closed and outward; OBJ and glTF round trips; the empty part; exit codes.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
@@ -201,25 +202,66 @@ TEST(CliMesh, CompareFindsAWrongMeshAndAHole) {
     EXPECT_FALSE(nlohmann::json::parse(open.out)["topology"]["closedManifold"].get<bool>());
 }
 
-// OpenSCAD's own mesh of a sample, compared with the exact surface: its faceting error.
+// OpenSCAD's number of fragments for a circle of radius r (Calc::get_fragments_from_r,
+// OpenSCAD 2021.01) with $fn = 0 and the default $fa = 12, $fs = 2, as in pawn.scad.
+int openScadFragments(double r) {
+    constexpr double kFa = 12.0, kFs = 2.0;
+    return int(std::ceil(std::max(std::min(360.0 / kFa, r * 2.0 * M_PI / kFs), 5.0)));
+}
+
+// OpenSCAD's own mesh of a sample, compared with the exact surface: its faceting error, bounded
+// by what OpenSCAD's fragment rule implies for the sample's radii.
 TEST(CliMesh, OpenScadStlCompares) {
     if (std::system("openscad --version >/dev/null 2>&1") != 0)
         GTEST_SKIP() << "openscad is not installed";
+    // How far OpenSCAD's facets lie inside each of pawn.scad's primitives. Every vertex is on
+    // the exact surface and each facet is a chord, so its deepest point is
+    //  - cylinder(r1, r2): n = fragments(max(r1, r2)) sides; the widest side's chord has its
+    //    middle max(r1, r2) (1 - cos(pi / n)) inside the circle;
+    //  - sphere(r): n = fragments(r) around and rings = (n + 1) / 2 circles at polar angles
+    //    180 (i + 1/2) / rings; the widest facet is the rectangle across the equator, whose
+    //    plane is r cos(pi / n) cos(pi / (2 rings)) from the centre.
+    // The union's facets are pieces of these, and a point of the mesh lies inside the exact
+    // union within the depth of the facet it is on, so the largest depth bounds mesh->surface;
+    // a point of the exact surface is no farther from the facet below it, which bounds
+    // surface->mesh.
+    auto cylinderDepth = [](double r1, double r2) {
+        const double r = std::max(r1, r2);
+        return r * (1.0 - std::cos(M_PI / openScadFragments(r)));
+    };
+    auto sphereDepth = [](double r) {
+        const int n = openScadFragments(r), rings = (n + 1) / 2;
+        return r * (1.0 - std::cos(M_PI / n) * std::cos(M_PI / (2 * rings)));
+    };
+    const double depth =
+        std::max({cylinderDepth(10, 8), cylinderDepth(6, 3), cylinderDepth(5, 5), sphereDepth(5)});
+    // The STL stores floats: coordinates up to ~26 are rounded by up to ~2e-6.
+    const double bound = depth + 1e-5;
+
     ScratchDir dir;
     const fs::path stl = dir.path() / "pawn.stl";
     const std::string command = "openscad -o " + shellQuote(stl.string()) + " " +
                                 shellQuote(samplePath("pawn.scad").string()) + " >/dev/null 2>&1";
     if (std::system(command.c_str()) != 0 || !fs::exists(stl))
         GTEST_SKIP() << "openscad could not export the sample";
-    const RunResult c = runCsgray(
-        {"compare", samplePath("pawn.scad").string(), stl.string(), "--json", "--tolerance", "1"},
-        dir.path());
+    // compare takes a sample's first line when it answers within --tolerance and tries more
+    // lines (needed at the concave creases) only above it: half the bound keeps every sample
+    // near the bound measured well.
+    const RunResult c = runCsgray({"compare", samplePath("pawn.scad").string(), stl.string(),
+                                   "--json", "--tolerance", std::to_string(depth / 2)},
+                                  dir.path());
     ASSERT_FALSE(c.out.empty()) << c.err;
     const nlohmann::json j = nlohmann::json::parse(c.out);
     EXPECT_TRUE(j["topology"]["closedManifold"].get<bool>()) << c.out;
-    EXPECT_GT(j["meshToSurface"]["max"].get<double>(), 0.0);
-    std::printf("OpenSCAD pawn.stl: mesh->surface %g, surface->mesh %g, volume %+.2e\n",
-                j["meshToSurface"]["max"].get<double>(), j["surfaceToMesh"]["max"].get<double>(),
+    const double meshToSurface = j["meshToSurface"]["max"].get<double>();
+    const double surfaceToMesh = j["surfaceToMesh"]["max"].get<double>();
+    EXPECT_LE(meshToSurface, bound) << c.out;
+    EXPECT_LE(surfaceToMesh, bound) << c.out;
+    // The bound is reached: the head's equator rectangles are split along a diagonal, whose
+    // midpoint (a sample) is the rectangle's centre, the deepest point.
+    EXPECT_GE(meshToSurface, 0.9 * depth) << c.out;
+    std::printf("OpenSCAD pawn.stl: mesh->surface %g, surface->mesh %g (bound %g), volume %+.2e\n",
+                meshToSurface, surfaceToMesh, depth,
                 j["volume"]["relativeDifference"].get<double>());
 }
 
