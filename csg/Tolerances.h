@@ -79,6 +79,15 @@ inline constexpr int kHitPointErrorOps = 1024;
 // a 1e5 safety factor and costs nothing, as F > 0 everywhere outside the torus.
 inline constexpr double kTorusRangeMargin = 1e-6;
 
+// The torus's Newton iterations on its tube form G (primitives/Torus.cpp: the crossings, and
+// the critical points that cut the line into monotone pieces) stop after a step of at most this
+// fraction of the minor radius r (unit: relative to r). Why: convergence is quadratic, a step
+// of h leaving an error of about h^2 G'' / (2 |G'|), while rounding alone limits a crossing to
+// ~ulp (R + r)^2 / |G'| (G is evaluated to that); with G'' <= 2 the first stays below the
+// second for h below ~1e-8 (R + r), and 1e-9 r is below that for every torus. A critical point
+// needs less (G is flat there) but shares the rule. Smaller only adds an evaluation per root.
+inline constexpr double kTubeNewtonStep = 1e-9;
+
 // Mesh export (csg/mesh/). The QEF of a cell drops eigen-directions of A^T A whose eigenvalue
 // is below this fraction of the largest (unit: relative). Eigenvalues are squared singular
 // values, so this is DC's usual 0.1 singular-value cut: planes within ~6 degrees of each other

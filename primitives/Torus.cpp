@@ -20,6 +20,86 @@ double radial(double x, double y) {
     return std::sqrt(x * x + y * y);
 }
 
+// The tube form along the line b + s u (|u| = 1), G(s) = (rho - R)^2 + z^2 - r^2: it has the
+// quartic's real roots and is negative exactly inside, and it is evaluated from the point
+// itself, without the monomial expansion's loss of r^2 against R^2. With c = b.x u.y - b.y u.x
+// (constant along the line), G'' = 2 (1 - R c^2 / rho^3): G is convex where rho^3 > R c^2 and
+// concave on the one interval around the line's nearest approach to the axis where
+// rho^3 < R c^2, so its critical points, one at most per piece, cut the line into monotone
+// pieces that hold one root each.
+struct TubeLine {
+    Vec3 b, u;
+    double R, r;
+    double a;       // u.x^2 + u.y^2
+    double cross2;  // c^2
+
+    // G(s) and a bound on its rounding error (unit: length^2).
+    double value(double s, double* errorBound) const {
+        const Vec3 p = b + s * u;
+        const double rho = radial(p.x, p.y);
+        const double dr = rho - R;
+        const double az = std::abs(p.z);
+        // Rounding: p is off by an ulp of |p| per component, rho by ~2 more of rho, which move
+        // G by |grad G| = 2 sqrt(dr^2 + z^2) times that; the products and sums add a few ulps
+        // of their terms. 4 ulps of the sum of those magnitudes covers them.
+        *errorBound =
+            4.0 * tol::kUlp *
+            ((std::abs(dr) + az) * (rho + R + glm::length(p)) + dr * dr + (az + r) * (az + r));
+        return dr * dr + (p.z - r) * (p.z + r);
+    }
+    // G(s) and G'(s). side != 0 asks for the one-sided limit of G' at the point where a line
+    // across the axis meets it (rho = 0, a kink of rho): from larger s (+1) or smaller (-1).
+    void valueAndSlope(double s, double side, double& g, double& dg) const {
+        const Vec3 p = b + s * u;
+        const double rho = radial(p.x, p.y);
+        const double dr = rho - R;
+        const double drho = side != 0.0 ? side * std::sqrt(a)
+                            : rho > 0.0 ? (p.x * u.x + p.y * u.y) / rho
+                                        : 0.0;
+        g = dr * dr + (p.z - r) * (p.z + r);
+        dg = 2.0 * (dr * drho + p.z * u.z);
+    }
+    // G'(s) and G''(s), for the critical points (inside a piece, never at the kink).
+    void slopeAndCurvature(double s, double& dg, double& ddg) const {
+        const Vec3 p = b + s * u;
+        const double rho = radial(p.x, p.y);
+        const double drho = rho > 0.0 ? (p.x * u.x + p.y * u.y) / rho : 0.0;
+        dg = 2.0 * ((rho - R) * drho + p.z * u.z);
+        ddg = rho > 0.0 ? 2.0 * (1.0 - R * cross2 / (rho * rho * rho)) : -kInfinity;
+    }
+};
+
+// A point where the line's monotone pieces of G meet, with the sign G is taken to have there.
+struct Break {
+    double s, g;
+    bool negative;
+};
+
+// The zero of f between lo and hi (lo < hi), where f rises (rising) or falls through zero and
+// has no other zero: Newton steps from x, replaced by bisection when they would leave the
+// shrinking bracket; done once a step is at most `converged` (quadratic convergence makes the
+// next error far smaller) or the bracket is two adjacent doubles. eval(s, side, f, df).
+template <class Eval>
+double bracketedNewton(const Eval& eval, double lo, double hi, double x, bool rising,
+                       double converged) {
+    for (int i = 0; i < 100; ++i) {
+        double f, df;
+        eval(x, f, df);
+        if (f == 0.0) return x;
+        if ((f < 0.0) == rising)
+            lo = x;
+        else
+            hi = x;
+        double next = df != 0.0 ? x - f / df : lo;
+        // A step this small is the last one (it may round onto the bracket's end).
+        if (std::abs(next - x) <= converged) return std::clamp(next, lo, hi);
+        if (!(next > lo && next < hi)) next = 0.5 * lo + 0.5 * hi;
+        if (next <= lo || next >= hi) return x;
+        x = next;
+    }
+    return x;
+}
+
 }  // namespace
 
 Polynomial Torus::quarticAlong(const Vec3& b, const Vec3& u) const {
@@ -117,7 +197,109 @@ void Torus::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     const double widen = tol::kTorusRangeMargin * (R + r);
     sLo -= widen, sHi += widen;
 
-    // Step 3: the quartic's roots in range; F > 0 at both ends of the range (outside), so
+    if (solver == Solver::Auto)
+        tubeSpans(b, u, sLo, sHi, tBase, len, out);
+    else
+        quarticSpans(b, u, sLo, sHi, tBase, len, out);
+}
+
+void Torus::tubeSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, double tBase,
+                      double len, LocalSpans& out) const {
+    const double R = majorRadius, r = minorRadius;
+    const double a = u.x * u.x + u.y * u.y;
+    const double cross = b.x * u.y - b.y * u.x;
+    const TubeLine line{b, u, R, r, a, cross * cross};
+
+    // Step 3: the pieces of convexity. The line comes closest to the axis at s0, at distance
+    // m = |c| / sqrt(a); G is concave where rho^3 < R c^2, i.e. |s - s0| < w, which needs
+    // m^3 < R c^2, i.e. |c| < R a^(3/2) (c = 0, a line across the axis, is a kink: w = 0).
+    double cuts[4];
+    int nCuts = 0;
+    cuts[nCuts++] = sLo;
+    double s0 = 0.0, w = -1.0;
+    if (a > 0.0 && std::abs(cross) < R * a * std::sqrt(a)) {
+        const double m2 = line.cross2 / a;
+        const double rhoI = std::cbrt(R * line.cross2);
+        s0 = -(b.x * u.x + b.y * u.y) / a;
+        w = std::sqrt(std::max(0.0, rhoI * rhoI - m2) / a);
+        for (const double c : {s0 - w, s0 + w})
+            if (c > cuts[nCuts - 1] && c < sHi) cuts[nCuts++] = c;
+    }
+    cuts[nCuts++] = sHi;
+    // G' at a piece's end, from inside the piece (side +1 at its start, -1 at its end).
+    const auto slopeAt = [&](double s, double side) {
+        double g, dg;
+        line.valueAndSlope(s, w == 0.0 && s == s0 ? side : 0.0, g, dg);
+        return dg;
+    };
+
+    // Step 4: the monotone pieces. In each piece of convexity G' is monotone, so G has at most
+    // one critical point there: found by Newton on G' when G' changes sign over the piece,
+    // unless the tangents at the piece's ends already prove G keeps its ends' sign throughout
+    // (the misses, mostly). A minimum within G's rounding error of zero is a tangency from
+    // outside (no span), a maximum within it one from inside (no gap), the rule quarticSpans
+    // applies to the split double roots of a tangent line.
+    Break breaks[8];
+    int nBreaks = 0;
+    double err;
+    breaks[nBreaks++] = {sLo, line.value(sLo, &err), false};  // outside the bounds
+    const double convergedStep = tol::kTubeNewtonStep * r;
+    for (int k = 0; k + 1 < nCuts; ++k) {
+        const double p = cuts[k], q = cuts[k + 1];
+        const bool concave = w >= 0.0 && std::abs(0.5 * p + 0.5 * q - s0) < w;
+        const double gp = breaks[nBreaks - 1].g;
+        double gq = line.value(q, &err);
+        const bool last = k + 2 == nCuts;
+        const double dp = slopeAt(p, 1.0), dq = slopeAt(q, -1.0);
+        if (concave ? (dp > 0.0 && dq < 0.0) : (dp < 0.0 && dq > 0.0)) {
+            // The tangents at p and q meet at x; a convex G lies above both, a concave one
+            // below.
+            const double x = (gq - gp + dp * p - dq * q) / (dp - dq);
+            const double bound = gp + dp * (x - p);
+            const bool decided = concave ? bound < 0.0 : bound > 0.0;
+            if (!decided) {
+                const double start = x > p && x < q ? x : 0.5 * p + 0.5 * q;
+                const double c = bracketedNewton(
+                    [&](double s, double& f, double& df) { line.slopeAndCurvature(s, f, df); }, p,
+                    q, start, !concave, convergedStep);
+                double cErr;
+                const double gc = line.value(c, &cErr);
+                breaks[nBreaks++] = {c, gc, concave ? !(gc > cErr) : gc < -cErr};
+            }
+        }
+        // An inflection point with no trustworthy sign keeps its neighbour's: the crossing near
+        // it is then found once, in the next piece, never as a sliver on both sides.
+        const bool negative = last                  ? false
+                              : std::abs(gq) <= err ? breaks[nBreaks - 1].negative
+                                                    : gq < 0.0;
+        breaks[nBreaks++] = {q, gq, negative};
+    }
+
+    // Step 5: one crossing in each monotone piece whose ends' signs differ; the first break
+    // is outside and so is the last, so crossings alternate entering and leaving.
+    double ends[4];
+    int m = 0;
+    for (int k = 0; k + 1 < nBreaks && m < 4; ++k) {
+        const Break& lo = breaks[k];
+        const Break& hi = breaks[k + 1];
+        if (lo.negative == hi.negative) continue;
+        // Start from the secant through the ends' values when they bracket zero.
+        double start = 0.5 * lo.s + 0.5 * hi.s;
+        if ((lo.g < 0.0) != (hi.g < 0.0)) {
+            const double x = lo.s + (hi.s - lo.s) * (lo.g / (lo.g - hi.g));
+            if (x > lo.s && x < hi.s) start = x;
+        }
+        ends[m++] = bracketedNewton(
+            [&](double s, double& f, double& df) { line.valueAndSlope(s, 0.0, f, df); }, lo.s, hi.s,
+            start, lo.negative, convergedStep);
+    }
+    for (int i = 0; i + 1 < m; i += 2)
+        out.add(tBase + ends[i] / len, 0, tBase + ends[i + 1] / len, 0);
+}
+
+void Torus::quarticSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, double tBase,
+                         double len, LocalSpans& out) const {
+    // The quartic's roots in range; F > 0 at both ends of the range (outside), so
     // the solid is between roots 0-1 and 2-3. An odd count (a root lost to rounding) is
     // judged by F between the roots instead.
     const Polynomial quartic = quarticAlong(b, u);
@@ -132,7 +314,7 @@ void Torus::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
         roots[i] = polishOnTube(b, u, roots[i], lo, hi);
     }
     if (n % 2 == 0) {
-        // Step 4: the quartic's coefficient rounding splits a tangent line's double root into
+        // The quartic's coefficient rounding splits a tangent line's double root into
         // two close roots as often as into a complex pair. A span whose middle is not inside
         // by more than the tube form's rounding error is such a split (dropped), and so is a
         // gap between spans whose middle is not outside by more (the spans are joined).

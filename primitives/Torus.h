@@ -37,6 +37,13 @@ struct Torus {
     Polynomial quarticAlong(const Vec3& o, const Vec3& u) const;
 
 private:
+    // Steps 3-5 of spans() on the line b + s u, |u| = 1, inside [sLo, sHi] (the bounds), for
+    // t = tBase + s / len: the tube form's monotone pieces (Solver::Auto), or the quartic by
+    // the solver asked for.
+    void tubeSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, double tBase, double len,
+                   LocalSpans& out) const;
+    void quarticSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, double tBase,
+                      double len, LocalSpans& out) const;
     // Newton on the tube's distance form from a root s of the quartic, kept within [lo, hi].
     double polishOnTube(const Vec3& b, const Vec3& u, double s, double lo, double hi) const;
     // The tube form (rho - R)^2 + z^2 - r^2 at b + s u (< 0 inside) and a bound on its rounding
