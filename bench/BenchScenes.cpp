@@ -42,6 +42,9 @@ std::unique_ptr<BenchScene> makeScene(const std::string& key) {
     } else if (key.starts_with("sphere_layer/")) {
         tree = sphereLayerTree(std::stoul(key.substr(key.find('/') + 1)));
         camera = sphereLayerCamera();
+    } else if (key.starts_with("sphere_layer_narrow/")) {
+        tree = sphereLayerTree(std::stoul(key.substr(key.find('/') + 1)));
+        camera = sphereLayerNarrowCamera();
     } else {
         throw std::invalid_argument("no benchmark scene named " + key);
     }
@@ -157,6 +160,12 @@ PinholeCamera sphereLayerCamera() {
     camera.lookAt = {0.5 * kLayerSide, 0.5 * kLayerSide, 0.0};
     camera.up = {0.0, 0.0, 1.0};
     camera.horizontalFovDegrees = 40.0;
+    return camera;
+}
+
+PinholeCamera sphereLayerNarrowCamera() {
+    PinholeCamera camera = sphereLayerCamera();
+    camera.horizontalFovDegrees = 0.4;
     return camera;
 }
 

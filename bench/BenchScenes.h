@@ -35,7 +35,7 @@ struct BenchScene {
 
 // Scene::compile of a tree is timed once and the compiled scene kept for the whole process, so
 // the `closest` and `spans` benchmarks (and their repetitions) of one scene share one compile.
-// Keys: "sphere", "emblem_grid", "sphere_layer/<n>".
+// Keys: "sphere", "emblem_grid", "sphere_layer/<n>", "sphere_layer_narrow/<n>".
 const BenchScene& cachedScene(const std::string& key);
 
 // One sphere of radius 1 at the origin, seen from 4 units away through a square frame that
@@ -56,5 +56,9 @@ PinholeCamera emblemGridCamera();  // POV's camera: location <14,12,-22>, look_a
 // BVH's node visits per ray comparable across n (they should grow as log n).
 NodePtr sphereLayerTree(size_t sphereCount);
 PinholeCamera sphereLayerCamera();
+// The same camera narrowed to 0.4 degrees: its rays cover about 1 x 1 unit of the layer's
+// centre, so they walk the same BVH but touch only the few nodes and leaves above that patch:
+// the working set fits in cache at every n.
+PinholeCamera sphereLayerNarrowCamera();
 
 }  // namespace csg::bench

@@ -84,6 +84,12 @@ void registerAll() {
         benchmark::RegisterBenchmark(("closest/" + key).c_str(), closestBenchmark, key);
     for (const std::string& key : sceneKeys)
         benchmark::RegisterBenchmark(("spans/" + key).c_str(), spansBenchmark, key);
+    // The layers again through a 0.4-degree view: the same BVH with a small working set, which
+    // separates the cost of the visits from the cost of the memory they touch.
+    for (size_t n : kLayerSizes) {
+        const std::string key = "sphere_layer_narrow/" + std::to_string(n);
+        benchmark::RegisterBenchmark(("closest/" + key).c_str(), closestBenchmark, key);
+    }
     benchmark::RegisterBenchmark("compile/emblem_grid", [](benchmark::State& state) {
         compileBenchmark(state, emblemGridTree());
     })->Unit(benchmark::kMillisecond);
