@@ -41,6 +41,10 @@ struct Bounds3 {
         return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z &&
                p.z <= hi.z;
     }
+    // Whether b lies inside this box (an empty b lies inside every box).
+    bool contains(const Bounds3& b) const {
+        return b.empty() || (contains(b.lo) && contains(b.hi));
+    }
 };
 
 inline Bounds3 hull(const Bounds3& a, const Bounds3& b) {

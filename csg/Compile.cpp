@@ -104,7 +104,8 @@ struct Compiler {
                 if (b == kNoNode) return kNoNode;
                 const Bounds3 box = overlap(scene.nodes_[a].bounds, scene.nodes_[b].bounds);
                 if (box.empty()) return kNoNode;
-                return addNode({NodeKind::Intersection, box, a, b});
+                markImpliedOperands(a, b);
+                return addNode({NodeKind::Intersection, false, box, a, b});
             }
             case Op::Difference: {
                 const BooleanScope scope(*this, node);
@@ -113,10 +114,19 @@ struct Compiler {
                 const uint32_t b = build(*node.right, worldFromNode);
                 const Bounds3& box = scene.nodes_[a].bounds;
                 if (b == kNoNode || overlap(box, scene.nodes_[b].bounds).empty()) return a;
-                return addNode({NodeKind::Difference, box, a, b});
+                markImpliedOperands(a, b);
+                return addNode({NodeKind::Difference, false, box, a, b});
             }
         }
         return kNoNode;
+    }
+
+    // The operands of an intersection or difference whose bounds test the parent's implies
+    // (CompiledNode::boundsImplied).
+    void markImpliedOperands(uint32_t left, uint32_t right) {
+        scene.nodes_[left].boundsImplied = true;
+        if (scene.nodes_[right].bounds.contains(scene.nodes_[left].bounds))
+            scene.nodes_[right].boundsImplied = true;
     }
 
     // Collects the non-empty operands of a maximal chain of unions.
@@ -166,7 +176,7 @@ struct Compiler {
         const uint32_t index = static_cast<uint32_t>(scene.leaves_.size());
         scene.leaves_.push_back(geometry);
         scene.frames_.push_back({worldFromLocal, glm::transpose(Mat3(localFromWorld)), node.tags});
-        return addNode({NodeKind::Leaf, box, index});
+        return addNode({NodeKind::Leaf, false, box, index});
     }
 
     uint32_t buildUnion(std::vector<uint32_t>& children) {
@@ -181,9 +191,12 @@ struct Compiler {
         u.count = static_cast<uint32_t>(children.size());
         u.bounded = static_cast<uint32_t>(firstUnbounded - children.begin());
         for (uint32_t c : children) u.bounds.extend(scene.nodes_[c].bounds);
-        if (u.bounded >= kBvhMinChildren)
+        if (u.bounded >= kBvhMinChildren) {
             u.bvhRoot =
                 buildBvh(std::span(children.data(), u.bounded), scene.nodes_, u.first, scene.bvh_);
+            // The BVH root's box is the hull of the same children, i.e. u.bounds.
+            u.boundsImplied = u.bounded == u.count;
+        }
         scene.children_.insert(scene.children_.end(), children.begin(), children.end());
         return addNode(u);
     }

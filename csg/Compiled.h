@@ -35,6 +35,18 @@ enum class NodeKind : uint8_t { Leaf, Union, Intersection, Difference };
 //               a short union scanned linearly); the rest have unbounded bounds.
 struct CompiledNode {
     NodeKind kind = NodeKind::Union;
+    // The ray loop does not test this node's bounds, because a test that has just passed
+    // implies this one:
+    // - the left operand of an intersection or difference: the parent's bounds (the overlap,
+    //   or the left operand's own) lie inside it, and the parent evaluates it over the same
+    //   [t0, t1]; the slab test is monotone in the box under rounding, so it would pass;
+    // - the right operand of one whose bounds contain the left operand's: it is evaluated
+    //   only over the hull of the left operand's spans, which lies in the left's box, hence
+    //   in its own (a skipped cull only ever costs work: the bounds are conservative, so the
+    //   spans found are the same);
+    // - a union whose children all lie in its BVH: the BVH root's box is this same box and
+    //   is tested first, over the same range.
+    bool boundsImplied = false;
     Bounds3 bounds;
     uint32_t first = 0;
     uint32_t second = 0;

@@ -12,6 +12,20 @@
 
 namespace csg {
 
+namespace {
+
+// A 3x4 affine map applied to a point and to a direction, in the operation order of
+// transformPoint and transformVector (Math.h), so the results are the same bits, but without
+// widening the matrix to the 4x4 and 3x3 temporaries those take.
+Vec3 affinePoint(const Affine& m, const Vec3& p) {
+    return (m[0] * p.x + m[1] * p.y) + (m[2] * p.z + m[3]);
+}
+Vec3 affineVector(const Affine& m, const Vec3& v) {
+    return m[0] * v.x + m[1] * v.y + m[2] * v.z;
+}
+
+}  // namespace
+
 struct Evaluator {
     const Scene& scene;
     QueryContext& ctx;
@@ -44,7 +58,7 @@ struct Evaluator {
 
     size_t eval(uint32_t index, double t0, double t1) {
         const CompiledNode& node = scene.nodes_[index];
-        if (!touches(node.bounds, t0, t1)) return 0;
+        if (!node.boundsImplied && !touches(node.bounds, t0, t1)) return 0;
         switch (node.kind) {
             case NodeKind::Leaf:
                 return evalLeaf(scene.leaves_[node.first], node.first, t0, t1);
@@ -59,8 +73,8 @@ struct Evaluator {
 
     size_t evalLeaf(const LeafGeometry& leaf, uint32_t leafIndex, double t0, double t1) {
         // Map the ray into the leaf's frame; d keeps its length so t is unchanged.
-        const Vec3 o = transformPoint(leaf.localFromWorld, ray.o);
-        const Vec3 d = transformVector(leaf.localFromWorld, ray.d);
+        const Vec3 o = affinePoint(leaf.localFromWorld, ray.o);
+        const Vec3 d = affineVector(leaf.localFromWorld, ray.d);
         // Solve near the primitive: restart the ray where it enters the local bounds.
         double b0 = -kInfinity, b1 = kInfinity;
         if (!clipToBox(SlabRay(o, d), leaf.localBounds, b0, b1) || b1 < t0 || b0 > t1) return 0;
@@ -107,7 +121,13 @@ struct Evaluator {
         // Without sheets in the scene (known at compile), skip mergeSpans' scan for them.
         const auto merge = scene.hasSheets_ ? mergeSpans : mergeSolidSpans;
         const size_t n = merge(op, s + base, na, s + base + na, nb, out, originScale);
-        std::copy(out, out + n, s + base);
+        // Most results are a span or two: copy those by assignment, not by a memmove call.
+        if (n <= 2) {
+            if (n > 0) s[base] = out[0];
+            if (n > 1) s[base + 1] = out[1];
+        } else {
+            std::copy(out, out + n, s + base);
+        }
         top = base + n;
         return n;
     }
@@ -176,7 +196,7 @@ struct Evaluator {
     bool any(uint32_t index, double t0, double t1) {
         const CompiledNode& node = scene.nodes_[index];
         if (node.kind == NodeKind::Union) {
-            if (!touches(node.bounds, t0, t1)) return false;
+            if (!node.boundsImplied && !touches(node.bounds, t0, t1)) return false;
             bool found = false;
             forEachChild(node, t0, t1,
                          [&](uint32_t child) { return !(found = any(child, t0, t1)); });
@@ -196,7 +216,7 @@ struct Evaluator {
         double t1 = ray.tmax;
         if (root.kind != NodeKind::Union) return any(scene.root_, t0, t1);
         if (cache.node != kNoNode && any(cache.node, t0, t1)) return true;
-        if (!touches(root.bounds, t0, t1)) return false;
+        if (!root.boundsImplied && !touches(root.bounds, t0, t1)) return false;
         bool found = false;
         forEachChild(root, t0, t1, [&](uint32_t child) {
             if (child == cache.node || !any(child, t0, t1)) return true;
@@ -214,7 +234,7 @@ struct Evaluator {
         double t1 = ray.tmax;
         std::optional<Hit> best;
         bool startsInside = false;
-        if (touches(root.bounds, ray.tmin, t1)) {
+        if (root.boundsImplied || touches(root.bounds, ray.tmin, t1)) {
             forEachChild(root, ray.tmin, t1, [&](uint32_t child) {
                 const size_t base = top;
                 const size_t n = eval(child, ray.tmin, t1);
