@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <string>
 
 #include "csg/mesh/MeshCheck.h"
 #include "io/MeshFileDetail.h"
@@ -22,6 +23,18 @@ MeshFormat meshFormatOf(const std::filesystem::path& file) {
 std::optional<std::string> writeMesh(const std::filesystem::path& file,
                                      const csg::TriangleMesh& mesh,
                                      const std::vector<Material>& materials) {
+    // Every format gets the same promise: nothing but a closed, consistently oriented
+    // 2-manifold is written (a second check of dual contouring and simplification).
+    if (meshFormatOf(file) != MeshFormat::Unknown && meshFormatOf(file) != MeshFormat::Stl) {
+        const csg::MeshTopology topo = csg::checkTopology(mesh);
+        if (!topo.closedManifold())
+            return "the mesh is not a closed oriented manifold (" +
+                   std::to_string(topo.boundaryEdges) + " boundary, " +
+                   std::to_string(topo.nonManifoldEdges) + " non-manifold, " +
+                   std::to_string(topo.misorientedEdges) + " misoriented edges, " +
+                   std::to_string(topo.nonManifoldVertices) + " non-manifold vertices, " +
+                   std::to_string(topo.degenerateTriangles) + " degenerate triangles)";
+    }
     switch (meshFormatOf(file)) {
         case MeshFormat::Obj:
             return detail::writeObj(file, mesh);

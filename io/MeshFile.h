@@ -23,7 +23,8 @@ MeshFormat meshFormatOf(const std::filesystem::path& file);
 // on failure no file is left behind. materials is Model::materials, indexed by the mesh's
 // triangleMaterial. glTF gets one primitive per material, with pbrMetallicRoughness from the
 // material, and the part's Z-up frame rotated to glTF's Y-up at the root node. An empty mesh
-// writes a valid empty file. Returns the error, or nothing on success.
+// writes a valid empty file. A mesh that is not a closed, consistently oriented 2-manifold
+// (csg::checkTopology) is refused for every format. Returns the error, or nothing on success.
 std::optional<std::string> writeMesh(const std::filesystem::path& file,
                                      const csg::TriangleMesh& mesh,
                                      const std::vector<Material>& materials);

@@ -1,10 +1,7 @@
-// OBJ: the mesh is first built as an OpenMesh TriMesh (which refuses a face that would make an
-// edge or vertex non-manifold, a second check of dual contouring), then written as text with
+// OBJ: the mesh (checked to be a closed manifold by io::writeMesh) is written as text with
 // one `v` per welded vertex (a closed mesh for printing) and one `vn` per crease-split vertex
 // (csg/mesh/CreaseNormals.h), faces as `f v//vn`: OpenMesh's OBJ writer has one normal per
 // vertex, so it could not shade box edges flat without cutting the mesh open along them.
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-
 #include <cstdio>
 #include <string>
 
@@ -14,24 +11,9 @@
 
 namespace io::detail {
 
-using OmMesh = OpenMesh::TriMesh_ArrayKernelT<>;
-
 std::optional<std::string> writeObj(const std::filesystem::path& file,
                                     const csg::TriangleMesh& mesh) {
-    // Step 1: the OpenMesh mesh, as the manifold check.
-    {
-        OmMesh om;
-        std::vector<OmMesh::VertexHandle> handles;
-        handles.reserve(mesh.positions.size());
-        for (const csg::Vec3& p : mesh.positions)
-            handles.push_back(om.add_vertex(OmMesh::Point(float(p.x), float(p.y), float(p.z))));
-        for (const auto& tri : mesh.triangles) {
-            const auto face = om.add_face(handles[tri[0]], handles[tri[1]], handles[tri[2]]);
-            if (!face.is_valid()) return "the mesh is not manifold: OpenMesh rejected a face";
-        }
-    }
-
-    // Step 2: the text (9 significant digits: float positions read back exactly). The split
+    // Step 1: the text (9 significant digits: float positions read back exactly). The split
     // mesh keeps triangle order and corners, so its corner indices name the normals.
     const csg::TriangleMesh shaded = csg::splitAtCreases(mesh, csg::tol::kShadingCreaseDegrees);
     std::string text =
@@ -53,7 +35,7 @@ std::optional<std::string> writeObj(const std::filesystem::path& file,
         text += line;
     }
 
-    // Step 3: atomically to the target.
+    // Step 2: atomically to the target.
     if (std::string error = writeFileAtomically(file, text); !error.empty()) return error;
     return std::nullopt;
 }
