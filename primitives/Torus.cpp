@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "primitives/solvers/LinePoint.h"
 #include "primitives/solvers/Quadratic.h"
@@ -33,39 +34,63 @@ struct TubeLine {
     double a;       // u.x^2 + u.y^2
     double cross2;  // c^2
 
-    // G(s) and a bound on its rounding error (unit: length^2).
-    double value(double s, double* errorBound) const {
+    // G and its derivatives at s. side != 0 asks for the one-sided limit of G' at the point
+    // where a line across the axis meets it (rho = 0, a kink of rho): from larger s (+1) or
+    // smaller (-1); G'' is not defined there and is not asked for.
+    struct At {
+        double g, dg, ddg;
+        double err;  // a bound on the rounding error of g (unit: length^2)
+    };
+    At at(double s, double side = 0.0) const {
         const Vec3 p = b + s * u;
         const double rho = radial(p.x, p.y);
         const double dr = rho - R;
         const double az = std::abs(p.z);
-        // Rounding: p is off by an ulp of |p| per component, rho by ~2 more of rho, which move
-        // G by |grad G| = 2 sqrt(dr^2 + z^2) times that; the products and sums add a few ulps
-        // of their terms. 4 ulps of the sum of those magnitudes covers them.
-        *errorBound =
-            4.0 * tol::kUlp *
-            ((std::abs(dr) + az) * (rho + R + glm::length(p)) + dr * dr + (az + r) * (az + r));
-        return dr * dr + (p.z - r) * (p.z + r);
-    }
-    // G(s) and G'(s). side != 0 asks for the one-sided limit of G' at the point where a line
-    // across the axis meets it (rho = 0, a kink of rho): from larger s (+1) or smaller (-1).
-    void valueAndSlope(double s, double side, double& g, double& dg) const {
-        const Vec3 p = b + s * u;
-        const double rho = radial(p.x, p.y);
-        const double dr = rho - R;
         const double drho = side != 0.0 ? side * std::sqrt(a)
                             : rho > 0.0 ? (p.x * u.x + p.y * u.y) / rho
                                         : 0.0;
-        g = dr * dr + (p.z - r) * (p.z + r);
-        dg = 2.0 * (dr * drho + p.z * u.z);
+        At v;
+        v.g = dr * dr + (p.z - r) * (p.z + r);
+        v.dg = 2.0 * (dr * drho + p.z * u.z);
+        v.ddg = 2.0 * (1.0 - R * cross2 / (rho * rho * rho));
+        // Rounding: p is off by an ulp of |p| <= rho + |z| per component, rho by ~2 more of
+        // rho, which move G by |grad G| = 2 sqrt(dr^2 + z^2) times that; the products and sums
+        // add a few ulps of their terms. 4 ulps of the sum of those magnitudes covers them.
+        v.err = 4.0 * tol::kUlp *
+                ((std::abs(dr) + az) * (2.0 * rho + R + az) + dr * dr + (az + r) * (az + r));
+        return v;
     }
-    // G'(s) and G''(s), for the critical points (inside a piece, never at the kink).
-    void slopeAndCurvature(double s, double& dg, double& ddg) const {
-        const Vec3 p = b + s * u;
-        const double rho = radial(p.x, p.y);
-        const double drho = rho > 0.0 ? (p.x * u.x + p.y * u.y) / rho : 0.0;
-        dg = 2.0 * ((rho - R) * drho + p.z * u.z);
-        ddg = rho > 0.0 ? 2.0 * (1.0 - R * cross2 / (rho * rho * rho)) : -kInfinity;
+
+    // On a piece [lo, hi] where H = sigma G is convex (sigma = +1 on a convex piece of G, -1 on
+    // the concave one), H >= 0 at both ends, H' < 0 at lo and > 0 at hi (h*, d* are H and H'
+    // there): a point x where H < -err, true, so that G changes sign on both sides of x; false
+    // when H is within rounding of >= 0 throughout. Proven either way as early as possible:
+    // the tangents at the bracket's ends bound a convex H from below, and Newton on H' moves
+    // towards its minimum, where the two meet.
+    bool findDip(double sigma, double lo, double hlo, double dlo, double hi, double hhi, double dhi,
+                 double converged, double& x, double& gx) const {
+        x = std::numeric_limits<double>::quiet_NaN();
+        for (int i = 0; i < 100; ++i) {
+            const double xt = (hhi - hlo + dlo * lo - dhi * hi) / (dlo - dhi);
+            if (hlo + dlo * (xt - lo) > 0.0) return false;
+            if (!(x > lo && x < hi)) x = xt > lo && xt < hi ? xt : 0.5 * lo + 0.5 * hi;
+            if (!(x > lo && x < hi)) return false;  // the bracket is two adjacent doubles
+            const At v = at(x);
+            const double h = sigma * v.g, dh = sigma * v.dg, ddh = sigma * v.ddg;
+            if (h < -v.err) {
+                gx = v.g;
+                return true;
+            }
+            if (dh == 0.0) return false;  // the minimum itself
+            if (dh < 0.0)
+                lo = x, hlo = h, dlo = dh;
+            else
+                hi = x, hhi = h, dhi = dh;
+            const double next = x - dh / ddh;
+            if (std::abs(next - x) <= converged) return false;  // at the minimum
+            x = next;
+        }
+        return false;
     }
 };
 
@@ -75,22 +100,20 @@ struct Break {
     bool negative;
 };
 
-// The zero of f between lo and hi (lo < hi), where f rises (rising) or falls through zero and
+// The zero of G between lo and hi (lo < hi), where G rises (rising) or falls through zero and
 // has no other zero: Newton steps from x, replaced by bisection when they would leave the
 // shrinking bracket; done once a step is at most `converged` (quadratic convergence makes the
-// next error far smaller) or the bracket is two adjacent doubles. eval(s, side, f, df).
-template <class Eval>
-double bracketedNewton(const Eval& eval, double lo, double hi, double x, bool rising,
-                       double converged) {
+// next error far smaller) or the bracket is two adjacent doubles.
+double crossing(const TubeLine& line, double lo, double hi, double x, bool rising,
+                double converged) {
     for (int i = 0; i < 100; ++i) {
-        double f, df;
-        eval(x, f, df);
-        if (f == 0.0) return x;
-        if ((f < 0.0) == rising)
+        const TubeLine::At v = line.at(x);
+        if (v.g == 0.0) return x;
+        if ((v.g < 0.0) == rising)
             lo = x;
         else
             hi = x;
-        double next = df != 0.0 ? x - f / df : lo;
+        double next = v.dg != 0.0 ? x - v.g / v.dg : lo;
         // A step this small is the last one (it may round onto the bracket's end).
         if (std::abs(next - x) <= converged) return std::clamp(next, lo, hi);
         if (!(next > lo && next < hi)) next = 0.5 * lo + 0.5 * hi;
@@ -226,53 +249,41 @@ void Torus::tubeSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, doub
             if (c > cuts[nCuts - 1] && c < sHi) cuts[nCuts++] = c;
     }
     cuts[nCuts++] = sHi;
-    // G' at a piece's end, from inside the piece (side +1 at its start, -1 at its end).
-    const auto slopeAt = [&](double s, double side) {
-        double g, dg;
-        line.valueAndSlope(s, w == 0.0 && s == s0 ? side : 0.0, g, dg);
-        return dg;
-    };
+    // The side a cut's G' is taken from: only the kink of a line across the axis has two.
+    const auto sideAt = [&](double s, double side) { return w == 0.0 && s == s0 ? side : 0.0; };
 
-    // Step 4: the monotone pieces. In each piece of convexity G' is monotone, so G has at most
-    // one critical point there: found by Newton on G' when G' changes sign over the piece,
-    // unless the tangents at the piece's ends already prove G keeps its ends' sign throughout
-    // (the misses, mostly). A minimum within G's rounding error of zero is a tangency from
-    // outside (no span), a maximum within it one from inside (no gap), the rule quarticSpans
-    // applies to the split double roots of a tangent line.
+    // Step 4: the signs. G is taken positive at the range's ends (outside the bounds) and by
+    // its value at the cuts between pieces, except that a cut with no trustworthy sign keeps
+    // its neighbour's: a crossing near it is then found once, never as a sliver on both sides.
+    // Inside a piece where G is convex and positive at both ends, it is negative somewhere
+    // (two crossings) only if G' changes sign and a dip below -err is found (findDip); on the
+    // concave piece, negative at both ends, likewise for a bump above err. So a minimum within
+    // rounding of zero is a tangency from outside (no span), a maximum within it one from
+    // inside (no gap), the rule quarticSpans applies to the split double roots of a tangent
+    // line. Elsewhere a convex piece lies below its chord and a concave one above it, so the
+    // ends' signs decide.
     Break breaks[8];
     int nBreaks = 0;
-    double err;
-    breaks[nBreaks++] = {sLo, line.value(sLo, &err), false};  // outside the bounds
+    TubeLine::At vp = line.at(sLo, sideAt(sLo, 1.0));
+    breaks[nBreaks++] = {sLo, vp.g, false};
     const double convergedStep = tol::kTubeNewtonStep * r;
     for (int k = 0; k + 1 < nCuts; ++k) {
         const double p = cuts[k], q = cuts[k + 1];
         const bool concave = w >= 0.0 && std::abs(0.5 * p + 0.5 * q - s0) < w;
-        const double gp = breaks[nBreaks - 1].g;
-        double gq = line.value(q, &err);
         const bool last = k + 2 == nCuts;
-        const double dp = slopeAt(p, 1.0), dq = slopeAt(q, -1.0);
-        if (concave ? (dp > 0.0 && dq < 0.0) : (dp < 0.0 && dq > 0.0)) {
-            // The tangents at p and q meet at x; a convex G lies above both, a concave one
-            // below.
-            const double x = (gq - gp + dp * p - dq * q) / (dp - dq);
-            const double bound = gp + dp * (x - p);
-            const bool decided = concave ? bound < 0.0 : bound > 0.0;
-            if (!decided) {
-                const double start = x > p && x < q ? x : 0.5 * p + 0.5 * q;
-                const double c = bracketedNewton(
-                    [&](double s, double& f, double& df) { line.slopeAndCurvature(s, f, df); }, p,
-                    q, start, !concave, convergedStep);
-                double cErr;
-                const double gc = line.value(c, &cErr);
-                breaks[nBreaks++] = {c, gc, concave ? !(gc > cErr) : gc < -cErr};
-            }
+        const bool pNegative = breaks[nBreaks - 1].negative;
+        const TubeLine::At vq = line.at(q, sideAt(q, -1.0));
+        const bool qNegative = last ? false : std::abs(vq.g) <= vq.err ? pNegative : vq.g < 0.0;
+        const double sigma = concave ? -1.0 : 1.0;
+        if (pNegative == concave && qNegative == concave && sigma * vp.dg < 0.0 &&
+            sigma * vq.dg > 0.0) {
+            double x, gx;
+            if (line.findDip(sigma, p, sigma * vp.g, sigma * vp.dg, q, sigma * vq.g, sigma * vq.dg,
+                             convergedStep, x, gx))
+                breaks[nBreaks++] = {x, gx, !concave};
         }
-        // An inflection point with no trustworthy sign keeps its neighbour's: the crossing near
-        // it is then found once, in the next piece, never as a sliver on both sides.
-        const bool negative = last                  ? false
-                              : std::abs(gq) <= err ? breaks[nBreaks - 1].negative
-                                                    : gq < 0.0;
-        breaks[nBreaks++] = {q, gq, negative};
+        breaks[nBreaks++] = {q, vq.g, qNegative};
+        vp = sideAt(q, 1.0) != 0.0 ? line.at(q, 1.0) : vq;
     }
 
     // Step 5: one crossing in each monotone piece whose ends' signs differ; the first break
@@ -289,9 +300,7 @@ void Torus::tubeSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, doub
             const double x = lo.s + (hi.s - lo.s) * (lo.g / (lo.g - hi.g));
             if (x > lo.s && x < hi.s) start = x;
         }
-        ends[m++] = bracketedNewton(
-            [&](double s, double& f, double& df) { line.valueAndSlope(s, 0.0, f, df); }, lo.s, hi.s,
-            start, lo.negative, convergedStep);
+        ends[m++] = crossing(line, lo.s, hi.s, start, lo.negative, convergedStep);
     }
     for (int i = 0; i + 1 < m; i += 2)
         out.add(tBase + ends[i] / len, 0, tBase + ends[i + 1] / len, 0);
