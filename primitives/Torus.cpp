@@ -9,7 +9,6 @@
 #include <limits>
 
 #include "primitives/solvers/LinePoint.h"
-#include "primitives/solvers/Quadratic.h"
 
 namespace csg {
 namespace {
@@ -203,15 +202,17 @@ void Torus::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
         return;
     }
     const double a = u.x * u.x + u.y * u.y;
-    const double rhoB = radial(b.x, b.y);
     if (a > 0.0) {
+        // The line's horizontal projection passes the axis at distance m = |c| / sqrt(a),
+        // c = b.x u.y - b.y u.x, nearest at s = -(b.x u.x + b.y u.y) / a, and is within R + r
+        // of it for |s - that| <= sqrt(((R + r)^2 - m^2) / a): no quadratic to solve.
         const double outer = R + r;
-        double c0, c1;
-        const double f = b.x * u.x + b.y * u.y;
-        const double k = (rhoB - outer) * (rhoB + outer);
-        if (solveQuadratic(a, 2.0 * f, k, c0, c1) < 2) return;
-        sLo = std::max(sLo, c0), sHi = std::min(sHi, c1);
-    } else if (rhoB > R + r) {
+        const double m = std::abs(b.x * u.y - b.y * u.x) / std::sqrt(a);
+        if (!(m <= outer)) return;
+        const double nearest = -(b.x * u.x + b.y * u.y) / a;
+        const double half = std::sqrt((outer - m) * (outer + m) / a);
+        sLo = std::max(sLo, nearest - half), sHi = std::min(sHi, nearest + half);
+    } else if (radial(b.x, b.y) > R + r) {
         return;
     }
     if (!(sLo <= sHi)) return;
