@@ -118,6 +118,26 @@ inline constexpr double kMeshMeasureMargin = 0.8;
 // across): 1e-3 h stays clear of that, and dropping it moves the mesh by at most 1e-3 h.
 inline constexpr double kMeshVertexSeparation = 1e-3;
 
+// Two crossings of one grid edge whose normals are further apart than this (unit: cosine,
+// about 105 degrees) bound a wall or gap thinner than the cell, and meshing adds a grid plane
+// between them (csg/mesh/ThinFeatures.h). A line grazing a convex surface also crosses one edge
+// twice, but there the normals nearly agree (they differ by more than 90 degrees only on a
+// surface whose radius is below the cell), and two faces meeting at a box edge are 90 apart:
+// neither needs a plane, the cell's QEF vertex follows them.
+inline constexpr double kThinFacingCos = -0.25;
+
+// Thin walls and gaps narrower than this (unit: multiples of the grid spacing h) get no plane
+// of their own: each would cost a plane through the whole part, and a fused wedge-shaped gap
+// that narrow reaches only that width times the wedge's cotangent into the part.
+inline constexpr double kThinMinWidth = 0.002;
+
+// Mesh refinement stops when a pass cut the measured error by less than this fraction of what
+// the linear law (error proportional to the cell size) promised for its finer spacing (unit:
+// relative). Errors left by gaps narrower than any affordable cell, or by the measurement's
+// own floor, do not shrink with h; a quarter still lets a pass whose errors are only partly
+// of that kind go on, and each further pass costs ~2.5x the previous one.
+inline constexpr double kMeshStallFraction = 0.25;
+
 // Simplifying a grid mesh (csg/mesh/Tessellate.cpp) may spend at least this fraction of the
 // tolerance even when the grid's mesh already measures close to the margin (unit: relative to
 // T): the grid mesh's errors sit at a few creases, collapses that would add to them are caught

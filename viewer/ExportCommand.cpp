@@ -18,11 +18,13 @@ const char* const kExportHelp =
     "usage: csgray export PART -o OUT.glb|OUT.gltf|OUT.obj [options]\n"
     "\n"
     "Meshes the part from its own ray casts: rays along x, y and z through a uniform grid\n"
-    "give the exact surface crossings and normals on every grid edge; dual contouring with a\n"
+    "(with planes added through walls and gaps thinner than a cell) give the exact surface\n"
+    "crossings and normals on every grid edge; dual contouring with a\n"
     "QEF per cell keeps sharp edges and corners; the mesh is a closed, outward-oriented\n"
     "2-manifold. The grid is refined until the measured distance between mesh and surface\n"
-    "(both ways, sampled) is within the tolerance; then flat and gently curved regions are\n"
-    "coarsened by edge collapses within what is left of the tolerance, and measured again.\n"
+    "(both ways, sampled) is within the tolerance, or until a pass stops paying; then flat\n"
+    "and gently curved regions are coarsened by edge collapses within what is left of the\n"
+    "tolerance, and measured again (skipped when nothing is left).\n"
     "Normals are split along creases sharper than 40 degrees (box edges shade flat, curved\n"
     "faces smooth). GLB/glTF: one primitive per material, Y-up (the Z-up part is rotated at\n"
     "the root node). The file is written atomically; an empty part gives an empty file and\n"
@@ -36,7 +38,8 @@ const char* const kExportHelp =
     "                     mesh is written with a warning and the error reached\n"
     "  --no-simplify      keep the grid's mesh (no coarsening of flat regions)\n"
     "  --threads N        worker threads (default: all cores)\n"
-    "  --quiet            no summary on stderr\n";
+    "  --quiet            no summary on stderr\n"
+    "  --verbose          also one line per grid pass on stderr\n";
 
 }  // namespace
 
@@ -44,7 +47,7 @@ int exportCommand(std::span<const std::string> args) {
     CommonOptions common;
     std::string output;
     csg::TessellateOptions options;
-    bool quiet = false;
+    bool quiet = false, verbose = false;
     ArgCursor cursor(args);
     while (!cursor.done()) {
         if (auto o = cursor.option("-o")) {
@@ -59,6 +62,8 @@ int exportCommand(std::span<const std::string> args) {
             options.simplify = false;
         } else if (cursor.flag("--quiet")) {
             quiet = true;
+        } else if (cursor.flag("--verbose")) {
+            verbose = true;
         } else if (!cursor.common(common)) {
             throw UsageError("export: unknown option '" + cursor.peek() + "'");
         }
@@ -100,7 +105,9 @@ int exportCommand(std::span<const std::string> args) {
     else if (!result.toleranceMet)
         report.add({common.part, 0, 0, io::Severity::Warning,
                     "tolerance " + std::to_string(result.tolerance) + " not reached" +
-                        (result.capped ? " within --max-cells" : "") + ": measured " +
+                        (result.capped ? " within --max-cells" : "") +
+                        (result.stalled ? " (finer cells stopped reducing the error)" : "") +
+                        ": measured " +
                         std::to_string(std::max(result.error.max, result.backError.max))});
     if (!result.mesh.empty() && !result.toleranceMet && result.contour.thinEdges > 0) {
         // The likely cause, where the grid shows it: features thinner than a cell.
@@ -119,6 +126,13 @@ int exportCommand(std::span<const std::string> args) {
         report.error(output, *error);
         return kExitIo;
     }
+    if (verbose && !quiet)
+        for (const csg::TessellatePass& p : result.history)
+            std::fprintf(stderr,
+                         "csgray: export: pass: cell %.6g, %llu cells (%llu thin-feature planes), "
+                         "%llu triangles, mesh->surface %.3g, surface->mesh %.3g, %.2f s\n",
+                         p.cellSize, (unsigned long long)p.cells, (unsigned long long)p.thinPlanes,
+                         (unsigned long long)p.triangles, p.error, p.backError, p.seconds);
     if (!quiet)
         std::fprintf(
             stderr,

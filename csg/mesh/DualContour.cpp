@@ -1,5 +1,6 @@
 #include "csg/mesh/DualContour.h"
 
+#include <algorithm>
 #include <unordered_map>
 
 #include "csg/Tolerances.h"
@@ -89,7 +90,8 @@ private:
             sheetBase_.emplace(index, uint32_t(mesh_.positions.size()));
             // The cell inset a hair, so sheet vertices of neighbouring cells (say both clamped
             // onto a crease lying in their shared face) stay distinct points, also as floats.
-            const Vec3 inset(tol::kMeshVertexSeparation * spec_.h);
+            const double width = spec_.cellMinWidth(c[0], c[1], c[2]);
+            const Vec3 inset(tol::kMeshVertexSeparation * width);
             const Bounds3 box{spec_.node(c[0], c[1], c[2]) + inset,
                               spec_.node(c[0] + 1, c[1] + 1, c[2] + 1) - inset};
             Vec3 placed[4], mass[4];  // a cell has at most 4 sheets
@@ -110,7 +112,7 @@ private:
             // Two sheets whose features meet at one point (solids touching along an edge, a
             // non-manifold part) would share a position: pull each toward its own patch, so the
             // mesh is a manifold in space too, not only in its indices.
-            const double apart = tol::kMeshVertexSeparation * spec_.h;
+            const double apart = tol::kMeshVertexSeparation * width;
             for (int q = 0; q < cycles.count; ++q) {
                 for (int o = 0; o < cycles.count; ++o) {
                     if (o == q || glm::length(placed[q] - placed[o]) > 2.0 * apart) continue;
@@ -177,12 +179,16 @@ private:
         // vertex, so two curves on one face never join the same two sheet vertices twice.
         const bool ambiguous = corner[0] == corner[3] && corner[1] == corner[2];
         const Vec3 lo3 = spec_.node(faceMin[0], faceMin[1], faceMin[2]);
-        const Vec2 lo(lo3[u], lo3[v]), hi(lo3[u] + spec_.h, lo3[v] + spec_.h);
+        Node3 faceMax = faceMin;
+        ++faceMax[u];
+        ++faceMax[v];
+        const Vec3 hi3 = spec_.node(faceMax[0], faceMax[1], faceMax[2]);
+        const Vec2 lo(lo3[u], lo3[v]), hi(hi3[u], hi3[v]);
         Vec3 crease;
         uint32_t vertex = kNone;
         // A crease point (almost) on one of the crossings adds nothing but a sliver triangle
         // whose corners round to one point when written as float: skip it.
-        const double apart = tol::kMeshVertexSeparation * spec_.h;
+        const double apart = tol::kMeshVertexSeparation * std::min(hi[0] - lo[0], hi[1] - lo[1]);
         if (s0.measured && s1.measured &&
             creaseOnFace(s0.point, s0.normal, s1.point, s1.normal, u, v, lo, hi, crease) &&
             glm::length(crease - s0.point) > apart && glm::length(crease - s1.point) > apart) {
@@ -268,6 +274,7 @@ private:
 TriangleMesh dualContour(const HermiteGrid& grid, DualContourStats* stats) {
     DualContourStats local;
     DualContourStats& s = stats ? *stats : local;
+    s.cells = grid.spec().cellCount();
     s.thinEdges = grid.thinEdges();
     s.thinAt = grid.thinAt();
     return Contourer(grid, s).run();

@@ -1,4 +1,4 @@
-// Manifold dual contouring of tri-dexel Hermite data on a uniform grid.
+// Manifold dual contouring of tri-dexel Hermite data on a rectilinear grid (HermiteGrid.h).
 //
 // Vertices are of three kinds: one per sheet (cycle, see CellTopology.h) of each cell, placed
 // by a QEF clamped to the cell (sharp corners and creases inside cells); one per crossed grid
@@ -19,6 +19,7 @@
 namespace csg {
 
 struct DualContourStats {
+    uint64_t cells = 0;             // cells of the grid
     uint64_t activeCells = 0;       // cells with corners of both signs
     uint64_t sheetVertices = 0;     // QEF vertices (cells crossed by two sheets count twice)
     uint64_t faceVertices = 0;      // crease points on cell faces

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "csg/Tolerances.h"
 #include "csg/mesh/ParallelFor.h"
 
 namespace csg {
@@ -13,12 +14,33 @@ GridSpec makeGrid(const Bounds3& bounds, double h) {
     constexpr double kShift = 0.25 + 0.3183098861837907;
     GridSpec spec;
     spec.h = h;
-    spec.origin = bounds.lo - Vec3(kShift * h);
+    const Vec3 origin = bounds.lo - Vec3(kShift * h);
+    std::array<std::vector<double>, 3> coords;
     for (int a = 0; a < 3; ++a) {
-        const double span = bounds.hi[a] + 0.25 * h - spec.origin[a];
-        spec.nodes[a] = std::max(2, int(std::ceil(span / h)) + 1);
+        const double span = bounds.hi[a] + 0.25 * h - origin[a];
+        const int count = std::max(2, int(std::ceil(span / h)) + 1);
+        coords[size_t(a)].resize(size_t(count));
+        for (int n = 0; n < count; ++n) coords[size_t(a)][size_t(n)] = origin[a] + h * n;
     }
+    spec.setCoords(std::move(coords));
     return spec;
+}
+
+double GridSpec::cellMinWidth(int i, int j, int k) const {
+    const std::array<int, 3> at{i, j, k};
+    double width = h;
+    for (size_t a = 0; a < 3; ++a)
+        width = std::min(width, coords[a][size_t(at[a]) + 1] - coords[a][size_t(at[a])]);
+    return width;
+}
+
+void GridSpec::setCoords(std::array<std::vector<double>, 3> c) {
+    for (size_t a = 0; a < 3; ++a) {
+        std::sort(c[a].begin(), c[a].end());
+        c[a].erase(std::unique(c[a].begin(), c[a].end()), c[a].end());
+        nodes[a] = int(c[a].size());
+    }
+    coords = std::move(c);
 }
 
 namespace {
@@ -37,6 +59,7 @@ struct RowResult {
     std::vector<uint32_t> counts;  // per line of the row
     uint64_t thinEdges = 0;        // see HermiteGrid::thinEdges()
     Vec3 thinAt{0.0};
+    std::vector<ThinInterval> thin;  // see HermiteGrid::thinIntervals()
 };
 
 }  // namespace
@@ -55,6 +78,13 @@ HermiteGrid HermiteGrid::cast(const Scene& scene, const GridSpec& spec, int thre
         std::vector<RowResult> rows(static_cast<size_t>(nc));
         Vec3 dir(0.0);
         dir[a] = 1.0;
+        const std::vector<double>& lineNodes = spec.coords[size_t(a)];
+        const double lineStart = lineNodes.front() - spec.h;
+        // The edge of the line holding ray parameter t: node n with t in (t(n), t(n + 1)].
+        auto edgeOf = [&](double t) {
+            return std::lower_bound(lineNodes.begin(), lineNodes.end(), t + lineStart) -
+                   lineNodes.begin();
+        };
 
         // Cast: each row of lines on one worker; the ray runs from one cell before node 0 to
         // one cell after the last node, so every span end inside the grid is a surface.
@@ -68,10 +98,11 @@ HermiteGrid HermiteGrid::cast(const Scene& scene, const GridSpec& spec, int thre
                 node[b] = ib;
                 node[a] = 0;
                 Ray ray;
-                ray.o = spec.node(node[0], node[1], node[2]) - spec.h * dir;
+                ray.o = spec.node(node[0], node[1], node[2]);
+                ray.o[a] = lineStart;
                 ray.d = dir;
                 ray.tmin = 0.0;
-                ray.tmax = (along + 1) * spec.h;
+                ray.tmax = lineNodes.back() - lineStart + spec.h;
                 const std::span<const Span> spans = scene.spans(ray, ctx);
                 const size_t before = row.crossings.size();
                 for (const Span& s : spans) {
@@ -86,14 +117,16 @@ HermiteGrid HermiteGrid::cast(const Scene& scene, const GridSpec& spec, int thre
                 // Two crossings on one grid edge: a wall or gap thinner than the cell there.
                 for (size_t x = before + 1; x < row.crossings.size(); ++x) {
                     const Crossing &p = row.crossings[x - 1], &q = row.crossings[x];
-                    if (std::ceil(p.t / spec.h) != std::ceil(q.t / spec.h)) continue;
+                    if (edgeOf(p.t) != edgeOf(q.t)) continue;
                     if (row.thinEdges++ == 0) row.thinAt = 0.5 * (p.point + q.point);
+                    if (glm::dot(p.normal, q.normal) < tol::kThinFacingCos)
+                        row.thin.push_back({p.point[a], q.point[a]});
                 }
                 // Signs from the z lines only: one authority per node keeps cells consistent.
                 if (a == 2) {
                     size_t s = 0;
                     for (int n = 0; n < along; ++n) {
-                        const double t = (n + 1) * spec.h;
+                        const double t = spec.lineT(a, n);
                         while (s < spans.size() && spans[s].out.t < t) ++s;
                         if (s < spans.size() && spans[s].in.t <= t) {
                             node[a] = n;
@@ -117,6 +150,8 @@ HermiteGrid HermiteGrid::cast(const Scene& scene, const GridSpec& spec, int thre
         for (RowResult& row : rows) {
             if (row.thinEdges && grid.thinEdges_ == 0) grid.thinAt_ = row.thinAt;
             grid.thinEdges_ += row.thinEdges;
+            grid.thin_[size_t(a)].insert(grid.thin_[size_t(a)].end(), row.thin.begin(),
+                                         row.thin.end());
             all.insert(all.end(), row.crossings.begin(), row.crossings.end());
             for (uint32_t count : row.counts) start.push_back(start.back() + count);
             row = RowResult{};
@@ -133,7 +168,7 @@ const Crossing* HermiteGrid::crossing(int axis, std::array<int, 3> node) const {
     const std::vector<Crossing>& all = crossings_[size_t(axis)];
     const auto first = all.begin() + int64_t(lineStart_[size_t(axis)][line]);
     const auto last = all.begin() + int64_t(lineStart_[size_t(axis)][line + 1]);
-    const double t0 = (node[axis] + 1) * spec_.h, t1 = (node[axis] + 2) * spec_.h;
+    const double t0 = spec_.lineT(axis, node[axis]), t1 = spec_.lineT(axis, node[axis] + 1);
     const auto it =
         std::upper_bound(first, last, t0, [](double t, const Crossing& x) { return t < x.t; });
     if (it == last || it->t > t1) return nullptr;

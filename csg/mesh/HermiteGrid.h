@@ -1,9 +1,11 @@
-// Tri-dexel Hermite data of a scene on a uniform grid: rays along x, y and z through every
+// Tri-dexel Hermite data of a scene on a rectilinear grid: rays along x, y and z through every
 // grid line give, on each grid edge, the exact surface crossings and outward normals.
 //
-// Notation: a grid node (i, j, k) sits at origin + h (i, j, k). A line of axis a is the row of
-// nodes that differ only in coordinate a; its ray starts one cell before node 0, so node n of
-// the line is at ray parameter t = (n + 1) h (the ray direction is the unit axis). The edge
+// Notation: a grid node (i, j, k) sits at (x[i], y[j], z[k]), the coordinates of each axis
+// ascending; a uniform grid has x[i] = x[0] + h i. Planes added where a wall or gap is thinner
+// than a cell (ThinFeatures.h) make some cells thinner than h. A line of axis a is the row of
+// nodes that differ only in coordinate a; its ray starts h before node 0 (unit axis direction),
+// so node n of the line is at ray parameter t = coords[a][n] - coords[a][0] + h. The edge
 // (a, node) joins node and node + e_a. Inside/outside of a node comes from the z lines only,
 // so every cell sees one consistent sign per corner.
 #pragma once
@@ -17,13 +19,23 @@
 namespace csg {
 
 struct GridSpec {
-    Vec3 origin{0.0};
-    double h = 1.0;                     // cell edge length (world units)
-    std::array<int, 3> nodes{2, 2, 2};  // node count per axis (cells = nodes - 1)
+    double h = 1.0;  // the uniform spacing the grid was made with (world units); no cell is wider
+    std::array<std::vector<double>, 3> coords;  // node coordinates per axis, strictly ascending
+    std::array<int, 3> nodes{0, 0, 0};          // coords[a].size() (cells = nodes - 1)
 
     uint64_t nodeCount() const { return uint64_t(nodes[0]) * nodes[1] * nodes[2]; }
     uint64_t cellCount() const { return uint64_t(nodes[0] - 1) * (nodes[1] - 1) * (nodes[2] - 1); }
-    Vec3 node(int i, int j, int k) const { return origin + h * Vec3(i, j, k); }
+    Vec3 node(int i, int j, int k) const {
+        return {coords[0][size_t(i)], coords[1][size_t(j)], coords[2][size_t(k)]};
+    }
+    // Ray parameter of node n on a line of axis a (see the notation above).
+    double lineT(int a, int n) const {
+        return coords[size_t(a)][size_t(n)] - coords[size_t(a)][0] + h;
+    }
+    // The smallest edge of cell (i, j, k) (its corner with the smallest indices).
+    double cellMinWidth(int i, int j, int k) const;
+    // Replaces the coordinates of every axis (each sorted and deduplicated here).
+    void setCoords(std::array<std::vector<double>, 3> c);
 };
 
 // A grid covering bounds with at least a quarter cell of margin on every side, so every node
@@ -31,6 +43,13 @@ struct GridSpec {
 // of h so that grid nodes and lines rarely lie exactly on the axis-aligned faces parts are
 // built from (a node on a face has no trustworthy sign). bounds must be finite and non-empty.
 GridSpec makeGrid(const Bounds3& bounds, double h);
+
+// An interval along one axis (world coordinates lo < hi) between two crossings of one grid edge
+// whose surfaces face each other: a wall or gap thinner than the edge that a grid plane through
+// it would resolve.
+struct ThinInterval {
+    double lo, hi;
+};
 
 // One surface crossing of a grid line.
 struct Crossing {
@@ -58,6 +77,9 @@ public:
     // midpoint of one such pair of crossings (the first in axis, row, line order).
     uint64_t thinEdges() const { return thinEdges_; }
     Vec3 thinAt() const { return thinAt_; }
+    // Per axis, the thin edges whose two crossings face each other (normals more than
+    // tol::kThinFacingCos apart): walls and gaps, not a line grazing a curved surface.
+    const std::array<std::vector<ThinInterval>, 3>& thinIntervals() const { return thin_; }
 
 private:
     GridSpec spec_;
@@ -67,6 +89,7 @@ private:
     uint64_t rays_ = 0;
     uint64_t thinEdges_ = 0;
     Vec3 thinAt_{0.0};
+    std::array<std::vector<ThinInterval>, 3> thin_;
 };
 
 }  // namespace csg

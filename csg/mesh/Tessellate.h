@@ -1,5 +1,6 @@
 // A scene to a triangle mesh within a distance tolerance: tri-dexel Hermite data on a uniform
-// grid, manifold dual contouring, and a measure-and-refine loop on the grid spacing.
+// grid with planes added through walls and gaps thinner than a cell (ThinFeatures.h), manifold
+// dual contouring, and a measure-and-refine loop on the grid spacing.
 //
 // The tolerance rule. For a surface of smallest curvature radius R, a triangle spanning a
 // cell of edge h (diameter sqrt(3) h) deviates from it by at most (sqrt(3) h)^2 / (8 R), so
@@ -10,21 +11,26 @@
 // that every mesh point is close to) and h shrinks by T / measured with a 0.85 safety factor (a
 // linear law: the worst errors sit at curved creases such as a hole's rim, where a cell's QEF
 // vertex is clamped or falls back to the mass point, and those shrink in proportion to h) until
-// the measurement is within T, the cell cap is reached, or maxPasses passes have run.
+// the measurement is within T, the cell cap is reached, maxPasses passes have run, or a pass
+// stalled on a part with thin walls or gaps (its error fell by much less than its spacing: see
+// tol::kMeshStallFraction).
 //
 // Then the grid's mesh is coarsened where it is flat or gently curved (Simplify.h) within the
 // error budget the grid left (kMeshMeasureMargin T minus the measured error, at least
 // tol::kSimplifyMinBudget T; none when the grid's mesh is already over the margin), and measured
 // again both ways; a simplified mesh that measures worse than the margin (or than the grid's
 // mesh, when that was already over) is retried with flat regions and straight creases only
-// (held to T: the surface does not move), then dropped for the grid's mesh.
+// (held to T: the surface does not move), then dropped for the grid's mesh. A grid mesh already
+// over the margin is not simplified at all (a flat-only pass there costs more than it saves).
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "csg/Scene.h"
 #include "csg/mesh/DualContour.h"
 #include "csg/mesh/MeshDistance.h"
+#include "csg/mesh/ThinFeatures.h"
 #include "csg/mesh/TriangleBvh.h"
 #include "csg/mesh/TriangleMesh.h"
 
@@ -44,28 +50,43 @@ struct TessellateOptions {
     int threads = 0;       // 0: all cores
 };
 
+// What one grid pass of tessellate() measured.
+struct TessellatePass {
+    double cellSize = 0.0;
+    uint64_t cells = 0;
+    uint64_t thinPlanes = 0;
+    uint64_t triangles = 0;
+    double error = 0.0;      // mesh to surface, max
+    double backError = 0.0;  // surface to mesh, max
+    double seconds = 0.0;    // wall time of the pass (grid, contouring, measuring)
+};
+
 struct TessellateResult {
     TriangleMesh mesh;
     double tolerance = 0.0;  // the tolerance asked for (resolved when <= 0 was given)
-    double cellSize = 0.0;   // h of the last pass
-    uint64_t cells = 0;      // cells of the last pass
+    double cellSize = 0.0;   // h of the last pass (cells through thin features are thinner)
+    uint64_t cells = 0;      // cells of the last pass, thin-feature planes included
+    ThinPlanes thinPlanes;   // of the last pass
     int passes = 0;
     uint64_t rays = 0;        // Hermite rays of all passes (distance probes not counted)
     DistanceStats error;      // mesh to surface of the result, as measured
     DistanceStats backError;  // surface to mesh (kSurfaceRaysPerAxis^2 lines per axis)
     DualContourStats contour;
-    bool toleranceMet = false;   // error.max and backError.max <= tolerance
-    bool capped = false;         // maxCells stopped the refinement
-    uint64_t gridTriangles = 0;  // triangles of the grid's mesh, before simplification
-    bool simplified = false;     // the simplified mesh was kept
+    bool toleranceMet = false;            // error.max and backError.max <= tolerance
+    bool capped = false;                  // maxCells stopped the refinement
+    bool stalled = false;                 // refinement stopped paying (see Tessellate.h's header)
+    uint64_t gridTriangles = 0;           // triangles of the grid's mesh, before simplification
+    bool simplified = false;              // the simplified mesh was kept
+    std::vector<TessellatePass> history;  // every grid pass, in order
 };
 
 // Throws std::invalid_argument for an unbounded scene (a bare half-space). An empty scene
 // gives an empty mesh with toleranceMet = true.
 TessellateResult tessellate(const Scene& scene, const TessellateOptions& options);
 
-// One pass at a given spacing: grid, Hermite data, contouring. For tests and benchmarks.
+// One pass at a given spacing: grid (with thin-feature planes), Hermite data, contouring. For
+// tests and benchmarks.
 TriangleMesh tessellateAt(const Scene& scene, double h, int threads, uint64_t* rays = nullptr,
-                          DualContourStats* stats = nullptr);
+                          DualContourStats* stats = nullptr, ThinPlanes* planes = nullptr);
 
 }  // namespace csg
