@@ -62,12 +62,12 @@ struct TubeLine {
 
     // On a piece [lo, hi] where H = sigma G is convex (sigma = +1 on a convex piece of G, -1 on
     // the concave one), H >= 0 at both ends, H' < 0 at lo and > 0 at hi (h*, d* are H and H'
-    // there): a point x where H < -err, true, so that G changes sign on both sides of x; false
-    // when H is within rounding of >= 0 throughout. Proven either way as early as possible:
-    // the tangents at the bracket's ends bound a convex H from below, and Newton on H' moves
-    // towards its minimum, where the two meet.
+    // there): a point x where H < -err (vx: G there), true, so that G changes sign on both sides of
+    // x; false when H is within rounding of >= 0 throughout. Proven either way as early as
+    // possible: the tangents at the bracket's ends bound a convex H from below, and Newton on H'
+    // moves towards its minimum, where the two meet.
     bool findDip(double sigma, double lo, double hlo, double dlo, double hi, double hhi, double dhi,
-                 double converged, double& x, double& gx) const {
+                 double converged, double& x, At& vx) const {
         x = std::numeric_limits<double>::quiet_NaN();
         for (int i = 0; i < 100; ++i) {
             const double xt = (hhi - hlo + dlo * lo - dhi * hi) / (dlo - dhi);
@@ -77,7 +77,7 @@ struct TubeLine {
             const At v = at(x);
             const double h = sigma * v.g, dh = sigma * v.dg, ddh = sigma * v.ddg;
             if (h < -v.err) {
-                gx = v.g;
+                vx = v;
                 return true;
             }
             if (dh == 0.0) return false;  // the minimum itself
@@ -95,9 +95,19 @@ struct TubeLine {
 
 // A point where the line's monotone pieces of G meet, with the sign G is taken to have there.
 struct Break {
-    double s, g;
+    double s;
+    TubeLine::At v;
     bool negative;
 };
+
+// The zero of g + dg h + ddg h^2 / 2 nearest s (h = 0) when it lies in (lo, hi), else NaN.
+double taylorRoot(double s, const TubeLine::At& v, double lo, double hi) {
+    const double disc = v.dg * v.dg - 2.0 * v.g * v.ddg;
+    if (!(disc >= 0.0) || v.dg == 0.0) return std::numeric_limits<double>::quiet_NaN();
+    // The smaller-magnitude root, without cancellation.
+    const double x = s - 2.0 * v.g / (v.dg + std::copysign(std::sqrt(disc), v.dg));
+    return x > lo && x < hi ? x : std::numeric_limits<double>::quiet_NaN();
+}
 
 // The zero of G between lo and hi (lo < hi), where G rises (rising) or falls through zero and
 // has no other zero: Newton steps from x, replaced by bisection when they would leave the
@@ -266,7 +276,7 @@ void Torus::tubeSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, doub
     Break breaks[8];
     int nBreaks = 0;
     TubeLine::At vp = line.at(sLo, sideAt(sLo, 1.0));
-    breaks[nBreaks++] = {sLo, vp.g, false};
+    breaks[nBreaks++] = {sLo, vp, false};
     const double convergedStep = tol::kTubeNewtonStep * r;
     for (int k = 0; k + 1 < nCuts; ++k) {
         const double p = cuts[k], q = cuts[k + 1];
@@ -278,12 +288,13 @@ void Torus::tubeSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, doub
         const double sigma = concave ? -1.0 : 1.0;
         if (pNegative == concave && qNegative == concave && sigma * vp.dg < 0.0 &&
             sigma * vq.dg > 0.0) {
-            double x, gx;
+            double x;
+            TubeLine::At vx;
             if (line.findDip(sigma, p, sigma * vp.g, sigma * vp.dg, q, sigma * vq.g, sigma * vq.dg,
-                             convergedStep, x, gx))
-                breaks[nBreaks++] = {x, gx, !concave};
+                             convergedStep, x, vx))
+                breaks[nBreaks++] = {x, vx, !concave};
         }
-        breaks[nBreaks++] = {q, vq.g, qNegative};
+        breaks[nBreaks++] = {q, vq, qNegative};
         vp = sideAt(q, 1.0) != 0.0 ? line.at(q, 1.0) : vq;
     }
 
@@ -295,12 +306,13 @@ void Torus::tubeSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, doub
         const Break& lo = breaks[k];
         const Break& hi = breaks[k + 1];
         if (lo.negative == hi.negative) continue;
-        // Start from the secant through the ends' values when they bracket zero.
-        double start = 0.5 * lo.s + 0.5 * hi.s;
-        if ((lo.g < 0.0) != (hi.g < 0.0)) {
-            const double x = lo.s + (hi.s - lo.s) * (lo.g / (lo.g - hi.g));
-            if (x > lo.s && x < hi.s) start = x;
-        }
+        // Start from the root of G's Taylor quadratic at the end nearer zero (G'' is known
+        // there), else from the secant through the ends' values, else from the middle.
+        const Break& near = std::abs(lo.v.g) < std::abs(hi.v.g) ? lo : hi;
+        double start = taylorRoot(near.s, near.v, lo.s, hi.s);
+        if (!(start > lo.s && start < hi.s) && (lo.v.g < 0.0) != (hi.v.g < 0.0))
+            start = lo.s + (hi.s - lo.s) * (lo.v.g / (lo.v.g - hi.v.g));
+        if (!(start > lo.s && start < hi.s)) start = 0.5 * lo.s + 0.5 * hi.s;
         ends[m++] = crossing(line, lo.s, hi.s, start, lo.negative, convergedStep);
     }
     for (int i = 0; i + 1 < m; i += 2)
