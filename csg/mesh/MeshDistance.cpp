@@ -116,9 +116,11 @@ DistanceStats meshToSurface(const Scene& scene, const TriangleMesh& mesh,
                        c = mesh.positions[tri[2]];
             const Vec3 n = glm::cross(b - a, c - a);
             measureAt((a + b + c) / 3.0, n);
-            measureAt(0.5 * (a + b), n);
-            measureAt(0.5 * (b + c), n);
-            measureAt(0.5 * (c + a), n);
+            // Each edge once: from the triangle that runs it from its lower index (a closed
+            // oriented mesh runs every edge once each way).
+            if (tri[0] < tri[1]) measureAt(0.5 * (a + b), n);
+            if (tri[1] < tri[2]) measureAt(0.5 * (b + c), n);
+            if (tri[2] < tri[0]) measureAt(0.5 * (c + a), n);
         }
     });
     return merge(acc);

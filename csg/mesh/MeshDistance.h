@@ -30,8 +30,9 @@ struct DistanceOptions {
     int threads = 0;
 };
 
-// Mesh to surface: every vertex, and every triangle's centroid and edge midpoints, measured
-// first along the mesh normal there.
+// Mesh to surface: every vertex, every triangle's centroid and every edge's midpoint (once, from
+// the triangle that runs the edge from its lower vertex index; a boundary edge run the other
+// way is not sampled), measured first along the mesh normal there.
 DistanceStats meshToSurface(const Scene& scene, const TriangleMesh& mesh,
                             const DistanceOptions& options);
 

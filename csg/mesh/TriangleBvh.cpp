@@ -36,14 +36,17 @@ TriangleBvh::TriangleBvh(const TriangleMesh& mesh) : mesh_(mesh) {
     const size_t n = mesh.triangles.size();
     order_.resize(n);
     triBox_.resize(n);
+    center_.resize(n);
     for (size_t i = 0; i < n; ++i) {
         order_[i] = uint32_t(i);
         Bounds3 box;
         for (const uint32_t v : mesh.triangles[i]) box.extend(mesh.positions[v]);
         triBox_[i] = box;
+        center_[i] = box.center();
     }
     nodes_.reserve(2 * n / 4 + 1);
     if (n > 0) build(0, uint32_t(n), 0);
+    center_ = {};
 }
 
 uint32_t TriangleBvh::build(uint32_t begin, uint32_t end, int depth) {
@@ -52,7 +55,7 @@ uint32_t TriangleBvh::build(uint32_t begin, uint32_t end, int depth) {
     Bounds3 box, centers;
     for (uint32_t i = begin; i < end; ++i) {
         box.extend(triBox_[order_[i]]);
-        centers.extend(triBox_[order_[i]].center());
+        centers.extend(center_[order_[i]]);
     }
     nodes_[index].box = box;
     // Leaves of up to 4 triangles; depth capped well below the traversal stack size.
@@ -66,9 +69,7 @@ uint32_t TriangleBvh::build(uint32_t begin, uint32_t end, int depth) {
     const int axis = e.x >= e.y ? (e.x >= e.z ? 0 : 2) : (e.y >= e.z ? 1 : 2);
     const uint32_t mid = begin + (end - begin) / 2;
     std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-                     [&](uint32_t p, uint32_t q) {
-                         return triBox_[p].center()[axis] < triBox_[q].center()[axis];
-                     });
+                     [&](uint32_t p, uint32_t q) { return center_[p][axis] < center_[q][axis]; });
     build(begin, mid, depth + 1);
     const uint32_t right = build(mid, end, depth + 1);
     nodes_[index].first = right;

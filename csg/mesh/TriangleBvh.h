@@ -34,6 +34,7 @@ private:
     std::vector<Node> nodes_;
     std::vector<uint32_t> order_;  // triangle indices, leaves own contiguous ranges
     std::vector<Bounds3> triBox_;
+    std::vector<Vec3> center_;  // triBox_'s centres, only while building (the split's key)
 };
 
 // The watertight test: t of the crossing of o + t d with triangle (a, b, c), either side, or
