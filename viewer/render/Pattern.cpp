@@ -18,25 +18,43 @@ LinearTexture LinearTexture::fromSrgb(const io::Rgb8Image& image) {
     return t;
 }
 
-csg::Vec2 planarCoordinates(const csg::Vec3& p, const csg::Vec3& n, bool halfSpace) {
-    // The coordinate plane most facing n: its two axes a, b in x, y, z order.
+namespace {
+
+// The coordinate plane most facing n: its two axes a, b in x, y, z order.
+void facingAxes(const csg::Vec3& n, int& a, int& b) {
     const csg::Vec3 m = glm::abs(n);
-    int a = 0, b = 1;  // normal mostly z
+    a = 0, b = 1;  // normal mostly z
     if (m.x >= m.y && m.x >= m.z)
         a = 1, b = 2;
     else if (m.y >= m.z)
         a = 0, b = 2;
-    if (!halfSpace) return {p[a], p[b]};
-    // The plane's own frame: the two axes projected onto it and made orthonormal (Gram-Schmidt),
+}
+
+}  // namespace
+
+PlaneFrame planeFrame(const csg::Vec3& n) {
+    // The facing plane's two axes projected onto the plane and made orthonormal (Gram-Schmidt),
     // which is the identity on an axis-aligned plane. Neither axis is parallel to n, because n
     // is mostly along the third.
+    int a, b;
+    facingAxes(n, a, b);
     csg::Vec3 ea(0.0), eb(0.0);
     ea[a] = 1.0;
     eb[b] = 1.0;
     const csg::Vec3 u = glm::normalize(ea - glm::dot(ea, n) * n);
     csg::Vec3 v = eb - glm::dot(eb, n) * n;
     v = glm::normalize(v - glm::dot(v, u) * u);
-    return {glm::dot(p, u), glm::dot(p, v)};
+    return {u, v};
+}
+
+csg::Vec2 planarCoordinates(const csg::Vec3& p, const csg::Vec3& n, bool halfSpace) {
+    if (halfSpace) {
+        const PlaneFrame frame = planeFrame(n);
+        return {glm::dot(p, frame.u), glm::dot(p, frame.v)};
+    }
+    int a, b;
+    facingAxes(n, a, b);
+    return {p[a], p[b]};
 }
 
 int checkerParity(const csg::Vec2& uv, double inverseScale) {

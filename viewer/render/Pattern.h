@@ -26,6 +26,14 @@ struct LinearTexture {
 // (u, v) of point p on a surface with unit normal n (see the notation above).
 csg::Vec2 planarCoordinates(const csg::Vec3& p, const csg::Vec3& n, bool halfSpace);
 
+// The orthonormal axes a half-space's plane with unit normal n is mapped with:
+// planarCoordinates(p, n, true) is (p . u, p . v). The same for n and -n, so a renderer may
+// keep it per half-space (whose normal is the same at every hit).
+struct PlaneFrame {
+    csg::Vec3 u, v;
+};
+PlaneFrame planeFrame(const csg::Vec3& n);
+
 // Which of the two checker colours covers (u, v): 0 or 1, alternating every `scale`.
 int checkerParity(const csg::Vec2& uv, double inverseScale);
 

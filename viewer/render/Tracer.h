@@ -59,11 +59,15 @@ private:
                           const csg::Vec3& pointError, const csg::Vec3& n, const csg::Vec3& view);
     // The colour of a patterned material at a hit of `leaf` (Pattern.h's planar maps).
     csg::Vec3 patternColor(const ShadingMaterial& s, const csg::SurfacePoint& surface,
-                           uint32_t leaf) const;
+                           uint32_t leaf);
 
     const csg::Scene& scene_;
     const EffectsPlan& plan_;
     std::vector<csg::ObjectCache> occluders_;  // per light: what last shadowed this thread
+    // The half-space leaf whose pattern was looked up last, and its plane frame: a half-space's
+    // normal, so its frame, is the same at every hit (a checkered floor is one leaf).
+    uint32_t frameLeaf_ = UINT32_MAX;
+    PlaneFrame frame_{};
 };
 
 }  // namespace viewer::render
