@@ -50,6 +50,8 @@ pid_t spawn(const std::string& command, const fs::path& dir) {
 
 // Xvfb on a display number it picks itself (-displayfd): tests run in parallel, and two of
 // them probing for a free number could both pick the same one and see each other's windows.
+// xdotool's %1 is then the older of two same-titled windows: one test's input would reach
+// the other test's view.
 class VirtualDisplay {
 public:
     VirtualDisplay() {
@@ -175,11 +177,17 @@ protected:
         }
     }
 
+    // SDL_MOUSE_FOCUS_CLICKTHROUGH: a test's first xdotool windowfocus moves the focus from
+    // PointerRoot to the window, and SDL drops a click it reads within 10 ms of that FocusIn
+    // (a click that activates a window is not passed on unless this hint says so). Under load
+    // the click often arrives in the same batch, and the first click or drag was lost.
     void launch() {
         const std::string command = "DISPLAY=" + display_->name() +
-                                    " CSGRAY_VIEW_DUMP=frame.png exec " + shellQuote(CSGRAY_EXE) +
-                                    " view part.scad --size " + std::to_string(kWidth) + "x" +
-                                    std::to_string(kHeight) + " --threads 2 --verbose 2>stderr.txt";
+                                    " SDL_MOUSE_FOCUS_CLICKTHROUGH=1"
+                                    " CSGRAY_VIEW_DUMP=frame.png exec " +
+                                    shellQuote(CSGRAY_EXE) + " view part.scad --size " +
+                                    std::to_string(kWidth) + "x" + std::to_string(kHeight) +
+                                    " --threads 2 --verbose 2>stderr.txt";
         pid_ = spawn(command, dir_.path());
     }
     std::string err() const { return readFile(dir_ / "stderr.txt"); }
@@ -203,20 +211,6 @@ protected:
                        std::string::npos;
             },
             8s);
-    }
-    // Under Xvfb the first synthetic input after the window appears is now and then lost (about
-    // 1 launch in 6, cause not found). H, which hides and shows the panel without a new frame
-    // request, is sent until the panel answers, so the inputs a test counts all arrive.
-    bool inputReaches() {
-        for (const char* visible : {"visible: no", "visible: yes"}) {
-            bool answered = false;
-            for (int attempt = 0; attempt < 5 && !answered; ++attempt) {
-                if (xdotool("windowfocus %1 key h") != 0) return false;
-                answered = waitUntil([&] { return has(panel(), visible); }, 2s);
-            }
-            if (!answered) return false;
-        }
-        return true;
     }
     bool waitForText(const std::string& text) {
         return waitUntil([&] { return err().find(text) != std::string::npos; }, 8s);
@@ -297,7 +291,6 @@ TEST_F(ViewerTest, KeysAndClickReachTheWindow) {
     if (!onPath("xdotool")) GTEST_SKIP() << "xdotool is not installed (Debian package xdotool)";
     launch();
     ASSERT_TRUE(waitForFrame(1)) << err();
-    ASSERT_TRUE(inputReaches()) << err() << panel();
     const Image first = readPng(dir_ / "frame.png");
 
     // A click on the part prints the probe JSON of that ray and a summary.
@@ -390,7 +383,6 @@ TEST_F(ViewerTest, DragOrbitsWheelZoomsAndResetAndFrameRestoreTheView) {
     if (!onPath("xdotool")) GTEST_SKIP() << "xdotool is not installed (Debian package xdotool)";
     launch();
     ASSERT_TRUE(waitForFrame(1)) << err();
-    ASSERT_TRUE(inputReaches()) << err() << panel();
     const Image first = frame();
 
     // A 40-pixel left drag (one motion event) turns the part: request 2, a different picture,
@@ -423,7 +415,6 @@ TEST_F(ViewerTest, EffectKeysSwitchShadowsReflectionAndRefraction) {
     writeFile(part_, kEffectsPart);
     launch();
     ASSERT_TRUE(waitForFrame(1)) << err();
-    ASSERT_TRUE(inputReaches()) << err() << panel();
     ASSERT_TRUE(waitForPanel([](const std::string& p) {
         return has(p, "status: 1x1 level") && has(p, "shadows reflection refraction");
     })) << panel();
