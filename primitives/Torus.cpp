@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "primitives/solvers/LinePoint.h"
+#include "primitives/solvers/Roots.h"
 
 namespace csg {
 namespace {
@@ -328,9 +329,7 @@ void Torus::quarticSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, d
     double roots[4];
     const int n = solve(quartic, sLo, sHi, roots, solver);
     for (int i = 0; i < n; ++i) {
-        const bool tangency =
-            (i > 0 && roots[i - 1] == roots[i]) || (i + 1 < n && roots[i + 1] == roots[i]);
-        if (tangency) continue;
+        if (isTangency(roots, n, i)) continue;
         const double lo = i > 0 ? 0.5 * (roots[i - 1] + roots[i]) : sLo;
         const double hi = i + 1 < n ? 0.5 * (roots[i] + roots[i + 1]) : sHi;
         roots[i] = polishOnTube(b, u, roots[i], lo, hi);

@@ -41,6 +41,12 @@ double refineBracketed(const Polynomial& p, double lo, double hi, double relTol 
 // evaluated where t^n overflows (the cause of the misses on the quartic {1e53, 1e50, ...}).
 double rootBound(const Polynomial& p);
 
+// True when roots[i] of a solver's answer roots[0..n) is a tangency: by the contract above,
+// listed twice, so equal to a neighbour.
+inline bool isTangency(const double* roots, int n, int i) {
+    return (i > 0 && roots[i - 1] == roots[i]) || (i + 1 < n && roots[i + 1] == roots[i]);
+}
+
 // A subdivision solver's check of a point on no piece's open interior (a range end or a split
 // point): an exact zero of p there is listed once, twice when p' (dp) is numerically zero too
 // (a tangency). Appends to out at *n.

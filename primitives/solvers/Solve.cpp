@@ -52,11 +52,8 @@ namespace {
 bool parityConsistent(const Polynomial& p, double tlo, double thi, const double* roots, int n) {
     if (isNumericalZero(p, tlo) || isNumericalZero(p, thi)) return true;
     int crossings = 0;
-    for (int i = 0; i < n; ++i) {
-        const bool tangency =
-            (i > 0 && roots[i - 1] == roots[i]) || (i + 1 < n && roots[i + 1] == roots[i]);
-        if (!tangency) ++crossings;
-    }
+    for (int i = 0; i < n; ++i)
+        if (!isTangency(roots, n, i)) ++crossings;
     const bool endsDiffer = (p(tlo) < 0.0) != (p(thi) < 0.0);
     return (crossings % 2 == 1) == endsDiffer;
 }

@@ -128,10 +128,8 @@ int solveSturm(const Polynomial& input, double tlo, double thi, double* roots, S
     int depth = 0, n = 0;
     stack[depth++] = {tlo, thi, seq.variations(tlo), seq.variations(thi)};
     // A root exactly at tlo is not counted in (tlo, thi]; look for it directly.
-    if (p(tlo) == 0.0) {
-        found[n++] = tlo;
-        if (isNumericalZero(p.derivative(), tlo)) found[n++] = tlo;
-    }
+    const Polynomial dp = p.derivative();
+    listExactZero(p, dp, tlo, found.data(), &n);
     while (depth > 0 && n < capacity) {
         const Interval iv = stack[--depth];
         const int count = iv.va - iv.vb;
@@ -147,8 +145,7 @@ int solveSturm(const Polynomial& input, double tlo, double thi, double* roots, S
         if (fb == 0.0 && count == 1) {
             // An exact root at the end (dyadic roots are met exactly by bisection): a
             // tangency when p' vanishes there too.
-            found[n++] = iv.b;
-            if (isNumericalZero(p.derivative(), iv.b)) found[n++] = iv.b;
+            listExactZero(p, dp, iv.b, found.data(), &n);
             continue;
         }
         const double m = 0.5 * iv.a + 0.5 * iv.b;
