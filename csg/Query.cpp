@@ -119,8 +119,10 @@ struct Evaluator {
         Span* out = room(na + nb);
         Span* s = stack().data();
         // Without sheets in the scene (known at compile), skip mergeSpans' scan for them.
-        const auto merge = scene.hasSheets_ ? mergeSpans : mergeSolidSpans;
-        const size_t n = merge(op, s + base, na, s + base + na, nb, out, originScale);
+        const size_t n =
+            scene.hasSheets_
+                ? mergeSpans(op, s + base, na, s + base + na, nb, out, originScale)
+                : mergeSolidSpans(op, s + base, na, s + base + na, nb, out, originScale);
         // Most results are a span or two: copy those by assignment, not by a memmove call.
         if (n <= 2) {
             if (n > 0) s[base] = out[0];

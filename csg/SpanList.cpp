@@ -3,20 +3,17 @@
 namespace csg {
 namespace {
 
-bool apply(SetOp op, bool inA, bool inB) {
-    switch (op) {
-        case SetOp::Union:
-            return inA || inB;
-        case SetOp::Intersection:
-            return inA && inB;
-        case SetOp::Difference:
-            return inA && !inB;
-    }
-    return false;
+template <SetOp Op>
+bool apply(bool inA, bool inB) {
+    if constexpr (Op == SetOp::Union) return inA || inB;
+    if constexpr (Op == SetOp::Intersection) return inA && inB;
+    return inA && !inB;
 }
 
 // A cursor over one operand's solid span ends, in order: in, out, in, out, ... Sheet
-// crossings (Hit::sheet) enclose nothing, so they are no events of the solid: skipped here.
+// crossings (Hit::sheet) enclose nothing, so they are no events of the solid: skipped here
+// when the operand may hold some (SkipSheets).
+template <bool SkipSheets>
 struct Cursor {
     const Span* spans;
     size_t count;
@@ -31,9 +28,55 @@ struct Cursor {
         inside = !inside;
     }
     void skipSheets() {
-        while (index < count && spans[index].in.sheet) ++index;
+        if constexpr (SkipSheets)
+            while (index < count && spans[index].in.sheet) ++index;
     }
 };
+
+// The linear merge, with the operation and the sheet skipping fixed at compile time (they
+// are per-call constants, and the loop runs once per span end).
+template <SetOp Op, bool SkipSheets>
+size_t mergeSolid(const Span* a, size_t na, const Span* b, size_t nb, Span* out,
+                  double originScale) {
+    Cursor<SkipSheets> ca(a, na), cb(b, nb);
+    SpanWriter writer(out, originScale);
+    constexpr bool flipB = Op == SetOp::Difference;
+    bool inResult = false;
+    Hit start;
+    for (;;) {
+        // Stop as soon as the rest of the result is decided.
+        if (ca.done() && (cb.done() || Op != SetOp::Union)) break;
+        if (cb.done() && Op == SetOp::Intersection) break;
+
+        // Take the next event; both operands when their ends are exactly equal.
+        const bool takeA = !ca.done() && (cb.done() || ca.hit().t <= cb.hit().t);
+        const bool takeB = !cb.done() && (ca.done() || cb.hit().t <= ca.hit().t);
+        Hit hitA, hitB;
+        if (takeA) {
+            hitA = ca.hit();
+            ca.advance();
+        }
+        if (takeB) {
+            hitB = cb.hit();
+            hitB.flipped ^= flipB;
+            cb.advance();
+        }
+
+        // Emit a boundary where the result changes, by the documented tie-break.
+        const bool now = apply<Op>(ca.inside, cb.inside);
+        if (now == inResult) continue;
+        const Hit& boundary =
+            !takeB || (takeA && (hitA.isSurface() || !hitB.isSurface())) ? hitA : hitB;
+        if (now)
+            start = boundary;
+        else
+            writer.emit({start, boundary});
+        inResult = now;
+    }
+    // A union with one operand exhausted copies the other's tail through the loop above,
+    // so inResult is false here whenever the inputs were closed lists.
+    return writer.count();
+}
 
 size_t countSheets(const Span* s, size_t n) {
     size_t k = 0;
@@ -56,7 +99,7 @@ size_t mergeWithSheets(const Span* a, size_t na, const Span* b, size_t nb, size_
                        double originScale) {
     size_t read = sheets;
     const size_t end =
-        sheets + mergeSolidSpans(SetOp::Union, a, na, b, nb, out + sheets, originScale);
+        sheets + mergeSolid<SetOp::Union, true>(a, na, b, nb, out + sheets, originScale);
     size_t write = 0;  // never reaches read: fewer sheets are written than there is room for
     size_t ia = nextSheet(a, na, 0), ib = nextSheet(b, nb, 0);
     while (ia < na || ib < nb) {
@@ -91,49 +134,28 @@ size_t mergeSpans(SetOp op, const Span* a, size_t na, const Span* b, size_t nb, 
         const size_t sheets = countSheets(a, na) + countSheets(b, nb);
         if (sheets > 0) return mergeWithSheets(a, na, b, nb, sheets, out, originScale);
     }
-    return mergeSolidSpans(op, a, na, b, nb, out, originScale);
+    switch (op) {
+        case SetOp::Union:
+            return mergeSolid<SetOp::Union, true>(a, na, b, nb, out, originScale);
+        case SetOp::Intersection:
+            return mergeSolid<SetOp::Intersection, true>(a, na, b, nb, out, originScale);
+        case SetOp::Difference:
+            return mergeSolid<SetOp::Difference, true>(a, na, b, nb, out, originScale);
+    }
+    return 0;
 }
 
 size_t mergeSolidSpans(SetOp op, const Span* a, size_t na, const Span* b, size_t nb, Span* out,
                        double originScale) {
-    Cursor ca(a, na), cb(b, nb);
-    SpanWriter writer(out, originScale);
-    const bool flipB = op == SetOp::Difference;
-    bool inResult = false;
-    Hit start;
-    for (;;) {
-        // Stop as soon as the rest of the result is decided.
-        if (ca.done() && (cb.done() || op != SetOp::Union)) break;
-        if (cb.done() && op == SetOp::Intersection) break;
-
-        // Take the next event; both operands when their ends are exactly equal.
-        const bool takeA = !ca.done() && (cb.done() || ca.hit().t <= cb.hit().t);
-        const bool takeB = !cb.done() && (ca.done() || cb.hit().t <= ca.hit().t);
-        Hit hitA, hitB;
-        if (takeA) {
-            hitA = ca.hit();
-            ca.advance();
-        }
-        if (takeB) {
-            hitB = cb.hit();
-            hitB.flipped ^= flipB;
-            cb.advance();
-        }
-
-        // Emit a boundary where the result changes, by the documented tie-break.
-        const bool now = apply(op, ca.inside, cb.inside);
-        if (now == inResult) continue;
-        const Hit& boundary =
-            !takeB || (takeA && (hitA.isSurface() || !hitB.isSurface())) ? hitA : hitB;
-        if (now)
-            start = boundary;
-        else
-            writer.emit({start, boundary});
-        inResult = now;
+    switch (op) {
+        case SetOp::Union:
+            return mergeSolid<SetOp::Union, false>(a, na, b, nb, out, originScale);
+        case SetOp::Intersection:
+            return mergeSolid<SetOp::Intersection, false>(a, na, b, nb, out, originScale);
+        case SetOp::Difference:
+            return mergeSolid<SetOp::Difference, false>(a, na, b, nb, out, originScale);
     }
-    // A union with one operand exhausted copies the other's tail through the loop above,
-    // so inResult is false here whenever the inputs were closed lists.
-    return writer.count();
+    return 0;
 }
 
 }  // namespace csg
