@@ -1,7 +1,6 @@
 #include "io/PngWriter.h"
 
 #include <png.h>
-#include <zlib.h>
 
 #include <csetjmp>
 
@@ -57,10 +56,6 @@ std::string writePng(const std::filesystem::path& path, const Rgb8Image& image) 
     // zlib's fastest level: a rendered image comes out ~25% larger than at the default level
     // in ~70% of the write time (csg_grid at 1600x1600: 460 -> 571 kB, 0.149 -> 0.105 s).
     png_set_compression_level(png, 1);
-    // Run-length matches only (zlib's Z_RLE: distance 1, no hash chains): a render's rows are
-    // long runs after the Up filter, so this finds nearly the same matches at less cost.
-    // csg_grid at 1600x1600: 567 -> 573 kB, deflate ~25% fewer instructions.
-    png_set_compression_strategy(png, Z_RLE);
     // One row filter, Up (each byte minus the one above), instead of libpng's adaptive choice
     // among all five per row, which cost more than the compression itself: csg_grid at
     // 1600x1600 writes in ~40% of the instructions and comes out slightly smaller (567 kB).
