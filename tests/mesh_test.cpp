@@ -320,6 +320,27 @@ TEST(ThinFeatures, RotatedGapsStayManifold) {
     }
 }
 
+// A notch whose corner sits exactly on a grid node: the three crossings of that node's edges
+// are one point. The mesh must stay a manifold also after its positions are rounded to float
+// and welded, as a GLB reader sees it.
+TEST(Tessellate, CornerOnAGridNodeStaysManifoldAsFloats) {
+    const double h = 0.1;
+    const Bounds3 bounds{Vec3(0.0), Vec3(1.0)};
+    const GridSpec grid = makeGrid(bounds, h);
+    for (int n = 3; n <= 7; ++n) {
+        const Vec3 corner = grid.node(n, n + 1, n - 1);
+        const Scene scene =
+            Scene::compile(subtract(leaf(Box{bounds.lo, bounds.hi}), leaf(Box{corner, Vec3(2.0)})));
+        ASSERT_EQ(makeGrid(scene.bounds(), h).node(n, n + 1, n - 1), corner);
+        TriangleMesh mesh = tessellateAt(scene, h, 0);
+        EXPECT_TRUE(checkTopology(mesh).closedManifold()) << n;
+        for (Vec3& p : mesh.positions) p = Vec3(glm::vec3(p));
+        const MeshTopology t = checkTopology(weldExactDuplicates(mesh));
+        EXPECT_TRUE(t.closedManifold()) << n << ": non-manifold edges " << t.nonManifoldEdges
+                                        << ", vertices " << t.nonManifoldVertices;
+    }
+}
+
 // io::writeMesh refuses a mesh that is not a closed manifold, in every format, and leaves no
 // file behind; a closed one is written.
 TEST(WriteMesh, OnlyClosedManifoldsAreWritten) {

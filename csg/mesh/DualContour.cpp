@@ -55,11 +55,29 @@ private:
     }
     bool inside(const Node3& n) const { return grid_.inside(n[0], n[1], n[2]); }
 
+    // How far apart vertices are kept in a cell or face whose smallest edge is width: the
+    // grid spacing's tol::kMeshVertexSeparation, which stays clear of float rounding in a GLB,
+    // or a quarter of a thinner cell (one through a thin gap, ThinFeatures.h: at least
+    // kThinMinWidth h / 2 wide, so a quarter of it is still ~10 float steps of a coordinate
+    // 1000 h from the origin).
+    double separation(double width) const {
+        return std::min(0.25 * width, tol::kMeshVertexSeparation * spec_.h);
+    }
+
     EdgeSample sample(int axis, const Node3& node) {
         Node3 next = node;
         ++next[axis];
-        if (const Crossing* x = grid_.crossing(axis, node))
-            return {x->point, x->normal, x->material, true};
+        if (const Crossing* x = grid_.crossing(axis, node)) {
+            // A crossing within rounding of a node (the surface passes through it; among
+            // millions of nodes some do) would meet the crossings of that node's other edges
+            // at one float position in a GLB: keep it a separation inside its own edge.
+            const double lo = spec_.coords[size_t(axis)][size_t(node[axis])];
+            const double hi = spec_.coords[size_t(axis)][size_t(next[axis])];
+            const double apart = separation(hi - lo);
+            Vec3 p = x->point;
+            p[axis] = std::clamp(p[axis], lo + apart, hi - apart);
+            return {p, x->normal, x->material, true};
+        }
         ++stats_.missingCrossings;
         EdgeSample s;
         s.point =
@@ -91,7 +109,7 @@ private:
             // The cell inset a hair, so sheet vertices of neighbouring cells (say both clamped
             // onto a crease lying in their shared face) stay distinct points, also as floats.
             const double width = spec_.cellMinWidth(c[0], c[1], c[2]);
-            const Vec3 inset(tol::kMeshVertexSeparation * width);
+            const Vec3 inset(separation(width));
             const Bounds3 box{spec_.node(c[0], c[1], c[2]) + inset,
                               spec_.node(c[0] + 1, c[1] + 1, c[2] + 1) - inset};
             Vec3 placed[4], mass[4];  // a cell has at most 4 sheets
@@ -112,7 +130,7 @@ private:
             // Two sheets whose features meet at one point (solids touching along an edge, a
             // non-manifold part) would share a position: pull each toward its own patch, so the
             // mesh is a manifold in space too, not only in its indices.
-            const double apart = tol::kMeshVertexSeparation * width;
+            const double apart = separation(width);
             for (int q = 0; q < cycles.count; ++q) {
                 for (int o = 0; o < cycles.count; ++o) {
                     if (o == q || glm::length(placed[q] - placed[o]) > 2.0 * apart) continue;
@@ -188,7 +206,7 @@ private:
         uint32_t vertex = kNone;
         // A crease point (almost) on one of the crossings adds nothing but a sliver triangle
         // whose corners round to one point when written as float: skip it.
-        const double apart = tol::kMeshVertexSeparation * std::min(hi[0] - lo[0], hi[1] - lo[1]);
+        const double apart = separation(std::min(hi[0] - lo[0], hi[1] - lo[1]));
         if (s0.measured && s1.measured &&
             creaseOnFace(s0.point, s0.normal, s1.point, s1.normal, u, v, lo, hi, crease) &&
             glm::length(crease - s0.point) > apart && glm::length(crease - s1.point) > apart) {
