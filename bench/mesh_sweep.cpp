@@ -1,8 +1,8 @@
 // What mesh accuracy costs: `csgray export`'s meshing (csg::tessellate) of each part at a
 // tolerance halved step by step, printing wall and CPU time, triangle counts (the grid's mesh and
-// the simplified one written), the cell size reached and the mesh-surface distances measured both
-// ways. A plain program (no Google Benchmark): one run per tolerance, a table, not a timing of
-// one call.
+// the simplified one written), the cell size reached, the grid planes added through thin walls
+// and gaps (ThinFeatures.h) and the mesh-surface distances measured both ways. A plain program (no
+// Google Benchmark): one run per tolerance, a table, not a timing of one call.
 //
 //   mesh_sweep PART.scad... [-o DIR] [--from T] [--steps N] [--max-cells N] [--threads N]
 //
@@ -152,13 +152,12 @@ int main(int argc, char** argv) {
     }
     if (steps < 1 || parts.empty()) return usage();
     std::string csv =
-        "part,tolerance,seconds,cpu_seconds,grid_triangles,triangles,cell,cells,passes,mesh_to_"
-        "surface,"
-        "surface_to_mesh,met,capped\n";
+        "part,tolerance,seconds,cpu_seconds,grid_triangles,triangles,cell,cells,thin_planes,"
+        "passes,mesh_to_surface,surface_to_mesh,met,capped,stalled\n";
     std::string md =
-        "| part | tolerance | wall s | CPU s | grid triangles | triangles | cell | passes | "
-        "mesh→surface | surface→mesh | met |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "| part | tolerance | wall s | CPU s | grid triangles | triangles | cell | thin planes | "
+        "passes | mesh→surface | surface→mesh | met |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     std::vector<std::pair<std::string, std::vector<Point>>> series;
     for (const std::filesystem::path& part : parts) {
         // Step 1: the part.
@@ -192,18 +191,23 @@ int main(int argc, char** argv) {
             series.back().second.push_back({tolerance, seconds, cpu, double(r.gridTriangles),
                                             double(r.mesh.triangles.size()),
                                             std::max(r.error.max, r.backError.max)});
-            std::snprintf(
-                line, sizeof line, "%s,%.6g,%.3f,%.3f,%llu,%zu,%.6g,%llu,%d,%.6g,%.6g,%d,%d\n",
-                name.c_str(), tolerance, seconds, cpu, (unsigned long long)r.gridTriangles,
-                r.mesh.triangles.size(), r.cellSize, (unsigned long long)r.cells, r.passes,
-                r.error.max, r.backError.max, int(r.toleranceMet), int(r.capped));
+            std::snprintf(line, sizeof line,
+                          "%s,%.6g,%.3f,%.3f,%llu,%zu,%.6g,%llu,%llu,%d,%.6g,%.6g,%d,%d,%d\n",
+                          name.c_str(), tolerance, seconds, cpu,
+                          (unsigned long long)r.gridTriangles, r.mesh.triangles.size(), r.cellSize,
+                          (unsigned long long)r.cells, (unsigned long long)r.thinPlanes.added,
+                          r.passes, r.error.max, r.backError.max, int(r.toleranceMet),
+                          int(r.capped), int(r.stalled));
             csv += line;
             std::snprintf(
                 line, sizeof line,
-                "| %s | %.4g | %.2f | %.2f | %llu | %zu | %.4g | %d | %.3g | %.3g | %s |\n",
+                "| %s | %.4g | %.2f | %.2f | %llu | %zu | %.4g | %llu | %d | %.3g | %.3g | %s |\n",
                 name.c_str(), tolerance, seconds, cpu, (unsigned long long)r.gridTriangles,
-                r.mesh.triangles.size(), r.cellSize, r.passes, r.error.max, r.backError.max,
-                r.toleranceMet ? "yes" : (r.capped ? "no (cell cap)" : "no"));
+                r.mesh.triangles.size(), r.cellSize, (unsigned long long)r.thinPlanes.added,
+                r.passes, r.error.max, r.backError.max,
+                r.toleranceMet
+                    ? "yes"
+                    : (r.capped ? "no (cell cap)" : (r.stalled ? "no (stalled)" : "no")));
             md += line;
             std::fputs(line, stdout);
             std::fflush(stdout);
