@@ -220,6 +220,13 @@ inline constexpr double kPatchNewtonStep = 1e-13;
 // closer than this would have been fused as a sliver by the CSG merge anyway.
 inline constexpr double kPatchDedupeRel = 1e-9;
 
+// PatchSet::normal takes (u, v) from a crossing of the last spans() call whose point on the
+// line lies this close to the shaded point (unit: relative to the set's bounds diagonal). Why:
+// the shaded point is the same crossing computed again (the world hit mapped into the local
+// frame), a few ulps away; two crossings of one patch this close are one point to shading,
+// and Gauss-Newton from either (u, v) converges on p. Same size as kPatchDedupeRel.
+inline constexpr double kPatchCarriedPointRel = 1e-9;
+
 // Bezier clipping hands a region to Newton polish once it is narrower than this in both u
 // and v (unit: patch parameter). Why: clipping converges quadratically near a simple root, so
 // regions shrink to this in a few steps; from 1e-6 Newton needs 2-3 steps. Smaller costs

@@ -1,11 +1,15 @@
 // Notation: the set's line is o + t d in its local frame; a crossing is (t, patch, u, v).
 // Finding (u, v) again at shading time: the hit stores only (t, face = patch), so normal()
-// solves the closest-point problem on that patch: the nearest node of an 8 x 8 (u, v) grid,
-// then Gauss-Newton on |S(u, v) - p|^2. p lies on the patch up to rounding, so the residual
-// at the answer is zero and Gauss-Newton converges quadratically (it is Newton there); the
-// grid picks the right fold of a patch that comes back near itself (the teapot's handle).
-// It is exact to rounding, costs ~70 patch evaluations only for shaded hits, and keeps Hit
-// small for every other ray.
+// first looks for the crossing among those of the last spans() call on its thread (the
+// renderer shades the closest hit of the ray it has just cast; probe asks about every span end
+// of the ray it has just probed): a crossing on that patch at p gives (u, v) as the
+// intersection found it. Otherwise (another ray's crossings, another instance of the set) it
+// solves the closest-point problem on that patch: the nearest node of an 8 x 8 (u, v) grid.
+// Both then run Gauss-Newton on |S(u, v) - p|^2. p lies on the patch up to rounding, so the
+// residual at the answer is zero and Gauss-Newton converges quadratically (it is Newton
+// there); the grid picks the right fold of a patch that comes back near itself (the teapot's
+// handle). The search costs ~70 patch evaluations; the carried (u, v) keeps Hit small for
+// every ray and costs one copy of the crossings per spans() call, no allocation.
 #include "primitives/PatchSet.h"
 
 #include <algorithm>
@@ -29,6 +33,36 @@ constexpr double kGaussWeights[5] = {0.11846344252809454, 0.23931433524968324, 0
 // The direction inside() casts along: no symmetry of a test part lines up with it, so a ray
 // along it rarely runs through edges or lies in a face.
 const Vec3 kInsideDirection = glm::normalize(Vec3(0.5711, 0.6289, 0.5277));
+
+// The crossings of the last spans() call on this thread that found any, as local points.
+struct LastCrossings {
+    const PatchSetData* set = nullptr;
+    int count = 0;
+    struct Entry {
+        Vec3 point;
+        Vec2 uv;
+        uint32_t patch;
+    } entries[PatchSet::kMaxCrossings];
+};
+thread_local LastCrossings lastCrossings;
+
+// Gauss-Newton on |S(u, v) - p|^2 from start, clamped to the unit square.
+Vec2 closestParameterFrom(const BezierPatch& patch, const Vec3& p, Vec2 uv) {
+    for (int step = 0; step < 30; ++step) {
+        const Vec3 r = p - patch.eval(uv.x, uv.y);
+        const Vec3 su = patch.du(uv.x, uv.y), sv = patch.dv(uv.x, uv.y);
+        const double a = glm::dot(su, su), b = glm::dot(su, sv), e = glm::dot(sv, sv);
+        const double det = a * e - b * b;
+        if (!(det > 0.0) || !std::isfinite(det)) break;  // a pole: the start stands
+        const double gu = glm::dot(su, r), gv = glm::dot(sv, r);
+        const Vec2 step2((e * gu - b * gv) / det, (a * gv - b * gu) / det);
+        const Vec2 next = glm::clamp(uv + step2, Vec2(0.0), Vec2(1.0));
+        const Vec2 moved = next - uv;
+        uv = next;
+        if (std::max(std::abs(moved.x), std::abs(moved.y)) < tol::kPatchNewtonStep) break;
+    }
+    return uv;
+}
 
 double signedVolume(const std::vector<BezierPatch>& patches) {
     double v = 0.0;
@@ -115,6 +149,13 @@ int PatchSet::crossings(const Vec3& o, const Vec3& d, Crossing* out) const {
 void PatchSet::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     Crossing c[kMaxCrossings];
     int n = crossings(o, d, c);
+    if (n > 0) {
+        lastCrossings.set = data.get();
+        lastCrossings.count = n;
+        for (int i = 0; i < n; ++i)
+            lastCrossings.entries[i] = {pointOnLine(o, d, c[i].t), Vec2(c[i].u, c[i].v),
+                                        c[i].patch};
+    }
     auto face = [&](int i) { return static_cast<uint16_t>(c[i].patch); };
     if (!solid) {
         out.sheet = true;
@@ -149,7 +190,17 @@ bool PatchSet::inside(const Vec3& p) const {
 
 Vec2 PatchSet::parameterOf(const Vec3& p, uint16_t face) const {
     const BezierPatch& patch = data->patches[face];
-    // Step 1: the nearest node of a coarse grid.
+    // Step 1: a crossing of the last spans() call on this patch at p already knows (u, v).
+    if (lastCrossings.set == data.get()) {
+        const double near = tol::kPatchCarriedPointRel * data->size;
+        for (int i = 0; i < lastCrossings.count; ++i) {
+            const LastCrossings::Entry& e = lastCrossings.entries[i];
+            const Vec3 gap = e.point - p;
+            if (e.patch == face && glm::dot(gap, gap) <= near * near)
+                return closestParameterFrom(patch, p, e.uv);
+        }
+    }
+    // Step 2: else the nearest node of a coarse grid.
     constexpr int kGrid = 8;
     Vec2 best(0.5);
     double bestDistance = kInfinity;
@@ -160,22 +211,8 @@ Vec2 PatchSet::parameterOf(const Vec3& p, uint16_t face) const {
             const double dist = glm::dot(q, q);
             if (dist < bestDistance) bestDistance = dist, best = uv;
         }
-    // Step 2: Gauss-Newton on |S - p|^2, clamped to the square.
-    Vec2 uv = best;
-    for (int step = 0; step < 30; ++step) {
-        const Vec3 r = p - patch.eval(uv.x, uv.y);
-        const Vec3 su = patch.du(uv.x, uv.y), sv = patch.dv(uv.x, uv.y);
-        const double a = glm::dot(su, su), b = glm::dot(su, sv), e = glm::dot(sv, sv);
-        const double det = a * e - b * b;
-        if (!(det > 0.0) || !std::isfinite(det)) break;  // a pole: the grid node stands
-        const double gu = glm::dot(su, r), gv = glm::dot(sv, r);
-        const Vec2 step2((e * gu - b * gv) / det, (a * gv - b * gu) / det);
-        const Vec2 next = glm::clamp(uv + step2, Vec2(0.0), Vec2(1.0));
-        const Vec2 moved = next - uv;
-        uv = next;
-        if (std::max(std::abs(moved.x), std::abs(moved.y)) < tol::kPatchNewtonStep) break;
-    }
-    return uv;
+    // Step 3: Gauss-Newton from there.
+    return closestParameterFrom(patch, p, best);
 }
 
 Vec3 PatchSet::normal(const Vec3& p, uint16_t face) const {

@@ -53,7 +53,9 @@ struct PatchSet {
     static constexpr int kMaxCrossings = 64;
     // Every crossing of the line o + t d, ascending, deduplicated; at most kMaxCrossings.
     int crossings(const Vec3& o, const Vec3& d, Crossing* out) const;
-    // The (u, v) of the point of patch `face` nearest p (see PatchSet.cpp for how).
+    // The (u, v) of the point of patch `face` nearest p: from the crossing at p when the last
+    // spans() call on this thread found one there, else by searching the patch (see
+    // PatchSet.cpp).
     Vec2 parameterOf(const Vec3& p, uint16_t face) const;
 };
 

@@ -256,6 +256,45 @@ TEST(PatchNormals, MatchTheClosedFormOnTheParaboloid) {
     }
 }
 
+// A patch that turns back over itself: in v it runs out along +y at z = 0 and returns along
+// -y at z = 0.02 (x = u). The two sheets are 0.02 apart, closer than the grid normal() searches
+// when it has no crossing to start from, and their normals point opposite ways (dS/dv flips).
+BezierPatch foldedPatch() {
+    const double y[4] = {0.0, 1.5, 1.0, 0.2}, z[4] = {0.0, 0.0, 0.02, 0.02};
+    BezierPatch p;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) p.points[4 * i + j] = Vec3(i / 3.0, y[j], z[j]);
+    return p;
+}
+
+// At each crossing of the line just cast, normal() is the patch's normal at that crossing's own
+// (u, v): Su x Sv from the patch itself, on the right sheet of a fold.
+TEST(PatchNormals, AtACrossingOfTheLastRayAreThoseOfItsOwnParameters) {
+    const PatchSet set = PatchSet::make({foldedPatch()}, PatchMethod::Clip, false);
+    ASSERT_EQ(set.invalidReason(), nullptr);
+    const BezierPatch& patch = set.data->patches[0];
+    std::mt19937_64 random(11);
+    std::uniform_real_distribution<double> unit(0.05, 0.95);
+    int crossingsSeen = 0;
+    for (int k = 0; k < 500; ++k) {
+        // A line down through the fold at a random (x, y) inside its outline.
+        const Vec3 o(unit(random), 0.1 + 0.8 * unit(random), 1.0), d(0.0, 0.0, -1.0);
+        PatchSet::Crossing c[PatchSet::kMaxCrossings];
+        const int n = set.crossings(o, d, c);
+        LocalSpans spans;
+        set.spans(o, d, spans);
+        for (int i = 0; i < n; ++i) {
+            const Vec3 expected =
+                glm::normalize(glm::cross(patch.du(c[i].u, c[i].v), patch.dv(c[i].u, c[i].v)));
+            const Vec3 normal = set.normal(o + c[i].t * d, 0);
+            EXPECT_GT(glm::dot(normal, expected), 1.0 - 1e-9)
+                << o.x << " " << o.y << " crossing " << i;
+            ++crossingsSeen;
+        }
+    }
+    EXPECT_GT(crossingsSeen, 500);  // most lines cross both sheets
+}
+
 // ---- Sheets in a scene ----
 
 TEST(PatchSheet, CrossingsAreZeroLengthSpansWithNormalsFacingTheOrigin) {
