@@ -31,13 +31,16 @@ void simplifyWithinBudget(const Scene& scene, TessellateResult& result,
     // is not a budget the collapses could spend; the finite figures are.
     const double finiteBack = std::isfinite(result.backError.max) ? result.backError.max : 0.0;
     const double worst = std::max(result.error.max, finiteBack);
-    // A grid mesh already over the margin leaves only the flat-only pass, which on such parts
-    // (thin gaps that refinement cannot reach, csg_grid3) took 2.7x the grid's whole export for
-    // 25% fewer triangles: it cannot pay, so the grid's mesh is kept as it is.
-    if (worst > target) return;
-    const std::vector<double> budgets{
-        std::max(target - worst, tol::kSimplifyMinBudget * result.tolerance),
-        tol::kSimplifyFlatBudget * result.tolerance};
+    // A grid mesh over the margin leaves only the flat-only pass. When refinement gave up on
+    // the margin (the cell cap, or a stall at thin gaps), that mesh is the largest the part
+    // gets and on csg_grid3 the pass took 2.7x the whole export for 25% fewer triangles: it
+    // cannot pay there, and the grid's mesh is kept. Otherwise (maxPasses ran out, typically at
+    // a coarse tolerance) it can: bracket's flat faces drop 16x.
+    if (worst > target && (result.capped || result.stalled)) return;
+    std::vector<double> budgets;
+    if (worst <= target)
+        budgets.push_back(std::max(target - worst, tol::kSimplifyMinBudget * result.tolerance));
+    budgets.push_back(tol::kSimplifyFlatBudget * result.tolerance);
     for (const double budget : budgets) {
         const double bound =
             budget > tol::kSimplifyFlatBudget * result.tolerance ? target : result.tolerance;
@@ -122,16 +125,16 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
         // maximum by a little, and a different sampling (compare's) must agree.
         const double target = tol::kMeshMeasureMargin * tolerance;
         if (worst <= target || h <= hMin) break;
-        // On a part with walls or gaps thinner than a cell, stop when the last refinement
-        // bought less than tol::kMeshStallFraction of what the linear law promised: the error
-        // then sits where finer cells do not reach (a wedge of a gap narrower than any cell),
-        // and every further pass costs more than all before it. Elsewhere a small gain is the
-        // sampled maximum's noise at creases, and refining goes on.
+        // On a part with walls or gaps thinner than a cell, stop when the last refinement of a
+        // pass that missed T bought less than tol::kMeshStallFraction of what the linear law
+        // promised: the error then sits where finer cells do not reach (a wedge of a gap
+        // narrower than any cell), and every further pass costs more than all before it.
+        // Elsewhere a small gain is the sampled maximum's noise at creases: refining goes on.
         if (pass > 0 && result.thinPlanes.added > 0) {
             const TessellatePass& before = result.history[result.history.size() - 2];
             const double promised = 1.0 - h / before.cellSize;
             const double previous = std::max(before.error, before.backError);
-            if (std::isfinite(previous) &&
+            if (std::isfinite(previous) && previous > tolerance &&
                 worst > previous * (1.0 - tol::kMeshStallFraction * promised)) {
                 result.stalled = true;
                 break;

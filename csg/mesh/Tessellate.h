@@ -12,16 +12,17 @@
 // linear law: the worst errors sit at curved creases such as a hole's rim, where a cell's QEF
 // vertex is clamped or falls back to the mass point, and those shrink in proportion to h) until
 // the measurement is within T, the cell cap is reached, maxPasses passes have run, or a pass
-// stalled on a part with thin walls or gaps (its error fell by much less than its spacing: see
-// tol::kMeshStallFraction).
+// stalled on a part with thin walls or gaps (after a pass that missed T, the error fell by much
+// less than the spacing: see tol::kMeshStallFraction).
 //
 // Then the grid's mesh is coarsened where it is flat or gently curved (Simplify.h) within the
 // error budget the grid left (kMeshMeasureMargin T minus the measured error, at least
 // tol::kSimplifyMinBudget T; none when the grid's mesh is already over the margin), and measured
 // again both ways; a simplified mesh that measures worse than the margin (or than the grid's
 // mesh, when that was already over) is retried with flat regions and straight creases only
-// (held to T: the surface does not move), then dropped for the grid's mesh. A grid mesh already
-// over the margin is not simplified at all (a flat-only pass there costs more than it saves).
+// (held to T: the surface does not move), then dropped for the grid's mesh. A grid mesh over
+// the margin after the cell cap or a stall stopped refining is not simplified at all (the
+// flat-only pass costs more than it saves on such a mesh).
 #pragma once
 
 #include <cstdint>
