@@ -1,7 +1,9 @@
 // Notation: t is the parameter of the line o + t d; u = d / |d| and s = |d| (t - tBase) is the
 // distance along the line from a base point b = o + tBase d, the point of the line nearest
 // the centre. F(p) = (|p|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2), the torus quartic, is <= 0
-// exactly inside; along the line it is a quartic in s with leading coefficient 1.
+// exactly inside; along the line it is a quartic in s with leading coefficient 1. G(s) =
+// (rho - R)^2 + z^2 - r^2, the tube form, has the same real roots (F = G times a positive
+// factor) and is what Solver::Auto solves.
 #include "primitives/Torus.h"
 
 #include <algorithm>

@@ -12,6 +12,8 @@ namespace csg {
 struct Torus {
     double majorRadius = 1.0;   // R: from the z axis to the tube's centre circle
     double minorRadius = 0.25;  // r: the tube's radius
+    // Auto: the tube form (rho - R)^2 + z^2 - r^2 on its monotone pieces (Torus.cpp); any
+    // other: the quartic by that solver (for comparisons).
     Solver solver = Solver::Auto;
 
     const char* invalidReason() const {
