@@ -271,6 +271,7 @@ TEST(ThinFeatures, PlanesResolveGapsAndWallsThinnerThanACell) {
         const TriangleMesh mesh = tessellateAt(*scene, h, 0, nullptr, &stats, &planes);
         EXPECT_GT(planes.added, 0u);
         EXPECT_FALSE(planes.capped);
+        EXPECT_EQ(planes.unresolved, 0u);
         EXPECT_GT(stats.cells, makeGrid(scene->bounds(), h).cellCount());
         EXPECT_TRUE(checkTopology(mesh).closedManifold());
         EXPECT_NEAR(signedVolume(mesh), exact, 1e-9);

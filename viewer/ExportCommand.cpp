@@ -109,7 +109,11 @@ int exportCommand(std::span<const std::string> args) {
                         (result.stalled ? " (finer cells stopped reducing the error)" : "") +
                         ": measured " +
                         std::to_string(std::max(result.error.max, result.backError.max))});
-    if (!result.mesh.empty() && !result.toleranceMet && result.contour.thinEdges > 0) {
+    // Thin gaps left fused are a surface-to-mesh error the export's sampling can miss: say so
+    // even when its own measurement is within the tolerance.
+    const bool thinLeft = result.thinPlanes.unresolved > 0;
+    if (!result.mesh.empty() && (!result.toleranceMet || thinLeft) &&
+        result.contour.thinEdges > 0) {
         // The likely cause, where the grid shows it: features thinner than a cell.
         const csg::Vec3 at = result.contour.thinAt;
         char where[160];
@@ -118,7 +122,12 @@ int exportCommand(std::span<const std::string> args) {
                     std::to_string(result.contour.thinEdges) +
                         " grid edges cross a wall or gap thinner than the cell (" +
                         std::to_string(result.cellSize) + "), e.g. near (" + where +
-                        "): the mesh fuses or drops them there"});
+                        "): the mesh fuses or drops them there" +
+                        (thinLeft ? " (" + std::to_string(result.thinPlanes.unresolved) +
+                                        " between facing surfaces after " +
+                                        std::to_string(result.thinPlanes.added) +
+                                        " grid planes; `csgray compare` measures what that costs)"
+                                  : std::string())});
     }
 
     // Write it.

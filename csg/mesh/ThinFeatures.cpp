@@ -86,6 +86,7 @@ HermiteGrid castResolvingThinFeatures(const Scene& scene, const Bounds3& bounds,
         grid = HermiteGrid::cast(scene, refined, threads);
         if (rays) *rays += grid.rays();
     }
+    for (const std::vector<ThinInterval>& axis : grid.thinIntervals()) p.unresolved += axis.size();
     return grid;
 }
 

@@ -22,6 +22,9 @@ struct ThinPlanes {
     uint64_t added = 0;   // planes added over all rounds
     int rounds = 0;       // casts after the first
     bool capped = false;  // a round wanted more planes than its per-axis allowance
+    // Edges of the final grid still crossed twice by facing surfaces: gaps narrower than
+    // kThinMinWidth h, beyond the allowance, or met by no plane's lines. The mesh fuses them.
+    uint64_t unresolved = 0;
 };
 
 // spec plus, per axis, planes stabbing every interval of grid.thinIntervals() at least
