@@ -1,6 +1,7 @@
 // Compiling trees: transforms flattened into leaves, unions flattened, bounds, pruning, BVH.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "csg/Scene.h"
@@ -88,6 +89,30 @@ TEST(Compile, EmptySceneAnswersNothing) {
     EXPECT_FALSE(scene.closest(ray, ctx));
     EXPECT_FALSE(scene.occluded(ray, ctx));
     EXPECT_TRUE(scene.bounds().empty());
+}
+
+// Operands whose box test the parent's test already implies are not tested again: in A - B
+// with B's box holding A's, a ray tests the root's box and the difference's only, and still
+// gets the difference's spans. A is the unit sphere; B a box 1.6 x 1.6 x 2.4 turned 45 degrees
+// about z, whose bounds (+-1.13, +-1.13, +-1.2) hold the sphere's but which leaves the parts of
+// the sphere beyond 0.8 from its faces.
+TEST(Compile, CutOperandsWhoseTestIsImpliedAreNotTestedAgain) {
+    const Mat4 turn = glm::rotate(Mat4(1.0), 0.25 * 3.141592653589793, Vec3(0, 0, 1));
+    const NodePtr cut = transformed(turn, leaf(Box{Vec3(-0.8, -0.8, -1.2), Vec3(0.8, 0.8, 1.2)}));
+    const Scene scene = Scene::compile(subtract(leaf(Sphere{1}), cut));
+    // Along z through the point at u = (x + y) / sqrt 2 = 0.9, v = 0: outside the box, inside
+    // the sphere for |z| <= sqrt(1 - 0.81).
+    const double xy = 0.9 / std::sqrt(2.0), half = std::sqrt(1.0 - 0.81);
+    QueryContext ctx;
+    const auto spans = scene.spans(Ray{{xy, xy, -5}, {0, 0, 1}}, ctx);
+    ASSERT_EQ(spans.size(), 1u);
+    EXPECT_NEAR(spans[0].in.t, 5.0 - half, 1e-12);
+    EXPECT_NEAR(spans[0].out.t, 5.0 + half, 1e-12);
+    EXPECT_EQ(ctx.stats.nodeVisits, 2u);  // the root union wrapping the part, the difference
+    // The sphere is solved; the box's own frame shows the ray missing it, so it is not.
+    EXPECT_EQ(ctx.stats.primitiveTests, 1u);
+    // Through the middle the box removes the whole chord.
+    EXPECT_TRUE(scene.spans(Ray{{0, 0, -5}, {0, 0, 1}}, ctx).empty());
 }
 
 // A union of n spheres on a grid: node visits per ray must grow like log n, not n.
