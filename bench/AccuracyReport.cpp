@@ -12,7 +12,6 @@
 // roots is smaller than its own rounding error in double, so no double solver can see them.
 #include <algorithm>
 #include <array>
-#include <boost/multiprecision/cpp_bin_float.hpp>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -31,11 +30,12 @@
 #include "bench/ShellSurface.h"
 #include "primitives/AlgebraicSurface.h"
 #include "primitives/Torus.h"
+#include "tests/RootReference.h"
 
 namespace csg {
 namespace {
 
-using Big = boost::multiprecision::cpp_bin_float_50;
+using rootref::Big;
 
 struct Job {
     Polynomial p;
@@ -50,65 +50,12 @@ struct Job {
     std::array<double, Polynomial::kMaxDegree + 1> pd{};
 };
 
-// ---- The 50-digit reference ----
-
-Big evalBig(const std::vector<Big>& c, const Big& t) {
-    Big y = c.back();
-    for (int i = int(c.size()) - 2; i >= 0; --i) y = y * t + c[i];
-    return y;
-}
-
-// The root of p in [a, b], where p(a), p(b) have opposite signs and p is monotone (no critical
-// point inside): Newton kept inside the shrinking bracket, bisection when it would leave it.
-Big monotoneRoot(const std::vector<Big>& c, const std::vector<Big>& dc, Big a, Big b) {
-    Big fa = evalBig(c, a);
-    Big t = (a + b) / 2;
-    for (int i = 0; i < 400; ++i) {
-        const Big f = evalBig(c, t);
-        if (f == 0) return t;
-        if ((f < 0) == (fa < 0)) {
-            a = t;
-            fa = f;
-        } else {
-            b = t;
-        }
-        const Big d = evalBig(dc, t);
-        Big next = d != 0 ? t - f / d : (a + b) / 2;
-        if (!(next > a && next < b)) next = (a + b) / 2;
-        if (abs(next - t) <= 1e-45 * (1 + abs(t)) || b - a <= 1e-45 * (1 + abs(t))) return next;
-        t = next;
-    }
-    return t;
-}
-
-// Real roots of c in [lo, hi], ascending: the critical points (roots of c', recursively)
-// split the range into monotone pieces, each holding at most one root.
-std::vector<Big> rootsBig(std::vector<Big> c, const Big& lo, const Big& hi) {
-    while (c.size() > 1 && c.back() == 0) c.pop_back();
-    if (c.size() <= 1) return {};
-    std::vector<Big> dc(c.size() - 1);
-    for (size_t i = 1; i < c.size(); ++i) dc[i - 1] = c[i] * int(i);
-    std::vector<Big> cuts = {lo};
-    for (const Big& r : rootsBig(dc, lo, hi))
-        if (r > cuts.back() && r < hi) cuts.push_back(r);
-    cuts.push_back(hi);
-    std::vector<Big> out;
-    for (size_t i = 0; i + 1 < cuts.size(); ++i) {
-        const Big fa = evalBig(c, cuts[i]), fb = evalBig(c, cuts[i + 1]);
-        if (fa == 0) {
-            if (out.empty() || out.back() != cuts[i]) out.push_back(cuts[i]);
-        } else if (fb != 0 && (fa < 0) != (fb < 0)) {
-            out.push_back(monotoneRoot(c, dc, cuts[i], cuts[i + 1]));
-        }
-    }
-    if (evalBig(c, hi) == 0 && (out.empty() || out.back() != hi)) out.push_back(hi);
-    return out;
-}
+// ---- The 50-digit reference (tests/RootReference.h) ----
 
 void addReference(Job& j) {
     std::vector<Big> c(size_t(j.p.degree() + 1));
     for (int i = 0; i <= j.p.degree(); ++i) c[size_t(i)] = j.p[i];
-    const std::vector<Big> roots = rootsBig(c, Big(j.lo), Big(j.hi));
+    const std::vector<Big> roots = rootref::realRoots(c, Big(j.lo), Big(j.hi));
     for (const Big& r : roots) j.reference.push_back(r.convert_to<double>());
     for (int i = 0; i <= j.p.degree(); ++i)
         j.pf[size_t(i)] = float(j.p[i]), j.pd[size_t(i)] = j.p[i];
@@ -116,7 +63,7 @@ void addReference(Job& j) {
         const Big mid = (roots[i] + roots[i + 1]) / 2;
         double bound = 0;
         j.p.eval(mid.convert_to<double>(), &bound);
-        if (abs(evalBig(c, mid)) <= bound) j.resolvable = false;
+        if (abs(rootref::evaluate(c, mid)) <= bound) j.resolvable = false;
     }
 }
 

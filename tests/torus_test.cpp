@@ -7,8 +7,6 @@
 // Notation: t is the parameter of o + t d; R, r the major and minor radii.
 #include <gtest/gtest.h>
 
-#include <boost/multiprecision/cpp_bin_float.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -19,6 +17,7 @@
 #include "csg/Scene.h"
 #include "primitives/Torus.h"
 #include "primitives/solvers/Quartic.h"
+#include "tests/RootReference.h"
 
 namespace csg {
 namespace {
@@ -363,38 +362,7 @@ TEST(Torus, ClosedFormQuarticConfirmsOrdinaryRays) {
 
 // ---- Accuracy against a 50-digit reference ----
 
-using Big = boost::multiprecision::cpp_bin_float_50;
-
-Big evalBig(const std::vector<Big>& c, const Big& t) {
-    Big y = c.back();
-    for (int i = int(c.size()) - 2; i >= 0; --i) y = y * t + c[i];
-    return y;
-}
-
-// The real roots of c in [lo, hi], ascending, in 50 digits: the roots of c' (recursively) cut
-// the range into monotone pieces, each holding at most one root, found by bisection.
-std::vector<Big> rootsBig(std::vector<Big> c, const Big& lo, const Big& hi) {
-    while (c.size() > 1 && c.back() == 0) c.pop_back();
-    if (c.size() <= 1) return {};
-    std::vector<Big> dc(c.size() - 1);
-    for (size_t i = 1; i < c.size(); ++i) dc[i - 1] = c[i] * int(i);
-    std::vector<Big> cuts = {lo};
-    for (const Big& r : rootsBig(dc, lo, hi))
-        if (r > cuts.back() && r < hi) cuts.push_back(r);
-    cuts.push_back(hi);
-    std::vector<Big> out;
-    for (size_t i = 0; i + 1 < cuts.size(); ++i) {
-        Big a = cuts[i], b = cuts[i + 1];
-        const Big fa = evalBig(c, a), fb = evalBig(c, b);
-        if (fa == 0 || fb == 0 || (fa < 0) == (fb < 0)) continue;
-        for (int k = 0; k < 180 && b - a > Big(1e-45) * (1 + abs(a)); ++k) {
-            const Big m = (a + b) / 2;
-            ((evalBig(c, m) < 0) == (fa < 0) ? a : b) = m;
-        }
-        out.push_back((a + b) / 2);
-    }
-    return out;
-}
+using rootref::Big;
 
 // The torus quartic F along o + t d, expanded exactly (to 50 digits) from the double inputs.
 std::vector<Big> torusQuarticBig(const Torus& torus, const Vec3& o, const Vec3& d) {
@@ -434,7 +402,7 @@ TEST(Torus, SpanEndsAgainstFiftyDigitReference) {
                                 rng.unit() * (1.2 * shape.minorRadius * rng.uniform());
             const Vec3 d = glm::normalize(target - o) * std::pow(10.0, rng.uniform(-1, 1));
             const double reach = 8.0 * size / glm::length(d);
-            std::vector<Big> want = rootsBig(torusQuarticBig(shape, o, d), -reach, reach);
+            std::vector<Big> want = rootref::realRoots(torusQuarticBig(shape, o, d), -reach, reach);
             bool separated = want.size() % 2 == 0;
             for (size_t k = 0; k + 1 < want.size(); ++k)
                 separated &= (want[k + 1] - want[k]) * glm::length(d) > 1e-4 * size;

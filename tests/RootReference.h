@@ -1,0 +1,71 @@
+// Test and benchmark helper: the real roots of a polynomial in [lo, hi], in 50 digits
+// (Boost.Multiprecision), the reference that solver errors are measured against (torus_test,
+// bench/AccuracyReport.cpp). Independent of primitives/solvers/: no closed form, no double.
+// Notation: c is a coefficient list {c0, c1, ...} for c0 + c1 t + ...; an empty list or one
+// that is constant has no roots.
+#pragma once
+
+#include <boost/multiprecision/cpp_bin_float.hpp>
+#include <vector>
+
+namespace csg::rootref {
+
+using Big = boost::multiprecision::cpp_bin_float_50;
+
+// c at t, by Horner's rule. c must not be empty.
+inline Big evaluate(const std::vector<Big>& c, const Big& t) {
+    Big y = c.back();
+    for (int i = int(c.size()) - 2; i >= 0; --i) y = y * t + c[i];
+    return y;
+}
+
+// The root of c in [a, b], where c(a), c(b) have opposite signs and c is monotone (no critical
+// point inside); dc is c'. Newton kept inside the shrinking bracket, bisection when it would
+// leave it.
+inline Big monotoneRoot(const std::vector<Big>& c, const std::vector<Big>& dc, Big a, Big b) {
+    Big fa = evaluate(c, a);
+    Big t = (a + b) / 2;
+    for (int i = 0; i < 400; ++i) {
+        const Big f = evaluate(c, t);
+        if (f == 0) return t;
+        if ((f < 0) == (fa < 0)) {
+            a = t;
+            fa = f;
+        } else {
+            b = t;
+        }
+        const Big d = evaluate(dc, t);
+        Big next = d != 0 ? t - f / d : (a + b) / 2;
+        if (!(next > a && next < b)) next = (a + b) / 2;
+        if (abs(next - t) <= 1e-45 * (1 + abs(t)) || b - a <= 1e-45 * (1 + abs(t))) return next;
+        t = next;
+    }
+    return t;
+}
+
+// The distinct real roots of c in the closed range [lo, hi], ascending: the critical points
+// (roots of c', recursively) split the range into monotone pieces, each holding at most one
+// root. A root of even multiplicity is found only where it falls exactly on a piece's end.
+inline std::vector<Big> realRoots(std::vector<Big> c, const Big& lo, const Big& hi) {
+    while (c.size() > 1 && c.back() == 0) c.pop_back();
+    if (c.size() <= 1) return {};
+    std::vector<Big> dc(c.size() - 1);
+    for (size_t i = 1; i < c.size(); ++i) dc[i - 1] = c[i] * int(i);
+    std::vector<Big> cuts = {lo};
+    for (const Big& r : realRoots(dc, lo, hi))
+        if (r > cuts.back() && r < hi) cuts.push_back(r);
+    cuts.push_back(hi);
+    std::vector<Big> out;
+    for (size_t i = 0; i + 1 < cuts.size(); ++i) {
+        const Big fa = evaluate(c, cuts[i]), fb = evaluate(c, cuts[i + 1]);
+        if (fa == 0) {
+            if (out.empty() || out.back() != cuts[i]) out.push_back(cuts[i]);
+        } else if (fb != 0 && (fa < 0) != (fb < 0)) {
+            out.push_back(monotoneRoot(c, dc, cuts[i], cuts[i + 1]));
+        }
+    }
+    if (evaluate(c, hi) == 0 && (out.empty() || out.back() != hi)) out.push_back(hi);
+    return out;
+}
+
+}  // namespace csg::rootref
