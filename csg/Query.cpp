@@ -24,31 +24,6 @@ Vec3 affineVector(const Affine& m, const Vec3& v) {
     return m[0] * v.x + m[1] * v.y + m[2] * v.z;
 }
 
-// pointOnLine (primitives/solvers/LinePoint.h) without its three calls into libm: a default
-// x86-64 build has no FMA instruction to emit for std::fma, so each is a call, around which the
-// ray loop spills every live register. Where the CPU has FMA (checked once), the instruction is
-// used directly; both paths are one exactly rounded fma per component, so the bits are the same.
-#if defined(__x86_64__) && !defined(__FMA__)
-const bool kCpuHasFma = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("fma") != 0;
-}();
-
-inline double fmaInline(double a, double b, double c) {
-    asm("vfmadd231sd %[b], %[a], %[c]" : [c] "+x"(c) : [a] "x"(a), [b] "x"(b));
-    return c;
-}
-
-Vec3 startPoint(const Vec3& o, const Vec3& d, double t) {
-    if (!kCpuHasFma) return pointOnLine(o, d, t);
-    return {fmaInline(t, d.x, o.x), fmaInline(t, d.y, o.y), fmaInline(t, d.z, o.z)};
-}
-#else
-Vec3 startPoint(const Vec3& o, const Vec3& d, double t) {
-    return pointOnLine(o, d, t);
-}
-#endif
-
 }  // namespace
 
 struct Evaluator {
@@ -107,7 +82,7 @@ struct Evaluator {
 
         ++ctx.stats.primitiveTests;
         LocalSpans local;
-        const Vec3 start = startPoint(o, d, shift);
+        const Vec3 start = pointOnLine(o, d, shift);
         std::visit([&](const auto& shape) { shape.spans(start, d, local); }, leaf.shape);
 
         // A sheet's crossings are zero-length spans by nature: clipped, never regularized away.

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "csg/Fma.h"
 #include "primitives/solvers/LinePoint.h"
 #include "primitives/solvers/Quadratic.h"
 
@@ -71,7 +72,7 @@ void Cylinder::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     const double k = (r2 - r1) / height;
     const double kdz = k * d.z;
     const double rb = r1 + k * b.z;  // the quadric's radius at b's height
-    const double A = std::fma(-kdz, kdz, dxy2);
+    const double A = fusedMultiplyAdd(-kdz, kdz, dxy2);
     const double B = b.x * d.x + b.y * d.y - rb * kdz;
     const double C = b.x * b.x + b.y * b.y - rb * rb;
 
