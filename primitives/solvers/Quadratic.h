@@ -21,8 +21,7 @@ inline int solveQuadratic(double a, double b, double c, double& r0, double& r1) 
     // The fmas keep b^2 - 4ac accurate when the two products nearly cancel (fusedMultiplyAdd:
     // this runs per ray, see csg/Fma.h).
     const double fourAC = 4.0 * a * c;
-    const double disc =
-        fusedMultiplyAdd(b, b, -fourAC) + fusedMultiplyAdd(-4.0 * a, c, fourAC);
+    const double disc = fusedMultiplyAdd(b, b, -fourAC) + fusedMultiplyAdd(-4.0 * a, c, fourAC);
     if (disc < 0.0) return 0;
     const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
     if (q == 0.0) {  // b == 0 and c == 0: double root at 0
