@@ -366,6 +366,45 @@ TEST(WriteMesh, OnlyClosedManifoldsAreWritten) {
     std::filesystem::remove_all(dir);
 }
 
+// A mesh sample just off a face whose normal line runs almost along that face: the normal line
+// alone says 0.8T (0.0004 / 0.05), another line says the true 0.0004. The figure must be the
+// tighter one, or such loose bounds above the refinement margin refine a mesh that is already
+// within T (csg_grid3 went to the cell cap that way). A box displaced by more than T must still
+// measure more than T at every sample.
+TEST(MeshDistance, GrazingNormalLinesDoNotInflateAndDisplacedMeshesAreCaught) {
+    const Scene scene = Scene::compile(leaf(Box{Vec3(0.0), Vec3(1.0)}));
+    const double tol = 0.01, gap = 0.0004;
+    DistanceOptions options;
+    options.reach = 0.1;
+    options.goodEnough = tol;
+
+    // A tiny triangle at gap above the face y = 1, tilted so its normal is 3 degrees off it.
+    const Vec3 n = glm::normalize(Vec3(1.0, 0.05, 0.0));
+    const Vec3 u(0.0, 0.0, 1e-4), v = glm::cross(n, u);
+    const Vec3 p(0.5, 1.0 + gap, 0.5);
+    TriangleMesh grazing;
+    grazing.positions = {p + u, p - u + v, p - u - v};
+    grazing.normals = {n, n, n};
+    grazing.triangles = {{0, 1, 2}};
+    const Vec3 faceNormal = glm::cross(grazing.positions[1] - grazing.positions[0],
+                                       grazing.positions[2] - grazing.positions[0]);
+    ASSERT_GT(glm::dot(faceNormal, n), 0.0);
+    const DistanceStats near = meshToSurface(scene, grazing, options);
+    EXPECT_EQ(near.unresolved, 0u);
+    EXPECT_LT(near.max, 2.0 * gap);
+
+    // The box's own mesh grown by 1.5 T on every side: every point is 1.5 T or more away.
+    const double shift = 1.5 * tol;
+    TriangleMesh grown = tessellateAt(scene, 0.25, 0);
+    for (Vec3& q : grown.positions) q = 0.5 + (q - 0.5) * (1.0 + 2.0 * shift);
+    const DistanceStats far = meshToSurface(scene, grown, options);
+    EXPECT_EQ(far.unresolved, 0u);
+    EXPECT_GE(far.mean, shift * (1.0 - 1e-9));
+    EXPECT_GT(far.max, tol);
+    const TriangleBvh bvh(grown);
+    EXPECT_GE(surfaceToMesh(scene, grown, bvh, 16, options).mean, shift * (1.0 - 1e-9));
+}
+
 TEST(Tessellate, SphereWithinTolerance) {
     const Scene scene = Scene::compile(leaf(Sphere{1.0}));
     const double tol = 0.005;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "csg/Tolerances.h"
 #include "csg/mesh/ParallelFor.h"
 
 namespace csg {
@@ -58,9 +59,12 @@ double alongLine(const Scene& scene, QueryContext& ctx, const Vec3& p, const Vec
 }
 
 // The first direction, then the three axes and four body diagonals when the first answer is
-// not good enough. The extra lines matter at creases: a point on a concave edge of axis-aligned
-// faces has its normal and all three axis lines lying in the faces (regularized spans then put
-// the nearest surface end far away), while a diagonal line crosses the boundary at the point.
+// not well within goodEnough (tol::kDistanceFirstLineFraction: near a crease the first line can
+// run almost along the surface and overestimate several times, and a loose bound just under
+// goodEnough is still read as an error against it). The extra lines matter at creases: a point
+// on a concave edge of axis-aligned faces has its normal and all three axis lines lying in the
+// faces (regularized spans then put the nearest surface end far away), while a diagonal line
+// crosses the boundary at the point.
 template <class Measure>
 double bestOfDirections(const Vec3& first, double goodEnough, Measure&& measure) {
     static const Vec3 kExtra[7] = {{1, 0, 0},  {0, 1, 0},  {0, 0, 1}, {1, 1, 1},
@@ -68,10 +72,8 @@ double bestOfDirections(const Vec3& first, double goodEnough, Measure&& measure)
     double best = kInfinity;
     const double len = glm::length(first);
     if (len > 0.0) best = measure(first / len, Vec3(0.0));
-    for (const Vec3& d : kExtra) {
-        if (best <= goodEnough) break;
-        best = std::min(best, measure(glm::normalize(d), Vec3(0.0)));
-    }
+    if (best > tol::kDistanceFirstLineFraction * goodEnough)
+        for (const Vec3& d : kExtra) best = std::min(best, measure(glm::normalize(d), Vec3(0.0)));
     // A point on an edge where two solids only touch (a non-manifold part) sees every line
     // through it either miss both solids or cross both with fused spans, and a point on a
     // convex corner sees most lines only touch the solid there (a zero-length span, dropped):

@@ -24,8 +24,10 @@ struct DistanceOptions {
     // Lines reach this far on each side of a sample (world units). Farther surfaces count as
     // unresolved (distance +inf).
     double reach = 1.0;
-    // Below this, the first line's answer is taken; above it, three axis lines are tried as
-    // well and the smallest answer kept (a sample near a crease whose normal line slips past).
+    // The tolerance the figures will be judged against (world units). Within
+    // tol::kDistanceFirstLineFraction of it, the first line's answer is taken; above, the three
+    // axes and four body diagonals are tried as well and the smallest answer kept (a sample near
+    // a crease whose normal line runs almost along the surface).
     double goodEnough = 0.0;
     int threads = 0;
 };
