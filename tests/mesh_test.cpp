@@ -207,6 +207,25 @@ TEST(Simplify, MaterialBordersStay) {
     EXPECT_EQ(after[0], 0.0);
 }
 
+// tessellate() simplifies a grid mesh up to simplifyMaxTriangles and keeps larger ones as the
+// grid made them (decimation is the slow, single-threaded step; export --simplify lifts it).
+TEST(Simplify, GridMeshesOverTheLimitAreKept) {
+    const Scene scene = Scene::compile(leaf(Box{Vec3(0.1, 0.2, 0.3), Vec3(2.1, 1.2, 1.8)}));
+    const TessellateResult free = tessellate(scene, {.tolerance = 0.01, .simplifyMaxTriangles = 0});
+    ASSERT_GT(free.gridTriangles, 1000u);
+    EXPECT_TRUE(free.simplified);
+    EXPECT_FALSE(free.simplifySkipped);
+    EXPECT_LT(free.mesh.triangles.size(), free.gridTriangles / 10);
+
+    const TessellateResult limited =
+        tessellate(scene, {.tolerance = 0.01, .simplifyMaxTriangles = free.gridTriangles - 1});
+    EXPECT_EQ(limited.gridTriangles, free.gridTriangles);
+    EXPECT_FALSE(limited.simplified);
+    EXPECT_TRUE(limited.simplifySkipped);
+    EXPECT_EQ(limited.mesh.triangles.size(), limited.gridTriangles);
+    EXPECT_TRUE(checkTopology(limited.mesh).closedManifold());
+}
+
 TEST(CreaseNormals, BoxSplitsIntoFlatFacesAndSphereStaysSmooth) {
     const Vec3 lo(0.1, 0.2, 0.3), hi(2.1, 1.2, 1.8);
     const TriangleMesh box =

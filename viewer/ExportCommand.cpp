@@ -37,6 +37,8 @@ const char* const kExportHelp =
     "  --max-cells N      cap on the grid's cells (default 16777216); when it binds, the\n"
     "                     mesh is written with a warning and the error reached\n"
     "  --no-simplify      keep the grid's mesh (no coarsening of flat regions)\n"
+    "  --simplify         coarsen even a grid mesh over a million triangles (skipped by\n"
+    "                     default: it takes minutes there)\n"
     "  --threads N        worker threads (default: all cores)\n"
     "  --quiet            no summary on stderr\n"
     "  --verbose          also one line per grid pass on stderr\n";
@@ -60,6 +62,8 @@ int exportCommand(std::span<const std::string> args) {
             options.threads = parsePositiveInt(*th, "--threads", 1024);
         } else if (cursor.flag("--no-simplify")) {
             options.simplify = false;
+        } else if (cursor.flag("--simplify")) {
+            options.simplifyMaxTriangles = 0;
         } else if (cursor.flag("--quiet")) {
             quiet = true;
         } else if (cursor.flag("--verbose")) {
@@ -149,7 +153,10 @@ int exportCommand(std::span<const std::string> args) {
             "%d pass(es), mesh->surface %.3g, surface->mesh %.3g (tolerance %.3g), "
             "%.2f s\n",
             output.c_str(), result.mesh.triangles.size(), (unsigned long long)result.gridTriangles,
-            result.simplified ? ", simplified" : "", result.mesh.positions.size(), result.cellSize,
+            result.simplified        ? ", simplified"
+            : result.simplifySkipped ? ", not simplified: over a million, --simplify forces it"
+                                     : "",
+            result.mesh.positions.size(), result.cellSize,
             result.passes, result.error.max, result.backError.max, result.tolerance, seconds);
     return kExitOk;
 }

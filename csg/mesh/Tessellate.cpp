@@ -146,7 +146,11 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
         h *= std::clamp(0.85 * ratio, 0.25, 0.85);
     }
     result.gridTriangles = result.mesh.triangles.size();
-    if (options.simplify && !result.mesh.empty()) simplifyWithinBudget(scene, result, measure);
+    if (options.simplify && !result.mesh.empty()) {
+        result.simplifySkipped = options.simplifyMaxTriangles > 0 &&
+                                 result.gridTriangles > options.simplifyMaxTriangles;
+        if (!result.simplifySkipped) simplifyWithinBudget(scene, result, measure);
+    }
     return result;
 }
 
