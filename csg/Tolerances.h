@@ -123,8 +123,9 @@ inline constexpr double kDistanceFirstLineFraction = 0.25;
 
 // A crease vertex on a cell face closer than this to a crossing on the face is dropped (unit:
 // multiples of the cell size h). It would only make a sliver triangle whose corners round to
-// the same float in a GLB; sheet vertices keep this far inside their cell (float's relative 6e-8 of a coordinate is ~1e-5 h for parts ~100 h
-// across): 1e-3 h stays clear of that, and dropping it moves the mesh by at most 1e-3 h.
+// the same float in a GLB; sheet vertices keep this far inside their cell (float's relative 6e-8 of
+// a coordinate is ~1e-5 h for parts ~100 h across): 1e-3 h stays clear of that, and dropping it
+// moves the mesh by at most 1e-3 h.
 inline constexpr double kMeshVertexSeparation = 1e-3;
 
 // Two crossings of one grid edge whose normals are further apart than this (unit: cosine,

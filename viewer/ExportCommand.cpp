@@ -156,8 +156,8 @@ int exportCommand(std::span<const std::string> args) {
             result.simplified        ? ", simplified"
             : result.simplifySkipped ? ", not simplified: over a million, --simplify forces it"
                                      : "",
-            result.mesh.positions.size(), result.cellSize,
-            result.passes, result.error.max, result.backError.max, result.tolerance, seconds);
+            result.mesh.positions.size(), result.cellSize, result.passes, result.error.max,
+            result.backError.max, result.tolerance, seconds);
     return kExitOk;
 }
 

@@ -147,8 +147,8 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
     }
     result.gridTriangles = result.mesh.triangles.size();
     if (options.simplify && !result.mesh.empty()) {
-        result.simplifySkipped = options.simplifyMaxTriangles > 0 &&
-                                 result.gridTriangles > options.simplifyMaxTriangles;
+        result.simplifySkipped =
+            options.simplifyMaxTriangles > 0 && result.gridTriangles > options.simplifyMaxTriangles;
         if (!result.simplifySkipped) simplifyWithinBudget(scene, result, measure);
     }
     return result;

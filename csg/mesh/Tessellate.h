@@ -53,7 +53,7 @@ struct TessellateOptions {
     // 82 s of a 96 s export, 5.6x the three grid passes, so past a million triangles it costs a
     // user minutes; `csgray export --simplify` lifts the limit.
     uint64_t simplifyMaxTriangles = 1'000'000;
-    int threads = 0;       // 0: all cores
+    int threads = 0;  // 0: all cores
 };
 
 // What one grid pass of tessellate() measured.
