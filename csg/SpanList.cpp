@@ -124,38 +124,39 @@ size_t mergeWithSheets(const Span* a, size_t na, const Span* b, size_t nb, size_
     return write;
 }
 
+// mergeSolid for an operation known only at run time.
+template <bool SkipSheets>
+size_t mergeSolidFor(SetOp op, const Span* a, size_t na, const Span* b, size_t nb, Span* out,
+                     double originScale) {
+    switch (op) {
+        case SetOp::Union:
+            return mergeSolid<SetOp::Union, SkipSheets>(a, na, b, nb, out, originScale);
+        case SetOp::Intersection:
+            return mergeSolid<SetOp::Intersection, SkipSheets>(a, na, b, nb, out, originScale);
+        case SetOp::Difference:
+            return mergeSolid<SetOp::Difference, SkipSheets>(a, na, b, nb, out, originScale);
+    }
+    return 0;
+}
+
 }  // namespace
 
 size_t mergeSpans(SetOp op, const Span* a, size_t na, const Span* b, size_t nb, Span* out,
                   double originScale) {
     // Sheets only ever meet unions (compile rejects them under difference and intersection;
-    // were one there, it would enclose nothing and vanish).
+    // were one there, it would enclose nothing and vanish). A union's operands were just
+    // counted: without sheets, the cursors need not look for them again.
     if (op == SetOp::Union) {
         const size_t sheets = countSheets(a, na) + countSheets(b, nb);
         if (sheets > 0) return mergeWithSheets(a, na, b, nb, sheets, out, originScale);
+        return mergeSolid<SetOp::Union, false>(a, na, b, nb, out, originScale);
     }
-    switch (op) {
-        case SetOp::Union:
-            return mergeSolid<SetOp::Union, true>(a, na, b, nb, out, originScale);
-        case SetOp::Intersection:
-            return mergeSolid<SetOp::Intersection, true>(a, na, b, nb, out, originScale);
-        case SetOp::Difference:
-            return mergeSolid<SetOp::Difference, true>(a, na, b, nb, out, originScale);
-    }
-    return 0;
+    return mergeSolidFor<true>(op, a, na, b, nb, out, originScale);
 }
 
 size_t mergeSolidSpans(SetOp op, const Span* a, size_t na, const Span* b, size_t nb, Span* out,
                        double originScale) {
-    switch (op) {
-        case SetOp::Union:
-            return mergeSolid<SetOp::Union, false>(a, na, b, nb, out, originScale);
-        case SetOp::Intersection:
-            return mergeSolid<SetOp::Intersection, false>(a, na, b, nb, out, originScale);
-        case SetOp::Difference:
-            return mergeSolid<SetOp::Difference, false>(a, na, b, nb, out, originScale);
-    }
-    return 0;
+    return mergeSolidFor<false>(op, a, na, b, nb, out, originScale);
 }
 
 }  // namespace csg
