@@ -121,11 +121,13 @@ inline constexpr double kMeshMeasureMargin = 0.8;
 // bounds above the 0.8T margin kept refining. Samples past a quarter of T are ~0.2% of all.
 inline constexpr double kDistanceFirstLineFraction = 0.25;
 
-// A crease vertex on a cell face closer than this to a crossing on the face is dropped (unit:
-// multiples of the cell size h). It would only make a sliver triangle whose corners round to
-// the same float in a GLB; sheet vertices keep this far inside their cell (float's relative 6e-8 of
-// a coordinate is ~1e-5 h for parts ~100 h across): 1e-3 h stays clear of that, and dropping it
-// moves the mesh by at most 1e-3 h.
+// How far apart dual contouring keeps vertices that must stay distinct points once written as
+// float to a GLB (unit: multiples of the cell size h; a cell thinner than 4x this, one through a
+// thin gap, uses a quarter of its width instead): a crossing is kept this far inside its grid
+// edge, sheet vertices this far inside their cell and from each other, and a crease vertex on a
+// cell face closer than this to a crossing on the face is dropped (it would only make a sliver
+// triangle). Why: float's relative 6e-8 of a coordinate is ~1e-5 h for parts ~100 h across, so
+// 1e-3 h stays clear of that, and each of these moves the mesh by at most 1e-3 h.
 inline constexpr double kMeshVertexSeparation = 1e-3;
 
 // Two crossings of one grid edge whose normals are further apart than this (unit: cosine,
