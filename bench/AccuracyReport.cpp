@@ -16,11 +16,11 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <random>
 #include <sstream>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "bench/AccuracyReport.h"
@@ -28,6 +28,7 @@
 #include "bench/AccuracyPlots.h"
 #include "bench/ScalarYuksel.h"
 #include "bench/ShellSurface.h"
+#include "io/AtomicFile.h"
 #include "primitives/AlgebraicSurface.h"
 #include "primitives/Torus.h"
 #include "tests/RootReference.h"
@@ -282,26 +283,6 @@ std::string fixed0(double v) {
     return b;
 }
 
-// Writes text to path through a temporary name, so a failed write leaves no partial file.
-bool writeFile(const std::filesystem::path& path, const std::string& text, std::string* error) {
-    const std::filesystem::path tmp = path.string() + ".tmp";
-    {
-        std::ofstream f(tmp, std::ios::binary);
-        f << text;
-        f.flush();
-        if (!f) {
-            *error = "cannot write " + tmp.string();
-            std::error_code ec;
-            std::filesystem::remove(tmp, ec);
-            return false;
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) *error = "cannot write " + path.string() + ": " + ec.message();
-    return !ec;
-}
-
 std::string csvText(const std::vector<AccuracyRow>& rows) {
     std::ostringstream csv;
     csv << "class,degree,solver,scalar,rel_tol,rays_per_second,max_error,p99_error,median_error,"
@@ -411,11 +392,15 @@ bool writeAccuracyReport(const AccuracyReportOptions& options, std::string* erro
         report(measureScalar<double>(c.name, c.degree, c.jobs, options.minSeconds));
     }
 
-    if (!writeFile(dir / "accuracy.csv", csvText(rows), error) ||
-        !writeFile(dir / "accuracy.md", markdownText(rows, rays), error) ||
-        !writeFile(dir / "accuracy_pareto.svg", paretoSvg(rows), error) ||
-        !writeFile(dir / "degree_sweep.svg", degreeSweepSvg(rows), error))
-        return false;
+    const std::pair<const char*, std::string> files[] = {
+        {"accuracy.csv", csvText(rows)},
+        {"accuracy.md", markdownText(rows, rays)},
+        {"accuracy_pareto.svg", paretoSvg(rows)},
+        {"degree_sweep.svg", degreeSweepSvg(rows)}};
+    for (const auto& [name, text] : files) {
+        *error = io::writeFileAtomically(dir / name, text);
+        if (!error->empty()) return false;
+    }
     if (options.progress)
         std::fprintf(stderr,
                      "wrote accuracy.csv, accuracy.md, accuracy_pareto.svg and "
