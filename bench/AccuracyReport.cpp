@@ -124,70 +124,70 @@ Polynomial fromRoots(const std::vector<double>& roots, int complexPairs) {
     return p;
 }
 
-// Separated real roots in [-4, 4] (at least 0.05 apart); with `pairs` complex pairs on top.
-std::vector<Job> separatedJobs(int degree, int n, uint64_t seed) {
+// n jobs on [lo, hi]: each a polynomial with the real roots that drawRoots(g, roots) appends
+// (false: rejected, drawn again) times (t^2 + 1)^pairs, from one generator seeded with seed.
+template <class DrawRoots>
+std::vector<Job> jobsFromRoots(int n, uint64_t seed, double lo, double hi, int pairs,
+                               DrawRoots drawRoots) {
     Rng g(seed);
-    std::uniform_real_distribution<double> u(-4.0, 4.0);
     std::vector<Job> out;
-    const int pairs = degree >= 4 ? 1 : 0;
     while (int(out.size()) < n) {
         std::vector<double> roots;
+        if (drawRoots(g, roots)) out.push_back({fromRoots(roots, pairs), lo, hi, {}});
+    }
+    return out;
+}
+
+// Separated real roots in [-4, 4] (at least 0.05 apart); with `pairs` complex pairs on top.
+std::vector<Job> separatedJobs(int degree, int n, uint64_t seed) {
+    std::uniform_real_distribution<double> u(-4.0, 4.0);
+    const int pairs = degree >= 4 ? 1 : 0;
+    return jobsFromRoots(n, seed, -5.0, 5.0, pairs, [&](Rng& g, std::vector<double>& roots) {
         while (int(roots.size()) < degree - 2 * pairs) {
             const double r = u(g);
             bool ok = true;
             for (double s : roots) ok = ok && std::abs(s - r) >= 0.05;
             if (ok) roots.push_back(r);
         }
-        out.push_back({fromRoots(roots, pairs), -5.0, 5.0, {}});
-    }
-    return out;
+        return true;
+    });
 }
 
 // Flocke's cluster: four roots 2 + k / 1000 (k distinct in 0..7), shifted at random.
 std::vector<Job> clusterJobs(int n) {
-    Rng g(23);
     std::uniform_real_distribution<double> shift(-1.0, 1.0);
-    std::vector<Job> out;
-    while (int(out.size()) < n) {
+    return jobsFromRoots(n, 23, -5.0, 5.0, 0, [&](Rng& g, std::vector<double>& roots) {
         std::vector<int> ks = {0, 1, 2, 3, 4, 5, 6, 7};
         std::shuffle(ks.begin(), ks.end(), g);
         const double s = shift(g);
-        std::vector<double> roots;
         for (int i = 0; i < 4; ++i) roots.push_back(2.0 + s + ks[size_t(i)] / 1000.0);
-        out.push_back({fromRoots(roots, 0), -5.0, 5.0, {}});
-    }
-    return out;
+        return true;
+    });
 }
 
 // A pair of roots 1e-5 apart (a nearly tangent ray) among two separated ones, degree 4.
 std::vector<Job> nearDoubleJobs(int n) {
-    Rng g(29);
     std::uniform_real_distribution<double> u(-3.0, 3.0);
-    std::vector<Job> out;
-    while (int(out.size()) < n) {
+    return jobsFromRoots(n, 29, -5.0, 5.0, 0, [&](Rng& g, std::vector<double>& roots) {
         const double a = u(g), b = u(g), c = u(g);
-        if (std::abs(a - b) < 0.1 || std::abs(a - c) < 0.1 || std::abs(b - c) < 0.1) continue;
-        out.push_back({fromRoots({a, a + 1e-5, b, c}, 0), -5.0, 5.0, {}});
-    }
-    return out;
+        if (std::abs(a - b) < 0.1 || std::abs(a - c) < 0.1 || std::abs(b - c) < 0.1) return false;
+        roots = {a, a + 1e-5, b, c};
+        return true;
+    });
 }
 
 // Four roots over seven decades (1e-3 .. 1e4, random signs).
 std::vector<Job> wideRangeJobs(int n) {
-    Rng g(31);
     std::uniform_real_distribution<double> decade(-3.0, 4.0);
-    std::vector<Job> out;
-    while (int(out.size()) < n) {
-        std::vector<double> roots;
+    return jobsFromRoots(n, 31, -2e4, 2e4, 0, [&](Rng& g, std::vector<double>& roots) {
         for (int i = 0; i < 4; ++i)
             roots.push_back((g() & 1 ? 1.0 : -1.0) * std::pow(10.0, decade(g)));
         std::sort(roots.begin(), roots.end());
         bool ok = true;
         for (size_t i = 1; i < roots.size(); ++i)
             ok = ok && roots[i] - roots[i - 1] > 1e-3 * std::abs(roots[i]);
-        if (ok) out.push_back({fromRoots(roots, 0), -2e4, 2e4, {}});
-    }
-    return out;
+        return ok;
+    });
 }
 
 // ---- Measuring ----
