@@ -25,7 +25,8 @@ std::optional<std::string> writeMesh(const std::filesystem::path& file,
                                      const std::vector<Material>& materials) {
     // Every format gets the same promise: nothing but a closed, consistently oriented
     // 2-manifold is written (a second check of dual contouring and simplification).
-    if (meshFormatOf(file) != MeshFormat::Unknown && meshFormatOf(file) != MeshFormat::Stl) {
+    const MeshFormat format = meshFormatOf(file);
+    if (format != MeshFormat::Unknown && format != MeshFormat::Stl) {
         const csg::MeshTopology topo = csg::checkTopology(mesh);
         if (!topo.closedManifold())
             return "the mesh is not a closed oriented manifold (" +
@@ -35,7 +36,7 @@ std::optional<std::string> writeMesh(const std::filesystem::path& file,
                    std::to_string(topo.nonManifoldVertices) + " non-manifold vertices, " +
                    std::to_string(topo.degenerateTriangles) + " degenerate triangles)";
     }
-    switch (meshFormatOf(file)) {
+    switch (format) {
         case MeshFormat::Obj:
             return detail::writeObj(file, mesh);
         case MeshFormat::Glb:
