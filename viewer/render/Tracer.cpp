@@ -66,16 +66,14 @@ csg::Vec3 Tracer::trace(const csg::Ray& ray, RayKind kind, int depth, double wei
 
 csg::Vec3 Tracer::patternColor(const ShadingMaterial& s, const csg::SurfacePoint& surface,
                                uint32_t leaf) {
-    csg::Vec2 uv;
-    if (leaf == frameLeaf_) {
-        uv = {glm::dot(surface.point, frame_.u), glm::dot(surface.point, frame_.v)};
-    } else if (std::holds_alternative<csg::HalfSpace>(scene_.leafPrimitive(leaf))) {
+    if (leaf != frameLeaf_ && std::holds_alternative<csg::HalfSpace>(scene_.leafPrimitive(leaf))) {
         frameLeaf_ = leaf;
         frame_ = planeFrame(surface.normal);
-        uv = {glm::dot(surface.point, frame_.u), glm::dot(surface.point, frame_.v)};
-    } else {
-        uv = planarCoordinates(surface.point, surface.normal, false);
     }
+    const csg::Vec2 uv =
+        leaf == frameLeaf_
+            ? csg::Vec2(glm::dot(surface.point, frame_.u), glm::dot(surface.point, frame_.v))
+            : planarCoordinates(surface.point, surface.normal, false);
     if (s.pattern == io::Pattern::Checker)
         return checkerParity(uv, s.inverseScale) ? s.color2 : s.color;
     return sampleTexture(plan_.textures[size_t(s.texture)], uv, s.inverseScale);
