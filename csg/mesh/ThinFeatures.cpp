@@ -14,10 +14,6 @@ namespace {
 // features crossing those planes; two rounds more settle every part we have measured.
 constexpr int kThinRounds = 3;
 
-}  // namespace
-
-namespace {
-
 // Per axis, the greedy stabbing points of the intervals at least minWidth wide; returns false
 // (points incomplete) as soon as more than maxCount would be needed.
 bool stab(const std::vector<ThinInterval>& byUpperEnd, double minWidth, int maxCount,
