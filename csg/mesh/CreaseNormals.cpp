@@ -84,20 +84,18 @@ TriangleMesh splitAtCreases(const TriangleMesh& mesh, double creaseDegrees) {
             groupSum[r] += angle * faceNormal[t];
             out.triangles[t][c] = groupVertex[r];
         }
-        const bool exact =
-            groups == 1 && !mesh.normals.empty() && glm::length(mesh.normals[v]) > 0.0;
+        const bool hasInput = !mesh.normals.empty() && glm::length(mesh.normals[v]) > 0.0;
+        const bool exact = groups == 1 && hasInput;
         for (uint32_t i = 0; i < count; ++i) {
             if (groupVertex[i] == UINT32_MAX) continue;
             const double len = glm::length(groupSum[i]);
             Vec3& n = out.normals[groupVertex[i]];
-            if (exact)
+            if (exact || (!(len > 0.0) && hasInput))
                 n = glm::normalize(mesh.normals[v]);
             else if (len > 0.0)
                 n = groupSum[i] / len;
             else
-                n = !mesh.normals.empty() && glm::length(mesh.normals[v]) > 0.0
-                        ? glm::normalize(mesh.normals[v])
-                        : Vec3(0.0, 0.0, 1.0);
+                n = Vec3(0.0, 0.0, 1.0);
         }
     }
     return out;
