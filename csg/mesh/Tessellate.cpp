@@ -37,13 +37,17 @@ void simplifyWithinBudget(const Scene& scene, TessellateResult& result,
     // cannot pay there, and the grid's mesh is kept. Otherwise (maxPasses ran out, typically at
     // a coarse tolerance) it can: bracket's flat faces drop 16x.
     if (worst > target && (result.capped || result.stalled)) return;
-    std::vector<double> budgets;
+    // Each try: its budget, and the bound its measurements are held to (the flat-only pass
+    // leaves the surface where it was, so it is held to T, not to the margin).
+    struct Try {
+        double budget, bound;
+    };
+    std::vector<Try> tries;
     if (worst <= target)
-        budgets.push_back(std::max(target - worst, tol::kSimplifyMinBudget * result.tolerance));
-    budgets.push_back(tol::kSimplifyFlatBudget * result.tolerance);
-    for (const double budget : budgets) {
-        const double bound =
-            budget > tol::kSimplifyFlatBudget * result.tolerance ? target : result.tolerance;
+        tries.push_back(
+            {std::max(target - worst, tol::kSimplifyMinBudget * result.tolerance), target});
+    tries.push_back({tol::kSimplifyFlatBudget * result.tolerance, result.tolerance});
+    for (const auto [budget, bound] : tries) {
         const double allowedTo = std::max(bound, result.error.max);
         const double allowedBack = std::max(bound, result.backError.max);
         TriangleMesh coarse = simplify(result.mesh, budget);
