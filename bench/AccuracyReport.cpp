@@ -265,22 +265,20 @@ AccuracyRow measureScalar(const std::string& name, int degree, const std::vector
                    });
 }
 
+// v through one printf format (a single double conversion, e.g. "%.2e").
+std::string formatted(const char* format, double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, format, v);
+    return b;
+}
 std::string sci(double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.2e", v);
-    return b;
+    return formatted("%.2e", v);
 }
-
 std::string ratio(double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.2f", v);
-    return b;
+    return formatted("%.2f", v);
 }
-
 std::string fixed0(double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.0f", v);
-    return b;
+    return formatted("%.0f", v);
 }
 
 std::string csvText(const std::vector<AccuracyRow>& rows) {
