@@ -19,12 +19,13 @@
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "csg/mesh/Tessellate.h"
+#include "io/AtomicFile.h"
 #include "io/Evaluate.h"
 
 namespace {
@@ -215,9 +216,15 @@ int main(int argc, char** argv) {
     }
 
     // Step 3: the files.
-    std::filesystem::create_directories(dir);
-    std::ofstream(dir / "mesh_sweep.csv") << csv;
-    std::ofstream(dir / "mesh_sweep.md") << md;
-    std::ofstream(dir / "mesh_sweep.svg") << sweepSvg(series);
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    const std::pair<const char*, std::string> files[] = {
+        {"mesh_sweep.csv", csv}, {"mesh_sweep.md", md}, {"mesh_sweep.svg", sweepSvg(series)}};
+    for (const auto& [file, text] : files) {
+        if (const std::string error = io::writeFileAtomically(dir / file, text); !error.empty()) {
+            std::fprintf(stderr, "mesh_sweep: %s\n", error.c_str());
+            return 3;
+        }
+    }
     return 0;
 }
