@@ -156,8 +156,10 @@ static int quarticRoots(const Polynomial& input, double* roots, bool* verified, 
     const double size = std::max({std::abs(a), std::sqrt(std::abs(b)), std::cbrt(std::abs(c)),
                                   std::sqrt(std::sqrt(std::abs(d)))});
     const int e = std::ilogb(size);
-    if (std::abs(e) <= 255) {
-        // Products with exact powers of two round as ldexp does, without its library calls.
+    // Products with exact powers of two round as ldexp does, without its library calls; the
+    // powers are normal doubles (up to 2^(4 * 255)) while |e| <= 255.
+    const bool powersInRange = std::abs(e) <= 255;
+    if (powersInRange) {
         const double down = powerOfTwo(-e), down2 = down * down;
         a *= down, b *= down2, c *= down2 * down, d *= down2 * down2;
     } else {
@@ -187,7 +189,7 @@ static int quarticRoots(const Polynomial& input, double* roots, bool* verified, 
     refineFactors(f, a, b, c, d);
 
     // Step 5: the roots of each factor, scaled back and polished on the original quartic.
-    const double s = std::abs(e) <= 255 ? powerOfTwo(e) : std::ldexp(1.0, e);
+    const double s = powersInRange ? powerOfTwo(e) : std::ldexp(1.0, e);
     for (int k = 0; k < 2; ++k) {
         const double fa = f[2 * k], fb = f[2 * k + 1];
         const int m = appendQuadraticFactorRoots(monic, 1.0, fa, fb, roots + n);
