@@ -386,6 +386,17 @@ DecodedPng decodePng(const fs::path& path) {
     return out;
 }
 
+// A fresh directory under the system temp directory, removed when the test ends (also when an
+// ASSERT returns early).
+struct TempDir {
+    fs::path path;
+    explicit TempDir(const std::string& name)
+        : path(fs::temp_directory_path() / (name + "_" + std::to_string(getpid()))) {
+        fs::create_directories(path);
+    }
+    ~TempDir() { fs::remove_all(path); }
+};
+
 TEST(Output, PngIsSrgbEncodedAndDecodesBack) {
     // An ambient-only white square (ambient 0.5: linear 0.5) on a background of sRGB 0.4,
     // seen straight on by an orthographic camera.
@@ -434,9 +445,8 @@ TEST(Output, ExrHoldsTheLinearFloatsAndWritesAtomically) {
         sphere(1);
     )");
     const Rendered r = render(s, 40, 30);
-    const fs::path dir =
-        fs::temp_directory_path() / ("render_test_exr_" + std::to_string(getpid()));
-    fs::create_directories(dir);
+    const TempDir temp("render_test_exr");
+    const fs::path& dir = temp.path;
     const fs::path exr = dir / "out.exr";
     ASSERT_EQ(writeImage(exr, ImageFormat::Exr, r.result.image), "");
     Imf::InputFile in(exr.c_str());
@@ -457,7 +467,6 @@ TEST(Output, ExrHoldsTheLinearFloatsAndWritesAtomically) {
     EXPECT_NE(writeImage(missing, ImageFormat::Exr, r.result.image), "");
     EXPECT_FALSE(fs::exists(missing));
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
-    fs::remove_all(dir);
 }
 
 TEST(Output, FastSrgbEncodingAgreesWithTheTransferFunction) {
@@ -625,15 +634,6 @@ TEST(Patterns, CheckerOnATiltedHalfSpaceUsesThePlanesOwnFrame) {
         EXPECT_NEAR(d, glm::length(a - b), 1e-9 * (1.0 + glm::length(a - b)));
     }
 }
-
-struct TempDir {
-    fs::path path;
-    explicit TempDir(const std::string& name)
-        : path(fs::temp_directory_path() / (name + "_" + std::to_string(getpid()))) {
-        fs::create_directories(path);
-    }
-    ~TempDir() { fs::remove_all(path); }
-};
 
 // Colours equal to 1e-9 (componentwise distance), printing the actual one.
 #define EXPECT_NEAR_RGB(actual, expected)                                 \
