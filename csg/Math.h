@@ -24,6 +24,14 @@ inline Vec3 transformPoint(const Mat4& m, const Vec3& p) {
 inline Vec3 transformVector(const Mat4& m, const Vec3& v) {
     return Mat3(m) * v;
 }
+// The same by an affine map stored as 3x4, in the operation order of the two above, so the
+// results are the same bits, but without widening the matrix to 4x4 and 3x3 temporaries.
+inline Vec3 transformPoint(const Affine& m, const Vec3& p) {
+    return (m[0] * p.x + m[1] * p.y) + (m[2] * p.z + m[3]);
+}
+inline Vec3 transformVector(const Affine& m, const Vec3& v) {
+    return m[0] * v.x + m[1] * v.y + m[2] * v.z;
+}
 
 // True when every entry of the matrix is a finite number.
 inline bool isFinite(const Mat4& m) {

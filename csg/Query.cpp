@@ -12,20 +12,6 @@
 
 namespace csg {
 
-namespace {
-
-// A 3x4 affine map applied to a point and to a direction, in the operation order of
-// transformPoint and transformVector (Math.h), so the results are the same bits, but without
-// widening the matrix to the 4x4 and 3x3 temporaries those take.
-Vec3 affinePoint(const Affine& m, const Vec3& p) {
-    return (m[0] * p.x + m[1] * p.y) + (m[2] * p.z + m[3]);
-}
-Vec3 affineVector(const Affine& m, const Vec3& v) {
-    return m[0] * v.x + m[1] * v.y + m[2] * v.z;
-}
-
-}  // namespace
-
 struct Evaluator {
     const Scene& scene;
     QueryContext& ctx;
@@ -73,8 +59,8 @@ struct Evaluator {
 
     size_t evalLeaf(const LeafGeometry& leaf, uint32_t leafIndex, double t0, double t1) {
         // Map the ray into the leaf's frame; d keeps its length so t is unchanged.
-        const Vec3 o = affinePoint(leaf.localFromWorld, ray.o);
-        const Vec3 d = affineVector(leaf.localFromWorld, ray.d);
+        const Vec3 o = transformPoint(leaf.localFromWorld, ray.o);
+        const Vec3 d = transformVector(leaf.localFromWorld, ray.d);
         // Solve near the primitive: restart the ray where it enters the local bounds.
         double b0 = -kInfinity, b1 = kInfinity;
         if (!clipToBox(SlabRay(o, d), leaf.localBounds, b0, b1) || b1 < t0 || b0 > t1) return 0;
