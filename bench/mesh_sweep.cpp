@@ -26,6 +26,7 @@
 
 #include "csg/mesh/Tessellate.h"
 #include "io/AtomicFile.h"
+#include "io/Diagnostic.h"
 #include "io/Evaluate.h"
 
 namespace {
@@ -164,6 +165,8 @@ int main(int argc, char** argv) {
         // Step 1: the part.
         const io::EvaluateResult loaded = io::evaluateFile(part);
         if (!loaded.ok()) {
+            for (const auto& diagnostic : loaded.diagnostics)
+                std::fprintf(stderr, "%s\n", io::formatDiagnostic(diagnostic).c_str());
             std::fprintf(stderr, "mesh_sweep: %s does not evaluate\n", part.c_str());
             return 1;
         }
