@@ -547,8 +547,7 @@ WarmFrame traceTwice(const LoadedScene& s, int width, int height) {
     csg::Vec3 sum(0.0);
     auto frame = [&] {
         for (int y = 0; y < height; ++y)
-            for (int x = 0; x < width; ++x)
-                sum += tracer.tracePrimary(view.ray(x + 0.5, y + 0.5));
+            for (int x = 0; x < width; ++x) sum += tracer.tracePrimary(view.ray(x + 0.5, y + 0.5));
     };
     frame();
     const long before = csg::testing::allocations.load();

@@ -7,8 +7,8 @@
 #include <cstdio>
 
 #include "io/AtomicFile.h"
-#include "viewer/render/ExrOutput.h"
 #include "viewer/render/Color.h"
+#include "viewer/render/ExrOutput.h"
 
 namespace viewer::render {
 
