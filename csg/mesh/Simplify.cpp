@@ -7,6 +7,7 @@
 #include <OpenMesh/Tools/Decimater/ModBaseT.hh>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "csg/Tolerances.h"
@@ -138,7 +139,12 @@ private:
 
 }  // namespace
 
-TriangleMesh simplify(const TriangleMesh& mesh, double maxDeviation, SimplifyStats* stats) {
+TriangleMesh simplify(const TriangleMesh& mesh, double maxDeviation, SimplifyStats* stats,
+                      int threads) {
+    (void)threads;
+    using Clock = std::chrono::steady_clock;
+    auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+    auto phase = Clock::now();
     SimplifyStats local;
     SimplifyStats& s = stats ? *stats : local;
     s = {};
@@ -179,6 +185,8 @@ TriangleMesh simplify(const TriangleMesh& mesh, double maxDeviation, SimplifySta
         if (mixed) om.status(v).set_locked(true);
     }
 
+    s.buildSeconds = since(phase);
+    phase = Clock::now();
     // Step 3: decimate.
     {
         using Decimater = OpenMesh::Decimater::DecimaterT<OmMesh>;
@@ -190,6 +198,8 @@ TriangleMesh simplify(const TriangleMesh& mesh, double maxDeviation, SimplifySta
         decimater.decimate();
     }
     om.garbage_collection();
+    s.decimateSeconds = since(phase);
+    phase = Clock::now();
 
     // Step 4: back to a TriangleMesh, kept vertices with their own normals.
     TriangleMesh out;
@@ -210,6 +220,7 @@ TriangleMesh simplify(const TriangleMesh& mesh, double maxDeviation, SimplifySta
             out.triangleMaterial.push_back(om.property(material, f));
     }
     s.trianglesAfter = out.triangles.size();
+    s.extractSeconds = since(phase);
     return out;
 }
 
