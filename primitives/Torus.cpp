@@ -29,12 +29,19 @@ double radial(double x, double y) {
 // (constant along the line), G'' = 2 (1 - R c^2 / rho^3): G is convex where rho^3 > R c^2 and
 // concave on the one interval around the line's nearest approach to the axis where
 // rho^3 < R c^2, so its critical points, one at most per piece, cut the line into monotone
-// pieces that hold one root each.
+// pieces that hold one root each. The one evaluator of G: the tube path, and the quartic path's
+// polish and sliver test.
 struct TubeLine {
     Vec3 b, u;
     double R, r;
     double a;       // u.x^2 + u.y^2
     double cross2;  // c^2
+
+    TubeLine(const Vec3& base, const Vec3& unit, double majorRadius, double minorRadius)
+        : b(base), u(unit), R(majorRadius), r(minorRadius), a(unit.x * unit.x + unit.y * unit.y) {
+        const double c = base.x * unit.y - base.y * unit.x;
+        cross2 = c * c;
+    }
 
     // G and its derivatives at s. side != 0 asks for the one-sided limit of G' at the point
     // where a line across the axis meets it (rho = 0, a kink of rho): from larger s (+1) or
@@ -44,7 +51,7 @@ struct TubeLine {
         double err;  // a bound on the rounding error of g (unit: length^2)
     };
     At at(double s, double side = 0.0) const {
-        const Vec3 p = b + s * u;
+        const Vec3 p = pointOnLine(b, u, s);
         const double rho = radial(p.x, p.y);
         const double dr = rho - R;
         const double az = std::abs(p.z);
@@ -55,12 +62,20 @@ struct TubeLine {
         v.g = dr * dr + (p.z - r) * (p.z + r);
         v.dg = 2.0 * (dr * drho + p.z * u.z);
         v.ddg = 2.0 * (1.0 - R * cross2 / (rho * rho * rho));
-        // Rounding: p is off by an ulp of |p| <= rho + |z| per component, rho by ~2 more of
-        // rho, which move G by |grad G| = 2 sqrt(dr^2 + z^2) times that; the products and sums
-        // add a few ulps of their terms. 4 ulps of the sum of those magnitudes covers them.
+        // Rounding: p is off by half an ulp of |p| <= rho + |z| per component (one rounding),
+        // rho by ~2 more ulps of rho, which move G by |grad G| = 2 sqrt(dr^2 + z^2) times that; the
+        // products and sums add a few ulps of their terms. 4 ulps of the sum of those magnitudes
+        // covers them.
         v.err = 4.0 * tol::kUlp *
                 ((std::abs(dr) + az) * (2.0 * rho + R + az) + dr * dr + (az + r) * (az + r));
         return v;
+    }
+
+    // Whether sigma G(s) > err at s (sigma = +1: clearly outside, -1: clearly inside), so that
+    // a value within rounding of zero is neither.
+    bool beyondRounding(double s, double sigma) const {
+        const At v = at(s);
+        return sigma * v.g > v.err;
     }
 
     // On a piece [lo, hi] where H = sigma G is convex (sigma = +1 on a convex piece of G, -1 on
@@ -135,6 +150,21 @@ double crossing(const TubeLine& line, double lo, double hi, double x, bool risin
     return x;
 }
 
+// Newton on G from a root s of the quartic while |G| drops, kept within [lo, hi]: G has the
+// quartic's roots (F = G times a factor that is positive for R > r) without the monomial
+// expansion's loss of r^2 against R^2 (a thin torus).
+double polish(const TubeLine& line, double s, double lo, double hi) {
+    TubeLine::At v = line.at(s);
+    for (int i = 0; i < 4 && v.g != 0.0 && v.dg != 0.0; ++i) {
+        const double next = s - v.g / v.dg;
+        if (!(next >= lo && next <= hi)) break;
+        const TubeLine::At nv = line.at(next);
+        if (!(std::abs(nv.g) < std::abs(v.g))) break;
+        s = next, v = nv;
+    }
+    return s;
+}
+
 }  // namespace
 
 Polynomial Torus::quarticAlong(const Vec3& b, const Vec3& u) const {
@@ -153,45 +183,6 @@ Polynomial Torus::quarticAlong(const Vec3& b, const Vec3& u) const {
     const double R2 = R * R;
     return Polynomial{nearFactor * farFactor, 4.0 * (e * g - 2.0 * R2 * f),
                       4.0 * e * e + 2.0 * g - 4.0 * R2 * a, 4.0 * e, 1.0};
-}
-
-double Torus::polishOnTube(const Vec3& b, const Vec3& u, double s, double lo, double hi) const {
-    // G(s) = (rho - R)^2 + z^2 - r^2 has the quartic's roots (F = G times a factor that is
-    // positive for R > r) and is evaluated from the point itself, without the monomial
-    // expansion's loss of r^2 against R^2 (a thin torus). Newton on G while |G| drops.
-    auto eval = [&](double x, double& g, double& dg) {
-        const Vec3 p = pointOnLine(b, u, x);
-        const double rho = radial(p.x, p.y);
-        const double dr = rho - majorRadius;
-        g = dr * dr + (p.z - minorRadius) * (p.z + minorRadius);
-        const double drho = rho > 0.0 ? (p.x * u.x + p.y * u.y) / rho : 0.0;
-        dg = 2.0 * (dr * drho + p.z * u.z);
-    };
-    double g, dg;
-    eval(s, g, dg);
-    for (int i = 0; i < 4 && g != 0.0 && dg != 0.0; ++i) {
-        const double next = s - g / dg;
-        if (!(next >= lo && next <= hi)) break;
-        double ng, ndg;
-        eval(next, ng, ndg);
-        if (!(std::abs(ng) < std::abs(g))) break;
-        s = next, g = ng, dg = ndg;
-    }
-    return s;
-}
-
-double Torus::tubeValue(const Vec3& b, const Vec3& u, double s, double* errorBound) const {
-    const Vec3 p = pointOnLine(b, u, s);
-    const double rho = radial(p.x, p.y);
-    const double dr = rho - majorRadius;
-    const double az = std::abs(p.z), r = minorRadius;
-    // Rounding: p is off by an ulp of |p| per component, rho by ~2 more of rho, which move
-    // G by |grad G| = 2 sqrt(dr^2 + z^2) times that; the products and sums add a few ulps of
-    // their terms. 4 ulps of the sum of those magnitudes covers them.
-    *errorBound = 4.0 * tol::kUlp *
-                  ((std::abs(dr) + az) * (rho + majorRadius + glm::length(p)) + dr * dr +
-                   (az + r) * (az + r));
-    return dr * dr + (p.z - r) * (p.z + r);
 }
 
 void Torus::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
@@ -243,9 +234,9 @@ void Torus::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
 void Torus::tubeSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, double tBase,
                       double len, LocalSpans& out) const {
     const double R = majorRadius, r = minorRadius;
-    const double a = u.x * u.x + u.y * u.y;
+    const TubeLine line(b, u, R, r);
+    const double a = line.a;
     const double cross = b.x * u.y - b.y * u.x;
-    const TubeLine line{b, u, R, r, a, cross * cross};
 
     // Step 3: the pieces of convexity. The line comes closest to the axis at s0, at distance
     // m = |c| / sqrt(a); G is concave where rho^3 < R c^2, i.e. |s - s0| < w, which needs
@@ -328,13 +319,14 @@ void Torus::quarticSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, d
     // the solid is between roots 0-1 and 2-3. An odd count (a root lost to rounding) is
     // judged by F between the roots instead.
     const Polynomial quartic = quarticAlong(b, u);
+    const TubeLine line(b, u, majorRadius, minorRadius);
     double roots[4];
     const int n = solve(quartic, sLo, sHi, roots, solver);
     for (int i = 0; i < n; ++i) {
         if (isTangency(roots, n, i)) continue;
         const double lo = i > 0 ? 0.5 * (roots[i - 1] + roots[i]) : sLo;
         const double hi = i + 1 < n ? 0.5 * (roots[i] + roots[i + 1]) : sHi;
-        roots[i] = polishOnTube(b, u, roots[i], lo, hi);
+        roots[i] = polish(line, roots[i], lo, hi);
     }
     if (n % 2 == 0) {
         // The quartic's coefficient rounding splits a tangent line's double root into
@@ -344,11 +336,10 @@ void Torus::quarticSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, d
         double ends[4];
         int m = 0;
         for (int i = 0; i + 1 < n; i += 2) {
-            double err;
             if (roots[i] != roots[i + 1] &&
-                !(tubeValue(b, u, 0.5 * roots[i] + 0.5 * roots[i + 1], &err) < -err))
+                !line.beyondRounding(0.5 * roots[i] + 0.5 * roots[i + 1], -1.0))
                 continue;
-            if (m > 0 && !(tubeValue(b, u, 0.5 * ends[m - 1] + 0.5 * roots[i], &err) > err)) {
+            if (m > 0 && !line.beyondRounding(0.5 * ends[m - 1] + 0.5 * roots[i], 1.0)) {
                 ends[m - 1] = roots[i + 1];
                 continue;
             }

@@ -46,11 +46,6 @@ private:
                    LocalSpans& out) const;
     void quarticSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, double tBase,
                       double len, LocalSpans& out) const;
-    // Newton on the tube's distance form from a root s of the quartic, kept within [lo, hi].
-    double polishOnTube(const Vec3& b, const Vec3& u, double s, double lo, double hi) const;
-    // The tube form (rho - R)^2 + z^2 - r^2 at b + s u (< 0 inside) and a bound on its rounding
-    // error (unit: length^2), to tell a thin span from a split tangency.
-    double tubeValue(const Vec3& b, const Vec3& u, double s, double* errorBound) const;
 };
 
 }  // namespace csg
