@@ -122,7 +122,7 @@ int intersectByClip(const BezierPatch& patch, const Vec3& o, const Vec3& d, Patc
         r.u0 = r.v0 = 0.0, r.u1 = r.v1 = 1.0;
     }
     int n = 0;
-    const double gap = tol::kPatchDedupeRel * patchSize(patch) / glm::length(d);
+    const double gap = crossingGap(patch, d);
     for (int steps = 0; pending > 0 && steps < kMaxSteps; ++steps) {
         Region r = stack[--pending];
         // Step 1: a small region: Newton from its centre finds the crossing in it.
@@ -150,7 +150,8 @@ int intersectByClip(const BezierPatch& patch, const Vec3& o, const Vec3& d, Patc
         }
         stack[pending++] = r;
     }
-    return sortAndDedupe(out.data(), n, d, patchSize(patch));
+    sortCrossings(out.data(), n);
+    return n;
 }
 
 }  // namespace csg

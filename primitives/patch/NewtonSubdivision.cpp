@@ -73,7 +73,7 @@ int intersectByNewton(const BezierPatch& patch, const Vec3& o, const Vec3& d, Pa
     int pending = 0;
     stack[pending++] = {patch, 0.0, 1.0, 0.0, 1.0, 0};
     int n = 0;
-    const double gap = tol::kPatchDedupeRel * patchSize(patch) / glm::length(d);
+    const double gap = crossingGap(patch, d);
     while (pending > 0) {
         Piece p = stack[--pending];
         // Step 1: the piece's control box must meet the line.
@@ -99,7 +99,8 @@ int intersectByNewton(const BezierPatch& patch, const Vec3& o, const Vec3& d, Pa
         if (u < p.u0 - mu || u > p.u1 + mu || v < p.v0 - mv || v > p.v1 + mv) continue;
         addCrossing(out, n, {planes.rayParameter(patch.eval(u, v)), u, v}, gap);
     }
-    return sortAndDedupe(out.data(), n, d, patchSize(patch));
+    sortCrossings(out.data(), n);
+    return n;
 }
 
 }  // namespace csg

@@ -59,15 +59,14 @@ bool newtonOnRay(const BezierPatch& patch, const RayPlanes& planes, double& u, d
     return false;
 }
 
-int sortAndDedupe(PatchCrossing* out, int n, const Vec3& d, double size) {
+double crossingGap(const BezierPatch& patch, const Vec3& d) {
+    return tol::kPatchDedupeRel * patchSize(patch) / glm::length(d);
+}
+
+void sortCrossings(PatchCrossing* out, int n) {
     std::sort(out, out + n, [](const PatchCrossing& a, const PatchCrossing& b) {
         return a.t < b.t || (a.t == b.t && (a.u < b.u || (a.u == b.u && a.v < b.v)));
     });
-    const double gap = tol::kPatchDedupeRel * size / glm::length(d);
-    int m = 0;
-    for (int i = 0; i < n; ++i)
-        if (m == 0 || out[i].t - out[m - 1].t > gap) out[m++] = out[i];
-    return m;
 }
 
 double patchSize(const BezierPatch& patch) {

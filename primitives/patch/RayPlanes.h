@@ -29,16 +29,20 @@ struct RayPlanes {
 bool newtonOnRay(const BezierPatch& patch, const RayPlanes& planes, double& u, double& v);
 
 // Appends c to out[0, n) unless a crossing within `gap` in t is there already (a root found
-// again from a neighbouring region) or out is full. gap: tol::kPatchDedupeRel * size / |d|.
+// again from a neighbouring region) or out is full: the one dedupe of a patch's crossings, so
+// any two listed are more than gap apart. gap: crossingGap().
 inline void addCrossing(PatchCrossings& out, int& n, const PatchCrossing& c, double gap) {
     for (int k = 0; k < n; ++k)
         if (std::abs(out[k].t - c.t) <= gap) return;
     if (n < kMaxPatchCrossings) out[n++] = c;
 }
 
-// Sorts out[0, n) by t and drops crossings whose points on the ray lie within
-// tol::kPatchDedupeRel * size of the previous one's. Returns the new count.
-int sortAndDedupe(PatchCrossing* out, int n, const Vec3& d, double size);
+// The t gap within which two crossings of the line o + t d with the patch are one:
+// tol::kPatchDedupeRel * patchSize(patch) apart along the line.
+double crossingGap(const BezierPatch& patch, const Vec3& d);
+
+// Sorts out[0, n) by t (ties by u, then v, so the order never depends on the search's).
+void sortCrossings(PatchCrossing* out, int n);
 
 // Diagonal of the patch's control-point box: the size the dedupe rule is relative to.
 double patchSize(const BezierPatch& patch);
