@@ -8,7 +8,11 @@ void BoundArgs::bad(Evaluator& e, size_t i, std::string_view what) const {
 }
 
 BoundArgs bindArgs(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
-                   std::initializer_list<std::string_view> names, std::string form) {
+                   std::initializer_list<std::string_view> names, std::string form,
+                   std::initializer_list<RefusedParam> refused) {
+    for (const Argument& a : s.args)
+        for (const RefusedParam& r : refused)
+            if (a.name == r.name) e.fail(a.loc, r.message);
     BoundArgs b{s,
                 std::move(form),
                 names,

@@ -29,8 +29,18 @@ struct BoundArgs {
     [[noreturn]] void bad(Evaluator& e, size_t i, std::string_view what) const;
 };
 
-// names are the parameters in positional order; form is quoted in every message.
+// A parameter OpenSCAD's module of the same name has that this one refuses, and the error to
+// give at an argument of that name (the whole message).
+struct RefusedParam {
+    std::string_view name;
+    std::string message;
+};
+
+// names are the parameters in positional order; form is quoted in every message. A named
+// argument whose name is refused is an error at that argument, before any argument is
+// evaluated.
 BoundArgs bindArgs(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
-                   std::initializer_list<std::string_view> names, std::string form);
+                   std::initializer_list<std::string_view> names, std::string form,
+                   std::initializer_list<RefusedParam> refused = {});
 
 }  // namespace io

@@ -259,12 +259,11 @@ csg::Solver solverArg(Evaluator& e, const BoundArgs& b) {
 
 Instance surfaceModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                        const GeomState& state) {
-    for (const Argument& a : s.args)
-        if (a.name == "file")
-            e.fail(a.loc, std::string("surface(file = ...): OpenSCAD's heightmaps are not "
-                                      "supported; csgray's surface() is ") +
-                              kForm);
-    const BoundArgs b = bindArgs(e, s, ctx, {"f", "bbox", "solver", "tolerance"}, kForm);
+    const BoundArgs b =
+        bindArgs(e, s, ctx, {"f", "bbox", "solver", "tolerance"}, kForm,
+                 {{"file", std::string("surface(file = ...): OpenSCAD's heightmaps "
+                                       "are not supported; csgray's surface() is ") +
+                               kForm}});
 
     // f: parsed by the language's own parser as a source of its own.
     if (b.values[0].isUndef())
