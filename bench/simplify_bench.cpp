@@ -4,11 +4,12 @@
 // structure, decimating, extracting the result) are timed. A plain program: one run, figures.
 //
 //   simplify_bench PART.scad [--tolerance T] [--threads N] [--budget B] [--runs N]
-//                  [--save FILE | --load FILE]
+//                  [--save FILE | --load FILE] [--out FILE]
 //
 // --save writes the grid's mesh (and the budget) to FILE in a raw binary form and --load reads
 // it back, so repeated runs skip meshing (GLB and OBJ would round the positions; this keeps
-// them bit for bit). --budget overrides the budget; --threads is simplify()'s worker count
+// them bit for bit); --out writes the simplified mesh of the last run in the same form (to check
+// that a change to simplify() keeps its result: compare the files). --budget overrides the budget; --threads is simplify()'s worker count
 // (0: all cores). Prints wall and CPU seconds of each run: read CPU time on a shared machine.
 #include <algorithm>
 #include <chrono>
@@ -32,7 +33,7 @@ namespace {
 int usage() {
     std::fputs(
         "usage: simplify_bench PART.scad [--tolerance T] [--threads N] [--budget B] [--runs N] "
-        "[--save FILE | --load FILE]\n",
+        "[--save FILE | --load FILE] [--out FILE]\n",
         stderr);
     return 2;
 }
@@ -48,6 +49,16 @@ void writeVector(std::ofstream& out, const std::vector<T>& v) {
     out.write(reinterpret_cast<const char*>(v.data()), std::streamsize(n * sizeof(T)));
 }
 
+bool writeMeshFile(const std::string& file, double budget, const csg::TriangleMesh& mesh) {
+    std::ofstream out(file, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(&budget), sizeof budget);
+    writeVector(out, mesh.positions);
+    writeVector(out, mesh.normals);
+    writeVector(out, mesh.triangles);
+    writeVector(out, mesh.triangleMaterial);
+    return bool(out);
+}
+
 template <class T>
 bool readVector(std::ifstream& in, std::vector<T>& v) {
     uint64_t n = 0;
@@ -59,7 +70,7 @@ bool readVector(std::ifstream& in, std::vector<T>& v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string part, save, load;
+    std::string part, save, load, outFile;
     double tolerance = 0.0, budget = 0.0;
     int threads = 0, runs = 1;
     for (int i = 1; i < argc; ++i) {
@@ -82,6 +93,8 @@ int main(int argc, char** argv) {
             save = value;
         else if (arg == "--load")
             load = value;
+        else if (arg == "--out")
+            outFile = value;
         else
             return usage();
     }
@@ -125,13 +138,7 @@ int main(int argc, char** argv) {
                     grid.triangles.size(), r.tolerance, r.error.max, r.backError.max, r.passes,
                     seconds);
         if (!save.empty()) {
-            std::ofstream out(save, std::ios::binary);
-            out.write(reinterpret_cast<const char*>(&gridBudget), sizeof gridBudget);
-            writeVector(out, grid.positions);
-            writeVector(out, grid.normals);
-            writeVector(out, grid.triangles);
-            writeVector(out, grid.triangleMaterial);
-            if (!out) {
+            if (!writeMeshFile(save, gridBudget, grid)) {
                 std::fprintf(stderr, "simplify_bench: cannot write %s\n", save.c_str());
                 return 1;
             }
@@ -155,6 +162,10 @@ int main(int argc, char** argv) {
             run, (unsigned long long)stats.trianglesBefore, (unsigned long long)stats.trianglesAfter,
             wall, stats.buildSeconds, stats.decimateSeconds, stats.extractSeconds, cpu,
             manifold ? "closed manifold" : "NOT A CLOSED MANIFOLD");
+        if (run + 1 == runs && !outFile.empty() && !writeMeshFile(outFile, budget, coarse)) {
+            std::fprintf(stderr, "simplify_bench: cannot write %s\n", outFile.c_str());
+            return 1;
+        }
     }
     return 0;
 }

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <vector>
 
 #include "csg/Tolerances.h"
 
@@ -24,7 +25,53 @@ struct SimplifyTraits : OpenMesh::DefaultTraits {
     EdgeAttributes(OpenMesh::Attributes::Status);
     FaceAttributes(OpenMesh::Attributes::Status);
 };
-using OmMesh = OpenMesh::TriMesh_ArrayKernelT<SimplifyTraits>;
+
+// The decimater asks the mesh type it is instantiated with whether a collapse keeps the mesh a
+// 2-manifold, for every candidate halfedge of every re-rated vertex. OpenMesh 9.0's
+// TriConnectivity::is_collapse_ok allocates and looks a property up by name on each call (on
+// csg_grid3's grid mesh that was over half of decimation); this one makes the same tests with
+// a mark per vertex that a counter clears.
+class OmMesh : public OpenMesh::TriMesh_ArrayKernelT<SimplifyTraits> {
+public:
+    bool is_collapse_ok(HalfedgeHandle v0v1) {
+        if (status(edge_handle(v0v1)).deleted()) return false;
+        const HalfedgeHandle v1v0 = opposite_halfedge_handle(v0v1);
+        const VertexHandle v0 = to_vertex_handle(v1v0), v1 = to_vertex_handle(v0v1);
+        if (status(v0).deleted() || status(v1).deleted()) return false;
+        // The edges v1-vl and vl-v0 (and v0-vr, vr-v1) must not both be boundary edges.
+        VertexHandle vl, vr;
+        if (!is_boundary(v0v1)) {
+            const HalfedgeHandle h1 = next_halfedge_handle(v0v1), h2 = next_halfedge_handle(h1);
+            vl = to_vertex_handle(h1);
+            if (is_boundary(opposite_halfedge_handle(h1)) &&
+                is_boundary(opposite_halfedge_handle(h2)))
+                return false;
+        }
+        if (!is_boundary(v1v0)) {
+            const HalfedgeHandle h1 = next_halfedge_handle(v1v0), h2 = next_halfedge_handle(h1);
+            vr = to_vertex_handle(h1);
+            if (is_boundary(opposite_halfedge_handle(h1)) &&
+                is_boundary(opposite_halfedge_handle(h2)))
+                return false;
+        }
+        if (vl == vr) return false;
+        // The link condition: the one-rings of v0 and v1 share only vl and vr.
+        if (ringMark_.size() < n_vertices()) ringMark_.resize(n_vertices(), 0);
+        if (++mark_ == 0) {
+            std::fill(ringMark_.begin(), ringMark_.end(), 0u);
+            mark_ = 1;
+        }
+        for (auto it = cvv_iter(v1); it.is_valid(); ++it) ringMark_[size_t(it->idx())] = mark_;
+        for (auto it = cvv_iter(v0); it.is_valid(); ++it)
+            if (ringMark_[size_t(it->idx())] == mark_ && *it != vl && *it != vr) return false;
+        // An edge between two boundary vertices must be a boundary edge.
+        return !(is_boundary(v0) && is_boundary(v1) && !is_boundary(v0v1) && !is_boundary(v1v0));
+    }
+
+private:
+    std::vector<uint32_t> ringMark_;
+    uint32_t mark_ = 0;
+};
 
 // A collapse may leave the kept vertex with at most this many neighbours. The decimater
 // re-rates every edge around the kept vertex after each collapse, at a cost that grows with
