@@ -386,12 +386,13 @@ DecodedPng decodePng(const fs::path& path) {
     return out;
 }
 
-// A fresh directory under the system temp directory, removed when the test ends (also when an
-// ASSERT returns early).
+// A fresh directory under the system temp directory (emptied first: a crashed run with the
+// same pid may have left one), removed when the test ends (also when an ASSERT returns early).
 struct TempDir {
     fs::path path;
     explicit TempDir(const std::string& name)
         : path(fs::temp_directory_path() / (name + "_" + std::to_string(getpid()))) {
+        fs::remove_all(path);
         fs::create_directories(path);
     }
     ~TempDir() { fs::remove_all(path); }
@@ -406,8 +407,8 @@ TEST(Output, PngIsSrgbEncodedAndDecodesBack) {
         material(color=[1, 1, 1], ambient=0.5, diffuse=0, specular=0) cube([1, 1, 1], center=true);
     )");
     const Rendered r = render(s, 48, 32);
-    const fs::path dir = fs::temp_directory_path() / ("render_test_" + std::to_string(getpid()));
-    fs::create_directories(dir);
+    const TempDir temp("render_test_png");
+    const fs::path& dir = temp.path;
     const fs::path png = dir / "out.png";
     ASSERT_EQ(writeImage(png, ImageFormat::Png, r.result.image), "");
     const DecodedPng image = decodePng(png);
@@ -434,7 +435,6 @@ TEST(Output, PngIsSrgbEncodedAndDecodesBack) {
     std::vector<float> floats(size_t(pw) * ph * 3);
     in.read(reinterpret_cast<char*>(floats.data()), std::streamsize(floats.size() * 4));
     EXPECT_FLOAT_EQ(floats[(size_t(16) * 48 + 24) * 3], 0.5f);
-    fs::remove_all(dir);
 }
 
 TEST(Output, ExrHoldsTheLinearFloatsAndWritesAtomically) {
@@ -718,9 +718,8 @@ TEST(Patterns, CheckerAllocatesNothingPerRay) {
 // ---- the command line ----
 
 TEST(RenderCommand, StatsFileHasRaysQueriesPhasesAndThePlan) {
-    const fs::path dir = fs::temp_directory_path() / ("render_stats_" + std::to_string(getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const TempDir temp("render_stats");
+    const fs::path& dir = temp.path;
     std::ofstream(dir / "mirrors.scad") << facingMirrors(0.5);
     const std::string command =
         std::string(CSGRAY_EXE) + " render '" + (dir / "mirrors.scad").string() + "' -o '" +
@@ -757,15 +756,13 @@ TEST(RenderCommand, StatsFileHasRaysQueriesPhasesAndThePlan) {
     EXPECT_EQ(stats["plan"]["materials"][1]["reflection"], true);
     std::ifstream err(dir / "stderr");
     EXPECT_EQ(std::string(std::istreambuf_iterator<char>(err), {}), "") << "--quiet";
-    fs::remove_all(dir);
 }
 
 // ---- Ctrl-C ----
 
 TEST(Interrupt, CtrlCStopsTheRenderAndLeavesNoFile) {
-    const fs::path dir = fs::temp_directory_path() / ("render_int_" + std::to_string(getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const TempDir temp("render_int");
+    const fs::path& dir = temp.path;
     { std::ofstream(dir / "mirrors.scad") << facingMirrors(0.9); }
     // Far too much work to finish in the second before the interrupt (~10^9 rays).
     const std::string exe = CSGRAY_EXE, part = (dir / "mirrors.scad").string(),
@@ -790,7 +787,6 @@ TEST(Interrupt, CtrlCStopsTheRenderAndLeavesNoFile) {
     std::vector<std::string> names;
     for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
     EXPECT_EQ(names, std::vector<std::string>{"mirrors.scad"}) << "no image, no temporary file";
-    fs::remove_all(dir);
 }
 
 }  // namespace
