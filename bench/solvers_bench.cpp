@@ -10,9 +10,9 @@
 #include <random>
 #include <vector>
 
-#include "bench/ShellSurface.h"
 #include "primitives/AlgebraicSurface.h"
 #include "primitives/Torus.h"
+#include "viewer/accuracy/ShellSurface.h"
 
 namespace {
 

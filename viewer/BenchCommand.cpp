@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <string>
 
-#include "bench/AccuracyReport.h"
 #include "viewer/Cli.h"
+#include "viewer/accuracy/AccuracyReport.h"
 
 namespace viewer {
 namespace {

@@ -1,5 +1,5 @@
 // `csgray bench accuracy -o DIR`: the root solvers' accuracy-versus-time report
-// (bench/AccuracyReport.h) written into DIR.
+// (viewer/accuracy/AccuracyReport.h) written into DIR.
 #pragma once
 
 #include <span>

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/AccuracyReport.h"
+#include "viewer/accuracy/AccuracyReport.h"
 
 namespace csg {
 

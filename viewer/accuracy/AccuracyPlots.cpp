@@ -1,6 +1,6 @@
 // Notation: a panel maps log10 of the data onto a rectangle of the SVG canvas (y grows down);
 // a series is one solver's points in the order they are drawn.
-#include "bench/AccuracyPlots.h"
+#include "viewer/accuracy/AccuracyPlots.h"
 
 #include <algorithm>
 #include <cmath>

@@ -23,15 +23,15 @@
 #include <utility>
 #include <vector>
 
-#include "bench/AccuracyReport.h"
+#include "viewer/accuracy/AccuracyReport.h"
 
-#include "bench/AccuracyPlots.h"
-#include "bench/ScalarYuksel.h"
-#include "bench/ShellSurface.h"
 #include "io/AtomicFile.h"
 #include "primitives/AlgebraicSurface.h"
 #include "primitives/Torus.h"
 #include "tests/RootReference.h"
+#include "viewer/accuracy/AccuracyPlots.h"
+#include "viewer/accuracy/ScalarYuksel.h"
+#include "viewer/accuracy/ShellSurface.h"
 
 namespace csg {
 namespace {
@@ -299,7 +299,8 @@ std::string markdownText(const std::vector<AccuracyRow>& rows, int rays) {
        << rays << " rays per class (half that per degree in the sweep); error = |root - "
        << "reference| / max(1, |reference|) against the 50-digit roots of the same double "
        << "polynomial; rel_tol 0 = roots to double precision. Written by `csgray bench accuracy`"
-       << " (bench/AccuracyReport.cpp); plots: accuracy_pareto.svg, degree_sweep.svg.\n\n";
+       << " (viewer/accuracy/AccuracyReport.cpp); plots: accuracy_pareto.svg, "
+          "degree_sweep.svg.\n\n";
     // Float against double first: the same solver code (ScalarYuksel.h), two scalar types.
     md << "## float vs double (the same Yuksel code, roots to full precision of the type)\n\n"
        << "| class | degree | float rays/s | double rays/s | float/double time | float max "
