@@ -50,8 +50,10 @@ struct TubeLine {
         double g, dg, ddg;
         double err;  // a bound on the rounding error of g (unit: length^2)
     };
-    At at(double s, double side = 0.0) const {
-        const Vec3 p = pointOnLine(b, u, s);
+    // Always inlined: a call (the At returned through memory, the line reloaded) costs as much
+    // as the evaluation, and at() is most of the tube path's work.
+    [[gnu::always_inline]] At at(double s, double side = 0.0) const {
+        const Vec3 p = b + s * u;
         const double rho = radial(p.x, p.y);
         const double dr = rho - R;
         const double az = std::abs(p.z);
@@ -62,10 +64,10 @@ struct TubeLine {
         v.g = dr * dr + (p.z - r) * (p.z + r);
         v.dg = 2.0 * (dr * drho + p.z * u.z);
         v.ddg = 2.0 * (1.0 - R * cross2 / (rho * rho * rho));
-        // Rounding: p is off by half an ulp of |p| <= rho + |z| per component (one rounding),
-        // rho by ~2 more ulps of rho, which move G by |grad G| = 2 sqrt(dr^2 + z^2) times that; the
-        // products and sums add a few ulps of their terms. 4 ulps of the sum of those magnitudes
-        // covers them.
+        // Rounding: p is off by an ulp of |p| <= rho + |z| per component (|s| <= |p| as b is
+        // the line's point nearest the centre), rho by ~2 more ulps of rho, which move G by |grad
+        // G| = 2 sqrt(dr^2 + z^2) times that; the products and sums add a few ulps of their terms.
+        // 4 ulps of the sum of those magnitudes covers them.
         v.err = 4.0 * tol::kUlp *
                 ((std::abs(dr) + az) * (2.0 * rho + R + az) + dr * dr + (az + r) * (az + r));
         return v;
