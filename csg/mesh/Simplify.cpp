@@ -7,11 +7,15 @@
 #include <OpenMesh/Tools/Decimater/ModBaseT.hh>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "csg/Tolerances.h"
+#include "csg/mesh/ParallelFor.h"
 
 namespace csg {
 
@@ -26,18 +30,73 @@ struct SimplifyTraits : OpenMesh::DefaultTraits {
     FaceAttributes(OpenMesh::Attributes::Status);
 };
 
-// The decimater asks the mesh type it is instantiated with whether a collapse keeps the mesh a
-// 2-manifold, for every candidate halfedge of every re-rated vertex. OpenMesh 9.0's
-// TriConnectivity::is_collapse_ok allocates and looks a property up by name on each call (on
-// csg_grid3's grid mesh that was over half of decimation); this one makes the same tests with
-// a mark per vertex that a counter clears.
+using Quadric = OpenMesh::Geometry::Quadricd;
+
+// A collapse may leave the kept vertex with at most this many neighbours. The decimater
+// re-rates every edge around the kept vertex after each collapse, at a cost that grows with
+// the square of its valence, so letting a flat face shrink to one fan of hundreds of
+// triangles makes simplification slower than meshing; 24 still lets a flat face coarsen to
+// triangles ~24 grid cells across wherever its outline allows.
+constexpr unsigned kMaxValence = 24;
+// Secondary priority, edge length squared against the quadric's squared distance (unit:
+// relative): among equally flat collapses the shortest edge goes first, so a plane coarsens
+// evenly instead of growing long slivers from one corner.
+constexpr double kLengthPriority = 1e-4;
+
+// The mesh type the decimater is instantiated with. It asks this type whether a collapse keeps
+// the mesh a 2-manifold (is_collapse_ok), for every candidate halfedge of every re-rated vertex,
+// then asks the module for a priority. OpenMesh 9.0's TriConnectivity::is_collapse_ok allocates
+// and looks a property up by name on each call (on csg_grid3's grid mesh that was over half of
+// decimation); this one makes the same tests with a mark per vertex that a counter clears, and
+// first the cheap bounds of the module that reject most candidates (the quadric at the kept
+// vertex, the valence cap), so the link condition and the fan run only for the rest. A
+// candidate is legal and rated exactly when it was before (the same tests, in another order).
+// valence and find_halfedge shadow OpenMesh's out-of-line versions for the decimater's own
+// tests.
 class OmMesh : public OpenMesh::TriMesh_ArrayKernelT<SimplifyTraits> {
 public:
+    OpenMesh::VPropHandleT<Quadric> quadrics;  // the planes merged into each vertex
+    double maxSquared = 0.0;                   // the deviation bound, squared
+
+    OmMesh() { add_property(quadrics); }
+
+    // The quadric error of moving everything merged into a and b onto b's position.
+    double mergedError(VertexHandle a, VertexHandle b) const {
+        Quadric q = property(quadrics, a);
+        q += property(quadrics, b);
+        return std::max(0.0, q(point(b)));
+    }
+
+    unsigned valence(VertexHandle v) const {
+        const HalfedgeHandle first = halfedge_handle(v);
+        if (!first.is_valid()) return 0;
+        unsigned n = 0;
+        HalfedgeHandle h = first;
+        do {
+            ++n;
+            h = next_halfedge_handle(opposite_halfedge_handle(h));
+        } while (h != first);
+        return n;
+    }
+
+    HalfedgeHandle find_halfedge(VertexHandle from, VertexHandle to) const {
+        const HalfedgeHandle first = halfedge_handle(from);
+        if (!first.is_valid()) return HalfedgeHandle();
+        HalfedgeHandle h = first;
+        do {
+            if (to_vertex_handle(h) == to) return h;
+            h = next_halfedge_handle(opposite_halfedge_handle(h));
+        } while (h != first);
+        return HalfedgeHandle();
+    }
+
     bool is_collapse_ok(HalfedgeHandle v0v1) {
         if (status(edge_handle(v0v1)).deleted()) return false;
         const HalfedgeHandle v1v0 = opposite_halfedge_handle(v0v1);
         const VertexHandle v0 = to_vertex_handle(v1v0), v1 = to_vertex_handle(v0v1);
         if (status(v0).deleted() || status(v1).deleted()) return false;
+        // The module's bound on the kept vertex (ModSurfaceDeviationT::collapse_priority).
+        if (mergedError(v0, v1) > maxSquared) return false;
         // The edges v1-vl and vl-v0 (and v0-vr, vr-v1) must not both be boundary edges.
         VertexHandle vl, vr;
         if (!is_boundary(v0v1)) {
@@ -55,6 +114,9 @@ public:
                 return false;
         }
         if (vl == vr) return false;
+        // The valence cap: the kept vertex gets v0's and v1's neighbours, less v0, v1 themselves
+        // and the two neighbours they share.
+        if (valence(v0) + valence(v1) > kMaxValence + 4) return false;
         // The link condition: the one-rings of v0 and v1 share only vl and vr.
         if (ringMark_.size() < n_vertices()) ringMark_.resize(n_vertices(), 0);
         if (++mark_ == 0) {
@@ -72,17 +134,6 @@ private:
     std::vector<uint32_t> ringMark_;
     uint32_t mark_ = 0;
 };
-
-// A collapse may leave the kept vertex with at most this many neighbours. The decimater
-// re-rates every edge around the kept vertex after each collapse, at a cost that grows with
-// the square of its valence, so letting a flat face shrink to one fan of hundreds of
-// triangles makes simplification slower than meshing; 24 still lets a flat face coarsen to
-// triangles ~24 grid cells across wherever its outline allows.
-constexpr unsigned kMaxValence = 24;
-// Secondary priority, edge length squared against the quadric's squared distance (unit:
-// relative): among equally flat collapses the shortest edge goes first, so a plane coarsens
-// evenly instead of growing long slivers from one corner.
-constexpr double kLengthPriority = 1e-4;
 
 Vec3 toVec(const OmMesh::Point& p) {
     return {p[0], p[1], p[2]};
@@ -111,50 +162,19 @@ double distanceSquaredToTriangle(const Vec3& p, const Vec3& a, const Vec3& b, co
     return sq(a + ab * (vb * denom) + ac * (vc * denom));
 }
 
-// The one priority module: see Simplify.h for the rules it enforces.
+// The one priority module: see Simplify.h for the rules it enforces. The valence cap and the
+// quadric bound are tested by OmMesh::is_collapse_ok, which the decimater asks first.
 template <class MeshT>
 class ModSurfaceDeviationT : public OpenMesh::Decimater::ModBaseT<MeshT> {
 public:
     DECIMATING_MODULE(ModSurfaceDeviationT, MeshT, SurfaceDeviation);
 
-    explicit ModSurfaceDeviationT(MeshT& mesh) : Base(mesh, false) { mesh.add_property(quadrics_); }
-    ~ModSurfaceDeviationT() override { Base::mesh().remove_property(quadrics_); }
-
-    void setMaxDeviation(double d) { maxSquared_ = d * d; }
-
-    // Unweighted plane quadrics: the error is a sum of squared distances, so a bound on it
-    // bounds the distance to each merged plane.
-    void initialize() override {
-        Mesh& m = Base::mesh();
-        for (const auto v : m.vertices()) m.property(quadrics_, v).clear();
-        for (const auto f : m.faces()) {
-            auto it = m.cfv_iter(f);
-            const auto v0 = *it, v1 = *++it, v2 = *++it;
-            const Vec3 a = toVec(m.point(v0)), b = toVec(m.point(v1)), c = toVec(m.point(v2));
-            const Vec3 n = glm::cross(b - a, c - a);
-            const double len = glm::length(n);
-            if (!(len > 0.0)) continue;
-            const Vec3 u = n / len;
-            const OpenMesh::Geometry::Quadricd q(u.x, u.y, u.z, -glm::dot(u, a));
-            m.property(quadrics_, v0) += q;
-            m.property(quadrics_, v1) += q;
-            m.property(quadrics_, v2) += q;
-        }
-    }
+    explicit ModSurfaceDeviationT(MeshT& mesh) : Base(mesh, false) {}
 
     float collapse_priority(const CollapseInfo& ci) override {
-        Mesh& m = Base::mesh();
-        // Step 0: the valence the kept vertex would have (v0's and v1's neighbours, less v0, v1
-        // themselves and the two neighbours they share).
-        if (m.valence(ci.v0) + m.valence(ci.v1) > kMaxValence + 4)
-            return float(Base::ILLEGAL_COLLAPSE);
-        // Step 1: the kept vertex against every plane merged into it.
-        OpenMesh::Geometry::Quadricd q = m.property(quadrics_, ci.v0);
-        q += m.property(quadrics_, ci.v1);
-        const double error = std::max(0.0, q(ci.p1));
-        if (error > maxSquared_) return float(Base::ILLEGAL_COLLAPSE);
-
-        // Step 2: the fan of v0 after the move: no fold, and p0 stays near it.
+        const MeshT& m = Base::mesh();
+        const double error = m.mergedError(ci.v0, ci.v1);
+        // The fan of v0 after the move: no fold, and p0 stays near it.
         const Vec3 p0 = toVec(ci.p0), p1 = toVec(ci.p1);
         double nearest = INFINITY;
         for (auto it = m.cvoh_iter(ci.v0); it.is_valid(); ++it) {
@@ -171,26 +191,209 @@ public:
                 return float(Base::ILLEGAL_COLLAPSE);
             nearest = std::min(nearest, distanceSquaredToTriangle(p0, p1, b, c));
         }
-        if (nearest > maxSquared_) return float(Base::ILLEGAL_COLLAPSE);
+        if (nearest > m.maxSquared) return float(Base::ILLEGAL_COLLAPSE);
         return float(error + kLengthPriority * glm::dot(p1 - p0, p1 - p0));
     }
 
     void postprocess_collapse(const CollapseInfo& ci) override {
-        Base::mesh().property(quadrics_, ci.v1) += Base::mesh().property(quadrics_, ci.v0);
+        MeshT& m = Base::mesh();
+        m.property(m.quadrics, ci.v1) += m.property(m.quadrics, ci.v0);
+    }
+};
+
+// A part of the mesh to decimate: its vertices (positions, quadrics, locks, where each came from)
+// and triangles (local vertex indices, materials).
+struct Piece {
+    std::vector<Vec3> positions;
+    std::vector<Quadric> quadrics;
+    std::vector<uint8_t> locked;
+    std::vector<uint32_t> source;  // the input's vertex index
+    std::vector<std::array<uint32_t, 3>> triangles;
+    std::vector<uint32_t> materials;
+};
+
+// Decimates a piece in place: the kept vertices (with their merged quadrics) and the triangles
+// left. False when OpenMesh refuses a face (a piece that is not a 2-manifold with boundary);
+// the piece is then unchanged.
+bool decimate(Piece& piece, double maxDeviation) {
+    OmMesh om;
+    om.maxSquared = maxDeviation * maxDeviation;
+    std::vector<OmMesh::VertexHandle> handles;
+    handles.reserve(piece.positions.size());
+    for (size_t i = 0; i < piece.positions.size(); ++i) {
+        const Vec3& p = piece.positions[i];
+        handles.push_back(om.add_vertex(OmMesh::Point(p.x, p.y, p.z)));
+        om.property(om.quadrics, handles.back()) = piece.quadrics[i];
+    }
+    OpenMesh::FPropHandleT<uint32_t> material;
+    om.add_property(material);
+    for (size_t t = 0; t < piece.triangles.size(); ++t) {
+        const auto& tri = piece.triangles[t];
+        const auto f = om.add_face(handles[tri[0]], handles[tri[1]], handles[tri[2]]);
+        if (!f.is_valid()) return false;
+        om.property(material, f) = piece.materials[t];
+    }
+    for (size_t i = 0; i < handles.size(); ++i)
+        if (piece.locked[i]) om.status(handles[i]).set_locked(true);
+    {
+        using Decimater = OpenMesh::Decimater::DecimaterT<OmMesh>;
+        Decimater decimater(om);
+        ModSurfaceDeviationT<OmMesh>::Handle deviation;
+        decimater.add(deviation);
+        if (!decimater.initialize()) return false;
+        decimater.decimate();
+    }
+    // Kept vertices in their input order (garbage collection keeps the order of survivors).
+    Piece out;
+    std::vector<uint32_t> index(handles.size(), UINT32_MAX);
+    for (size_t i = 0; i < handles.size(); ++i) {
+        if (om.status(handles[i]).deleted()) continue;
+        index[i] = uint32_t(out.positions.size());
+        out.positions.push_back(piece.positions[i]);
+        out.quadrics.push_back(om.property(om.quadrics, handles[i]));
+        out.locked.push_back(piece.locked[i]);
+        out.source.push_back(piece.source[i]);
+    }
+    for (const auto f : om.faces()) {
+        if (om.status(f).deleted()) continue;
+        std::array<uint32_t, 3> tri{};
+        int c = 0;
+        for (const auto v : om.fv_range(f)) tri[size_t(c++)] = index[size_t(v.idx())];
+        out.triangles.push_back(tri);
+        out.materials.push_back(om.property(material, f));
+    }
+    piece = std::move(out);
+    return true;
+}
+
+// Below this many triangles one piece is decimated: blocks would not pay for their borders.
+constexpr size_t kMinTrianglesPerBlock = 100'000;
+// Blocks per worker thread: pieces of uneven cost balance across the workers.
+constexpr int kBlocksPerThread = 4;
+
+// The blocks pass: triangles split into slabs along the longest axis of the bounds (equal
+// triangle counts), each decimated on its own with the vertices it shares with another slab
+// and every neighbour of those locked. An unlocked vertex then has its whole fan and every
+// neighbour's whole fan in the slab, so the slab's link condition, fan and quadrics are the
+// whole mesh's for every collapse it makes; what the locks held back is left to the pass over
+// the whole mesh that follows. Returns the merged mesh as one piece, or nothing when a slab is
+// not a 2-manifold with boundary (a vertex pinched at the slab's border).
+std::optional<Piece> decimateInBlocks(const Piece& whole, double maxDeviation, int blocks,
+                                      int threads) {
+    const size_t nv = whole.positions.size(), nt = whole.triangles.size();
+    // Step 1: the slab of every triangle, by its first corner along the longest axis.
+    Vec3 lo(INFINITY), hi(-INFINITY);
+    for (const Vec3& p : whole.positions) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    const Vec3 extent = hi - lo;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    std::vector<double> keys(nt);
+    for (size_t t = 0; t < nt; ++t) keys[t] = whole.positions[whole.triangles[t][0]][axis];
+    std::vector<double> cuts;
+    {
+        std::vector<double> sorted = keys;
+        for (int b = 1; b < blocks; ++b) {
+            const auto at = sorted.begin() + ptrdiff_t(nt * size_t(b) / size_t(blocks));
+            std::nth_element(sorted.begin(), at, sorted.end());
+            cuts.push_back(*at);
+        }
+        std::sort(cuts.begin(), cuts.end());
+    }
+    std::vector<uint16_t> slab(nt);
+    for (size_t t = 0; t < nt; ++t)
+        slab[t] = uint16_t(std::upper_bound(cuts.begin(), cuts.end(), keys[t]) - cuts.begin());
+
+    // Step 2: a vertex's owner is its triangles' slab, or kShared when they are in several;
+    // the locks: shared vertices, their neighbours, and the input's locks (material borders).
+    constexpr uint16_t kNone = UINT16_MAX, kShared = UINT16_MAX - 1;
+    std::vector<uint16_t> owner(nv, kNone);
+    for (size_t t = 0; t < nt; ++t)
+        for (const uint32_t v : whole.triangles[t]) {
+            if (owner[v] == kNone)
+                owner[v] = slab[t];
+            else if (owner[v] != slab[t])
+                owner[v] = kShared;
+        }
+    std::vector<uint8_t> locked = whole.locked;
+    for (size_t t = 0; t < nt; ++t) {
+        const auto& tri = whole.triangles[t];
+        if (owner[tri[0]] == kShared || owner[tri[1]] == kShared || owner[tri[2]] == kShared)
+            for (const uint32_t v : tri) locked[v] = 1;
     }
 
-private:
-    OpenMesh::VPropHandleT<OpenMesh::Geometry::Quadricd> quadrics_;
-    double maxSquared_ = 0.0;
-};
+    // Step 3: the slabs as pieces (local vertex indices), decimated in parallel.
+    std::vector<std::vector<uint32_t>> slabTriangles(static_cast<size_t>(blocks));
+    for (size_t t = 0; t < nt; ++t) slabTriangles[slab[t]].push_back(uint32_t(t));
+    std::vector<Piece> pieces(static_cast<size_t>(blocks));
+    {
+        std::vector<uint32_t> local(nv);
+        std::vector<uint16_t> localSlab(nv, kNone);
+        for (int b = 0; b < blocks; ++b) {
+            Piece& piece = pieces[size_t(b)];
+            for (const uint32_t t : slabTriangles[size_t(b)]) {
+                std::array<uint32_t, 3> tri{};
+                for (int c = 0; c < 3; ++c) {
+                    const uint32_t v = whole.triangles[t][size_t(c)];
+                    if (localSlab[v] != uint16_t(b)) {
+                        localSlab[v] = uint16_t(b);
+                        local[v] = uint32_t(piece.positions.size());
+                        piece.positions.push_back(whole.positions[v]);
+                        piece.quadrics.push_back(whole.quadrics[v]);
+                        piece.locked.push_back(locked[v]);
+                        piece.source.push_back(whole.source[v]);
+                    }
+                    tri[size_t(c)] = local[v];
+                }
+                piece.triangles.push_back(tri);
+                piece.materials.push_back(whole.materials[t]);
+            }
+        }
+    }
+    std::atomic<bool> refused{false};
+    parallelFor(uint64_t(blocks), threads, [&](int, uint64_t b) {
+        if (!decimate(pieces[b], maxDeviation)) refused = true;
+    });
+    if (refused) return std::nullopt;
+
+    // Step 4: the slabs merged into one piece, vertices indexed as in the input's order of
+    // first use; a shared vertex (never moved, never merged into: its neighbours are locked)
+    // appears once, its quadric the input's, and the slabs' locks are lifted.
+    Piece merged;
+    std::vector<uint32_t> index(nv, UINT32_MAX);
+    for (const Piece& piece : pieces) {
+        std::vector<uint32_t> toMerged(piece.positions.size());
+        for (size_t i = 0; i < piece.positions.size(); ++i) {
+            const uint32_t from = piece.source[i];
+            // whole.source is the identity for the input piece simplify() makes.
+            uint32_t& id = index[from];
+            if (id == UINT32_MAX) {
+                id = uint32_t(merged.positions.size());
+                merged.positions.push_back(piece.positions[i]);
+                merged.quadrics.push_back(piece.quadrics[i]);
+                merged.locked.push_back(whole.locked[from]);
+                merged.source.push_back(from);
+            }
+            toMerged[i] = id;
+        }
+        for (size_t t = 0; t < piece.triangles.size(); ++t) {
+            const auto& tri = piece.triangles[t];
+            merged.triangles.push_back({toMerged[tri[0]], toMerged[tri[1]], toMerged[tri[2]]});
+            merged.materials.push_back(piece.materials[t]);
+        }
+    }
+    return merged;
+}
 
 }  // namespace
 
 TriangleMesh simplify(const TriangleMesh& mesh, double maxDeviation, SimplifyStats* stats,
                       int threads) {
-    (void)threads;
     using Clock = std::chrono::steady_clock;
-    auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+    auto since = [](Clock::time_point t) {
+        return std::chrono::duration<double>(Clock::now() - t).count();
+    };
     auto phase = Clock::now();
     SimplifyStats local;
     SimplifyStats& s = stats ? *stats : local;
@@ -198,74 +401,67 @@ TriangleMesh simplify(const TriangleMesh& mesh, double maxDeviation, SimplifySta
     s.trianglesBefore = s.trianglesAfter = mesh.triangles.size();
     if (mesh.empty() || !(maxDeviation > 0.0)) return mesh;
 
-    // Step 1: the OpenMesh mesh, each vertex and face remembering where it came from.
-    OmMesh om;
-    OpenMesh::VPropHandleT<uint32_t> sourceVertex;
-    OpenMesh::FPropHandleT<uint32_t> material;
-    om.add_property(sourceVertex);
-    om.add_property(material);
-    std::vector<OmMesh::VertexHandle> handles;
-    handles.reserve(mesh.positions.size());
-    for (uint32_t i = 0; i < mesh.positions.size(); ++i) {
-        const Vec3& p = mesh.positions[i];
-        handles.push_back(om.add_vertex(OmMesh::Point(p.x, p.y, p.z)));
-        om.property(sourceVertex, handles.back()) = i;
-    }
-    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    // Step 1: the whole mesh as a piece: unweighted plane quadrics (a sum of squared distances,
+    // so a bound on it bounds the distance to each merged plane), and vertices on a material
+    // border locked (the decimater never removes them).
+    const size_t nv = mesh.positions.size(), nt = mesh.triangles.size();
+    Piece whole;
+    whole.positions = mesh.positions;
+    whole.quadrics.assign(nv, Quadric());
+    for (Quadric& q : whole.quadrics) q.clear();
+    whole.locked.assign(nv, 0);
+    whole.source.resize(nv);
+    for (size_t v = 0; v < nv; ++v) whole.source[v] = uint32_t(v);
+    whole.triangles = mesh.triangles;
+    whole.materials = mesh.triangleMaterial.empty() ? std::vector<uint32_t>(nt, 0u)
+                                                    : mesh.triangleMaterial;
+    std::vector<uint32_t> firstMaterial(nv, UINT32_MAX);
+    for (size_t t = 0; t < nt; ++t) {
         const auto& tri = mesh.triangles[t];
-        const auto f = om.add_face(handles[tri[0]], handles[tri[1]], handles[tri[2]]);
-        if (!f.is_valid()) return mesh;  // not manifold: leave it to the checks downstream
-        om.property(material, f) = mesh.triangleMaterial.empty() ? 0 : mesh.triangleMaterial[t];
-    }
-    s.built = true;
-
-    // Step 2: vertices on a material border are locked (the decimater never removes them).
-    for (const auto v : om.vertices()) {
-        bool first = true, mixed = false;
-        uint32_t seen = 0;
-        for (const auto f : om.vf_range(v)) {
-            const uint32_t id = om.property(material, f);
-            mixed |= !first && id != seen;
-            seen = id;
-            first = false;
+        for (const uint32_t v : tri) {
+            if (v >= nv) return mesh;  // not a mesh: left to the checks downstream
+            if (firstMaterial[v] == UINT32_MAX)
+                firstMaterial[v] = whole.materials[t];
+            else if (firstMaterial[v] != whole.materials[t])
+                whole.locked[v] = 1;
         }
-        if (mixed) om.status(v).set_locked(true);
+        const Vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]],
+                   c = mesh.positions[tri[2]];
+        const Vec3 n = glm::cross(b - a, c - a);
+        const double len = glm::length(n);
+        if (!(len > 0.0)) continue;
+        const Vec3 u = n / len;
+        const Quadric q(u.x, u.y, u.z, -glm::dot(u, a));
+        for (const uint32_t v : tri) whole.quadrics[v] += q;
     }
-
     s.buildSeconds = since(phase);
     phase = Clock::now();
-    // Step 3: decimate.
-    {
-        using Decimater = OpenMesh::Decimater::DecimaterT<OmMesh>;
-        Decimater decimater(om);
-        ModSurfaceDeviationT<OmMesh>::Handle deviation;
-        decimater.add(deviation);
-        decimater.module(deviation).setMaxDeviation(maxDeviation);
-        if (!decimater.initialize()) return mesh;
-        decimater.decimate();
+
+    // Step 2: decimate, a big mesh in blocks first (on all workers), then the whole.
+    const int workers = resolveThreads(threads);
+    const int blocks = workers < 2 ? 1
+                                   : int(std::min<size_t>(size_t(workers * kBlocksPerThread),
+                                                          nt / kMinTrianglesPerBlock));
+    Piece piece;
+    if (blocks >= 2) {
+        if (std::optional<Piece> merged = decimateInBlocks(whole, maxDeviation, blocks, threads))
+            piece = std::move(*merged);
     }
-    om.garbage_collection();
+    if (piece.triangles.empty()) piece = std::move(whole);
+    if (!decimate(piece, maxDeviation)) return mesh;  // not manifold: left to the checks downstream
+    s.built = true;
     s.decimateSeconds = since(phase);
     phase = Clock::now();
 
-    // Step 4: back to a TriangleMesh, kept vertices with their own normals.
+    // Step 3: back to a TriangleMesh, kept vertices with their own normals.
     TriangleMesh out;
-    out.positions.reserve(om.n_vertices());
-    if (!mesh.normals.empty()) out.normals.reserve(om.n_vertices());
-    for (const auto v : om.vertices()) {
-        const uint32_t from = om.property(sourceVertex, v);
-        out.positions.push_back(mesh.positions[from]);
-        if (!mesh.normals.empty()) out.normals.push_back(mesh.normals[from]);
+    out.positions = std::move(piece.positions);
+    if (!mesh.normals.empty()) {
+        out.normals.reserve(out.positions.size());
+        for (const uint32_t from : piece.source) out.normals.push_back(mesh.normals[from]);
     }
-    out.triangles.reserve(om.n_faces());
-    for (const auto f : om.faces()) {
-        std::array<uint32_t, 3> tri{};
-        int i = 0;
-        for (const auto v : om.fv_range(f)) tri[size_t(i++)] = uint32_t(v.idx());
-        out.triangles.push_back(tri);
-        if (!mesh.triangleMaterial.empty())
-            out.triangleMaterial.push_back(om.property(material, f));
-    }
+    out.triangles = std::move(piece.triangles);
+    if (!mesh.triangleMaterial.empty()) out.triangleMaterial = std::move(piece.materials);
     s.trianglesAfter = out.triangles.size();
     s.extractSeconds = since(phase);
     return out;
