@@ -135,17 +135,26 @@ int exportCommand(std::span<const std::string> args) {
     }
 
     // Write it.
+    const auto writeStart = std::chrono::steady_clock::now();
     if (auto error = io::writeMesh(output, result.mesh, part.model.materials)) {
         report.error(output, *error);
         return kExitIo;
     }
+    const double writeSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
     if (verbose && !quiet)
         for (const csg::TessellatePass& p : result.history)
             std::fprintf(stderr,
                          "csgray: export: pass: cell %.6g, %llu cells (%llu thin-feature planes), "
-                         "%llu triangles, mesh->surface %.3g, surface->mesh %.3g, %.2f s\n",
+                         "%llu triangles, mesh->surface %.3g, surface->mesh %.3g, %.2f s (cast "
+                         "%.2f, contour %.2f, mesh->surface %.2f, bvh %.2f, surface->mesh %.2f)\n",
                          p.cellSize, (unsigned long long)p.cells, (unsigned long long)p.thinPlanes,
-                         (unsigned long long)p.triangles, p.error, p.backError, p.seconds);
+                         (unsigned long long)p.triangles, p.error, p.backError, p.seconds,
+                         p.castSeconds, p.contourSeconds, p.toSurfaceSeconds, p.bvhSeconds,
+                         p.backSeconds);
+    if (verbose && !quiet)
+        std::fprintf(stderr, "csgray: export: writing %s (checks, crease normals) took %.2f s\n",
+                     output.c_str(), writeSeconds);
     if (!quiet)
         std::fprintf(
             stderr,

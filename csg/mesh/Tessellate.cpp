@@ -107,24 +107,43 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
             result.capped = h < hMin;
             h = hMin;
         }
-        const auto passStart = std::chrono::steady_clock::now();
+        // Each phase timed on its own (TessellatePass), so the cost of a pass is visible.
+        TessellatePass record;
+        auto clock = std::chrono::steady_clock::now();
+        const auto passStart = clock;
+        auto lap = [&clock]() {
+            const auto now = std::chrono::steady_clock::now();
+            const double seconds = std::chrono::duration<double>(now - clock).count();
+            clock = now;
+            return seconds;
+        };
         result.contour = {};
         result.thinPlanes = {};
-        result.mesh = tessellateAt(scene, h, options.threads, &result.rays, &result.contour,
-                                   &result.thinPlanes);
+        const HermiteGrid grid = castResolvingThinFeatures(scene, box, h, options.threads,
+                                                           &result.rays, &result.thinPlanes);
+        record.castSeconds = lap();
+        result.mesh = dualContour(grid, &result.contour);
+        record.contourSeconds = lap();
         result.cellSize = h;
         result.cells = result.contour.cells;
         result.passes = pass + 1;
         measure.reach = 2.0 * h;
         result.error = meshToSurface(scene, result.mesh, measure);
+        record.toSurfaceSeconds = lap();
         const TriangleBvh bvh(result.mesh);
+        record.bvhSeconds = lap();
         result.backError = surfaceToMesh(scene, result.mesh, bvh, kSurfaceRaysPerAxis, measure);
+        record.backSeconds = lap();
         const double worst = std::max(result.error.max, result.backError.max);
         result.toleranceMet = worst <= tolerance;
-        result.history.push_back(
-            {h, result.cells, result.thinPlanes.added, result.mesh.triangles.size(),
-             result.error.max, result.backError.max,
-             std::chrono::duration<double>(std::chrono::steady_clock::now() - passStart).count()});
+        record.cellSize = h;
+        record.cells = result.cells;
+        record.thinPlanes = result.thinPlanes.added;
+        record.triangles = result.mesh.triangles.size();
+        record.error = result.error.max;
+        record.backError = result.backError.max;
+        record.seconds = std::chrono::duration<double>(clock - passStart).count();
+        result.history.push_back(record);
         // Refine until the sampled error is within a margin of T: samples miss the true
         // maximum by a little, and a different sampling (compare's) must agree.
         const double target = tol::kMeshMeasureMargin * tolerance;

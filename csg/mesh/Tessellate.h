@@ -65,6 +65,10 @@ struct TessellatePass {
     double error = 0.0;      // mesh to surface, max
     double backError = 0.0;  // surface to mesh, max
     double seconds = 0.0;    // wall time of the pass (grid, contouring, measuring)
+    // Wall time of its phases (they add up to seconds): the Hermite casts, thin-feature rounds
+    // included; dual contouring; mesh to surface; the BVH over the mesh; surface to mesh.
+    double castSeconds = 0.0, contourSeconds = 0.0, toSurfaceSeconds = 0.0, bvhSeconds = 0.0,
+           backSeconds = 0.0;
 };
 
 struct TessellateResult {
