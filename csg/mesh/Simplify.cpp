@@ -114,18 +114,35 @@ public:
                 return false;
         }
         if (vl == vr) return false;
-        // The valence cap: the kept vertex gets v0's and v1's neighbours, less v0, v1 themselves
-        // and the two neighbours they share.
-        if (valence(v0) + valence(v1) > kMaxValence + 4) return false;
-        // The link condition: the one-rings of v0 and v1 share only vl and vr.
+        // The link condition (the one-rings of v0 and v1 share only vl and vr) and the valence
+        // cap (the kept vertex gets v0's and v1's neighbours, less v0, v1 themselves and the
+        // two neighbours they share), in one walk around each vertex.
         if (ringMark_.size() < n_vertices()) ringMark_.resize(n_vertices(), 0);
         if (++mark_ == 0) {
             std::fill(ringMark_.begin(), ringMark_.end(), 0u);
             mark_ = 1;
         }
-        for (auto it = cvv_iter(v1); it.is_valid(); ++it) ringMark_[size_t(it->idx())] = mark_;
-        for (auto it = cvv_iter(v0); it.is_valid(); ++it)
-            if (ringMark_[size_t(it->idx())] == mark_ && *it != vl && *it != vr) return false;
+        unsigned valences = 0;
+        {
+            const HalfedgeHandle first = halfedge_handle(v1);
+            HalfedgeHandle h = first;
+            do {
+                ringMark_[size_t(to_vertex_handle(h).idx())] = mark_;
+                ++valences;
+                h = next_halfedge_handle(opposite_halfedge_handle(h));
+            } while (h != first);
+        }
+        {
+            const HalfedgeHandle first = halfedge_handle(v0);
+            HalfedgeHandle h = first;
+            do {
+                const VertexHandle w = to_vertex_handle(h);
+                if (ringMark_[size_t(w.idx())] == mark_ && w != vl && w != vr) return false;
+                ++valences;
+                h = next_halfedge_handle(opposite_halfedge_handle(h));
+            } while (h != first);
+        }
+        if (valences > kMaxValence + 4) return false;
         // An edge between two boundary vertices must be a boundary edge.
         return !(is_boundary(v0) && is_boundary(v1) && !is_boundary(v0v1) && !is_boundary(v1v0));
     }
@@ -174,23 +191,29 @@ public:
     float collapse_priority(const CollapseInfo& ci) override {
         const MeshT& m = Base::mesh();
         const double error = m.mergedError(ci.v0, ci.v1);
-        // The fan of v0 after the move: no fold, and p0 stays near it.
+        // The fan of v0 after the move: no fold, and p0 stays near it (once one triangle is
+        // near enough, the others need not be measured).
         const Vec3 p0 = toVec(ci.p0), p1 = toVec(ci.p1);
         double nearest = INFINITY;
-        for (auto it = m.cvoh_iter(ci.v0); it.is_valid(); ++it) {
-            const auto f = m.face_handle(*it);
-            if (!f.is_valid() || f == ci.fl || f == ci.fr) continue;
-            // The triangle (v0, b, c) in its own order.
-            const Vec3 b = toVec(m.point(m.to_vertex_handle(*it)));
-            const Vec3 c = toVec(m.point(m.to_vertex_handle(m.next_halfedge_handle(*it))));
-            const Vec3 before = glm::cross(b - p0, c - p0);
-            const Vec3 after = glm::cross(b - p1, c - p1);
-            const double lb = glm::length(before), la = glm::length(after);
-            if (!(la > 0.0)) return float(Base::ILLEGAL_COLLAPSE);
-            if (lb > 0.0 && glm::dot(before, after) < tol::kSimplifyMaxFanTurnCos * lb * la)
-                return float(Base::ILLEGAL_COLLAPSE);
-            nearest = std::min(nearest, distanceSquaredToTriangle(p0, p1, b, c));
-        }
+        const auto first = m.halfedge_handle(ci.v0);
+        auto h = first;
+        do {
+            const auto f = m.face_handle(h);
+            if (f.is_valid() && f != ci.fl && f != ci.fr) {
+                // The triangle (v0, b, c) in its own order.
+                const Vec3 b = toVec(m.point(m.to_vertex_handle(h)));
+                const Vec3 c = toVec(m.point(m.to_vertex_handle(m.next_halfedge_handle(h))));
+                const Vec3 before = glm::cross(b - p0, c - p0);
+                const Vec3 after = glm::cross(b - p1, c - p1);
+                const double lb = glm::length(before), la = glm::length(after);
+                if (!(la > 0.0)) return float(Base::ILLEGAL_COLLAPSE);
+                if (lb > 0.0 && glm::dot(before, after) < tol::kSimplifyMaxFanTurnCos * lb * la)
+                    return float(Base::ILLEGAL_COLLAPSE);
+                if (nearest > m.maxSquared)
+                    nearest = std::min(nearest, distanceSquaredToTriangle(p0, p1, b, c));
+            }
+            h = m.next_halfedge_handle(m.opposite_halfedge_handle(h));
+        } while (h != first);
         if (nearest > m.maxSquared) return float(Base::ILLEGAL_COLLAPSE);
         return float(error + kLengthPriority * glm::dot(p1 - p0, p1 - p0));
     }
