@@ -156,6 +156,10 @@ int main(int argc, char** argv) {
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const double cpu = cpuSeconds() - cpu0;
         const bool manifold = csg::checkTopology(coarse).closedManifold();
+        if (stats.blocks > 0)
+            std::printf("run %d: %d blocks: %.3f s, %llu triangles left for the whole pass\n", run,
+                        stats.blocks, stats.blocksSeconds,
+                        (unsigned long long)stats.trianglesAfterBlocks);
         std::printf(
             "run %d: %llu -> %llu triangles, wall %.3f s (build %.3f, decimate %.3f, extract "
             "%.3f), cpu %.3f s, %s\n",

@@ -289,10 +289,13 @@ bool decimate(Piece& piece, double maxDeviation) {
     return true;
 }
 
-// Below this many triangles one piece is decimated: blocks would not pay for their borders.
-constexpr size_t kMinTrianglesPerBlock = 100'000;
-// Blocks per worker thread: pieces of uneven cost balance across the workers.
-constexpr int kBlocksPerThread = 4;
+// Triangles per block: below twice this the mesh is decimated in one piece (blocks would not
+// pay for their borders). The count of blocks depends on the mesh only, not on the workers, so
+// a part gives the same mesh on every machine.
+constexpr size_t kTrianglesPerBlock = 150'000;
+// At most this many blocks: slabs thin enough that the locked strips along their borders (two
+// rings on each side) hold a large share of the mesh leave too much to the pass over the whole.
+constexpr size_t kMaxBlocks = 16;
 
 // The blocks pass: triangles split into slabs along the longest axis of the bounds (equal
 // triangle counts), each decimated on its own with the vertices it shares with another slab
@@ -461,14 +464,15 @@ TriangleMesh simplify(const TriangleMesh& mesh, double maxDeviation, SimplifySta
     phase = Clock::now();
 
     // Step 2: decimate, a big mesh in blocks first (on all workers), then the whole.
-    const int workers = resolveThreads(threads);
-    const int blocks = workers < 2 ? 1
-                                   : int(std::min<size_t>(size_t(workers * kBlocksPerThread),
-                                                          nt / kMinTrianglesPerBlock));
+    const int blocks = int(std::min(kMaxBlocks, nt / kTrianglesPerBlock));
     Piece piece;
     if (blocks >= 2) {
-        if (std::optional<Piece> merged = decimateInBlocks(whole, maxDeviation, blocks, threads))
+        if (std::optional<Piece> merged = decimateInBlocks(whole, maxDeviation, blocks, threads)) {
             piece = std::move(*merged);
+            s.blocks = blocks;
+            s.trianglesAfterBlocks = piece.triangles.size();
+        }
+        s.blocksSeconds = since(phase);
     }
     if (piece.triangles.empty()) piece = std::move(whole);
     if (!decimate(piece, maxDeviation)) return mesh;  // not manifold: left to the checks downstream
