@@ -130,7 +130,7 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
         measure.reach = 2.0 * h;
         result.error = meshToSurface(scene, result.mesh, measure);
         record.toSurfaceSeconds = lap();
-        const TriangleBvh bvh(result.mesh);
+        const TriangleBvh bvh(result.mesh, options.threads);
         record.bvhSeconds = lap();
         result.backError = surfaceToMesh(scene, result.mesh, bvh, kSurfaceRaysPerAxis, measure);
         record.backSeconds = lap();

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
+
+#include "csg/mesh/ParallelFor.h"
 
 namespace csg {
 
@@ -32,49 +35,97 @@ std::optional<double> rayTriangle(const Vec3& o, const Vec3& d, const Vec3& a, c
     return t;
 }
 
-TriangleBvh::TriangleBvh(const TriangleMesh& mesh) : mesh_(mesh) {
+namespace {
+
+// Leaves hold up to this many triangles.
+constexpr uint32_t kLeafSize = 4;
+
+}  // namespace
+
+// Median splits make a subtree's shape a function of its triangle count alone, so every
+// subtree's place in the node array is known before it is built, and the halves can be built at
+// once, in any order, into the same array. The subtrees of one level have at most two counts
+// (floor and ceiling of n / 2^depth): this table has under 64 rows.
+void TriangleBvh::tabulateNodeCounts(uint32_t n) {
+    std::vector<uint32_t> sizes{n};
+    for (size_t i = 0; i < sizes.size(); ++i) {
+        const uint32_t count = sizes[i];
+        if (count <= kLeafSize) continue;
+        for (const uint32_t half : {count / 2, count - count / 2})
+            if (std::find(sizes.begin(), sizes.end(), half) == sizes.end()) sizes.push_back(half);
+    }
+    std::sort(sizes.begin(), sizes.end());
+    nodeCounts_.clear();
+    for (const uint32_t count : sizes)
+        nodeCounts_.push_back(
+            {count, count <= kLeafSize ? 1 : 1 + nodeCount(count / 2) + nodeCount(count - count / 2)});
+}
+
+uint32_t TriangleBvh::nodeCount(uint32_t count) const {
+    const auto it = std::lower_bound(nodeCounts_.begin(), nodeCounts_.end(),
+                                     std::pair<uint32_t, uint32_t>{count, 0});
+    return it->second;
+}
+
+TriangleBvh::TriangleBvh(const TriangleMesh& mesh, int threads) : mesh_(mesh) {
     const size_t n = mesh.triangles.size();
     order_.resize(n);
     triBox_.resize(n);
     center_.resize(n);
-    for (size_t i = 0; i < n; ++i) {
-        order_[i] = uint32_t(i);
-        Bounds3 box;
-        for (const uint32_t v : mesh.triangles[i]) box.extend(mesh.positions[v]);
-        triBox_[i] = box;
-        center_[i] = box.center();
+    const int workers = resolveThreads(threads);
+    constexpr uint64_t kChunk = 4096;
+    parallelFor((n + kChunk - 1) / kChunk, workers, [&](int, uint64_t chunk) {
+        for (size_t i = chunk * kChunk; i < std::min<size_t>(n, (chunk + 1) * kChunk); ++i) {
+            order_[i] = uint32_t(i);
+            Bounds3 box;
+            for (const uint32_t v : mesh.triangles[i]) box.extend(mesh.positions[v]);
+            triBox_[i] = box;
+            center_[i] = box.center();
+        }
+    });
+    if (n > 0) {
+        tabulateNodeCounts(uint32_t(n));
+        nodes_.resize(nodeCount(uint32_t(n)));
+        // Subtrees split between threads down to the level with one per worker.
+        int parallelDepth = 0;
+        while ((1 << parallelDepth) < workers && parallelDepth < 8) ++parallelDepth;
+        build(0, uint32_t(n), 0, parallelDepth);
     }
-    nodes_.reserve(2 * n / 4 + 1);
-    if (n > 0) build(0, uint32_t(n), 0);
     center_ = {};
+    nodeCounts_ = {};
 }
 
-uint32_t TriangleBvh::build(uint32_t begin, uint32_t end, int depth) {
-    const uint32_t index = uint32_t(nodes_.size());
-    nodes_.push_back({});
+void TriangleBvh::build(uint32_t begin, uint32_t end, uint32_t index, int parallelDepth) {
     Bounds3 box, centers;
     for (uint32_t i = begin; i < end; ++i) {
         box.extend(triBox_[order_[i]]);
         centers.extend(center_[order_[i]]);
     }
     nodes_[index].box = box;
-    // Leaves of up to 4 triangles; depth capped well below the traversal stack size.
-    if (end - begin <= 4 || depth >= 48) {
+    // Median splits keep the depth at log2(n / kLeafSize) (under 31), well below the
+    // traversal stack.
+    if (end - begin <= kLeafSize) {
         nodes_[index].first = begin;
         nodes_[index].count = end - begin;
-        return index;
+        return;
     }
-    // Median split on the widest axis of the centres: balanced, so depth ~ log2(n / 4).
+    // Median split on the widest axis of the centres: balanced.
     const Vec3 e = centers.extent();
     const int axis = e.x >= e.y ? (e.x >= e.z ? 0 : 2) : (e.y >= e.z ? 1 : 2);
     const uint32_t mid = begin + (end - begin) / 2;
     std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
                      [&](uint32_t p, uint32_t q) { return center_[p][axis] < center_[q][axis]; });
-    build(begin, mid, depth + 1);
-    const uint32_t right = build(mid, end, depth + 1);
+    const uint32_t right = index + 1 + nodeCount(mid - begin);
     nodes_[index].first = right;
     nodes_[index].count = 0;
-    return index;
+    if (parallelDepth > 0) {
+        std::thread left([&] { build(begin, mid, index + 1, parallelDepth - 1); });
+        build(mid, end, right, parallelDepth - 1);
+        left.join();
+    } else {
+        build(begin, mid, index + 1, 0);
+        build(mid, end, right, 0);
+    }
 }
 
 std::optional<double> TriangleBvh::nearestHit(const Vec3& o, const Vec3& d, double tmin,

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "csg/Bounds.h"
@@ -14,8 +15,9 @@ namespace csg {
 
 class TriangleBvh {
 public:
-    // Keeps a reference to mesh, which must outlive the BVH.
-    explicit TriangleBvh(const TriangleMesh& mesh);
+    // Keeps a reference to mesh, which must outlive the BVH. Built with `threads` threads (0:
+    // all cores); the tree is the same for any thread count.
+    explicit TriangleBvh(const TriangleMesh& mesh, int threads = 0);
 
     // The hit parameter of smallest |t| among the mesh's crossings of o + t d with t in
     // [tmin, tmax] (tmin may be negative: both directions), or nothing. Thread-safe; no
@@ -28,13 +30,19 @@ private:
         uint32_t first = 0;  // leaf: first index into order_; inner: the right child
         uint32_t count = 0;  // leaf: triangle count; inner: 0 (the left child is next)
     };
-    uint32_t build(uint32_t begin, uint32_t end, int depth);
+    // Builds the subtree of order_[begin, end) into nodes_[index, index + nodeCount(end -
+    // begin)); subtrees of the top `parallelDepth` levels split their halves between threads.
+    void build(uint32_t begin, uint32_t end, uint32_t index, int parallelDepth);
+    void tabulateNodeCounts(uint32_t n);
+    uint32_t nodeCount(uint32_t count) const;  // nodes of a subtree over count triangles
 
     const TriangleMesh& mesh_;
     std::vector<Node> nodes_;
     std::vector<uint32_t> order_;  // triangle indices, leaves own contiguous ranges
     std::vector<Bounds3> triBox_;
     std::vector<Vec3> center_;  // triBox_'s centres, only while building (the split's key)
+    // (count, nodeCount(count)) of every subtree size, ascending; only while building.
+    std::vector<std::pair<uint32_t, uint32_t>> nodeCounts_;
 };
 
 // The watertight test: t of the crossing of o + t d with triangle (a, b, c), either side, or
