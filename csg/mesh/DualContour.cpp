@@ -1,7 +1,8 @@
 #include "csg/mesh/DualContour.h"
 
 #include <algorithm>
-#include <unordered_map>
+#include <array>
+#include <vector>
 
 #include "csg/Tolerances.h"
 #include "csg/mesh/CellTopology.h"
@@ -101,11 +102,12 @@ private:
 
     // Step 2: one QEF vertex per sheet of every active cell.
     void placeSheetVertices() {
-        sheetBase_.reserve(active_.size());
+        // Indexed by cell: only active cells' entries are ever written or read.
+        sheetBase_.resize(spec_.nodeCount());
         for (const uint64_t index : active_) {
             const Node3 c = cellNode(index);
             const CellCycles& cycles = cellCycles(cellMask(c));
-            sheetBase_.emplace(index, uint32_t(mesh_.positions.size()));
+            sheetBase_[index] = uint32_t(mesh_.positions.size());
             // The cell inset a hair, so sheet vertices of neighbouring cells (say both clamped
             // onto a crease lying in their shared face) stay distinct points, also as floats.
             const double width = spec_.cellMinWidth(c[0], c[1], c[2]);
@@ -151,13 +153,38 @@ private:
     }
 
     uint32_t sheetVertex(const Node3& cell, int localEdge) {
-        const uint32_t base = sheetBase_.at(cellIndex(cell));
+        const uint32_t base = sheetBase_[cellIndex(cell)];
         return base + uint32_t(cellCycles(cellMask(cell)).edgeCycle[size_t(localEdge)]);
     }
 
     // The vertex on the face between two cells of edge (a, n0)'s ring, or kNone for a straight
     // face curve. g is the axis the two cells differ on; h the other ring axis, dh its offset.
     static constexpr uint32_t kNone = UINT32_MAX;
+    static constexpr uint32_t kUnknown = UINT32_MAX - 1;  // not decided yet
+
+    // The face vertex decided for segment of the face at faceMin perpendicular to g. The fans
+    // of a cell at layer k (node z index) only meet faces at layers k - 1 and k, and cells come
+    // in layer order, so two layers of slots suffice; a slot layer is reset when it is reused
+    // for a new layer (only its written slots).
+    uint32_t& faceSlot(const Node3& faceMin, int g, int segment) {
+        const int z = faceMin[2];
+        FaceLayer& layer = faceLayers_[size_t(z & 1)];
+        if (layer.z != z) {
+            if (layer.slots.empty())
+                layer.slots.assign(size_t(spec_.nodes[0]) * size_t(spec_.nodes[1]) * 6, kUnknown);
+            for (const uint32_t i : layer.written) layer.slots[i] = kUnknown;
+            layer.written.clear();
+            layer.z = z;
+        }
+        const uint32_t i =
+            uint32_t(((uint64_t(faceMin[0]) + uint64_t(spec_.nodes[0]) * uint64_t(faceMin[1])) *
+                          3 +
+                      uint64_t(g)) *
+                         2 +
+                     uint64_t(segment));
+        if (layer.slots[i] == kUnknown) layer.written.push_back(i);
+        return layer.slots[i];
+    }
     uint32_t faceVertex(int a, const Node3& n0, int g, int h, int dh) {
         // Step 1: the face, its corners' signs, and which of its edges is ours.
         Node3 faceMin = n0;
@@ -173,8 +200,8 @@ private:
             }
         const int edgeAxis = a == u ? 0 : 1;
         const int segment = faceSegment(corner, edgeAxis, -dh);
-        const uint64_t key = (cellIndex(faceMin) * 3 + uint64_t(g)) * 2 + uint64_t(segment);
-        if (auto it = faceVertex_.find(key); it != faceVertex_.end()) return it->second;
+        uint32_t& known = faceSlot(faceMin, g, segment);
+        if (known != kUnknown) return known;
 
         // Step 2: the partner edge of the same face curve.
         int partnerAxis = -1, partnerOffset = -1;
@@ -218,7 +245,7 @@ private:
             vertex = addVertex(mid, Vec3(0.0));
         }
         if (vertex != kNone) ++stats_.faceVertices;
-        faceVertex_.emplace(key, vertex);
+        known = vertex;
         return vertex;
     }
 
@@ -283,8 +310,13 @@ private:
     DualContourStats& stats_;
     TriangleMesh mesh_;
     std::vector<uint64_t> active_;
-    std::unordered_map<uint64_t, uint32_t> sheetBase_;
-    std::unordered_map<uint64_t, uint32_t> faceVertex_;
+    std::vector<uint32_t> sheetBase_;  // per cell index: its first sheet vertex
+    struct FaceLayer {
+        int z = -1;
+        std::vector<uint32_t> slots;    // per (i, j, axis, segment): see faceSlot
+        std::vector<uint32_t> written;  // slots set since the layer was last reset
+    };
+    std::array<FaceLayer, 2> faceLayers_;
 };
 
 }  // namespace
