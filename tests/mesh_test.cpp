@@ -95,6 +95,59 @@ TEST(Qef, SymmetricEigenReconstructs) {
     }
 }
 
+// checkTopology's figures for each kind of defect, counted by hand on a tetrahedron.
+TEST(MeshCheck, CountsEachKindOfDefect) {
+    TriangleMesh tet;
+    tet.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+    tet.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+    const MeshTopology closed = checkTopology(tet);
+    EXPECT_TRUE(closed.closedManifold());
+    EXPECT_EQ(closed.edges, 6u);
+    EXPECT_GT(signedVolume(tet), 0.0);
+
+    TriangleMesh open = tet;  // a hole: its three edges have one use each
+    open.triangles.pop_back();
+    const MeshTopology o = checkTopology(open);
+    EXPECT_EQ(o.edges, 6u);
+    EXPECT_EQ(o.boundaryEdges, 3u);
+    EXPECT_EQ(o.nonManifoldEdges + o.misorientedEdges + o.nonManifoldVertices, 0u);
+
+    TriangleMesh flipped = tet;  // its edges run the same way as the neighbours'
+    flipped.triangles[2] = {1, 3, 2};
+    const MeshTopology f = checkTopology(flipped);
+    EXPECT_EQ(f.misorientedEdges, 3u);
+    EXPECT_EQ(f.boundaryEdges + f.nonManifoldEdges, 0u);
+    EXPECT_EQ(f.nonManifoldVertices, 3u);  // vertices 1, 2, 3: two corners leave to one vertex
+
+    TriangleMesh doubled = tet;  // three triangles on each edge of the repeated one
+    doubled.triangles.push_back({0, 2, 1});
+    const MeshTopology d = checkTopology(doubled);
+    EXPECT_EQ(d.nonManifoldEdges, 3u);
+    EXPECT_EQ(d.boundaryEdges + d.misorientedEdges, 0u);
+    EXPECT_EQ(d.nonManifoldVertices, 3u);
+
+    TriangleMesh pinched = tet;  // a second tetrahedron sharing vertex 0: two fans there
+    for (int v = 1; v < 4; ++v) pinched.positions.push_back(-tet.positions[size_t(v)]);
+    for (const auto& tri : tet.triangles) {
+        std::array<uint32_t, 3> moved = tri;
+        for (uint32_t& v : moved)
+            if (v != 0) v += 3;
+        pinched.triangles.push_back(moved);
+    }
+    const MeshTopology p = checkTopology(pinched);
+    EXPECT_EQ(p.edges, 12u);
+    EXPECT_EQ(p.boundaryEdges + p.nonManifoldEdges + p.misorientedEdges, 0u);
+    EXPECT_EQ(p.nonManifoldVertices, 1u);
+
+    TriangleMesh degenerate = tet;  // a repeated corner: no edges of its own
+    degenerate.triangles.push_back({0, 0, 1});
+    const MeshTopology g = checkTopology(degenerate);
+    EXPECT_EQ(g.degenerateTriangles, 1u);
+    EXPECT_EQ(g.edges, 6u);
+    EXPECT_EQ(g.boundaryEdges + g.nonManifoldEdges + g.misorientedEdges, 0u);
+    EXPECT_FALSE(g.closedManifold());
+}
+
 TEST(TriangleBvh, RaysThroughSharedEdgesAndVerticesNeverSlipThrough) {
     // A closed octahedron; rays aimed exactly at its edges' midpoints and near its vertices,
     // from outside points whose ray goes on into the solid (a ray that only grazes a

@@ -2,85 +2,91 @@
 
 #include <algorithm>
 #include <map>
-#include <unordered_map>
+#include <vector>
 
 namespace csg {
 
 MeshTopology checkTopology(const TriangleMesh& mesh) {
     MeshTopology topo;
 
-    // Step 1: every directed edge as (min, max, direction, triangle), sorted to group them.
-    struct DirectedEdge {
-        uint32_t lo, hi;
-        bool forward;  // lo -> hi in the triangle's winding
-        bool operator<(const DirectedEdge& o) const {
-            return lo != o.lo ? lo < o.lo : hi != o.hi ? hi < o.hi : forward < o.forward;
-        }
+    // Step 1: the corners of each vertex, grouped by vertex (counting sort): per corner, the
+    // vertex after it and the one before it in its triangle's winding, and whether the triangle
+    // repeats a corner (it then takes part in the fan walk of step 3 but has no edges).
+    struct Corner {
+        uint32_t next, prev;
+        bool degenerate;
     };
-    std::vector<DirectedEdge> edges;
-    edges.reserve(mesh.triangles.size() * 3);
-    for (const auto& tri : mesh.triangles) {
-        if (tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0]) {
-            ++topo.degenerateTriangles;
-            continue;
-        }
-        for (int i = 0; i < 3; ++i) {
-            const uint32_t p = tri[size_t(i)], q = tri[size_t((i + 1) % 3)];
-            edges.push_back({std::min(p, q), std::max(p, q), p < q});
-        }
-    }
-    std::sort(edges.begin(), edges.end());
-
-    // Step 2: classify each undirected edge by its uses.
-    for (size_t i = 0; i < edges.size();) {
-        size_t j = i;
-        int forward = 0;
-        while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi)
-            forward += edges[j++].forward;
-        const size_t uses = j - i;
-        ++topo.edges;
-        if (uses == 1)
-            ++topo.boundaryEdges;
-        else if (uses > 2)
-            ++topo.nonManifoldEdges;
-        else if (forward != 1)
-            ++topo.misorientedEdges;
-        i = j;
-    }
-
-    // Step 3: a vertex is a disk when the edges opposite it in its triangles form one chain:
-    // walk the fan by the "next" map and check that it reaches every triangle of the vertex.
     std::vector<uint32_t> start(mesh.positions.size() + 1, 0);
     for (const auto& tri : mesh.triangles)
         for (const uint32_t v : tri) ++start[v + 1];
     for (size_t v = 0; v < mesh.positions.size(); ++v) start[v + 1] += start[v];
-    std::vector<std::pair<uint32_t, uint32_t>> opposite(start.back());
+    std::vector<Corner> corners(start.back());
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (const auto& tri : mesh.triangles)
+    for (const auto& tri : mesh.triangles) {
+        const bool degenerate = tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0];
+        topo.degenerateTriangles += degenerate;
         for (int i = 0; i < 3; ++i)
-            opposite[fill[tri[size_t(i)]]++] = {tri[size_t((i + 1) % 3)], tri[size_t((i + 2) % 3)]};
-    std::unordered_map<uint32_t, uint32_t> next;
+            corners[fill[tri[size_t(i)]]++] = {tri[size_t((i + 1) % 3)], tri[size_t((i + 2) % 3)],
+                                               degenerate};
+    }
+
     for (size_t v = 0; v < mesh.positions.size(); ++v) {
-        const uint32_t count = start[v + 1] - start[v];
-        if (count == 0) continue;
-        next.clear();
+        const uint32_t first = start[v], last = start[v + 1];
+        if (first == last) continue;
+
+        // Step 2: classify each undirected edge {v, w} with w > v by its uses in the corners
+        // of v (a vertex has few; no global sort): v -> w runs it forward, w -> v backward.
+        for (uint32_t i = first; i < last; ++i) {
+            if (corners[i].degenerate) continue;
+            for (const uint32_t w : {corners[i].next, corners[i].prev}) {
+                if (w <= v) continue;
+                bool seen = false;  // counted at an earlier corner of v
+                for (uint32_t j = first; j < i && !seen; ++j)
+                    seen = !corners[j].degenerate &&
+                           (corners[j].next == w || corners[j].prev == w);
+                if (seen) continue;
+                uint32_t uses = 0, forward = 0;
+                for (uint32_t j = i; j < last; ++j) {
+                    if (corners[j].degenerate) continue;
+                    forward += corners[j].next == w;
+                    uses += (corners[j].next == w) + (corners[j].prev == w);
+                }
+                ++topo.edges;
+                if (uses == 1)
+                    ++topo.boundaryEdges;
+                else if (uses > 2)
+                    ++topo.nonManifoldEdges;
+                else if (forward != 1)
+                    ++topo.misorientedEdges;
+            }
+        }
+
+        // Step 3: v is a disk when the edges opposite it in its triangles form one chain: walk
+        // the fan from next to prev and check that it reaches every triangle of the vertex.
+        // Two corners leaving from the same next vertex make the walk ambiguous: not a disk.
+        const uint32_t count = last - first;
         bool bad = false;
-        for (uint32_t i = start[v]; i < start[v + 1]; ++i)
-            bad |= !next.emplace(opposite[i].first, opposite[i].second).second;
+        for (uint32_t i = first; i < last && !bad; ++i)
+            for (uint32_t j = first; j < i && !bad; ++j) bad = corners[j].next == corners[i].next;
         if (bad) {
             ++topo.nonManifoldVertices;
             continue;
         }
         // Walk from the first triangle; on an open fan (a boundary) the walk ends early too,
         // which boundaryEdges already reports, so only closed vertices are judged here.
-        uint32_t steps = 0, at = opposite[start[v]].first;
+        auto after = [&](uint32_t at) -> const Corner* {
+            for (uint32_t i = first; i < last; ++i)
+                if (corners[i].next == at) return &corners[i];
+            return nullptr;
+        };
+        uint32_t steps = 0, at = corners[first].next;
         do {
-            auto it = next.find(at);
-            if (it == next.end()) break;
-            at = it->second;
+            const Corner* c = after(at);
+            if (!c) break;
+            at = c->prev;
             ++steps;
-        } while (at != opposite[start[v]].first && steps <= count);
-        if (at == opposite[start[v]].first && steps != count) ++topo.nonManifoldVertices;
+        } while (at != corners[first].next && steps <= count);
+        if (at == corners[first].next && steps != count) ++topo.nonManifoldVertices;
     }
     return topo;
 }
