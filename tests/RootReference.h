@@ -68,4 +68,22 @@ inline std::vector<Big> realRoots(std::vector<Big> c, const Big& lo, const Big& 
     return out;
 }
 
+// The quartic of the torus (|p|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2) (R, r: major and minor
+// radii, the z axis its axis) along o + t d, expanded exactly from the double inputs. V is any
+// type with double members x, y, z.
+template <class V>
+std::vector<Big> torusQuartic(double majorRadius, double minorRadius, const V& o, const V& d) {
+    const Big R = majorRadius, r = minorRadius;
+    const Big ox = o.x, oy = o.y, oz = o.z, dx = d.x, dy = d.y, dz = d.z;
+    // q(t) = |o + t d|^2 + R^2 - r^2 and h(t) = x^2 + y^2, as {t^0, t^1, t^2}.
+    const Big q[3] = {ox * ox + oy * oy + oz * oz + R * R - r * r,
+                      2 * (ox * dx + oy * dy + oz * dz), dx * dx + dy * dy + dz * dz};
+    const Big h[3] = {ox * ox + oy * oy, 2 * (ox * dx + oy * dy), dx * dx + dy * dy};
+    std::vector<Big> c(5, Big(0));
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) c[size_t(i + j)] += q[i] * q[j];
+    for (int i = 0; i < 3; ++i) c[size_t(i)] -= 4 * R * R * h[i];
+    return c;
+}
+
 }  // namespace csg::rootref

@@ -366,17 +366,7 @@ using rootref::Big;
 
 // The torus quartic F along o + t d, expanded exactly (to 50 digits) from the double inputs.
 std::vector<Big> torusQuarticBig(const Torus& torus, const Vec3& o, const Vec3& d) {
-    const Big R = torus.majorRadius, r = torus.minorRadius;
-    const Big ox = o.x, oy = o.y, oz = o.z, dx = d.x, dy = d.y, dz = d.z;
-    // q(t) = |o + t d|^2 + R^2 - r^2 and h(t) = x^2 + y^2, as {t^0, t^1, t^2}.
-    const Big q[3] = {ox * ox + oy * oy + oz * oz + R * R - r * r,
-                      2 * (ox * dx + oy * dy + oz * dz), dx * dx + dy * dy + dz * dz};
-    const Big h[3] = {ox * ox + oy * oy, 2 * (ox * dx + oy * dy), dx * dx + dy * dy};
-    std::vector<Big> c(5, Big(0));
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) c[size_t(i + j)] += q[i] * q[j];
-    for (int i = 0; i < 3; ++i) c[size_t(i)] -= 4 * R * R * h[i];
-    return c;
+    return rootref::torusQuartic(torus.majorRadius, torus.minorRadius, o, d);
 }
 
 // Span ends of random lines against the real roots of the exact quartic of the same double

@@ -49,6 +49,8 @@ struct Job {
     // p's coefficients as float and as double arrays, for the float-vs-double rows.
     std::array<float, Polynomial::kMaxDegree + 1> pf{};
     std::array<double, Polynomial::kMaxDegree + 1> pd{};
+    // A torus job's line b + s u (|u| = 1), whose quartic in s is p: what the tube row solves.
+    Vec3 lineBase{}, lineDir{};
 };
 
 // ---- The 50-digit reference (tests/RootReference.h) ----
@@ -80,16 +82,41 @@ Vec3 randomIn(Rng& g, double r) {
     }
 }
 
+// The torus class's torus.
+Torus reportTorus() {
+    return Torus{1.0, 0.25};
+}
+
 // Rays from 4 units away through the torus R = 1, r = 0.25 (as solvers_bench and Torus.cpp
 // solve them: from the point of the line nearest the centre).
 std::vector<Job> torusJobs(int n) {
     Rng g(11);
-    const Torus torus{1.0, 0.25};
+    const Torus torus = reportTorus();
     std::vector<Job> out;
     while (int(out.size()) < n) {
         const Vec3 o = 4.0 * glm::normalize(randomIn(g, 1.0));
         const Vec3 u = glm::normalize(randomIn(g, 1.0) - o);
-        out.push_back({torus.quarticAlong(o - glm::dot(o, u) * u, u), -1.5, 1.5, {}});
+        const Vec3 b = o - glm::dot(o, u) * u;
+        Job j{torus.quarticAlong(b, u), -1.5, 1.5, {}};
+        j.lineBase = b, j.lineDir = u;
+        out.push_back(std::move(j));
+    }
+    return out;
+}
+
+// The torus jobs for the tube row: the same lines, with the 50-digit roots of the line's exact
+// quartic as the reference (the tube form is solved from the line, not from p's rounded
+// coefficients, so that rounding is part of its error).
+std::vector<Job> torusLineJobs(const std::vector<Job>& torus) {
+    const Torus shape = reportTorus();
+    std::vector<Job> out = torus;
+    for (Job& j : out) {
+        j.reference.clear();
+        for (const Big& r : rootref::realRoots(
+                 rootref::torusQuartic(shape.majorRadius, shape.minorRadius, j.lineBase, j.lineDir),
+                 Big(j.lo), Big(j.hi)))
+            j.reference.push_back(r.convert_to<double>());
+        j.resolvable = true;
     }
     return out;
 }
@@ -245,6 +272,25 @@ AccuracyRow measureSolver(const std::string& name, int degree, const std::vector
                    });
 }
 
+// Torus::spans on each job's line, bounding tests included: the span ends are the roots. With
+// Solver::Auto, the tube form's monotone pieces (row "tube"); with Solver::ClosedForm, the
+// quartic's roots polished on the tube form (row "quartic-spans"), for comparison on the same
+// reference.
+AccuracyRow measureTorusSpans(const std::vector<Job>& lineJobs, Solver solver, double minSeconds) {
+    Torus torus = reportTorus();
+    torus.solver = solver;
+    const char* name = solver == Solver::Auto ? "tube" : "quartic-spans";
+    return measure({"torus", 4, name, "double", 0.0}, lineJobs, minSeconds,
+                   [torus](const Job& j, double* roots) {
+                       LocalSpans s;
+                       torus.spans(j.lineBase, j.lineDir, s);
+                       int n = 0;
+                       for (int i = 0; i < s.count; ++i)
+                           roots[n++] = s.entries[i].tIn, roots[n++] = s.entries[i].tOut;
+                       return n;
+                   });
+}
+
 // The same Yuksel code (ScalarYuksel.h) on p's coefficients rounded to T, range and roots in
 // T: what the scalar type alone costs and buys.
 template <class T>
@@ -298,9 +344,15 @@ std::string markdownText(const std::vector<AccuracyRow>& rows, int rays) {
     md << "# Root solver accuracy vs time\n\n"
        << rays << " rays per class (half that per degree in the sweep); error = |root - "
        << "reference| / max(1, |reference|) against the 50-digit roots of the same double "
-       << "polynomial; rel_tol 0 = roots to double precision. Written by `csgray bench accuracy`"
-       << " (viewer/accuracy/AccuracyReport.cpp); plots: accuracy_pareto.svg, "
-          "degree_sweep.svg.\n\n";
+       << "polynomial; rel_tol 0 = roots to double precision. The torus's `tube` row is what "
+       << "csgray runs on a torus (Torus::spans, Solver::Auto: the tube form on its monotone "
+       << "pieces, bounding tests included) and `quartic-spans` the same call with the "
+       << "closed-form quartic (its roots polished on the tube form); both are measured against "
+       << "the 50-digit roots of the exact quartic of the same double line, not of a rounded "
+       << "polynomial: the error is against the line itself (for `quartic-spans` it includes "
+       << "the rounding of the quartic's coefficients). "
+       << "Written by `csgray bench accuracy` (viewer/accuracy/AccuracyReport.cpp); "
+       << "plots: accuracy_pareto.svg, degree_sweep.svg.\n\n";
     // Float against double first: the same solver code (ScalarYuksel.h), two scalar types.
     md << "## float vs double (the same Yuksel code, roots to full precision of the type)\n\n"
        << "| class | degree | float rays/s | double rays/s | float/double time | float max "
@@ -386,6 +438,11 @@ bool writeAccuracyReport(const AccuracyReportOptions& options, std::string* erro
                 if (solver == Solver::ClosedForm && tol != 0.0) continue;
                 report(measureSolver(c.name, c.degree, c.jobs, solver, tol, options.minSeconds));
             }
+        }
+        if (c.name == "torus") {
+            const std::vector<Job> lineJobs = torusLineJobs(c.jobs);
+            for (Solver solver : {Solver::Auto, Solver::ClosedForm})
+                report(measureTorusSpans(lineJobs, solver, options.minSeconds));
         }
         report(measureScalar<float>(c.name, c.degree, c.jobs, options.minSeconds));
         report(measureScalar<double>(c.name, c.degree, c.jobs, options.minSeconds));
