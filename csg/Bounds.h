@@ -63,6 +63,8 @@ struct SlabRay {
     Vec3 o;
     Vec3 invD;
     explicit SlabRay(const Vec3& origin, const Vec3& d) : o(origin), invD(1.0 / d) {}
+    struct Reciprocal {};  // tag: the vector given is already 1 / d, per component
+    SlabRay(const Vec3& origin, const Vec3& inverseD, Reciprocal) : o(origin), invD(inverseD) {}
 };
 
 // Clips [t0, t1] to the part of the ray inside box b; returns false when nothing is left.

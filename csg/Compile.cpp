@@ -56,6 +56,38 @@ Bounds3 worldBounds(const Shape& shape, const Mat4& worldFromLocal) {
         return transformBounds(worldFromLocal, shape.bounds());
 }
 
+// Whether m maps each axis to an axis, exactly, with a sign and a shift: entries 0 and +-1 only
+// (rotations by multiples of 90 degrees, mirrors, translations). Such a map composes with
+// another one without rounding in its linear part. m has passed checkTransform.
+bool isAxisPermutation(const Mat4& m) {
+    if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0) return false;
+    for (int j = 0; j < 3; ++j) {
+        int axes = 0;
+        for (int i = 0; i < 3; ++i) {
+            if (m[j][i] == 0.0) continue;
+            if (std::abs(m[j][i]) != 1.0) return false;
+            ++axes;
+        }
+        if (axes != 1) return false;  // (a repeated row would be singular: refused before)
+    }
+    return true;
+}
+
+// The frame group a node's leaves map the ray through (LeafGeometry::frame): the group's world
+// transform, and its index in Scene::frameFromWorld_ once a leaf has needed it.
+struct FrameGroup {
+    Mat4 worldFromGroup{1.0};
+    uint32_t index = kNoNode;
+};
+
+// Where a node sits: its world transform, its frame group, and its frame within that group
+// (an axis permutation with a shift, composed exactly but for the shift).
+struct Placement {
+    Mat4 worldFromNode{1.0};
+    FrameGroup* group = nullptr;
+    Mat4 groupFromNode{1.0};
+};
+
 // Leaves the compiled scene will hold: one per placement of a primitive, so a shared subtree
 // counts once for each use. Reserving for them up front avoids regrowing ~10^6-entry arrays.
 size_t countLeaves(const Node* node) {
@@ -80,27 +112,39 @@ struct Compiler {
         ~BooleanScope() { compiler.boolean = outer; }
     };
 
-    // Returns the compiled node index of `node` seen through worldFromParent, or kNoNode when
-    // the subtree is empty.
-    uint32_t build(const Node& node, const Mat4& worldFromParent) {
-        Mat4 worldFromNode = worldFromParent;
-        if (node.parentFromNode != Mat4(1.0)) {
-            checkTransform(node.parentFromNode, node, "the transform");
-            worldFromNode = worldFromParent * node.parentFromNode;
+    // The placement of node under parent. A transform that is not an axis permutation starts
+    // a new frame group, kept in `started` (which must outlive the node's subtree's build).
+    static Placement place(const Node& node, const Placement& parent, FrameGroup& started) {
+        if (node.parentFromNode == Mat4(1.0)) return parent;
+        checkTransform(node.parentFromNode, node, "the transform");
+        Placement p{parent.worldFromNode * node.parentFromNode, parent.group, Mat4(1.0)};
+        if (isAxisPermutation(node.parentFromNode)) {
+            p.groupFromNode = parent.groupFromNode * node.parentFromNode;
+        } else {
+            started = FrameGroup{p.worldFromNode};
+            p.group = &started;
         }
+        return p;
+    }
+
+    // Returns the compiled node index of `node` placed under `parent`, or kNoNode when the
+    // subtree is empty.
+    uint32_t build(const Node& node, const Placement& parent) {
+        FrameGroup started;
+        const Placement placement = place(node, parent, started);
         switch (node.op) {
             case Op::Leaf:
-                return buildLeaf(node, worldFromNode);
+                return buildLeaf(node, placement);
             case Op::Union: {
                 std::vector<uint32_t> children;
-                gatherUnion(node, worldFromNode, children);
+                gatherUnion(node, placement, children);
                 return buildUnion(children);
             }
             case Op::Intersection: {
                 const BooleanScope scope(*this, node);
-                const uint32_t a = build(*node.left, worldFromNode);
+                const uint32_t a = build(*node.left, placement);
                 if (a == kNoNode) return kNoNode;
-                const uint32_t b = build(*node.right, worldFromNode);
+                const uint32_t b = build(*node.right, placement);
                 if (b == kNoNode) return kNoNode;
                 const Bounds3 box = overlap(scene.nodes_[a].bounds, scene.nodes_[b].bounds);
                 if (box.empty()) return kNoNode;
@@ -109,9 +153,9 @@ struct Compiler {
             }
             case Op::Difference: {
                 const BooleanScope scope(*this, node);
-                const uint32_t a = build(*node.left, worldFromNode);
+                const uint32_t a = build(*node.left, placement);
                 if (a == kNoNode) return kNoNode;
-                const uint32_t b = build(*node.right, worldFromNode);
+                const uint32_t b = build(*node.right, placement);
                 const Bounds3& box = scene.nodes_[a].bounds;
                 if (b == kNoNode || overlap(box, scene.nodes_[b].bounds).empty()) return a;
                 markImpliedOperands(a, b);
@@ -130,28 +174,26 @@ struct Compiler {
     }
 
     // Collects the non-empty operands of a maximal chain of unions.
-    void gatherUnion(const Node& node, const Mat4& worldFromNode, std::vector<uint32_t>& out) {
+    void gatherUnion(const Node& node, const Placement& placement, std::vector<uint32_t>& out) {
         for (const NodePtr& child : {node.left, node.right}) {
             if (!child) continue;
             if (child->op == Op::Union) {
-                Mat4 worldFromChild = worldFromNode;
-                if (child->parentFromNode != Mat4(1.0)) {
-                    checkTransform(child->parentFromNode, *child, "the transform");
-                    worldFromChild = worldFromNode * child->parentFromNode;
-                }
-                gatherUnion(*child, worldFromChild, out);
-            } else if (const uint32_t c = build(*child, worldFromNode); c != kNoNode) {
+                FrameGroup started;
+                gatherUnion(*child, place(*child, placement, started), out);
+            } else if (const uint32_t c = build(*child, placement); c != kNoNode) {
                 out.push_back(c);
             }
         }
     }
 
-    uint32_t buildLeaf(const Node& node, const Mat4& worldFromLocal) {
+    uint32_t buildLeaf(const Node& node, const Placement& placement) {
+        const Mat4& worldFromLocal = placement.worldFromNode;
         checkTransform(worldFromLocal, node, "the accumulated transform");
         const Mat4 localFromWorld = glm::inverse(worldFromLocal);
         if (!isFinite(localFromWorld))
             throw CompileError("the accumulated transform cannot be inverted", node.tags.source);
         LeafGeometry geometry{node.primitive, Affine(localFromWorld), {}};
+        setFrame(geometry, placement, node);
         Bounds3 box;
         std::visit(
             [&](const auto& shape) {
@@ -177,6 +219,33 @@ struct Compiler {
         scene.leaves_.push_back(geometry);
         scene.frames_.push_back({worldFromLocal, glm::transpose(Mat3(localFromWorld)), node.tags});
         return addNode({NodeKind::Leaf, false, box, index});
+    }
+
+    // The leaf's frame group (made on its first leaf) and its frame within the group: a group
+    // point p is groupFromLocal * local, so along each local axis j, p[i] = s local[j] + c[i]
+    // for the one row i where column j holds s = +-1, and local[j] = s p[i] - s c[i].
+    void setFrame(LeafGeometry& geometry, const Placement& placement, const Node& node) {
+        FrameGroup& group = *placement.group;
+        if (group.index == kNoNode) {
+            const Mat4 groupFromWorld = glm::inverse(group.worldFromGroup);
+            if (!isFinite(groupFromWorld))
+                throw CompileError("the accumulated transform cannot be inverted",
+                                   node.tags.source);
+            group.index = static_cast<uint32_t>(scene.frameFromWorld_.size());
+            scene.frameFromWorld_.push_back(Affine(groupFromWorld));
+        }
+        geometry.frame = group.index;
+        const Mat4& groupFromLocal = placement.groupFromNode;
+        if (groupFromLocal == Mat4(1.0)) return;
+        geometry.permuted = true;
+        for (int j = 0; j < 3; ++j) {
+            for (int i = 0; i < 3; ++i) {
+                if (groupFromLocal[j][i] == 0.0) continue;
+                geometry.axis[j] = static_cast<uint8_t>(i);
+                geometry.sign[j] = groupFromLocal[j][i];
+            }
+            geometry.offset[j] = -geometry.sign[j] * groupFromLocal[3][geometry.axis[j]];
+        }
     }
 
     uint32_t buildUnion(std::vector<uint32_t>& children) {
@@ -216,15 +285,13 @@ Scene Scene::compile(const NodePtr& root) {
     scene.nodes_.reserve(2 * leaves + 1);
     // The root is always a union (of the top-level objects): closest() relies on it.
     std::vector<uint32_t> top;
+    FrameGroup worldGroup;
+    const Placement world{Mat4(1.0), &worldGroup, Mat4(1.0)};
     if (root) {
         if (root->op == Op::Union) {
-            Mat4 world(1.0);
-            if (root->parentFromNode != Mat4(1.0)) {
-                checkTransform(root->parentFromNode, *root, "the transform");
-                world = root->parentFromNode;
-            }
-            compiler.gatherUnion(*root, world, top);
-        } else if (const uint32_t c = compiler.build(*root, Mat4(1.0)); c != kNoNode) {
+            FrameGroup started;
+            compiler.gatherUnion(*root, Compiler::place(*root, world, started), top);
+        } else if (const uint32_t c = compiler.build(*root, world); c != kNoNode) {
             top.push_back(c);
         }
     }

@@ -14,10 +14,24 @@ inline constexpr uint32_t kNoNode = std::numeric_limits<uint32_t>::max();
 // A leaf with its transforms flattened, split by who reads it: the ray loop touches only the
 // hot part (what it needs to solve), so a million leaves cost ~200 bytes each in the cache
 // instead of ~440; surface() and accessors read the cold part.
+//
+// Leaves share a *frame group*: the frame of the nearest transform above them that is not a
+// signed axis permutation plus a shift (rotate by multiples of 90 degrees, mirror, translate,
+// center=true). The ray loop maps the ray into a group's frame once (Scene::frameFromWorld_)
+// and reaches each leaf's own frame from there by a swizzle, exact but for the shift's one
+// rounding: in a part like (box n sphere) - three turned cylinders that is one matrix
+// transform and one reciprocal of d for five leaves instead of five.
 struct LeafGeometry {
     Primitive shape;
-    Affine localFromWorld;
-    Bounds3 localBounds;  // where the ray origin is moved before solving
+    Affine localFromWorld;  // for surface() and inside(); the ray loop uses the frame group
+    Bounds3 localBounds;    // where the ray origin is moved before solving
+    uint32_t frame = 0;     // index into Scene::frameFromWorld_
+    // Local from frame, when not the identity (permuted): component j of a local point is
+    // sign[j] * p[axis[j]] + offset[j] for the frame point p, of a vector sign[j] * v[axis[j]].
+    bool permuted = false;
+    uint8_t axis[3] = {0, 1, 2};
+    double sign[3] = {1.0, 1.0, 1.0};
+    Vec3 offset{0.0};
 };
 
 struct LeafFrame {

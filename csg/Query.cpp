@@ -57,13 +57,46 @@ struct Evaluator {
         return 0;
     }
 
+    // The ray in the frame group last entered (LeafGeometry::frame), and 1 / its d; arrays, so
+    // that a leaf's permutation indexes them directly.
+    uint32_t group = kNoNode;
+    double groupO[3], groupD[3], groupInvD[3];
+
+    void enterGroup(uint32_t frame) {
+        const Affine& m = scene.frameFromWorld_[frame];
+        group = frame;
+        const Vec3 o = transformPoint(m, ray.o), d = transformVector(m, ray.d);
+        for (int i = 0; i < 3; ++i) {
+            groupO[i] = o[i];
+            groupD[i] = d[i];
+            groupInvD[i] = 1.0 / d[i];
+        }
+    }
+
     size_t evalLeaf(const LeafGeometry& leaf, uint32_t leafIndex, double t0, double t1) {
-        // Map the ray into the leaf's frame; d keeps its length so t is unchanged.
-        const Vec3 o = transformPoint(leaf.localFromWorld, ray.o);
-        const Vec3 d = transformVector(leaf.localFromWorld, ray.d);
+        // Map the ray into the leaf's frame: by a matrix into its frame group once per run of
+        // leaves of that group (a part's leaves mostly share one), then by the leaf's exact
+        // axis permutation (the reciprocal of -x is -(1 / x), so permuting 1 / d is exact);
+        // d keeps its length so t is unchanged.
+        if (leaf.frame != group) enterGroup(leaf.frame);
+        Vec3 o, d, invD;
+        if (leaf.permuted) {
+            const uint8_t* a = leaf.axis;
+            const double* s = leaf.sign;
+            o = Vec3(s[0] * groupO[a[0]] + leaf.offset.x, s[1] * groupO[a[1]] + leaf.offset.y,
+                     s[2] * groupO[a[2]] + leaf.offset.z);
+            d = Vec3(s[0] * groupD[a[0]], s[1] * groupD[a[1]], s[2] * groupD[a[2]]);
+            invD = Vec3(s[0] * groupInvD[a[0]], s[1] * groupInvD[a[1]], s[2] * groupInvD[a[2]]);
+        } else {
+            o = Vec3(groupO[0], groupO[1], groupO[2]);
+            d = Vec3(groupD[0], groupD[1], groupD[2]);
+            invD = Vec3(groupInvD[0], groupInvD[1], groupInvD[2]);
+        }
         // Solve near the primitive: restart the ray where it enters the local bounds.
         double b0 = -kInfinity, b1 = kInfinity;
-        if (!clipToBox(SlabRay(o, d), leaf.localBounds, b0, b1) || b1 < t0 || b0 > t1) return 0;
+        if (!clipToBox(SlabRay(o, invD, SlabRay::Reciprocal{}), leaf.localBounds, b0, b1) ||
+            b1 < t0 || b0 > t1)
+            return 0;
         const double shift = std::isfinite(b0) ? b0 : (std::isfinite(b1) ? b1 : 0.0);
 
         ++ctx.stats.primitiveTests;

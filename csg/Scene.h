@@ -106,8 +106,9 @@ public:
 private:
     friend struct Evaluator;
     friend struct Compiler;
-    std::vector<LeafGeometry> leaves_;  // indexed by Hit::leaf; read by the ray loop
-    std::vector<LeafFrame> frames_;     // same index; read on request
+    std::vector<LeafGeometry> leaves_;    // indexed by Hit::leaf; read by the ray loop
+    std::vector<LeafFrame> frames_;       // same index; read on request
+    std::vector<Affine> frameFromWorld_;  // the leaves' frame groups (LeafGeometry::frame)
     std::vector<CompiledNode> nodes_;
     std::vector<uint32_t> children_;  // child node indices of n-ary unions
     std::vector<BvhNode> bvh_;

@@ -1,6 +1,7 @@
 // Compiling trees: transforms flattened into leaves, unions flattened, bounds, pruning, BVH.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -143,6 +144,61 @@ TEST(Compile, BvhMakesNodeVisitsLogarithmic) {
     EXPECT_LT(large, 8 * small) << small << " vs " << large;
     EXPECT_LT(large, 15 * std::log2(46.0 * 46 * 46)) << large;
     EXPECT_GT(large, 0.0);
+}
+
+// A map with exact 0 and +-1 entries: column j is sign[j] times axis to[j], then a shift.
+Mat4 axisMap(std::array<int, 3> to, std::array<double, 3> sign, Vec3 shift) {
+    Mat4 m(0.0);
+    for (int j = 0; j < 3; ++j) m[j][to[j]] = sign[j];
+    m[3] = Vec4(shift, 1.0);
+    return m;
+}
+
+// Leaves turned by exact axis permutations (rotate by 90 degrees, mirror, center=true) share
+// their part's frame in the ray loop, reached by a swizzle instead of their own matrix. The
+// oracle is point classification (Scene::inside), which maps every point through each leaf's
+// own inverted matrix: every span's middle must be inside the part and every gap's outside.
+// Cones (r1 != r2) and a mirror make a wrong axis or sign show.
+TEST(Compile, LeavesTurnedByAxisPermutationsMatchTheirOwnMatrices) {
+    const Cylinder cone{2.0, 0.18, 0.34};
+    // Each cone centred on the origin (center = true) and turned onto another axis.
+    const NodePtr cut = uniteAll(std::vector<NodePtr>{
+        transformed(axisMap({2, 1, 0}, {1, 1, -1}, Vec3(0)) * translation(0, 0, -1), leaf(cone)),
+        transformed(axisMap({0, 2, 1}, {1, -1, 1}, Vec3(0.05, 0, 0)) * translation(0, 0, -1),
+                    leaf(cone)),
+        transformed(axisMap({1, 0, 2}, {-1, 1, 1}, Vec3(0)) * translation(0, 0, -1), leaf(cone)),
+    });
+    const NodePtr part =
+        subtract(intersect(leaf(Box{Vec3(-0.5), Vec3(0.5)}), leaf(Sphere{0.68})), cut);
+    const Mat4 general = translation(0.3, -0.2, 0.1) *
+                         glm::rotate(Mat4(1.0), 0.7, glm::normalize(Vec3(1, 2, 3))) *
+                         glm::scale(Mat4(1.0), Vec3(1.3, 0.8, 1.1));
+    const Scene scene = Scene::compile(transformed(general, part));
+
+    QueryContext ctx;
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    int cylinderEnds = 0, checked = 0;
+    for (int r = 0; r < 4000; ++r) {
+        const Vec3 target = Vec3(0.3, -0.2, 0.1) + 0.7 * Vec3(u(rng), u(rng), u(rng));
+        const Vec3 origin = 6.0 * glm::normalize(Vec3(u(rng), u(rng), u(rng)));
+        const Ray ray{origin, target - origin};
+        const auto spans = scene.spans(ray, ctx);
+        double gapStart = 0.0;
+        for (const Span& s : spans) {
+            cylinderEnds += (s.in.leaf >= 2) + (s.out.leaf >= 2);
+            if (s.out.t - s.in.t > 1e-6) {
+                EXPECT_TRUE(scene.inside(ray.at(0.5 * (s.in.t + s.out.t)))) << r;
+                ++checked;
+            }
+            if (s.in.t - gapStart > 1e-6) {
+                EXPECT_FALSE(scene.inside(ray.at(0.5 * (gapStart + s.in.t)))) << r;
+            }
+            gapStart = s.out.t;
+        }
+    }
+    EXPECT_GT(checked, 1000);
+    EXPECT_GT(cylinderEnds, 1000);  // the permuted leaves were met, not just the box and sphere
 }
 
 }  // namespace
