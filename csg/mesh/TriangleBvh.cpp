@@ -69,19 +69,14 @@ uint32_t TriangleBvh::nodeCount(uint32_t count) const {
 
 TriangleBvh::TriangleBvh(const TriangleMesh& mesh, int threads) : mesh_(mesh) {
     const size_t n = mesh.triangles.size();
-    order_.resize(n);
-    triBox_.resize(n);
-    center_.resize(n);
+    // The split key (a triangle's box centre) sits beside its index, so the partitioning reads
+    // one contiguous array instead of gathering centres through the order.
+    items_.resize(n);
     const int workers = resolveThreads(threads);
     constexpr uint64_t kChunk = 4096;
     parallelFor((n + kChunk - 1) / kChunk, workers, [&](int, uint64_t chunk) {
-        for (size_t i = chunk * kChunk; i < std::min<size_t>(n, (chunk + 1) * kChunk); ++i) {
-            order_[i] = uint32_t(i);
-            Bounds3 box;
-            for (const uint32_t v : mesh.triangles[i]) box.extend(mesh.positions[v]);
-            triBox_[i] = box;
-            center_[i] = box.center();
-        }
+        for (size_t i = chunk * kChunk; i < std::min<size_t>(n, (chunk + 1) * kChunk); ++i)
+            items_[i] = {triangleBox(uint32_t(i)).center(), uint32_t(i)};
     });
     if (n > 0) {
         tabulateNodeCounts(uint32_t(n));
@@ -91,41 +86,47 @@ TriangleBvh::TriangleBvh(const TriangleMesh& mesh, int threads) : mesh_(mesh) {
         while ((1 << parallelDepth) < workers && parallelDepth < 8) ++parallelDepth;
         build(0, uint32_t(n), 0, parallelDepth);
     }
-    center_ = {};
+    order_.resize(n);
+    for (size_t i = 0; i < n; ++i) order_[i] = items_[i].triangle;
+    items_ = {};
     nodeCounts_ = {};
 }
 
+Bounds3 TriangleBvh::triangleBox(uint32_t triangle) const {
+    Bounds3 box;
+    for (const uint32_t v : mesh_.triangles[triangle]) box.extend(mesh_.positions[v]);
+    return box;
+}
+
 void TriangleBvh::build(uint32_t begin, uint32_t end, uint32_t index, int parallelDepth) {
-    Bounds3 box, centers;
-    for (uint32_t i = begin; i < end; ++i) {
-        box.extend(triBox_[order_[i]]);
-        centers.extend(center_[order_[i]]);
-    }
-    nodes_[index].box = box;
     // Median splits keep the depth at log2(n / kLeafSize) (under 31), well below the
-    // traversal stack.
+    // traversal stack. A node's box is its triangles' (a leaf) or its children's union.
     if (end - begin <= kLeafSize) {
-        nodes_[index].first = begin;
-        nodes_[index].count = end - begin;
+        Bounds3 box;
+        for (uint32_t i = begin; i < end; ++i) box.extend(triangleBox(items_[i].triangle));
+        nodes_[index] = {box, begin, end - begin};
         return;
     }
     // Median split on the widest axis of the centres: balanced.
+    Bounds3 centers;
+    for (uint32_t i = begin; i < end; ++i) centers.extend(items_[i].center);
     const Vec3 e = centers.extent();
     const int axis = e.x >= e.y ? (e.x >= e.z ? 0 : 2) : (e.y >= e.z ? 1 : 2);
     const uint32_t mid = begin + (end - begin) / 2;
-    std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-                     [&](uint32_t p, uint32_t q) { return center_[p][axis] < center_[q][axis]; });
-    const uint32_t right = index + 1 + nodeCount(mid - begin);
-    nodes_[index].first = right;
-    nodes_[index].count = 0;
+    std::nth_element(items_.begin() + begin, items_.begin() + mid, items_.begin() + end,
+                     [axis](const Item& p, const Item& q) { return p.center[axis] < q.center[axis]; });
+    const uint32_t left = index + 1, right = index + 1 + nodeCount(mid - begin);
     if (parallelDepth > 0) {
-        std::thread left([&] { build(begin, mid, index + 1, parallelDepth - 1); });
+        std::thread other([&] { build(begin, mid, left, parallelDepth - 1); });
         build(mid, end, right, parallelDepth - 1);
-        left.join();
+        other.join();
     } else {
-        build(begin, mid, index + 1, 0);
+        build(begin, mid, left, 0);
         build(mid, end, right, 0);
     }
+    Bounds3 box = nodes_[left].box;
+    box.extend(nodes_[right].box);
+    nodes_[index] = {box, right, 0};
 }
 
 std::optional<double> TriangleBvh::nearestHit(const Vec3& o, const Vec3& d, double tmin,

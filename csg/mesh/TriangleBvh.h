@@ -34,13 +34,17 @@ private:
     // begin)); subtrees of the top `parallelDepth` levels split their halves between threads.
     void build(uint32_t begin, uint32_t end, uint32_t index, int parallelDepth);
     void tabulateNodeCounts(uint32_t n);
+    Bounds3 triangleBox(uint32_t triangle) const;
     uint32_t nodeCount(uint32_t count) const;  // nodes of a subtree over count triangles
 
     const TriangleMesh& mesh_;
     std::vector<Node> nodes_;
     std::vector<uint32_t> order_;  // triangle indices, leaves own contiguous ranges
-    std::vector<Bounds3> triBox_;
-    std::vector<Vec3> center_;  // triBox_'s centres, only while building (the split's key)
+    struct Item {
+        Vec3 center;  // of the triangle's box: the split's key
+        uint32_t triangle;
+    };
+    std::vector<Item> items_;  // only while building; becomes order_
     // (count, nodeCount(count)) of every subtree size, ascending; only while building.
     std::vector<std::pair<uint32_t, uint32_t>> nodeCounts_;
 };
