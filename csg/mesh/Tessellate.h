@@ -8,9 +8,11 @@
 // assumes R = kReferenceRadiusFraction of the bounds' diagonal; then the mesh-to-surface
 // distance is *measured* (MeshDistance.h: every vertex, centroid and edge midpoint, along the
 // mesh normal and other lines; and surface to mesh, which sees a chamfered or lost feature
-// that every mesh point is close to) and h shrinks by T / measured with a 0.85 safety factor (a
-// linear law: the worst errors sit at curved creases such as a hole's rim, where a cell's QEF
-// vertex is clamped or falls back to the mass point, and those shrink in proportion to h) until
+// that every mesh point is close to) and h shrinks with a 0.85 safety factor by T / measured
+// while the mesh-to-surface distance misses (a linear law: the worst errors sit at curved
+// creases such as a hole's rim, where a cell's QEF vertex is clamped or falls back to the mass
+// point, and those shrink in proportion to h), and by sqrt(T / measured) when only the
+// surface-to-mesh distance does (a chord's sagitta, or a fused gap that falls in steps) until
 // the measurement is within T, the cell cap is reached, maxPasses passes have run, or a pass
 // stalled on a part with thin walls or gaps (after a pass that missed T, the error fell by much
 // less than the spacing: see tol::kMeshStallFraction).
