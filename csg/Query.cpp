@@ -142,10 +142,13 @@ struct Evaluator {
             scene.hasSheets_
                 ? mergeSpans(op, s + base, na, s + base + na, nb, out, originScale)
                 : mergeSolidSpans(op, s + base, na, s + base + na, nb, out, originScale);
-        // Most results are a span or two: copy those by assignment, not by a memmove call.
+        // Most results are a span or two: copy those field by field (they were just written
+        // so, see SpanWriter::emit), not by a memmove call.
         if (n <= 2) {
-            if (n > 0) s[base] = out[0];
-            if (n > 1) s[base + 1] = out[1];
+            for (size_t i = 0; i < n; ++i) {
+                storeHit(s[base + i].in, out[i].in);
+                storeHit(s[base + i].out, out[i].out);
+            }
         } else {
             std::copy(out, out + n, s + base);
         }
