@@ -34,12 +34,15 @@ constexpr double kGaussWeights[5] = {0.11846344252809454, 0.23931433524968324, 0
 // along it rarely runs through edges or lies in a face.
 const Vec3 kInsideDirection = glm::normalize(Vec3(0.5711, 0.6289, 0.5277));
 
-// The crossings of the last spans() call on this thread that found any, as local points.
+// The crossings of the last spans() call on this thread that found any: the line and each
+// crossing's t. The local point is formed only when normal() asks (parameterOf), so the
+// calls whose crossings are never shaded (shadow rays, objects behind the hit) do not pay.
 struct LastCrossings {
     const PatchSetData* set = nullptr;
+    Vec3 o, d;
     int count = 0;
     struct Entry {
-        Vec3 point;
+        double t;
         Vec2 uv;
         uint32_t patch;
     } entries[PatchSet::kMaxCrossings];
@@ -151,10 +154,10 @@ void PatchSet::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     int n = crossings(o, d, c);
     if (n > 0) {
         lastCrossings.set = data.get();
+        lastCrossings.o = o, lastCrossings.d = d;
         lastCrossings.count = n;
         for (int i = 0; i < n; ++i)
-            lastCrossings.entries[i] = {pointOnLine(o, d, c[i].t), Vec2(c[i].u, c[i].v),
-                                        c[i].patch};
+            lastCrossings.entries[i] = {c[i].t, Vec2(c[i].u, c[i].v), c[i].patch};
     }
     auto face = [&](int i) { return static_cast<uint16_t>(c[i].patch); };
     if (!solid) {
@@ -195,9 +198,9 @@ Vec2 PatchSet::parameterOf(const Vec3& p, uint16_t face) const {
         const double near = tol::kPatchCarriedPointRel * data->size;
         for (int i = 0; i < lastCrossings.count; ++i) {
             const LastCrossings::Entry& e = lastCrossings.entries[i];
-            const Vec3 gap = e.point - p;
-            if (e.patch == face && glm::dot(gap, gap) <= near * near)
-                return closestParameterFrom(patch, p, e.uv);
+            if (e.patch != face) continue;
+            const Vec3 gap = pointOnLine(lastCrossings.o, lastCrossings.d, e.t) - p;
+            if (glm::dot(gap, gap) <= near * near) return closestParameterFrom(patch, p, e.uv);
         }
     }
     // Step 2: else the nearest node of a coarse grid.
