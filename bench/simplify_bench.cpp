@@ -9,8 +9,9 @@
 // --save writes the grid's mesh (and the budget) to FILE in a raw binary form and --load reads
 // it back, so repeated runs skip meshing (GLB and OBJ would round the positions; this keeps
 // them bit for bit); --out writes the simplified mesh of the last run in the same form (to check
-// that a change to simplify() keeps its result: compare the files). --budget overrides the budget; --threads is simplify()'s worker count
-// (0: all cores). Prints wall and CPU seconds of each run: read CPU time on a shared machine.
+// that a change to simplify() keeps its result: compare the files). --budget overrides the budget;
+// --threads is simplify()'s worker count (0: all cores). Prints wall and CPU seconds of each run:
+// read CPU time on a shared machine.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -163,8 +164,9 @@ int main(int argc, char** argv) {
         std::printf(
             "run %d: %llu -> %llu triangles, wall %.3f s (build %.3f, decimate %.3f, extract "
             "%.3f), cpu %.3f s, %s\n",
-            run, (unsigned long long)stats.trianglesBefore, (unsigned long long)stats.trianglesAfter,
-            wall, stats.buildSeconds, stats.decimateSeconds, stats.extractSeconds, cpu,
+            run, (unsigned long long)stats.trianglesBefore,
+            (unsigned long long)stats.trianglesAfter, wall, stats.buildSeconds,
+            stats.decimateSeconds, stats.extractSeconds, cpu,
             manifold ? "closed manifold" : "NOT A CLOSED MANIFOLD");
         if (run + 1 == runs && !outFile.empty() && !writeMeshFile(outFile, budget, coarse)) {
             std::fprintf(stderr, "simplify_bench: cannot write %s\n", outFile.c_str());

@@ -314,7 +314,9 @@ std::optional<Piece> decimateInBlocks(const Piece& whole, double maxDeviation, i
         hi = glm::max(hi, p);
     }
     const Vec3 extent = hi - lo;
-    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
+                     : extent.y >= extent.z                       ? 1
+                                                                  : 2;
     std::vector<double> keys(nt);
     for (size_t t = 0; t < nt; ++t) keys[t] = whole.positions[whole.triangles[t][0]][axis];
     std::vector<double> cuts;
@@ -439,8 +441,8 @@ TriangleMesh simplify(const TriangleMesh& mesh, double maxDeviation, SimplifySta
     whole.source.resize(nv);
     for (size_t v = 0; v < nv; ++v) whole.source[v] = uint32_t(v);
     whole.triangles = mesh.triangles;
-    whole.materials = mesh.triangleMaterial.empty() ? std::vector<uint32_t>(nt, 0u)
-                                                    : mesh.triangleMaterial;
+    whole.materials =
+        mesh.triangleMaterial.empty() ? std::vector<uint32_t>(nt, 0u) : mesh.triangleMaterial;
     std::vector<uint32_t> firstMaterial(nv, UINT32_MAX);
     for (size_t t = 0; t < nt; ++t) {
         const auto& tri = mesh.triangles[t];
