@@ -265,6 +265,12 @@ struct Compiler {
                 buildBvh(std::span(children.data(), u.bounded), scene.nodes_, u.first, scene.bvh_);
             // The BVH root's box is the hull of the same children, i.e. u.bounds.
             u.boundsImplied = u.bounded == u.count;
+            // A BVH leaf of one child has that child's box, tested just before it.
+            for (size_t b = u.bvhRoot; b < scene.bvh_.size(); ++b) {
+                const BvhNode& node = scene.bvh_[b];
+                if (node.count == 1)
+                    scene.nodes_[children[node.firstOrRight - u.first]].boundsImplied = true;
+            }
         }
         scene.children_.insert(scene.children_.end(), children.begin(), children.end());
         return addNode(u);

@@ -59,7 +59,10 @@ struct CompiledNode {
     //   in its own (a skipped cull only ever costs work: the bounds are conservative, so the
     //   spans found are the same);
     // - a union whose children all lie in its BVH: the BVH root's box is this same box and
-    //   is tested first, over the same range.
+    //   is tested first, over the same range;
+    // - a union's child alone in a BVH leaf: the leaf's box is the child's, tested just before
+    //   it over the same range (anyCached, which tries an object outside the BVH walk, tests
+    //   the object's box itself).
     bool boundsImplied = false;
     Bounds3 bounds;
     uint32_t first = 0;

@@ -239,7 +239,11 @@ struct Evaluator {
         const double t0 = ray.tmin;
         double t1 = ray.tmax;
         if (root.kind != NodeKind::Union) return any(scene.root_, t0, t1);
-        if (cache.node != kNoNode && any(cache.node, t0, t1)) return true;
+        // (The cached object is not reached through the BVH here, so its own bounds are tested
+        // even where the BVH leaf's test implies them.)
+        if (cache.node != kNoNode && touches(scene.nodes_[cache.node].bounds, t0, t1) &&
+            any(cache.node, t0, t1))
+            return true;
         if (!root.boundsImplied && !touches(root.bounds, t0, t1)) return false;
         bool found = false;
         forEachChild(root, t0, t1, [&](uint32_t child) {
