@@ -15,7 +15,7 @@ packages=(
     xvfb xdotool          # viewer_test: a virtual X server and the input it sends the window
     libgtest-dev libgmock-dev  # tests
     libbenchmark-dev      # bench/
-    libboost-dev          # Boost.Multiprecision: high-precision reference in tests
+    libboost-dev          # Boost.Multiprecision: 50-digit references (tests, csgray bench accuracy)
     openscad              # CLI tests: samples load in OpenSCAD and round-trip through its .csg
 )
 

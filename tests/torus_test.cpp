@@ -17,7 +17,7 @@
 #include "csg/Scene.h"
 #include "primitives/Torus.h"
 #include "primitives/solvers/Quartic.h"
-#include "tests/RootReference.h"
+#include "viewer/accuracy/RootReference.h"
 
 namespace csg {
 namespace {

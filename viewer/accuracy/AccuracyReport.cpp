@@ -28,8 +28,8 @@
 #include "io/AtomicFile.h"
 #include "primitives/AlgebraicSurface.h"
 #include "primitives/Torus.h"
-#include "tests/RootReference.h"
 #include "viewer/accuracy/AccuracyPlots.h"
+#include "viewer/accuracy/RootReference.h"
 #include "viewer/accuracy/ScalarYuksel.h"
 #include "viewer/accuracy/ShellSurface.h"
 
@@ -53,7 +53,7 @@ struct Job {
     Vec3 lineBase{}, lineDir{};
 };
 
-// ---- The 50-digit reference (tests/RootReference.h) ----
+// ---- The 50-digit reference (RootReference.h) ----
 
 void addReference(Job& j) {
     std::vector<Big> c(size_t(j.p.degree() + 1));

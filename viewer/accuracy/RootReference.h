@@ -1,6 +1,8 @@
-// Test and benchmark helper: the real roots of a polynomial in [lo, hi], in 50 digits
-// (Boost.Multiprecision), the reference that solver errors are measured against (torus_test,
-// bench/AccuracyReport.cpp). Independent of primitives/solvers/: no closed form, no double.
+// The real roots of a polynomial in [lo, hi], in 50 digits (Boost.Multiprecision): the
+// reference that solver errors are measured against by `csgray bench accuracy`
+// (AccuracyReport.cpp) and by tests/torus_test.cpp. Here, not in tests/, because the command
+// line is product code and must not depend on tests/. Independent of primitives/solvers/: no
+// closed form, no double.
 // Notation: c is a coefficient list {c0, c1, ...} for c0 + c1 t + ...; an empty list or one
 // that is constant has no roots.
 #pragma once
