@@ -6,6 +6,7 @@
 
 #include "csg/Tolerances.h"
 #include "csg/mesh/CellTopology.h"
+#include "csg/mesh/ParallelFor.h"
 #include "csg/mesh/Qef.h"
 
 namespace csg {
@@ -26,8 +27,8 @@ struct EdgeSample {
 
 class Contourer {
 public:
-    Contourer(const HermiteGrid& grid, DualContourStats& stats)
-        : grid_(grid), spec_(grid.spec()), stats_(stats) {}
+    Contourer(const HermiteGrid& grid, DualContourStats& stats, int threads)
+        : grid_(grid), spec_(grid.spec()), stats_(stats), workers_(resolveThreads(threads)) {}
 
     TriangleMesh run() {
         collectActiveCells();
@@ -65,7 +66,8 @@ private:
         return std::min(0.25 * width, tol::kMeshVertexSeparation * spec_.h);
     }
 
-    EdgeSample sample(int axis, const Node3& node) {
+    // missing counts the sign changes without a crossing (DualContourStats::missingCrossings).
+    EdgeSample sample(int axis, const Node3& node, uint64_t& missing) const {
         Node3 next = node;
         ++next[axis];
         if (const Crossing* x = grid_.crossing(axis, node)) {
@@ -79,7 +81,7 @@ private:
             p[axis] = std::clamp(p[axis], lo + apart, hi - apart);
             return {p, x->normal, x->material, true};
         }
-        ++stats_.missingCrossings;
+        ++missing;
         EdgeSample s;
         s.point =
             0.5 * (spec_.node(node[0], node[1], node[2]) + spec_.node(next[0], next[1], next[2]));
@@ -89,60 +91,88 @@ private:
         return s;
     }
 
-    // Step 1: the cells with corners of both signs, in index order (deterministic output).
+    // Step 1: the cells with corners of both signs, in index order (deterministic output):
+    // each layer of cells on a worker, the layers joined in order.
     void collectActiveCells() {
-        for (int k = 0; k + 1 < spec_.nodes[2]; ++k)
+        const int layers = spec_.nodes[2] - 1;
+        std::vector<std::vector<uint64_t>> perLayer(size_t(std::max(layers, 0)));
+        parallelFor(uint64_t(std::max(layers, 0)), workers_, [&](int, uint64_t layer) {
+            const int k = int(layer);
             for (int j = 0; j + 1 < spec_.nodes[1]; ++j)
                 for (int i = 0; i + 1 < spec_.nodes[0]; ++i) {
                     const uint8_t mask = cellMask({i, j, k});
-                    if (mask != 0 && mask != 0xff) active_.push_back(cellIndex({i, j, k}));
+                    if (mask != 0 && mask != 0xff) perLayer[layer].push_back(cellIndex({i, j, k}));
                 }
+        });
+        size_t total = 0;
+        for (const auto& layer : perLayer) total += layer.size();
+        active_.reserve(total);
+        for (auto& layer : perLayer) {
+            active_.insert(active_.end(), layer.begin(), layer.end());
+            layer = {};
+        }
         stats_.activeCells = active_.size();
     }
 
-    // Step 2: one QEF vertex per sheet of every active cell.
+    // Step 2: one QEF vertex per sheet of every active cell. The vertices' indices follow the
+    // cells' order (counted first), so the cells are placed on all workers into their slots.
     void placeSheetVertices() {
         // Indexed by cell: only active cells' entries are ever written or read.
         sheetBase_.resize(spec_.nodeCount());
+        uint32_t next = 0;
         for (const uint64_t index : active_) {
-            const Node3 c = cellNode(index);
-            const CellCycles& cycles = cellCycles(cellMask(c));
-            sheetBase_[index] = uint32_t(mesh_.positions.size());
-            // The cell inset a hair, so sheet vertices of neighbouring cells (say both clamped
-            // onto a crease lying in their shared face) stay distinct points, also as floats.
-            const double width = spec_.cellMinWidth(c[0], c[1], c[2]);
-            const Vec3 inset(separation(width));
-            const Bounds3 box{spec_.node(c[0], c[1], c[2]) + inset,
-                              spec_.node(c[0] + 1, c[1] + 1, c[2] + 1) - inset};
-            Vec3 placed[4], mass[4];  // a cell has at most 4 sheets
-            for (int q = 0; q < cycles.count; ++q) {
-                Qef3 qef;
-                for (int e = 0; e < 12; ++e) {
-                    if (cycles.edgeCycle[size_t(e)] != q) continue;
-                    const int a = e / 4;
-                    Node3 n = c;
-                    n[(a + 1) % 3] += e & 1;
-                    n[(a + 2) % 3] += (e >> 1) & 1;
-                    const EdgeSample s = sample(a, n);
-                    qef.add(s.point, s.normal);
-                }
-                placed[q] = glm::clamp(qef.solve(box), box.lo, box.hi);
-                mass[q] = qef.massPoint();
+            sheetBase_[index] = next;
+            next += uint32_t(cellCycles(cellMask(cellNode(index))).count);
+        }
+        mesh_.positions.resize(next);
+        mesh_.normals.assign(next, Vec3(0.0));
+        stats_.sheetVertices = next;
+        std::vector<uint64_t> missing(size_t(workers_), 0);
+        constexpr uint64_t kChunk = 1024;
+        parallelFor((active_.size() + kChunk - 1) / kChunk, workers_, [&](int w, uint64_t chunk) {
+            const size_t end = std::min<size_t>(active_.size(), (chunk + 1) * kChunk);
+            for (size_t i = chunk * kChunk; i < end; ++i)
+                placeSheetVerticesOf(active_[i], missing[size_t(w)]);
+        });
+        for (const uint64_t m : missing) stats_.missingCrossings += m;
+    }
+
+    void placeSheetVerticesOf(uint64_t index, uint64_t& missing) {
+        const Node3 c = cellNode(index);
+        const CellCycles& cycles = cellCycles(cellMask(c));
+        // The cell inset a hair, so sheet vertices of neighbouring cells (say both clamped
+        // onto a crease lying in their shared face) stay distinct points, also as floats.
+        const double width = spec_.cellMinWidth(c[0], c[1], c[2]);
+        const Vec3 inset(separation(width));
+        const Bounds3 box{spec_.node(c[0], c[1], c[2]) + inset,
+                          spec_.node(c[0] + 1, c[1] + 1, c[2] + 1) - inset};
+        Vec3 placed[4], mass[4];  // a cell has at most 4 sheets
+        for (int q = 0; q < cycles.count; ++q) {
+            Qef3 qef;
+            for (int e = 0; e < 12; ++e) {
+                if (cycles.edgeCycle[size_t(e)] != q) continue;
+                const int a = e / 4;
+                Node3 n = c;
+                n[(a + 1) % 3] += e & 1;
+                n[(a + 2) % 3] += (e >> 1) & 1;
+                const EdgeSample s = sample(a, n, missing);
+                qef.add(s.point, s.normal);
             }
-            // Two sheets whose features meet at one point (solids touching along an edge, a
-            // non-manifold part) would share a position: pull each toward its own patch, so the
-            // mesh is a manifold in space too, not only in its indices.
-            const double apart = separation(width);
-            for (int q = 0; q < cycles.count; ++q) {
-                for (int o = 0; o < cycles.count; ++o) {
-                    if (o == q || glm::length(placed[q] - placed[o]) > 2.0 * apart) continue;
-                    const Vec3 toward = mass[q] - placed[q];
-                    const double len = glm::length(toward);
-                    if (len > 0.0) placed[q] += toward * (std::min(len, 4.0 * apart) / len);
-                }
-                addVertex(placed[q], Vec3(0.0));
-                ++stats_.sheetVertices;
+            placed[q] = glm::clamp(qef.solve(box), box.lo, box.hi);
+            mass[q] = qef.massPoint();
+        }
+        // Two sheets whose features meet at one point (solids touching along an edge, a
+        // non-manifold part) would share a position: pull each toward its own patch, so the
+        // mesh is a manifold in space too, not only in its indices.
+        const double apart = separation(width);
+        for (int q = 0; q < cycles.count; ++q) {
+            for (int o = 0; o < cycles.count; ++o) {
+                if (o == q || glm::length(placed[q] - placed[o]) > 2.0 * apart) continue;
+                const Vec3 toward = mass[q] - placed[q];
+                const double len = glm::length(toward);
+                if (len > 0.0) placed[q] += toward * (std::min(len, 4.0 * apart) / len);
             }
+            mesh_.positions[sheetBase_[index] + uint32_t(q)] = placed[q];
         }
     }
 
@@ -217,8 +247,9 @@ private:
             }
         Node3 partnerNode = faceMin;
         partnerNode[partnerAxis == 0 ? v : u] += partnerOffset;
-        const EdgeSample s0 = sample(a, n0);
-        const EdgeSample s1 = sample(partnerAxis == 0 ? u : v, partnerNode);
+        const EdgeSample s0 = sample(a, n0, stats_.missingCrossings);
+        const EdgeSample s1 =
+            sample(partnerAxis == 0 ? u : v, partnerNode, stats_.missingCrossings);
 
         // Step 3: bend the curve where the tangent lines meet; an ambiguous face always gets a
         // vertex, so two curves on one face never join the same two sheet vertices twice.
@@ -258,7 +289,7 @@ private:
             const bool in0 = inside(n0);
             if (in0 == inside(n1)) continue;
             const int b = (a + 1) % 3, c = (a + 2) % 3;
-            const EdgeSample s = sample(a, n0);
+            const EdgeSample s = sample(a, n0, stats_.missingCrossings);
             const uint32_t center = addVertex(s.point, s.normal);
 
             // The ring: cells at (db, dc) counter-clockwise about +a, face vertices between.
@@ -308,6 +339,7 @@ private:
     const HermiteGrid& grid_;
     const GridSpec& spec_;
     DualContourStats& stats_;
+    const int workers_;
     TriangleMesh mesh_;
     std::vector<uint64_t> active_;
     std::vector<uint32_t> sheetBase_;  // per cell index: its first sheet vertex
@@ -321,13 +353,13 @@ private:
 
 }  // namespace
 
-TriangleMesh dualContour(const HermiteGrid& grid, DualContourStats* stats) {
+TriangleMesh dualContour(const HermiteGrid& grid, DualContourStats* stats, int threads) {
     DualContourStats local;
     DualContourStats& s = stats ? *stats : local;
     s.cells = grid.spec().cellCount();
     s.thinEdges = grid.thinEdges();
     s.thinAt = grid.thinAt();
-    return Contourer(grid, s).run();
+    return Contourer(grid, s, threads).run();
 }
 
 }  // namespace csg

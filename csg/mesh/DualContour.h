@@ -28,7 +28,10 @@ struct DualContourStats {
     Vec3 thinAt{0.0};        // one of them
 };
 
-// The mesh of the grid's surface; empty when no node is inside.
-TriangleMesh dualContour(const HermiteGrid& grid, DualContourStats* stats = nullptr);
+// The mesh of the grid's surface; empty when no node is inside. Active cells are found and
+// their sheet vertices placed on `threads` threads (0: all cores); the mesh is the same for any
+// thread count.
+TriangleMesh dualContour(const HermiteGrid& grid, DualContourStats* stats = nullptr,
+                         int threads = 0);
 
 }  // namespace csg

@@ -17,7 +17,7 @@ TriangleMesh tessellateAt(const Scene& scene, double h, int threads, uint64_t* r
     const Bounds3 box = scene.bounds();
     if (box.empty()) return {};
     const HermiteGrid grid = castResolvingThinFeatures(scene, box, h, threads, rays, planes);
-    return dualContour(grid, stats);
+    return dualContour(grid, stats, threads);
 }
 
 namespace {
@@ -141,7 +141,7 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
         const HermiteGrid grid = castResolvingThinFeatures(scene, box, h, options.threads,
                                                            &result.rays, &result.thinPlanes);
         record.castSeconds = lap();
-        result.mesh = dualContour(grid, &result.contour);
+        result.mesh = dualContour(grid, &result.contour, options.threads);
         record.contourSeconds = lap();
         result.cellSize = h;
         result.cells = result.contour.cells;
