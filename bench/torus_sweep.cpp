@@ -16,30 +16,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <random>
 
 #include "primitives/Torus.h"
+#include "tests/SeededRng.h"
 
 namespace {
 
 using namespace csg;
 
-class Rng {
-public:
-    explicit Rng(uint64_t seed) : gen_(seed) {}
-    double uniform() { return double(gen_() >> 11) * 0x1.0p-53; }
-    double uniform(double a, double b) { return a + (b - a) * uniform(); }
-    Vec3 unit() {
-        for (;;) {
-            const Vec3 v(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
-            const double l2 = glm::dot(v, v);
-            if (l2 > 1e-4 && l2 <= 1.0) return v / std::sqrt(l2);
-        }
-    }
-
-private:
-    std::mt19937_64 gen_;
-};
+using csg::testing::Rng;
 
 int solidCount(const LocalSpans& s) {
     int n = 0;

@@ -31,13 +31,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "csg/Scene.h"
 #include "primitives/AlgebraicSurface.h"
 #include "tests/EnvCount.h"
+#include "tests/SeededRng.h"
 
 namespace csg {
 namespace {
@@ -145,20 +145,7 @@ Reference reference(const SurfaceClass& c, const Vec3& o, const Vec3& d,
 
 // ---- Random rays: from a sphere of radius 4 towards a random point within radius 1.5 ----
 
-class Rng {
-public:
-    explicit Rng(uint64_t seed) : gen_(seed) {}
-    double uniform(double a, double b) { return a + (b - a) * double(gen_() >> 11) * 0x1.0p-53; }
-    Vec3 ball(double r) {
-        for (;;) {
-            const Vec3 v(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
-            if (glm::dot(v, v) <= 1.0) return r * v;
-        }
-    }
-
-private:
-    std::mt19937_64 gen_;
-};
+using testing::Rng;
 
 struct Tally {
     long rays = 0, ambiguous = 0, wrong = 0, tangencyMisses = 0, slivers = 0;
@@ -252,8 +239,8 @@ TEST(Algebraic, EverySolverAgainstTheClosedFormReference) {
         std::vector<AlgebraicSurface::Chord> chords;
         std::vector<Reference> refs;
         while (int(chords.size()) < rays) {
-            const Vec3 o = rng.ball(1.0) + 4.0 * glm::normalize(rng.ball(1.0));
-            const Vec3 d = rng.ball(1.5) - o;
+            const Vec3 o = rng.inBall() + 4.0 * glm::normalize(rng.inBall());
+            const Vec3 d = 1.5 * rng.inBall() - o;
             AlgebraicSurface::Chord ch;
             if (!s.chord(o, d, ch)) continue;
             chords.push_back(ch);
@@ -347,8 +334,8 @@ TEST(Algebraic, SplitTangenciesGiveNoSliverSpans) {
         const AlgebraicSurface s = AlgebraicSurface::make(*sphere(1.0).power(k), kBox);
         long spans = 0;
         for (int i = 0; i < rays; ++i) {
-            const Vec3 o = rng.ball(1.0) + 4.0 * glm::normalize(rng.ball(1.0));
-            spans += long(spansOf(s, o, rng.ball(1.5) - o).size());
+            const Vec3 o = rng.inBall() + 4.0 * glm::normalize(rng.inBall());
+            spans += long(spansOf(s, o, 1.5 * rng.inBall() - o).size());
         }
         EXPECT_EQ(spans, 0) << "(r^2 - 1)^" << k << " over " << rays << " rays";
     }
@@ -359,10 +346,10 @@ TEST(Algebraic, SplitTangenciesGiveNoSliverSpans) {
     long spans = 0, splitByTheSolver = 0;
     for (int i = 0; i < rays; ++i) {
         // A point on the surface, a direction tangent there, and an origin 2 units back.
-        const Vec3 v = glm::normalize(rng.ball(1.0));
+        const Vec3 v = glm::normalize(rng.inBall());
         const Vec3 p = v / std::sqrt(std::sqrt(glm::dot(v * v, v * v)));
         const Vec3 grad = 4.0 * p * p * p;
-        const Vec3 d = glm::normalize(glm::cross(grad, rng.ball(1.0)));
+        const Vec3 d = glm::normalize(glm::cross(grad, rng.inBall()));
         const Vec3 o = p - 2.0 * d;
         spans += long(spansOf(quartic, o, d).size());
         AlgebraicSurface::Chord c;
@@ -452,7 +439,7 @@ TEST(Trivariate, AlongMatchesPointEvaluation) {
     const Trivariate t = (*sphere(0.7).times(sphere(1.1))).toTrivariate();
     Rng rng(3);
     for (int i = 0; i < 1000; ++i) {
-        const Vec3 p = rng.ball(1.0), u = rng.ball(1.0);
+        const Vec3 p = rng.inBall(), u = rng.inBall();
         const Polynomial q = t.along(p, u);
         for (double s : {-1.0, -0.3, 0.0, 0.6, 1.0}) {
             const double want = t(p + s * u);

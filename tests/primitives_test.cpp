@@ -18,12 +18,12 @@
 #include <iostream>
 #include <iterator>
 #include <numbers>
-#include <random>
 #include <sstream>
 #include <string>
 
 #include "primitives/Primitives.h"
 #include "primitives/solvers/LinePoint.h"
+#include "tests/SeededRng.h"
 
 namespace csg {
 namespace {
@@ -41,37 +41,16 @@ constexpr double kDeep = 1e-6;
 
 // ---- Random inputs, reproducible on every standard library ----
 
-class Rng {
-public:
-    explicit Rng(uint64_t seed) : gen_(seed) {}
-    // Built from raw bits: std::uniform_real_distribution differs between standard libraries.
-    double uniform() { return double(gen_() >> 11) * 0x1.0p-53; }
-    double uniform(double a, double b) { return a + (b - a) * uniform(); }
-    bool chance(double p) { return uniform() < p; }
-    int index(int n) { return int(gen_() % uint64_t(n)); }
-    Vec3 inBox(const Vec3& lo, const Vec3& hi) {
-        return {uniform(lo.x, hi.x), uniform(lo.y, hi.y), uniform(lo.z, hi.z)};
-    }
-    Vec3 unit() {
-        for (;;) {
-            const Vec3 v = inBox(Vec3(-1.0), Vec3(1.0));
-            const double l2 = glm::dot(v, v);
-            if (l2 > 1e-4 && l2 <= 1.0) return v / std::sqrt(l2);
-        }
-    }
-    Vec3 inBall() {
-        for (;;) {
-            const Vec3 v = inBox(Vec3(-1.0), Vec3(1.0));
-            if (glm::dot(v, v) <= 1.0) return v;
-        }
-    }
-    double magnitude() { return std::pow(10.0, uniform(-3.0, 3.0)); }
-    // Random orientation, magnitude from 1e-3 to 1e3.
-    Vec3 direction() { return unit() * magnitude(); }
+using testing::Rng;
 
-private:
-    std::mt19937_64 gen_;
-};
+// A magnitude from 1e-3 to 1e3, uniform in its logarithm.
+double magnitude(Rng& rng) { return std::pow(10.0, rng.uniform(-3.0, 3.0)); }
+// Random orientation, magnitude from 1e-3 to 1e3. The magnitude is drawn first, as gcc
+// evaluated the former `unit() * magnitude()`, so each seed keeps its lines.
+Vec3 direction(Rng& rng) {
+    const double m = magnitude(rng);
+    return rng.unit() * m;
+}
 
 std::string describe(const Vec3& o, const Vec3& d) {
     std::ostringstream s;
@@ -189,13 +168,13 @@ Line randomLine(Rng& rng, const P& prim, double size) {
         for (int tries = 0; tries < 1000; ++tries) {
             const Vec3 p = rng.inBox(box.lo, box.hi);
             if (!deepInside(prim, p, size)) continue;
-            const double scale = rng.magnitude() / glm::length(p - line.o);
+            const double scale = magnitude(rng) / glm::length(p - line.o);
             line.d = (p - line.o) * scale;
             line.tAim = 1.0 / scale;
             return line;
         }
     }
-    line.d = rng.direction();
+    line.d = direction(rng);
     return line;
 }
 
@@ -223,7 +202,7 @@ TEST(SphereProperty, RandomLinesAgreeWithInside) {
         const Sphere sphere{r};
         runRandomLines(sphere, 2 * r, 1, 20000, 11, [&](Rng& rng) {
             // Lines starting on the surface.
-            return Line{r * rng.unit(), rng.direction()};
+            return Line{r * rng.unit(), direction(rng)};
         });
     }
 }
@@ -237,7 +216,7 @@ TEST(BoxProperty, RandomLinesAgreeWithInside) {
         const double size = std::max({e.x, e.y, e.z});
         runRandomLines(box, size, 6, 20000, 22 + k, [&](Rng& rng) {
             // Zero direction components (parallel to slabs) and origins on face planes.
-            Line line{rng.inBox(box.lo - e, box.hi + e), rng.direction()};
+            Line line{rng.inBox(box.lo - e, box.hi + e), direction(rng)};
             for (int a = 0; a < 3; ++a) {
                 if (rng.chance(0.4)) line.d[a] = rng.chance(0.5) ? 0.0 : -0.0;
                 if (rng.chance(0.3)) line.o[a] = rng.chance(0.5) ? box.lo[a] : box.hi[a];
@@ -261,11 +240,11 @@ TEST(CylinderProperty, RandomLinesAgreeWithInside) {
         const auto radiusAt = [&](double z) { return cyl.r1 + (cyl.r2 - cyl.r1) * z / h; };
         runRandomLines(cyl, size, 3, 20000, seed++, [&](Rng& rng) {
             const Vec3 lo(-2 * rMax, -2 * rMax, -h), hi(2 * rMax, 2 * rMax, 2 * h);
-            Line line{rng.inBox(lo, hi), rng.direction()};
+            Line line{rng.inBox(lo, hi), direction(rng)};
             const double a = rng.uniform(0.0, 2 * kPi);
             switch (rng.index(6)) {
                 case 0:  // parallel to the axis, sometimes on the axis or on the lateral surface
-                    line.d = Vec3(0.0, 0.0, rng.chance(0.5) ? 1.0 : -1.0) * rng.magnitude();
+                    line.d = Vec3(0.0, 0.0, rng.chance(0.5) ? 1.0 : -1.0) * magnitude(rng);
                     if (rng.chance(0.3)) line.o.x = line.o.y = 0.0;
                     break;
                 case 1:  // parallel to the caps, sometimes in a cap plane
@@ -273,12 +252,12 @@ TEST(CylinderProperty, RandomLinesAgreeWithInside) {
                     if (rng.chance(0.5)) line.o.z = rng.chance(0.5) ? 0.0 : h;
                     break;
                 case 2:  // through the apex (or the centre of a cap)
-                    line.d = (Vec3(0.0, 0.0, cyl.r2 == 0.0 ? h : 0.0) - line.o) * rng.magnitude();
+                    line.d = (Vec3(0.0, 0.0, cyl.r2 == 0.0 ? h : 0.0) - line.o) * magnitude(rng);
                     break;
                 case 3:  // parallel to a generator
                     line.d =
                         Vec3((cyl.r2 - cyl.r1) * std::cos(a), (cyl.r2 - cyl.r1) * std::sin(a), h) *
-                        rng.magnitude();
+                        magnitude(rng);
                     break;
                 case 4: {  // starting on the lateral surface
                     const double z = rng.uniform(0.0, h);
@@ -339,7 +318,7 @@ TEST(HalfSpaceProperty, RandomLinesAgreeWithInside) {
     Rng rng(41);
     for (int i = 0; i < 20000; ++i) {
         HalfSpace hs;
-        Vec3 o = rng.inBox(Vec3(-3.0), Vec3(3.0)), d = rng.direction();
+        Vec3 o = rng.inBox(Vec3(-3.0), Vec3(3.0)), d = direction(rng);
         if (rng.chance(0.3)) {
             // Small-integer normals with a direction exactly parallel to the plane.
             const Vec3 n(rng.index(5) - 2, rng.index(5) - 2, rng.index(5) - 2);
@@ -569,7 +548,7 @@ double sphereEndError(double r, double distance, Move move, uint64_t seed) {
     double worst = 0.0;
     for (int i = 0; i < 2000; ++i) {
         const Vec3 o = rng.unit() * distance;
-        const Vec3 d = (0.9 * r * rng.inBall() - o) * (rng.magnitude() / distance);
+        const Vec3 d = (0.9 * r * rng.inBall() - o) * (magnitude(rng) / distance);
         double tIn = 0.0, tOut = 0.0;
         EXPECT_TRUE(referenceChord(r, o, d, tIn, tOut));
         double tShift = 0.0, tEnd;
@@ -678,7 +657,7 @@ TEST(Normals, UnitOutwardAndDefinedAtTheApex) {
     EXPECT_EQ(Cylinder({2.0, 1.0, 0.0}).normal({0, 0, 2}, 0), Vec3(0, 0, 1));
     EXPECT_EQ(Cylinder({2.0, 0.0, 1.0}).normal({0, 0, 0}, 0), Vec3(0, 0, -1));
     for (int i = 0; i < 200; ++i) {
-        HalfSpace hs{rng.unit() * rng.magnitude(), rng.uniform(-1.0, 1.0)};
+        HalfSpace hs{rng.unit() * magnitude(rng), rng.uniform(-1.0, 1.0)};
         const Vec3 n = hs.planeNormal;
         const Vec3 onPlane = n * (hs.offset / glm::dot(n, n)) + glm::cross(n, rng.unit());
         expectOutwardUnitNormal(hs, onPlane, 0, 1.0);

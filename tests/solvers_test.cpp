@@ -19,13 +19,13 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "primitives/solvers/Polynomial.h"
 #include "primitives/solvers/Solve.h"
 #include "tests/EnvCount.h"
+#include "tests/SeededRng.h"
 
 namespace csg {
 namespace {
@@ -143,17 +143,12 @@ bool compare(const Polynomial& p, const std::vector<double>& want, const double*
 
 // ---- Random classes with exact dyadic roots ----
 
-class Rng {
-public:
-    explicit Rng(uint64_t seed) : gen_(seed) {}
-    int integer(int lo, int hi) { return lo + int(gen_() % uint64_t(hi - lo + 1)); }
-    double dyadic(int lo, int hi, int denominatorLog2) {
-        return std::ldexp(double(integer(lo, hi)), -denominatorLog2);
-    }
+using testing::Rng;
 
-private:
-    std::mt19937_64 gen_;
-};
+// k / 2^denominatorLog2 for k in lo .. hi.
+double dyadic(Rng& rng, int lo, int hi, int denominatorLog2) {
+    return std::ldexp(double(rng.integer(lo, hi)), -denominatorLog2);
+}
 
 struct Case {
     Polynomial p;
@@ -164,7 +159,7 @@ struct Case {
 // Roots on the grid k / 256 in [-4, 4], at least `gap` apart.
 double separatedRoot(Rng& rng, const std::vector<double>& others, double gap) {
     for (;;) {
-        const double x = rng.dyadic(-1024, 1024, 8);
+        const double x = dyadic(rng, -1024, 1024, 8);
         bool ok = true;
         for (double o : others) ok = ok && std::abs(x - o) >= gap;
         if (ok) return x;
@@ -181,21 +176,21 @@ Roots separated(Rng& rng, int degree) {
 Roots withComplexPair(Rng& rng, int degree) {
     Roots r;
     for (int i = 0; i < degree - 2; ++i) r.real.push_back(separatedRoot(rng, r.real, 1.0 / 64));
-    r.complex.push_back({rng.dyadic(-1024, 1024, 8), rng.dyadic(4, 512, 8)});
+    r.complex.push_back({dyadic(rng, -1024, 1024, 8), dyadic(rng, 4, 512, 8)});
     return r;
 }
 Roots allComplex(Rng& rng, int degree) {
     Roots r;
     for (int i = 0; i < degree / 2; ++i)
-        r.complex.push_back({rng.dyadic(-1024, 1024, 8), rng.dyadic(4, 512, 8)});
-    if (degree % 2) r.real.push_back(rng.dyadic(-1024, 1024, 8));
+        r.complex.push_back({dyadic(rng, -1024, 1024, 8), dyadic(rng, 4, 512, 8)});
+    if (degree % 2) r.real.push_back(dyadic(rng, -1024, 1024, 8));
     return r;
 }
 // Flocke's cluster {2.000, 2.001, 2.002, 2.003} on a dyadic grid: 2 + k / 512, k distinct.
 Roots cluster(Rng& rng, int degree) {
     Roots r;
     while (int(r.real.size()) < degree) {
-        const double x = 2.0 + rng.dyadic(0, 8, 9);
+        const double x = 2.0 + dyadic(rng, 0, 8, 9);
         if (std::find(r.real.begin(), r.real.end(), x) == r.real.end()) r.real.push_back(x);
     }
     return r;
@@ -203,7 +198,7 @@ Roots cluster(Rng& rng, int degree) {
 // One exact double root (a tangent ray) and the rest separated.
 Roots tangent(Rng& rng, int degree) {
     Roots r;
-    const double x = rng.dyadic(-1024, 1024, 8);
+    const double x = dyadic(rng, -1024, 1024, 8);
     r.real = {x, x};
     for (int i = 2; i < degree; ++i) r.real.push_back(separatedRoot(rng, r.real, 1.0 / 64));
     return r;
@@ -467,7 +462,7 @@ TEST(Polynomial, HornerBoundShiftAndDerivative) {
     Rng rng(7);
     const Polynomial w{1.1, -3.3, 2.7, -0.9, 0.1};
     for (int i = 0; i < 10000; ++i) {
-        const double t = rng.dyadic(-4096, 4096, 10) + 1e-3 * rng.integer(0, 999);
+        const double t = dyadic(rng, -4096, 4096, 10) + 1e-3 * rng.integer(0, 999);
         Big exact(0);
         for (int k = w.degree(); k >= 0; --k) exact = exact * Big(t) + Big(w[k]);
         const double got = w.eval(t, &bound);
