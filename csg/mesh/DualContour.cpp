@@ -207,8 +207,7 @@ private:
             layer.z = z;
         }
         const uint32_t i =
-            uint32_t(((uint64_t(faceMin[0]) + uint64_t(spec_.nodes[0]) * uint64_t(faceMin[1])) *
-                          3 +
+            uint32_t(((uint64_t(faceMin[0]) + uint64_t(spec_.nodes[0]) * uint64_t(faceMin[1])) * 3 +
                       uint64_t(g)) *
                          2 +
                      uint64_t(segment));

@@ -42,8 +42,7 @@ MeshTopology checkTopology(const TriangleMesh& mesh) {
                 if (w <= v) continue;
                 bool seen = false;  // counted at an earlier corner of v
                 for (uint32_t j = first; j < i && !seen; ++j)
-                    seen = !corners[j].degenerate &&
-                           (corners[j].next == w || corners[j].prev == w);
+                    seen = !corners[j].degenerate && (corners[j].next == w || corners[j].prev == w);
                 if (seen) continue;
                 uint32_t uses = 0, forward = 0;
                 for (uint32_t j = i; j < last; ++j) {

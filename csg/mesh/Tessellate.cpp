@@ -80,8 +80,8 @@ double refinementStep(double toSurface, double toMesh, double target) {
     if (!std::isfinite(toSurface) || !std::isfinite(toMesh)) return 0.25;
     if (toSurface > target) step = std::min(step, 0.85 * target / toSurface);
     if (toMesh > target)
-        step = std::min(step, toSurface > target ? 0.85 * target / toMesh
-                                                 : 0.85 * std::sqrt(target / toMesh));
+        step = std::min(
+            step, toSurface > target ? 0.85 * target / toMesh : 0.85 * std::sqrt(target / toMesh));
     return std::clamp(step, 0.25, 0.85);
 }
 

@@ -58,7 +58,8 @@ void TriangleBvh::tabulateNodeCounts(uint32_t n) {
     nodeCounts_.clear();
     for (const uint32_t count : sizes)
         nodeCounts_.push_back(
-            {count, count <= kLeafSize ? 1 : 1 + nodeCount(count / 2) + nodeCount(count - count / 2)});
+            {count,
+             count <= kLeafSize ? 1 : 1 + nodeCount(count / 2) + nodeCount(count - count / 2)});
 }
 
 uint32_t TriangleBvh::nodeCount(uint32_t count) const {
@@ -113,8 +114,9 @@ void TriangleBvh::build(uint32_t begin, uint32_t end, uint32_t index, int parall
     const Vec3 e = centers.extent();
     const int axis = e.x >= e.y ? (e.x >= e.z ? 0 : 2) : (e.y >= e.z ? 1 : 2);
     const uint32_t mid = begin + (end - begin) / 2;
-    std::nth_element(items_.begin() + begin, items_.begin() + mid, items_.begin() + end,
-                     [axis](const Item& p, const Item& q) { return p.center[axis] < q.center[axis]; });
+    std::nth_element(
+        items_.begin() + begin, items_.begin() + mid, items_.begin() + end,
+        [axis](const Item& p, const Item& q) { return p.center[axis] < q.center[axis]; });
     const uint32_t left = index + 1, right = index + 1 + nodeCount(mid - begin);
     if (parallelDepth > 0) {
         std::thread other([&] { build(begin, mid, left, parallelDepth - 1); });
