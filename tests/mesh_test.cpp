@@ -148,31 +148,73 @@ TEST(MeshCheck, CountsEachKindOfDefect) {
     EXPECT_FALSE(g.closedManifold());
 }
 
-TEST(TriangleBvh, RaysThroughSharedEdgesAndVerticesNeverSlipThrough) {
-    // A closed octahedron; rays aimed exactly at its edges' midpoints and near its vertices,
-    // from outside points whose ray goes on into the solid (a ray that only grazes a
-    // silhouette edge may rightly miss).
+// The distance from p to segment [s, e] and to the plane region of triangle (a, b, c) when p
+// projects inside it (by signed areas), taken the other way round from Ericson's Voronoi
+// regions: the nearest point is the projection when it falls inside, else on an edge.
+double referenceTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    auto toSegment = [&](const Vec3& s, const Vec3& e) {
+        const double u = std::clamp(glm::dot(p - s, e - s) / glm::dot(e - s, e - s), 0.0, 1.0);
+        return glm::length(p - (s + u * (e - s)));
+    };
+    double best = std::min({toSegment(a, b), toSegment(b, c), toSegment(c, a)});
+    const Vec3 n = glm::normalize(glm::cross(b - a, c - a));
+    const Vec3 q = p - glm::dot(p - a, n) * n;
+    const bool inside = glm::dot(glm::cross(b - a, q - a), n) >= 0.0 &&
+                        glm::dot(glm::cross(c - b, q - b), n) >= 0.0 &&
+                        glm::dot(glm::cross(a - c, q - c), n) >= 0.0;
+    if (inside) best = std::min(best, std::fabs(glm::dot(p - a, n)));
+    return best;
+}
+
+TEST(TriangleBvh, DistanceIsTheNearestTrianglesEuclideanDistance) {
+    // The octahedron |x| + |y| + |z| = 1: its faces lie 1/sqrt(3) from the centre, a vertex
+    // is the nearest point from beyond it, an edge midpoint from beyond that.
     TriangleMesh m;
     m.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
                    {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-    EXPECT_TRUE(checkTopology(m).closedManifold());
-    EXPECT_NEAR(signedVolume(m), 4.0 / 3.0, 1e-12);
-    const TriangleBvh bvh(m);
-    std::mt19937_64 rng(3);
+    const TriangleBvh octahedron(m);
+    EXPECT_NEAR(octahedron.distance(Vec3(0.0), 10.0), 1.0 / std::sqrt(3.0), 1e-15);
+    EXPECT_NEAR(octahedron.distance({3, 0, 0}, 10.0), 2.0, 1e-15);
+    EXPECT_NEAR(octahedron.distance({2, 2, 0}, 10.0), std::sqrt(2.0) * 1.5, 1e-15);
+    // Beyond reach: nothing.
+    EXPECT_EQ(octahedron.distance({3, 0, 0}, 1.9), kInfinity);
+
+    // A soup of random triangles (thin and large ones among them) against brute force over the
+    // reference distance, from points near and far.
+    std::mt19937_64 rng(11);
     std::uniform_real_distribution<double> u(-1, 1);
-    for (int i = 0; i < 2000; ++i) {
-        const auto& tri = m.triangles[size_t(i % 8)];
-        const Vec3 target = i % 2 ? 0.5 * (m.positions[tri[0]] + m.positions[tri[1]])
-                                  : m.positions[tri[size_t(i % 3)]] * 0.999999;
-        const Vec3 from(3 * u(rng), 3 * u(rng), 3 * u(rng));
-        const Vec3 beyond = target + 0.01 * glm::normalize(target - from);
-        if (std::abs(from.x) + std::abs(from.y) + std::abs(from.z) <= 1.0 ||
-            std::abs(beyond.x) + std::abs(beyond.y) + std::abs(beyond.z) >= 1.0)
-            continue;
-        const auto t = bvh.nearestHit(from, target - from, 0.0, 10.0);
-        ASSERT_TRUE(t.has_value()) << i;
+    TriangleMesh soup;
+    for (uint32_t t = 0; t < 600; ++t) {
+        const Vec3 centre(4 * u(rng), 4 * u(rng), 4 * u(rng));
+        const double size = t % 5 == 0 ? 2.0 : 0.3;
+        for (int k = 0; k < 3; ++k)
+            soup.positions.push_back(centre +
+                                     size * Vec3(u(rng), u(rng), 0.05 * double(t % 7) * u(rng)));
+        soup.triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
     }
+    const TriangleBvh bvh(soup);
+    for (int i = 0; i < 2000; ++i) {
+        const Vec3 p = (i % 2 ? 6.0 : 3.0) * Vec3(u(rng), u(rng), u(rng));
+        double expected = kInfinity;
+        for (const auto& tri : soup.triangles)
+            expected = std::min(expected, referenceTriangleDistance(p, soup.positions[tri[0]],
+                                                                    soup.positions[tri[1]],
+                                                                    soup.positions[tri[2]]));
+        ASSERT_NEAR(bvh.distance(p, 100.0), expected, 1e-12 * (1.0 + expected)) << i;
+        const auto& tri = soup.triangles[size_t(i) % soup.triangles.size()];
+        const Vec3 q = closestPointOnTriangle(p, soup.positions[tri[0]], soup.positions[tri[1]],
+                                              soup.positions[tri[2]]);
+        ASSERT_NEAR(glm::length(q - p),
+                    referenceTriangleDistance(p, soup.positions[tri[0]], soup.positions[tri[1]],
+                                              soup.positions[tri[2]]),
+                    1e-12)
+            << i;
+    }
+    // A degenerate triangle (three points on a line) is measured by its edges.
+    EXPECT_NEAR(glm::length(closestPointOnTriangle({0, 1, 0}, {-1, 0, 0}, {0, 0, 0}, {1, 0, 0}) -
+                            Vec3(0, 1, 0)),
+                1.0, 1e-15);
 }
 
 // Mesh at tolerance T and check the promises: manifold, outward, within T of the surface.

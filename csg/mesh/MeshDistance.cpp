@@ -160,16 +160,11 @@ DistanceStats surfaceToMesh(const Scene& scene, const TriangleMesh& mesh, const 
                 if (s.in.isSurface()) hits[count++] = s.in;
                 if (s.out.isSurface()) hits[count++] = s.out;
             }
-            // Step 3: the mesh along the normal (then the axes) from that point.
+            // Step 3: the Euclidean distance to the mesh, exact up to rounding (the mesh is
+            // explicit, unlike the surface: no line has to find it).
             for (int i = 0; i < count; ++i) {
                 const SurfacePoint sp = scene.surface(ray, hits[i]);
-                const double d = bestOfDirections(
-                    sp.normal, options.goodEnough, [&](const Vec3& dir, const Vec3& shift) {
-                        const auto t =
-                            bvh.nearestHit(sp.point + shift, dir, -options.reach, options.reach);
-                        return t ? std::fabs(*t) : kInfinity;
-                    });
-                acc[size_t(w)].add(sp.point, d);
+                acc[size_t(w)].add(sp.point, bvh.distance(sp.point, options.reach));
             }
         }
     });

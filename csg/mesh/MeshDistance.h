@@ -1,7 +1,9 @@
-// Sampled one-sided distances between a mesh and the exact surface of a scene, measured by
-// casting lines: the distance along any line from a point to a surface bounds the Euclidean
-// distance from above, so every figure here is an upper bound at its sample (the maximum is a
-// lower bound of the true one-sided Hausdorff distance only in that it is sampled).
+// Sampled one-sided distances between a mesh and the exact surface of a scene. Mesh to surface
+// is measured by casting lines (the surface is known only through its spans): the distance
+// along any line from a point to a surface bounds the Euclidean distance from above, so each
+// figure is an upper bound at its sample. Surface to mesh is the Euclidean distance from exact
+// surface points to the nearest triangle. Either maximum is a lower bound of the true one-sided
+// Hausdorff distance only in that it is sampled.
 #pragma once
 
 #include <cstdint>
@@ -39,7 +41,8 @@ DistanceStats meshToSurface(const Scene& scene, const TriangleMesh& mesh,
                             const DistanceOptions& options);
 
 // Surface to mesh: exact surface points from a grid of raysPerAxis^2 lines along each axis
-// through the scene's bounds, measured along the surface normal against the mesh's BVH.
+// through the scene's bounds, each at its Euclidean distance from the mesh (the BVH's nearest
+// triangle within options.reach).
 DistanceStats surfaceToMesh(const Scene& scene, const TriangleMesh& mesh, const TriangleBvh& bvh,
                             int raysPerAxis, const DistanceOptions& options);
 

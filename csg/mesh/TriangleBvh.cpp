@@ -8,34 +8,51 @@
 
 namespace csg {
 
-std::optional<double> rayTriangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b,
-                                  const Vec3& c) {
-    // Step 1: the axis of largest |d| becomes z; swapping x and y keeps the winding.
-    const Vec3 ad = glm::abs(d);
-    const int kz = ad.x >= ad.y ? (ad.x >= ad.z ? 0 : 2) : (ad.y >= ad.z ? 1 : 2);
-    int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
-    if (d[kz] < 0.0) std::swap(kx, ky);
-    const double sx = d[kx] / d[kz], sy = d[ky] / d[kz], sz = 1.0 / d[kz];
-
-    // Step 2: shear the vertices so the ray is the +z axis through the origin.
-    const Vec3 pa = a - o, pb = b - o, pc = c - o;
-    const double ax = pa[kx] - sx * pa[kz], ay = pa[ky] - sy * pa[kz];
-    const double bx = pb[kx] - sx * pb[kz], by = pb[ky] - sy * pb[kz];
-    const double cx = pc[kx] - sx * pc[kz], cy = pc[ky] - sy * pc[kz];
-
-    // Step 3: edge functions; computed the same way for both triangles of an edge, so a ray
-    // through the edge sees consistent signs (zero counts as inside for both).
-    const double u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
-    if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)) return std::nullopt;
-    const double det = u + v + w;
-    if (det == 0.0) return std::nullopt;
-
-    // Step 4: the scaled hit distance.
-    const double t = (u * sz * pa[kz] + v * sz * pb[kz] + w * sz * pc[kz]) / det;
-    return t;
+Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    // Ericson, Real-Time Collision Detection 5.1.5: find the Voronoi region of p among the
+    // vertices, edges and face by the signs of dot products, then project onto that feature.
+    const Vec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+    if (d1 <= 0.0 && d2 <= 0.0) return a;
+    const Vec3 bp = p - b;
+    const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+    if (d3 >= 0.0 && d4 <= d3) return b;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
+    const Vec3 cp = p - c;
+    const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+    if (d6 >= 0.0 && d5 <= d6) return c;
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
+        return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+    const double sum = va + vb + vc;
+    // A degenerate triangle (zero area) has no face region: every feature test above failed
+    // by rounding. Its nearest point lies on one of its edges.
+    if (!(sum > 0.0)) {
+        auto onSegment = [&](const Vec3& s, const Vec3& e) {
+            const Vec3 se = e - s;
+            const double len2 = glm::dot(se, se);
+            const double u = len2 > 0.0 ? std::clamp(glm::dot(p - s, se) / len2, 0.0, 1.0) : 0.0;
+            return s + u * se;
+        };
+        Vec3 best = onSegment(a, b);
+        for (const Vec3& q : {onSegment(b, c), onSegment(c, a)})
+            if (glm::dot(q - p, q - p) < glm::dot(best - p, best - p)) best = q;
+        return best;
+    }
+    return a + (vb / sum) * ab + (vc / sum) * ac;
 }
 
 namespace {
+
+// The squared distance from p to the nearest point of box (0 inside).
+double squaredDistanceToBox(const Vec3& p, const Bounds3& box) {
+    const Vec3 below = glm::max(box.lo - p, Vec3(0.0)), above = glm::max(p - box.hi, Vec3(0.0));
+    const Vec3 gap = below + above;
+    return glm::dot(gap, gap);
+}
 
 // Leaves hold up to this many triangles.
 constexpr uint32_t kLeafSize = 4;
@@ -131,39 +148,37 @@ void TriangleBvh::build(uint32_t begin, uint32_t end, uint32_t index, int parall
     nodes_[index] = {box, right, 0};
 }
 
-std::optional<double> TriangleBvh::nearestHit(const Vec3& o, const Vec3& d, double tmin,
-                                              double tmax) const {
-    if (nodes_.empty()) return std::nullopt;
-    const SlabRay slab(o, d);
-    double best = kInfinity;
-    std::optional<double> bestT;
+double TriangleBvh::distance(const Vec3& p, double reach) const {
+    // Depth first, the nearer child first, pruning boxes farther than the best so far.
+    double best2 = reach * reach;
+    bool found = false;
     uint32_t stack[64];
     int top = 0;
-    stack[top++] = 0;
+    if (!nodes_.empty() && squaredDistanceToBox(p, nodes_[0].box) <= best2) stack[top++] = 0;
     while (top > 0) {
         const Node& node = nodes_[stack[--top]];
-        double t0 = tmin, t1 = tmax;
-        if (!clipToBox(slab, node.box, t0, t1)) continue;
-        // The box cannot hold a hit nearer the origin than one already found.
-        const double nearest =
-            t0 <= 0.0 && t1 >= 0.0 ? 0.0 : std::min(std::fabs(t0), std::fabs(t1));
-        if (nearest >= best) continue;
+        if (squaredDistanceToBox(p, node.box) > best2) continue;
         if (node.count == 0) {
-            stack[top++] = node.first;
-            stack[top++] = uint32_t(&node - nodes_.data()) + 1;
+            const uint32_t left = uint32_t(&node - nodes_.data()) + 1, right = node.first;
+            const double dl = squaredDistanceToBox(p, nodes_[left].box),
+                         dr = squaredDistanceToBox(p, nodes_[right].box);
+            // Pushed last, popped first.
+            stack[top++] = dl <= dr ? right : left;
+            stack[top++] = dl <= dr ? left : right;
             continue;
         }
         for (uint32_t i = node.first; i < node.first + node.count; ++i) {
             const auto& tri = mesh_.triangles[order_[i]];
-            const auto t = rayTriangle(o, d, mesh_.positions[tri[0]], mesh_.positions[tri[1]],
-                                       mesh_.positions[tri[2]]);
-            if (t && *t >= tmin && *t <= tmax && std::fabs(*t) < best) {
-                best = std::fabs(*t);
-                bestT = t;
+            const Vec3 q = closestPointOnTriangle(p, mesh_.positions[tri[0]],
+                                                  mesh_.positions[tri[1]], mesh_.positions[tri[2]]);
+            const double d2 = glm::dot(q - p, q - p);
+            if (d2 <= best2) {
+                best2 = d2;
+                found = true;
             }
         }
     }
-    return bestT;
+    return found ? std::sqrt(best2) : kInfinity;
 }
 
 }  // namespace csg

@@ -1,10 +1,11 @@
-// A bounding volume hierarchy over the triangles of a mesh, answering "where does this line
-// first meet the mesh" with a watertight ray-triangle test (Woop, Benthin and Wald 2013): a
-// ray through a shared edge or vertex hits at least one of the triangles there, never none.
+// A bounding volume hierarchy over the triangles of a mesh, answering "how far is this point
+// from the mesh": the Euclidean distance to the nearest triangle, exact up to rounding. (A
+// watertight line query measured the same thing as an upper bound along a few lines, and at a
+// narrow wedge between two parts every line ran far before meeting the mesh: 0.0388 where the
+// nearest triangle was 0.0093 away, on csg_grid3.)
 #pragma once
 
 #include <cstdint>
-#include <optional>
 #include <utility>
 #include <vector>
 
@@ -19,10 +20,9 @@ public:
     // all cores); the tree is the same for any thread count.
     explicit TriangleBvh(const TriangleMesh& mesh, int threads = 0);
 
-    // The hit parameter of smallest |t| among the mesh's crossings of o + t d with t in
-    // [tmin, tmax] (tmin may be negative: both directions), or nothing. Thread-safe; no
-    // allocation.
-    std::optional<double> nearestHit(const Vec3& o, const Vec3& d, double tmin, double tmax) const;
+    // The Euclidean distance from p to the nearest point of the mesh's triangles, or +inf when
+    // none lies within reach. Thread-safe; no allocation.
+    double distance(const Vec3& p, double reach) const;
 
 private:
     struct Node {
@@ -49,9 +49,7 @@ private:
     std::vector<std::pair<uint32_t, uint32_t>> nodeCounts_;
 };
 
-// The watertight test: t of the crossing of o + t d with triangle (a, b, c), either side, or
-// nothing when the line misses or lies in the triangle's plane.
-std::optional<double> rayTriangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b,
-                                  const Vec3& c);
+// The point of triangle (a, b, c) nearest p (a degenerate triangle: of its edges).
+Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
 }  // namespace csg
