@@ -1,5 +1,5 @@
-// Mesh export (csg/mesh/): cell topology, QEF, manifold dual contouring, the watertight BVH and
-// every sample meshed within its tolerance.
+// Mesh export (csg/mesh/): cell topology, QEF, manifold dual contouring, the triangle BVH's
+// distances and every sample meshed within its tolerance.
 #include <gtest/gtest.h>
 
 #include <filesystem>
