@@ -99,8 +99,7 @@ int main(int argc, char** argv) {
         for (long i = 0; i < lines; ++i) {
             Vec3 p;
             if (i % 2 == 0) {
-                p = Vec3(rng.uniform(box.lo.x, box.hi.x), rng.uniform(box.lo.y, box.hi.y),
-                         rng.uniform(box.lo.z, box.hi.z));
+                p = rng.inBox(box.lo, box.hi);
             } else {
                 const double angle = rng.uniform(0.0, 6.283185307179586);
                 p = Vec3(std::cos(angle), std::sin(angle), 0.0) +
