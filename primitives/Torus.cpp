@@ -35,13 +35,12 @@ struct TubeLine {
     Vec3 b, u;
     double R, r;
     double a;       // u.x^2 + u.y^2
+    double cross;   // c = b.x u.y - b.y u.x
     double cross2;  // c^2
 
     TubeLine(const Vec3& base, const Vec3& unit, double majorRadius, double minorRadius)
-        : b(base), u(unit), R(majorRadius), r(minorRadius), a(unit.x * unit.x + unit.y * unit.y) {
-        const double c = base.x * unit.y - base.y * unit.x;
-        cross2 = c * c;
-    }
+        : b(base), u(unit), R(majorRadius), r(minorRadius), a(unit.x * unit.x + unit.y * unit.y),
+          cross(base.x * unit.y - base.y * unit.x), cross2(cross * cross) {}
 
     // G and its derivatives at s. side != 0 asks for the one-sided limit of G' at the point
     // where a line across the axis meets it (rho = 0, a kink of rho): from larger s (+1) or
@@ -238,7 +237,6 @@ void Torus::tubeSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, doub
     const double R = majorRadius, r = minorRadius;
     const TubeLine line(b, u, R, r);
     const double a = line.a;
-    const double cross = b.x * u.y - b.y * u.x;
 
     // Step 3: the pieces of convexity. The line comes closest to the axis at s0, at distance
     // m = |c| / sqrt(a); G is concave where rho^3 < R c^2, i.e. |s - s0| < w, which needs
@@ -247,7 +245,7 @@ void Torus::tubeSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, doub
     int nCuts = 0;
     cuts[nCuts++] = sLo;
     double s0 = 0.0, w = -1.0;
-    if (a > 0.0 && std::abs(cross) < R * a * std::sqrt(a)) {
+    if (a > 0.0 && std::abs(line.cross) < R * a * std::sqrt(a)) {
         const double m2 = line.cross2 / a;
         const double rhoI = std::cbrt(R * line.cross2);
         s0 = -(b.x * u.x + b.y * u.y) / a;
