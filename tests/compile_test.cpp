@@ -6,6 +6,7 @@
 #include <random>
 
 #include "csg/Scene.h"
+#include "tests/SeededRng.h"
 
 namespace csg {
 namespace {
@@ -176,12 +177,11 @@ TEST(Compile, LeavesTurnedByAxisPermutationsMatchTheirOwnMatrices) {
     const Scene scene = Scene::compile(transformed(general, part));
 
     QueryContext ctx;
-    std::mt19937_64 rng(11);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    testing::Rng rng(11);
     int cylinderEnds = 0, checked = 0;
     for (int r = 0; r < 4000; ++r) {
-        const Vec3 target = Vec3(0.3, -0.2, 0.1) + 0.7 * Vec3(u(rng), u(rng), u(rng));
-        const Vec3 origin = 6.0 * glm::normalize(Vec3(u(rng), u(rng), u(rng)));
+        const Vec3 target = Vec3(0.3, -0.2, 0.1) + 0.7 * rng.inBox(Vec3(-1.0), Vec3(1.0));
+        const Vec3 origin = 6.0 * rng.unit();
         const Ray ray{origin, target - origin};
         const auto spans = scene.spans(ray, ctx);
         double gapStart = 0.0;
