@@ -350,11 +350,6 @@ TEST(Torus, ClosedFormQuarticConfirmsOrdinaryRays) {
 
 using rootref::Big;
 
-// The torus quartic F along o + t d, expanded exactly (to 50 digits) from the double inputs.
-std::vector<Big> torusQuarticBig(const Torus& torus, const Vec3& o, const Vec3& d) {
-    return rootref::torusQuartic(torus.majorRadius, torus.minorRadius, o, d);
-}
-
 // Span ends of random lines against the real roots of the exact quartic of the same double
 // line: the relative error of t, over lines whose roots are at least 1e-4 of the torus size
 // apart (a closer pair is a near-tangency, conditioned like sqrt(ulp) in any method). Also
@@ -378,7 +373,9 @@ TEST(Torus, SpanEndsAgainstFiftyDigitReference) {
                                 rng.unit() * (1.2 * shape.minorRadius * rng.uniform());
             const Vec3 d = glm::normalize(target - o) * std::pow(10.0, rng.uniform(-1, 1));
             const double reach = 8.0 * size / glm::length(d);
-            std::vector<Big> want = rootref::realRoots(torusQuarticBig(shape, o, d), -reach, reach);
+            // The torus quartic F along the line, expanded exactly (to 50 digits).
+            std::vector<Big> want = rootref::realRoots(
+                rootref::torusQuartic(shape.majorRadius, shape.minorRadius, o, d), -reach, reach);
             bool separated = want.size() % 2 == 0;
             for (size_t k = 0; k + 1 < want.size(); ++k)
                 separated &= (want[k + 1] - want[k]) * glm::length(d) > 1e-4 * size;
