@@ -213,8 +213,7 @@ TEST(Torus, RandomLinesAgreeWithInside) {
         const Bounds3 box = torus.bounds();
         for (int i = 0; i < 20000; ++i) {
             // A line through a random point of the bounds, random direction and length.
-            const Vec3 p(rng.uniform(box.lo.x, box.hi.x), rng.uniform(box.lo.y, box.hi.y),
-                         rng.uniform(box.lo.z, box.hi.z));
+            const Vec3 p = rng.inBox(box.lo, box.hi);
             const Vec3 d = rng.unit() * std::pow(10.0, rng.uniform(-2, 2));
             const Vec3 o = p - 3.0 / glm::length(d) * d;
             const LocalSpans s = spansOf(torus, o, d);
@@ -286,8 +285,7 @@ TEST(Torus, FarRaysNeedTheOriginMoved) {
         // A camera 1e4 radii away aiming at a random point of the bounds.
         const Vec3 eye = rng.unit() * 1e4;
         const Bounds3 box = torus.bounds();
-        const Vec3 target(rng.uniform(box.lo.x, box.hi.x), rng.uniform(box.lo.y, box.hi.y),
-                          rng.uniform(box.lo.z, box.hi.z));
+        const Vec3 target = rng.inBox(box.lo, box.hi);
         const Vec3 u = glm::normalize(target - eye);
         const double approach = closestApproach(torus, eye, u);
         if (std::abs(approach) < 1e-6) continue;  // too close to tangent to judge in double
@@ -336,9 +334,8 @@ TEST(Torus, ClosedFormQuarticConfirmsOrdinaryRays) {
     int unconfirmed = 0;
     const int kLines = 20000;
     for (int i = 0; i < kLines; ++i) {
-        const Vec3 o(rng.uniform(-6, 6), rng.uniform(-6, 6), rng.uniform(0, 12));
-        const Vec3 u =
-            glm::normalize(Vec3(rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-1, 1)) - o);
+        const Vec3 o = rng.inBox(Vec3(-6.0, -6.0, 0.0), Vec3(6.0, 6.0, 12.0));
+        const Vec3 u = glm::normalize(rng.inBox(Vec3(-3.0, -3.0, -1.0), Vec3(3.0, 3.0, 1.0)) - o);
         const Vec3 b = o - glm::dot(o, u) * u;
         solveQuarticAll(torus.quarticAlong(b, u), roots, &verified);
         if (!verified) ++unconfirmed;
