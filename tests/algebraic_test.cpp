@@ -147,6 +147,14 @@ Reference reference(const SurfaceClass& c, const Vec3& o, const Vec3& d,
 
 using testing::Rng;
 
+// A ray origin: 4 units from the centre in a random direction, moved by a point of the unit
+// ball. Two statements, so the draw order (direction first, as gcc evaluated the former
+// one-expression form) does not depend on the compiler.
+Vec3 randomOrigin(Rng& rng) {
+    const Vec3 away = 4.0 * glm::normalize(rng.inBall());
+    return rng.inBall() + away;
+}
+
 struct Tally {
     long rays = 0, ambiguous = 0, wrong = 0, tangencyMisses = 0, slivers = 0;
     std::vector<double> errors;
@@ -239,7 +247,7 @@ TEST(Algebraic, EverySolverAgainstTheClosedFormReference) {
         std::vector<AlgebraicSurface::Chord> chords;
         std::vector<Reference> refs;
         while (int(chords.size()) < rays) {
-            const Vec3 o = rng.inBall() + 4.0 * glm::normalize(rng.inBall());
+            const Vec3 o = randomOrigin(rng);
             const Vec3 d = 1.5 * rng.inBall() - o;
             AlgebraicSurface::Chord ch;
             if (!s.chord(o, d, ch)) continue;
@@ -334,7 +342,7 @@ TEST(Algebraic, SplitTangenciesGiveNoSliverSpans) {
         const AlgebraicSurface s = AlgebraicSurface::make(*sphere(1.0).power(k), kBox);
         long spans = 0;
         for (int i = 0; i < rays; ++i) {
-            const Vec3 o = rng.inBall() + 4.0 * glm::normalize(rng.inBall());
+            const Vec3 o = randomOrigin(rng);
             spans += long(spansOf(s, o, 1.5 * rng.inBall() - o).size());
         }
         EXPECT_EQ(spans, 0) << "(r^2 - 1)^" << k << " over " << rays << " rays";
