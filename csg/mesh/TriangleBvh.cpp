@@ -149,22 +149,32 @@ void TriangleBvh::build(uint32_t begin, uint32_t end, uint32_t index, int parall
 }
 
 double TriangleBvh::distance(const Vec3& p, double reach) const {
-    // Depth first, the nearer child first, pruning boxes farther than the best so far.
+    // Depth first, the nearer child first, pruning boxes farther than the best so far. A box
+    // is measured once, when its parent is visited; it is skipped then if already too far, and
+    // again when popped if a nearer triangle was found meanwhile.
     double best2 = reach * reach;
     bool found = false;
-    uint32_t stack[64];
+    struct Entry {
+        uint32_t node;
+        double d2;  // squared distance from p to the node's box
+    };
+    Entry stack[64];
     int top = 0;
-    if (!nodes_.empty() && squaredDistanceToBox(p, nodes_[0].box) <= best2) stack[top++] = 0;
+    if (!nodes_.empty()) {
+        const double d2 = squaredDistanceToBox(p, nodes_[0].box);
+        if (d2 <= best2) stack[top++] = {0, d2};
+    }
     while (top > 0) {
-        const Node& node = nodes_[stack[--top]];
-        if (squaredDistanceToBox(p, node.box) > best2) continue;
+        const Entry entry = stack[--top];
+        if (entry.d2 > best2) continue;
+        const Node& node = nodes_[entry.node];
         if (node.count == 0) {
-            const uint32_t left = uint32_t(&node - nodes_.data()) + 1, right = node.first;
-            const double dl = squaredDistanceToBox(p, nodes_[left].box),
-                         dr = squaredDistanceToBox(p, nodes_[right].box);
+            const Entry left{entry.node + 1, squaredDistanceToBox(p, nodes_[entry.node + 1].box)};
+            const Entry right{node.first, squaredDistanceToBox(p, nodes_[node.first].box)};
+            const bool leftFirst = left.d2 <= right.d2;
             // Pushed last, popped first.
-            stack[top++] = dl <= dr ? right : left;
-            stack[top++] = dl <= dr ? left : right;
+            for (const Entry& child : {leftFirst ? right : left, leftFirst ? left : right})
+                if (child.d2 <= best2) stack[top++] = child;
             continue;
         }
         for (uint32_t i = node.first; i < node.first + node.count; ++i) {
