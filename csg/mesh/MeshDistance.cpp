@@ -151,20 +151,20 @@ DistanceStats surfaceToMesh(const Scene& scene, const TriangleMesh& mesh, const 
             ray.d[a] = 1.0;
             ray.tmin = 0.0;
             ray.tmax = size[a] + 2.0;
-            // Step 2: each surface span end is an exact surface point with its normal. The span
-            // list lives in ctx until the next query, so copy the few hits out first.
-            Hit hits[64];
+            // Step 2: each surface span end is an exact surface point. The span list lives in
+            // ctx until the next query, so copy the few hits' parameters out first.
+            double hits[64];
             int count = 0;
             for (const Span& s : scene.spans(ray, ctx[size_t(w)])) {
                 if (count + 2 > 64) break;
-                if (s.in.isSurface()) hits[count++] = s.in;
-                if (s.out.isSurface()) hits[count++] = s.out;
+                if (s.in.isSurface()) hits[count++] = s.in.t;
+                if (s.out.isSurface()) hits[count++] = s.out.t;
             }
             // Step 3: the Euclidean distance to the mesh, exact up to rounding (the mesh is
-            // explicit, unlike the surface: no line has to find it).
+            // explicit, unlike the surface: no line has to find it, and no normal is needed).
             for (int i = 0; i < count; ++i) {
-                const SurfacePoint sp = scene.surface(ray, hits[i]);
-                acc[size_t(w)].add(sp.point, bvh.distance(sp.point, options.reach));
+                const Vec3 point = ray.at(hits[i]);
+                acc[size_t(w)].add(point, bvh.distance(point, options.reach));
             }
         }
     });
