@@ -11,6 +11,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <optional>
 #include <vector>
 
@@ -435,11 +436,10 @@ TriangleMesh simplify(const TriangleMesh& mesh, double maxDeviation, SimplifySta
     const size_t nv = mesh.positions.size(), nt = mesh.triangles.size();
     Piece whole;
     whole.positions = mesh.positions;
-    whole.quadrics.assign(nv, Quadric());
-    for (Quadric& q : whole.quadrics) q.clear();
+    whole.quadrics.assign(nv, Quadric());  // zero: no plane yet
     whole.locked.assign(nv, 0);
     whole.source.resize(nv);
-    for (size_t v = 0; v < nv; ++v) whole.source[v] = uint32_t(v);
+    std::iota(whole.source.begin(), whole.source.end(), 0u);
     whole.triangles = mesh.triangles;
     whole.materials =
         mesh.triangleMaterial.empty() ? std::vector<uint32_t>(nt, 0u) : mesh.triangleMaterial;
