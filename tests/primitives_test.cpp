@@ -163,7 +163,12 @@ Line randomLine(Rng& rng, const P& prim, double size) {
     const Vec3 c = box.center(), h = 1.5 * box.extent() + Vec3(0.1 * size);
     Line line;
     line.o = rng.inBox(c - h, c + h);
-    if (rng.chance(0.05)) line.o = c + rng.unit() * size * std::pow(10.0, rng.uniform(1.0, 4.0));
+    if (rng.chance(0.05)) {
+        // One draw per statement, the distance first (gcc's order for the former one
+        // expression, so each seed keeps its lines; now the same on every compiler).
+        const double far = std::pow(10.0, rng.uniform(1.0, 4.0));
+        line.o = c + rng.unit() * size * far;
+    }
     if (rng.chance(0.5)) {
         for (int tries = 0; tries < 1000; ++tries) {
             const Vec3 p = rng.inBox(box.lo, box.hi);
@@ -243,10 +248,12 @@ TEST(CylinderProperty, RandomLinesAgreeWithInside) {
             Line line{rng.inBox(lo, hi), direction(rng)};
             const double a = rng.uniform(0.0, 2 * kPi);
             switch (rng.index(6)) {
-                case 0:  // parallel to the axis, sometimes on the axis or on the lateral surface
-                    line.d = Vec3(0.0, 0.0, rng.chance(0.5) ? 1.0 : -1.0) * magnitude(rng);
+                case 0: {  // parallel to the axis, sometimes on the axis or on the lateral surface
+                    const double m = magnitude(rng);  // drawn first, as gcc did
+                    line.d = Vec3(0.0, 0.0, rng.chance(0.5) ? 1.0 : -1.0) * m;
                     if (rng.chance(0.3)) line.o.x = line.o.y = 0.0;
                     break;
+                }
                 case 1:  // parallel to the caps, sometimes in a cap plane
                     line.d.z = 0.0;
                     if (rng.chance(0.5)) line.o.z = rng.chance(0.5) ? 0.0 : h;
@@ -265,8 +272,11 @@ TEST(CylinderProperty, RandomLinesAgreeWithInside) {
                     break;
                 }
                 default:  // starting on a cap
-                    line.o = Vec3(rng.inBall().x * rMax, rng.inBall().y * rMax,
-                                  rng.chance(0.5) ? 0.0 : h);
+                    // One draw per statement, in gcc's former order: the cap, then y and x
+                    // (each from a point of the ball).
+                    line.o.z = rng.chance(0.5) ? 0.0 : h;
+                    line.o.y = rng.inBall().y * rMax;
+                    line.o.x = rng.inBall().x * rMax;
                     break;
             }
             if (line.d == Vec3(0.0)) line.d.z = 1.0;
@@ -321,7 +331,8 @@ TEST(HalfSpaceProperty, RandomLinesAgreeWithInside) {
         Vec3 o = rng.inBox(Vec3(-3.0), Vec3(3.0)), d = direction(rng);
         if (rng.chance(0.3)) {
             // Small-integer normals with a direction exactly parallel to the plane.
-            const Vec3 n(rng.index(5) - 2, rng.index(5) - 2, rng.index(5) - 2);
+            Vec3 n;  // drawn z first, as gcc evaluated the former Vec3(...) arguments
+            for (int a = 2; a >= 0; --a) n[a] = rng.index(5) - 2;
             hs.planeNormal = n == Vec3(0.0) ? Vec3(0.0, 0.0, 1.0) : n;
             const Vec3& m = hs.planeNormal;
             d = (m.x != 0.0 || m.y != 0.0 ? Vec3(m.y, -m.x, 0.0) : Vec3(1.0, 0.0, 0.0)) *
@@ -340,7 +351,8 @@ TEST(HalfSpaceProperty, RandomLinesAgreeWithInside) {
                 continue;
             }
         } else {
-            hs.planeNormal = rng.unit() * std::pow(10.0, rng.uniform(-2.0, 2.0));
+            const double length = std::pow(10.0, rng.uniform(-2.0, 2.0));  // drawn first
+            hs.planeNormal = rng.unit() * length;
             hs.offset = rng.uniform(-1.0, 1.0) * glm::length(hs.planeNormal);
         }
         const std::string err = checkHalfSpaceLine(hs, o, d, 1.0);
@@ -548,7 +560,8 @@ double sphereEndError(double r, double distance, Move move, uint64_t seed) {
     double worst = 0.0;
     for (int i = 0; i < 2000; ++i) {
         const Vec3 o = rng.unit() * distance;
-        const Vec3 d = (0.9 * r * rng.inBall() - o) * (magnitude(rng) / distance);
+        const double scale = magnitude(rng) / distance;  // drawn first
+        const Vec3 d = (0.9 * r * rng.inBall() - o) * scale;
         double tIn = 0.0, tOut = 0.0;
         EXPECT_TRUE(referenceChord(r, o, d, tIn, tOut));
         double tShift = 0.0, tEnd;
@@ -657,7 +670,7 @@ TEST(Normals, UnitOutwardAndDefinedAtTheApex) {
     EXPECT_EQ(Cylinder({2.0, 1.0, 0.0}).normal({0, 0, 2}, 0), Vec3(0, 0, 1));
     EXPECT_EQ(Cylinder({2.0, 0.0, 1.0}).normal({0, 0, 0}, 0), Vec3(0, 0, -1));
     for (int i = 0; i < 200; ++i) {
-        HalfSpace hs{rng.unit() * magnitude(rng), rng.uniform(-1.0, 1.0)};
+        HalfSpace hs{direction(rng), rng.uniform(-1.0, 1.0)};
         const Vec3 n = hs.planeNormal;
         const Vec3 onPlane = n * (hs.offset / glm::dot(n, n)) + glm::cross(n, rng.unit());
         expectOutwardUnitNormal(hs, onPlane, 0, 1.0);
@@ -671,11 +684,18 @@ Mat4 randomAffine(Rng& rng) {
     shear[1][0] = rng.uniform(-1.0, 1.0);
     shear[2][0] = rng.uniform(-1.0, 1.0);
     shear[2][1] = rng.uniform(-1.0, 1.0);
-    const Vec3 scale(rng.uniform(0.1, 10.0), rng.uniform(0.1, 10.0), rng.uniform(0.1, 10.0));
-    const Mat4 m = glm::translate(Mat4(1.0), rng.inBox(Vec3(-10.0), Vec3(10.0))) *
-                   glm::rotate(Mat4(1.0), rng.uniform(0.0, 6.3), rng.unit()) * shear *
-                   glm::scale(Mat4(1.0), scale) *
-                   glm::rotate(Mat4(1.0), rng.uniform(0.0, 6.3), rng.unit());
+    // One draw per statement, in the order gcc evaluated the former one-expression form (so
+    // each seed keeps its matrices), now the same on every compiler.
+    Vec3 scale;
+    for (int a = 2; a >= 0; --a) scale[a] = rng.uniform(0.1, 10.0);
+    const Vec3 axisFirst = rng.unit();
+    const double angleFirst = rng.uniform(0.0, 6.3);
+    const Vec3 axisLast = rng.unit();
+    const double angleLast = rng.uniform(0.0, 6.3);
+    const Vec3 shift = rng.inBox(Vec3(-10.0), Vec3(10.0));
+    const Mat4 m = glm::translate(Mat4(1.0), shift) * glm::rotate(Mat4(1.0), angleLast, axisLast) *
+                   shear * glm::scale(Mat4(1.0), scale) *
+                   glm::rotate(Mat4(1.0), angleFirst, axisFirst);
     return m;
 }
 
