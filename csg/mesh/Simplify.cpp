@@ -53,7 +53,8 @@ constexpr double kLengthPriority = 1e-4;
 // vertex, the valence cap), so the link condition and the fan run only for the rest. A
 // candidate is legal and rated exactly when it was before (the same tests, in another order).
 // valence and find_halfedge shadow OpenMesh's out-of-line versions for the decimater's own
-// tests.
+// tests. Walks around a vertex step from one outgoing halfedge to the next by OpenMesh's inline
+// cw_rotated_halfedge_handle (the next halfedge of the opposite one).
 class OmMesh : public OpenMesh::TriMesh_ArrayKernelT<SimplifyTraits> {
 public:
     OpenMesh::VPropHandleT<Quadric> quadrics;  // the planes merged into each vertex
@@ -75,7 +76,7 @@ public:
         HalfedgeHandle h = first;
         do {
             ++n;
-            h = next_halfedge_handle(opposite_halfedge_handle(h));
+            h = cw_rotated_halfedge_handle(h);
         } while (h != first);
         return n;
     }
@@ -86,7 +87,7 @@ public:
         HalfedgeHandle h = first;
         do {
             if (to_vertex_handle(h) == to) return h;
-            h = next_halfedge_handle(opposite_halfedge_handle(h));
+            h = cw_rotated_halfedge_handle(h);
         } while (h != first);
         return HalfedgeHandle();
     }
@@ -130,7 +131,7 @@ public:
             do {
                 ringMark_[size_t(to_vertex_handle(h).idx())] = mark_;
                 ++valences;
-                h = next_halfedge_handle(opposite_halfedge_handle(h));
+                h = cw_rotated_halfedge_handle(h);
             } while (h != first);
         }
         {
@@ -140,7 +141,7 @@ public:
                 const VertexHandle w = to_vertex_handle(h);
                 if (ringMark_[size_t(w.idx())] == mark_ && w != vl && w != vr) return false;
                 ++valences;
-                h = next_halfedge_handle(opposite_halfedge_handle(h));
+                h = cw_rotated_halfedge_handle(h);
             } while (h != first);
         }
         if (valences > kMaxValence + 4) return false;
@@ -213,7 +214,7 @@ public:
                 if (nearest > m.maxSquared)
                     nearest = std::min(nearest, distanceSquaredToTriangle(p0, p1, b, c));
             }
-            h = m.next_halfedge_handle(m.opposite_halfedge_handle(h));
+            h = m.cw_rotated_halfedge_handle(h);
         } while (h != first);
         if (nearest > m.maxSquared) return float(Base::ILLEGAL_COLLAPSE);
         return float(error + kLengthPriority * glm::dot(p1 - p0, p1 - p0));
