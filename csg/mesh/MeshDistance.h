@@ -18,18 +18,21 @@ struct DistanceStats {
     uint64_t samples = 0;
     double max = 0.0;  // world units; +inf when some sample found nothing within reach
     double mean = 0.0;
-    Vec3 worst{0.0};          // the sample point of max
-    uint64_t unresolved = 0;  // samples with no crossing within reach along any direction
+    Vec3 worst{0.0};  // the sample point of max
+    // Samples with nothing within reach: mesh to surface, no crossing along any direction;
+    // surface to mesh, no triangle.
+    uint64_t unresolved = 0;
 };
 
 struct DistanceOptions {
-    // Lines reach this far on each side of a sample (world units). Farther surfaces count as
-    // unresolved (distance +inf).
+    // Lines reach this far on each side of a sample (world units); surface to mesh, the
+    // nearest triangle is searched this far. Farther surfaces count as unresolved (distance
+    // +inf).
     double reach = 1.0;
-    // The tolerance the figures will be judged against (world units). Within
-    // tol::kDistanceFirstLineFraction of it, the first line's answer is taken; above, the three
-    // axes and four body diagonals are tried as well and the smallest answer kept (a sample near
-    // a crease whose normal line runs almost along the surface).
+    // Mesh to surface only: the tolerance the figures will be judged against (world units).
+    // Within tol::kDistanceFirstLineFraction of it, the first line's answer is taken; above, the
+    // three axes and four body diagonals are tried as well and the smallest answer kept (a sample
+    // near a crease whose normal line runs almost along the surface).
     double goodEnough = 0.0;
     int threads = 0;
 };
