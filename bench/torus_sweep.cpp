@@ -102,10 +102,13 @@ int main(int argc, char** argv) {
                 p = rng.inBox(box.lo, box.hi);
             } else {
                 const double angle = rng.uniform(0.0, 6.283185307179586);
-                p = Vec3(std::cos(angle), std::sin(angle), 0.0) +
-                    rng.unit() * (1.2 * r * rng.uniform());
+                const double offset = 1.2 * r * rng.uniform();  // drawn first, as gcc did
+                p = Vec3(std::cos(angle), std::sin(angle), 0.0) + rng.unit() * offset;
             }
-            const Vec3 d = rng.unit() * std::pow(10.0, rng.uniform(-2, 2));
+            // One draw per statement (the length first, as gcc did), so that the lines do not
+            // depend on the compiler's evaluation order.
+            const double length = std::pow(10.0, rng.uniform(-2, 2));
+            const Vec3 d = rng.unit() * length;
             // From 3 torus sizes before p to 3 after: both ends outside the bounds.
             const double reach = 3.0 * size / glm::length(d);
             checkLine(autoTorus, quarticTorus, p - reach * d, d, 2.0 * reach, rng, tally);

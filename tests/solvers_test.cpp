@@ -207,7 +207,8 @@ Roots tangent(Rng& rng, int degree) {
 Roots wideRange(Rng& rng, int degree) {
     Roots r;
     while (int(r.real.size()) < degree) {
-        const double x = std::ldexp(double(rng.integer(32, 63)), rng.integer(-17, 7));
+        const int exponent = rng.integer(-17, 7);  // drawn first, as gcc did
+        const double x = std::ldexp(double(rng.integer(32, 63)), exponent);
         const double s = rng.integer(0, 1) ? x : -x;
         if (std::find(r.real.begin(), r.real.end(), s) == r.real.end()) r.real.push_back(s);
     }

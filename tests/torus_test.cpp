@@ -214,7 +214,8 @@ TEST(Torus, RandomLinesAgreeWithInside) {
         for (int i = 0; i < 20000; ++i) {
             // A line through a random point of the bounds, random direction and length.
             const Vec3 p = rng.inBox(box.lo, box.hi);
-            const Vec3 d = rng.unit() * std::pow(10.0, rng.uniform(-2, 2));
+            const double length = std::pow(10.0, rng.uniform(-2, 2));  // drawn first, as gcc did
+            const Vec3 d = rng.unit() * length;
             const Vec3 o = p - 3.0 / glm::length(d) * d;
             const LocalSpans s = spansOf(torus, o, d);
             // Sample points; a point clearly inside (or outside) a span must agree with
@@ -366,8 +367,10 @@ TEST(Torus, SpanEndsAgainstFiftyDigitReference) {
             const Vec3 o = rng.unit() * (3.0 * size);
             // Aimed near the tube, so that thin tori are hit as often as thick ones.
             const double angle = rng.uniform(0.0, 6.283185307179586);
+            // Drawn before the unit vector, as gcc evaluated the former one expression.
+            const double offset = 1.2 * shape.minorRadius * rng.uniform();
             const Vec3 target = shape.majorRadius * Vec3(std::cos(angle), std::sin(angle), 0.0) +
-                                rng.unit() * (1.2 * shape.minorRadius * rng.uniform());
+                                rng.unit() * offset;
             const Vec3 d = glm::normalize(target - o) * std::pow(10.0, rng.uniform(-1, 1));
             const double reach = 8.0 * size / glm::length(d);
             // The torus quartic F along the line, expanded exactly (to 50 digits).
