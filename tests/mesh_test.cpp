@@ -211,10 +211,15 @@ TEST(TriangleBvh, DistanceIsTheNearestTrianglesEuclideanDistance) {
                     1e-12)
             << i;
     }
-    // A degenerate triangle (three points on a line) is measured by its edges.
-    EXPECT_NEAR(glm::length(closestPointOnTriangle({0, 1, 0}, {-1, 0, 0}, {0, 0, 0}, {1, 0, 0}) -
-                            Vec3(0, 1, 0)),
-                1.0, 1e-15);
+    // Triangles of zero area are measured by their edges: three points on a line, and a
+    // repeated corner (Ericson's edge region of a == b would divide 0 by 0).
+    const Vec3 p(0.3, 1, 0), a(-1, 0, 0), b(0, 0, 0), c(1, 0, 0);
+    for (const auto& [u, v, w] : {std::array<Vec3, 3>{a, b, c}, std::array<Vec3, 3>{b, b, c},
+                                  std::array<Vec3, 3>{c, b, b}, std::array<Vec3, 3>{b, c, c}}) {
+        const Vec3 q = closestPointOnTriangle(p, u, v, w);
+        EXPECT_NEAR(glm::length(q - p), glm::length(p - Vec3(0.3, 0, 0)), 1e-15)
+            << q.x << " " << q.y << " " << q.z;
+    }
 }
 
 // Mesh at tolerance T and check the promises: manifold, outward, within T of the surface.

@@ -49,7 +49,7 @@ private:
     std::vector<std::pair<uint32_t, uint32_t>> nodeCounts_;
 };
 
-// The point of triangle (a, b, c) nearest p (a degenerate triangle: of its edges).
+// The point of triangle (a, b, c) nearest p (of a triangle of zero area: of its edges).
 Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
 }  // namespace csg
