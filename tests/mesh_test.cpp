@@ -398,7 +398,7 @@ TEST(ThinFeatures, PlanesResolveGapsAndWallsThinnerThanACell) {
         DistanceOptions d;
         d.reach = 2 * h;
         d.goodEnough = 1e-9;
-        EXPECT_LT(surfaceToMesh(*scene, mesh, bvh, 64, d).max, 1e-9);
+        EXPECT_LT(surfaceToMesh(*scene, bvh, 64, d).max, 1e-9);
     }
 }
 
@@ -521,7 +521,7 @@ TEST(MeshDistance, GrazingNormalLinesDoNotInflateAndDisplacedMeshesAreCaught) {
     EXPECT_GE(far.mean, shift * (1.0 - 1e-9));
     EXPECT_GT(far.max, tol);
     const TriangleBvh bvh(grown);
-    EXPECT_GE(surfaceToMesh(scene, grown, bvh, 16, options).mean, shift * (1.0 - 1e-9));
+    EXPECT_GE(surfaceToMesh(scene, bvh, 16, options).mean, shift * (1.0 - 1e-9));
 }
 
 TEST(Tessellate, SphereWithinTolerance) {
@@ -627,7 +627,7 @@ TEST(Tessellate, EverySampleMeshesWithinTolerance) {
         DistanceOptions d;
         d.reach = 4 * c.result.cellSize;
         d.goodEnough = tol;
-        const DistanceStats back = surfaceToMesh(scene, c.result.mesh, bvh, 96, d);
+        const DistanceStats back = surfaceToMesh(scene, bvh, 96, d);
         EXPECT_LE(back.max, tol) << "surface to mesh at " << back.worst.x << "," << back.worst.y
                                  << "," << back.worst.z;
         std::printf(

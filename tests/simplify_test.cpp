@@ -111,7 +111,7 @@ TEST_F(SimplifyBlocks, ManifoldWithinBudgetAndBordersKept) {
         // Within the budget of the exact surface, both ways (what tessellate() checks).
         const double to = meshToSurface(*scene_, coarse, measure).max;
         const TriangleBvh bvh(coarse);
-        const double back = surfaceToMesh(*scene_, coarse, bvh, 64, measure).max;
+        const double back = surfaceToMesh(*scene_, bvh, 64, measure).max;
         EXPECT_LE(to, gridError + budget);
         EXPECT_LE(back, gridError + budget);
     }

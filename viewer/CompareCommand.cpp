@@ -115,7 +115,7 @@ int compareCommand(std::span<const std::string> args) {
     options.reach = std::max(10.0 * tolerance, diagonal / 50.0);
     const csg::DistanceStats toSurface = csg::meshToSurface(part.scene, mesh, options);
     const csg::TriangleBvh bvh(mesh);
-    const csg::DistanceStats toMesh = csg::surfaceToMesh(part.scene, mesh, bvh, samples, options);
+    const csg::DistanceStats toMesh = csg::surfaceToMesh(part.scene, bvh, samples, options);
     const bool within =
         toSurface.max <= tolerance && toMesh.max <= tolerance && topo.closedManifold() && outward;
 

@@ -128,9 +128,8 @@ DistanceStats meshToSurface(const Scene& scene, const TriangleMesh& mesh,
     return merge(acc);
 }
 
-DistanceStats surfaceToMesh(const Scene& scene, const TriangleMesh& mesh, const TriangleBvh& bvh,
-                            int raysPerAxis, const DistanceOptions& options) {
-    (void)mesh;
+DistanceStats surfaceToMesh(const Scene& scene, const TriangleBvh& bvh, int raysPerAxis,
+                            const DistanceOptions& options) {
     const Bounds3 box = scene.bounds();
     if (box.empty() || !box.finite() || raysPerAxis <= 0) return {};
     const int workers = resolveThreads(options.threads);

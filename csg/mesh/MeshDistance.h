@@ -46,7 +46,7 @@ DistanceStats meshToSurface(const Scene& scene, const TriangleMesh& mesh,
 // Surface to mesh: exact surface points from a grid of raysPerAxis^2 lines along each axis
 // through the scene's bounds, each at its Euclidean distance from the mesh (the BVH's nearest
 // triangle within options.reach).
-DistanceStats surfaceToMesh(const Scene& scene, const TriangleMesh& mesh, const TriangleBvh& bvh,
-                            int raysPerAxis, const DistanceOptions& options);
+DistanceStats surfaceToMesh(const Scene& scene, const TriangleBvh& bvh, int raysPerAxis,
+                            const DistanceOptions& options);
 
 }  // namespace csg

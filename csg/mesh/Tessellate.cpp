@@ -55,7 +55,7 @@ void simplifyWithinBudget(const Scene& scene, TessellateResult& result,
         const DistanceStats to = meshToSurface(scene, coarse, measure);
         if (!(to.max <= allowedTo)) continue;
         const TriangleBvh bvh(coarse);
-        const DistanceStats back = surfaceToMesh(scene, coarse, bvh, kSurfaceRaysPerAxis, measure);
+        const DistanceStats back = surfaceToMesh(scene, bvh, kSurfaceRaysPerAxis, measure);
         if (!(back.max <= allowedBack)) continue;
         result.mesh = std::move(coarse);
         result.error = to;
@@ -156,7 +156,7 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
         record.toSurfaceSeconds = lap();
         const TriangleBvh bvh(result.mesh, options.threads);
         record.bvhSeconds = lap();
-        result.backError = surfaceToMesh(scene, result.mesh, bvh, kSurfaceRaysPerAxis, measure);
+        result.backError = surfaceToMesh(scene, bvh, kSurfaceRaysPerAxis, measure);
         record.backSeconds = lap();
         const double worst = std::max(result.error.max, result.backError.max);
         result.toleranceMet = worst <= tolerance;
