@@ -39,8 +39,13 @@ struct TubeLine {
     double cross2;  // c^2
 
     TubeLine(const Vec3& base, const Vec3& unit, double majorRadius, double minorRadius)
-        : b(base), u(unit), R(majorRadius), r(minorRadius), a(unit.x * unit.x + unit.y * unit.y),
-          cross(base.x * unit.y - base.y * unit.x), cross2(cross * cross) {}
+        : b(base),
+          u(unit),
+          R(majorRadius),
+          r(minorRadius),
+          a(unit.x * unit.x + unit.y * unit.y),
+          cross(base.x * unit.y - base.y * unit.x),
+          cross2(cross * cross) {}
 
     // G and its derivatives at s. side != 0 asks for the one-sided limit of G' at the point
     // where a line across the axis meets it (rho = 0, a kink of rho): from larger s (+1) or

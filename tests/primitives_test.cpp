@@ -44,7 +44,9 @@ constexpr double kDeep = 1e-6;
 using testing::Rng;
 
 // A magnitude from 1e-3 to 1e3, uniform in its logarithm.
-double magnitude(Rng& rng) { return std::pow(10.0, rng.uniform(-3.0, 3.0)); }
+double magnitude(Rng& rng) {
+    return std::pow(10.0, rng.uniform(-3.0, 3.0));
+}
 // Random orientation, magnitude from 1e-3 to 1e3. The magnitude is drawn first, as gcc
 // evaluated the former `unit() * magnitude()`, so each seed keeps its lines.
 Vec3 direction(Rng& rng) {
