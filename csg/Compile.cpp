@@ -192,7 +192,7 @@ struct Compiler {
         const Mat4 localFromWorld = glm::inverse(worldFromLocal);
         if (!isFinite(localFromWorld))
             throw CompileError("the accumulated transform cannot be inverted", node.tags.source);
-        LeafGeometry geometry{node.primitive, Affine(localFromWorld), {}};
+        LeafGeometry geometry{node.primitive, {}};
         setFrame(geometry, placement, node);
         Bounds3 box;
         std::visit(
@@ -217,7 +217,8 @@ struct Compiler {
             node.primitive);
         const uint32_t index = static_cast<uint32_t>(scene.leaves_.size());
         scene.leaves_.push_back(geometry);
-        scene.frames_.push_back({worldFromLocal, glm::transpose(Mat3(localFromWorld)), node.tags});
+        scene.frames_.push_back({Affine(localFromWorld), worldFromLocal,
+                                 glm::transpose(Mat3(localFromWorld)), node.tags});
         return addNode({NodeKind::Leaf, false, box, index});
     }
 

@@ -12,8 +12,9 @@ namespace csg {
 inline constexpr uint32_t kNoNode = std::numeric_limits<uint32_t>::max();
 
 // A leaf with its transforms flattened, split by who reads it: the ray loop touches only the
-// hot part (what it needs to solve), so a million leaves cost ~256 bytes each in the cache
-// (sizeof(LeafGeometry) on x86-64) instead of ~460; surface() and accessors read the cold part.
+// hot part (what it needs to solve), so a million leaves cost ~160 bytes each in the cache
+// (sizeof(LeafGeometry) on x86-64) instead of ~460; surface(), inside() and accessors read the
+// cold part.
 //
 // Leaves share a *frame group*: the frame of the nearest transform above them that is not a
 // signed axis permutation plus a shift (rotate by multiples of 90 degrees, mirror, translate,
@@ -23,7 +24,6 @@ inline constexpr uint32_t kNoNode = std::numeric_limits<uint32_t>::max();
 // transform and one reciprocal of d for five leaves instead of five.
 struct LeafGeometry {
     Primitive shape;
-    Affine localFromWorld;  // for surface() and inside(); the ray loop uses the frame group
     Bounds3 localBounds;    // where the ray origin is moved before solving
     uint32_t frame = 0;     // index into Scene::frameFromWorld_
     // Local from frame, when not the identity (permuted): component j of a local point is
@@ -35,6 +35,7 @@ struct LeafGeometry {
 };
 
 struct LeafFrame {
+    Affine localFromWorld;  // for surface() and inside(); the ray loop uses the frame group
     Mat4 worldFromLocal;
     Mat3 normalFromLocal;  // inverse transpose of worldFromLocal's linear part
     Tags tags;

@@ -13,10 +13,11 @@ SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
     SurfacePoint sp{ray.at(hit.t), Vec3(0.0)};
     if (!hit.isSurface()) return sp;
     const LeafGeometry& leaf = leaves_[hit.leaf];
-    const Vec3 local = transformPoint(leaf.localFromWorld, sp.point);
+    const LeafFrame& frame = frames_[hit.leaf];
+    const Vec3 local = transformPoint(frame.localFromWorld, sp.point);
     const Vec3 n =
         std::visit([&](const auto& shape) { return shape.normal(local, hit.face); }, leaf.shape);
-    const Vec3 world = frames_[hit.leaf].normalFromLocal * n;
+    const Vec3 world = frame.normalFromLocal * n;
     const double len = glm::length(world);
     sp.normal = len > 0.0 ? world / len : n;
     if (hit.flipped) sp.normal = -sp.normal;
@@ -28,15 +29,16 @@ SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
 namespace {
 
 bool insideNode(const std::vector<CompiledNode>& nodes, const std::vector<LeafGeometry>& leaves,
-                const std::vector<uint32_t>& children, uint32_t index, const Vec3& p) {
+                const std::vector<LeafFrame>& frames, const std::vector<uint32_t>& children,
+                uint32_t index, const Vec3& p) {
     const CompiledNode& node = nodes[index];
     if (!node.bounds.contains(p)) return false;
-    auto inside = [&](uint32_t i) { return insideNode(nodes, leaves, children, i, p); };
+    auto inside = [&](uint32_t i) { return insideNode(nodes, leaves, frames, children, i, p); };
     switch (node.kind) {
         case NodeKind::Leaf: {
-            const LeafGeometry& leaf = leaves[node.first];
-            const Vec3 local = transformPoint(leaf.localFromWorld, p);
-            return std::visit([&](const auto& shape) { return shape.inside(local); }, leaf.shape);
+            const Vec3 local = transformPoint(frames[node.first].localFromWorld, p);
+            return std::visit([&](const auto& shape) { return shape.inside(local); },
+                              leaves[node.first].shape);
         }
         case NodeKind::Union:
             for (uint32_t i = 0; i < node.count; ++i)
@@ -53,7 +55,7 @@ bool insideNode(const std::vector<CompiledNode>& nodes, const std::vector<LeafGe
 }  // namespace
 
 bool Scene::inside(const Vec3& p) const {
-    return insideNode(nodes_, leaves_, children_, root_, p);
+    return insideNode(nodes_, leaves_, frames_, children_, root_, p);
 }
 
 Bounds3 Scene::bounds() const {
