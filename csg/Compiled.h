@@ -24,8 +24,8 @@ inline constexpr uint32_t kNoNode = std::numeric_limits<uint32_t>::max();
 // transform and one reciprocal of d for five leaves instead of five.
 struct LeafGeometry {
     Primitive shape;
-    Bounds3 localBounds;    // where the ray origin is moved before solving
-    uint32_t frame = 0;     // index into Scene::frameFromWorld_
+    Bounds3 localBounds;  // where the ray origin is moved before solving
+    uint32_t frame = 0;   // index into Scene::frameFromWorld_
     // Local from frame, when not the identity (permuted): component j of a local point is
     // sign[j] * p[axis[j]] + offset[j] for the frame point p, of a vector sign[j] * v[axis[j]].
     bool permuted = false;
