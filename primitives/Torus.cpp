@@ -30,13 +30,14 @@ double radial(double x, double y) {
 // concave on the one interval around the line's nearest approach to the axis where
 // rho^3 < R c^2, so its critical points, one at most per piece, cut the line into monotone
 // pieces that hold one root each. The one evaluator of G: the tube path, and the quartic path's
-// polish and sliver test.
+// polish and sliver test. Built once per ray by spans(), whose cheap test reads a, c and s0 too.
 struct TubeLine {
     Vec3 b, u;
     double R, r;
-    double a;       // u.x^2 + u.y^2
-    double cross;   // c = b.x u.y - b.y u.x
-    double cross2;  // c^2
+    double a;        // u.x^2 + u.y^2
+    double cross;    // c = b.x u.y - b.y u.x
+    double cross2;   // c^2
+    double nearest;  // s0 = -(b.x u.x + b.y u.y) / a: the nearest approach to the axis (a > 0)
 
     TubeLine(const Vec3& base, const Vec3& unit, double majorRadius, double minorRadius)
         : b(base),
@@ -45,7 +46,8 @@ struct TubeLine {
           r(minorRadius),
           a(unit.x * unit.x + unit.y * unit.y),
           cross(base.x * unit.y - base.y * unit.x),
-          cross2(cross * cross) {}
+          cross2(cross * cross),
+          nearest(a > 0.0 ? -(base.x * unit.x + base.y * unit.y) / a : 0.0) {}
 
     // G and its derivatives at s. side != 0 asks for the one-sided limit of G' at the point
     // where a line across the axis meets it (rho = 0, a kink of rho): from larger s (+1) or
@@ -191,56 +193,14 @@ Polynomial Torus::quarticAlong(const Vec3& b, const Vec3& u) const {
                       4.0 * e * e + 2.0 * g - 4.0 * R2 * a, 4.0 * e, 1.0};
 }
 
-void Torus::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
-    const double R = majorRadius, r = minorRadius;
-    const double len = glm::length(d);
-    if (!(len > 0.0) || !std::isfinite(len)) return;
-    const Vec3 u = d / len;
+namespace {
 
-    // Step 1: move to the point of the line nearest the centre, so every coefficient is of
-    // the size of the torus (the caller's shift to the bounds entry already did most of it).
-    const double tBase = -glm::dot(o, d) / (len * len);
-    const Vec3 b = pointOnLine(o, d, tBase);
-
-    // Step 2: the cheap test: the line against the slab |z| <= r and the cylinder
-    // x^2 + y^2 <= (R + r)^2, as an s range; empty means a miss without the quartic.
-    double sLo = -kInfinity, sHi = kInfinity;
-    if (u.z != 0.0) {
-        const double s0 = (-r - b.z) / u.z, s1 = (r - b.z) / u.z;
-        sLo = std::min(s0, s1), sHi = std::max(s0, s1);
-    } else if (std::abs(b.z) > r) {
-        return;
-    }
-    const double a = u.x * u.x + u.y * u.y;
-    if (a > 0.0) {
-        // The line's horizontal projection passes the axis at distance m = |c| / sqrt(a),
-        // c = b.x u.y - b.y u.x, nearest at s = -(b.x u.x + b.y u.y) / a, and is within R + r
-        // of it for |s - that| <= sqrt(((R + r)^2 - m^2) / a): no quadratic to solve.
-        const double outer = R + r;
-        const double m = std::abs(b.x * u.y - b.y * u.x) / std::sqrt(a);
-        if (!(m <= outer)) return;
-        const double nearest = -(b.x * u.x + b.y * u.y) / a;
-        const double half = std::sqrt((outer - m) * (outer + m) / a);
-        sLo = std::max(sLo, nearest - half), sHi = std::min(sHi, nearest + half);
-    } else if (radial(b.x, b.y) > R + r) {
-        return;
-    }
-    if (!(sLo <= sHi)) return;
-    // Widen so that roots on the range's ends (the torus touches the slab and the cylinder)
-    // are not lost to the quartic's rounding.
-    const double widen = tol::kTorusRangeMargin * (R + r);
-    sLo -= widen, sHi += widen;
-
-    if (solver == Solver::Auto)
-        tubeSpans(b, u, sLo, sHi, tBase, len, out);
-    else
-        quarticSpans(b, u, sLo, sHi, tBase, len, out);
-}
-
-void Torus::tubeSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, double tBase,
-                      double len, LocalSpans& out) const {
-    const double R = majorRadius, r = minorRadius;
-    const TubeLine line(b, u, R, r);
+// Steps 3-5 of spans() on the line b + s u, |u| = 1 (built once by spans()), inside [sLo, sHi]
+// (the bounds), for t = tBase + s / len: the tube form's monotone pieces (Solver::Auto), or the
+// quartic by the solver asked for.
+void tubeSpans(const Torus& torus, const TubeLine& line, double sLo, double sHi, double tBase,
+               double len, LocalSpans& out) {
+    const double R = torus.majorRadius, r = torus.minorRadius;
     const double a = line.a;
 
     // Step 3: the pieces of convexity. The line comes closest to the axis at s0, at distance
@@ -253,7 +213,7 @@ void Torus::tubeSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, doub
     if (a > 0.0 && std::abs(line.cross) < R * a * std::sqrt(a)) {
         const double m2 = line.cross2 / a;
         const double rhoI = std::cbrt(R * line.cross2);
-        s0 = -(b.x * u.x + b.y * u.y) / a;
+        s0 = line.nearest;
         w = std::sqrt(std::max(0.0, rhoI * rhoI - m2) / a);
         for (const double c : {s0 - w, s0 + w})
             if (c > cuts[nCuts - 1] && c < sHi) cuts[nCuts++] = c;
@@ -318,15 +278,14 @@ void Torus::tubeSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, doub
         out.add(tBase + ends[i] / len, 0, tBase + ends[i + 1] / len, 0);
 }
 
-void Torus::quarticSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, double tBase,
-                         double len, LocalSpans& out) const {
+void quarticSpans(const Torus& torus, const TubeLine& line, double sLo, double sHi, double tBase,
+                  double len, LocalSpans& out) {
     // The quartic's roots in range; F > 0 at both ends of the range (outside), so
     // the solid is between roots 0-1 and 2-3. An odd count (a root lost to rounding) is
     // judged by F between the roots instead.
-    const Polynomial quartic = quarticAlong(b, u);
-    const TubeLine line(b, u, majorRadius, minorRadius);
+    const Polynomial quartic = torus.quarticAlong(line.b, line.u);
     double roots[4];
-    const int n = solve(quartic, sLo, sHi, roots, solver);
+    const int n = solve(quartic, sLo, sHi, roots, torus.solver);
     for (int i = 0; i < n; ++i) {
         if (isTangency(roots, n, i)) continue;
         const double lo = i > 0 ? 0.5 * (roots[i - 1] + roots[i]) : sLo;
@@ -357,6 +316,54 @@ void Torus::quarticSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, d
     for (int i = 0; i + 1 < n; ++i)
         if (quartic(0.5 * roots[i] + 0.5 * roots[i + 1]) < 0.0)
             out.add(tBase + roots[i] / len, 0, tBase + roots[i + 1] / len, 0);
+}
+
+}  // namespace
+
+void Torus::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
+    const double R = majorRadius, r = minorRadius;
+    const double len = glm::length(d);
+    if (!(len > 0.0) || !std::isfinite(len)) return;
+    const Vec3 u = d / len;
+
+    // Step 1: move to the point of the line nearest the centre, so every coefficient is of
+    // the size of the torus (the caller's shift to the bounds entry already did most of it).
+    const double tBase = -glm::dot(o, d) / (len * len);
+    const Vec3 b = pointOnLine(o, d, tBase);
+
+    // Step 2: the cheap test: the line against the slab |z| <= r and the cylinder
+    // x^2 + y^2 <= (R + r)^2, as an s range; empty means a miss without the quartic.
+    double sLo = -kInfinity, sHi = kInfinity;
+    if (u.z != 0.0) {
+        const double s0 = (-r - b.z) / u.z, s1 = (r - b.z) / u.z;
+        sLo = std::min(s0, s1), sHi = std::max(s0, s1);
+    } else if (std::abs(b.z) > r) {
+        return;
+    }
+    const TubeLine line(b, u, R, r);
+    const double a = line.a;
+    if (a > 0.0) {
+        // The line's horizontal projection passes the axis at distance m = |c| / sqrt(a),
+        // c = b.x u.y - b.y u.x, nearest at s0 = -(b.x u.x + b.y u.y) / a, and is within R + r
+        // of it for |s - s0| <= sqrt(((R + r)^2 - m^2) / a): no quadratic to solve.
+        const double outer = R + r;
+        const double m = std::abs(line.cross) / std::sqrt(a);
+        if (!(m <= outer)) return;
+        const double half = std::sqrt((outer - m) * (outer + m) / a);
+        sLo = std::max(sLo, line.nearest - half), sHi = std::min(sHi, line.nearest + half);
+    } else if (radial(b.x, b.y) > R + r) {
+        return;
+    }
+    if (!(sLo <= sHi)) return;
+    // Widen so that roots on the range's ends (the torus touches the slab and the cylinder)
+    // are not lost to the quartic's rounding.
+    const double widen = tol::kTorusRangeMargin * (R + r);
+    sLo -= widen, sHi += widen;
+
+    if (solver == Solver::Auto)
+        tubeSpans(*this, line, sLo, sHi, tBase, len, out);
+    else
+        quarticSpans(*this, line, sLo, sHi, tBase, len, out);
 }
 
 bool Torus::inside(const Vec3& p) const {

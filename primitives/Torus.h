@@ -37,15 +37,6 @@ struct Torus {
     // The torus quartic along o + s u, |u| = 1, solved as is (no origin shift, no bounding
     // test): exposed so tests can show what moving the origin is worth.
     Polynomial quarticAlong(const Vec3& o, const Vec3& u) const;
-
-private:
-    // Steps 3-5 of spans() on the line b + s u, |u| = 1, inside [sLo, sHi] (the bounds), for
-    // t = tBase + s / len: the tube form's monotone pieces (Solver::Auto), or the quartic by
-    // the solver asked for.
-    void tubeSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, double tBase, double len,
-                   LocalSpans& out) const;
-    void quarticSpans(const Vec3& b, const Vec3& u, double sLo, double sHi, double tBase,
-                      double len, LocalSpans& out) const;
 };
 
 }  // namespace csg
