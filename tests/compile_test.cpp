@@ -147,6 +147,48 @@ TEST(Compile, BvhMakesNodeVisitsLogarithmic) {
     EXPECT_GT(large, 0.0);
 }
 
+// The box tests the BVH makes redundant are skipped, and only those. A skipped test only saves
+// work (a wrong flag still finds the same spans), so the counts are what pins the rules. Four unit
+// cubes centred at x = 0, 3, 6, 9: the binned SAH splits them 2 | 2 (cost 0.5 + (9 + 9) / 21
+// against 0.5 + (3 + 45) / 21 for 1 | 3; half areas 3, 9, 15, 21 for 1 to 4 cubes), then each pair
+// 1 | 1 (0.5 + 6 / 9 < 2), so the BVH is root -> {A: cubes 0, 1; B: cubes 2, 3} with one cube
+// per leaf. A ray along +y through a cube's centre meets only the BVH nodes over that cube.
+// spans() through cube 0: the root union's own box is not tested (the BVH root's is the same);
+// the BVH root, A, B, leaf 0 and leaf 1 are (the children of each node the ray enters): 5
+// visits; cube 0's own box is not tested again (leaf 0's is the same): cube 0 is solved, 1 test.
+// Testing either box again would make 6 visits.
+TEST(Compile, BoxTestsTheBvhImpliesAreSkipped) {
+    std::vector<NodePtr> cubes;
+    for (int i = 0; i < 4; ++i)
+        cubes.push_back(transformed(translation(3.0 * i, 0, 0),
+                                    leaf(Box{Vec3(-0.5, -0.5, -0.5), Vec3(0.5, 0.5, 0.5)})));
+    const Scene scene = Scene::compile(uniteAll(cubes));
+    const auto along = [](double x) { return Ray{{x, -5, 0}, {0, 1, 0}}; };
+
+    QueryContext ctx;
+    const auto spans = scene.spans(along(0.0), ctx);
+    ASSERT_EQ(spans.size(), 1u);
+    EXPECT_EQ(spans[0].in.t, 4.5);
+    EXPECT_EQ(spans[0].out.t, 5.5);
+    EXPECT_EQ(ctx.stats.nodeVisits, 5u);
+    EXPECT_EQ(ctx.stats.primitiveTests, 1u);
+
+    // occluded() with an object cache. First, empty: the BVH root, A and leaf 0 are tested
+    // (3 visits), cube 0 is solved (1 test) and answers; the search stops and caches it.
+    ObjectCache cache;
+    ctx.stats = {};
+    EXPECT_TRUE(scene.occluded(along(0.0), ctx, cache));
+    EXPECT_EQ(ctx.stats.nodeVisits, 3u);
+    EXPECT_EQ(ctx.stats.primitiveTests, 1u);
+    // Through cube 1: the cached cube 0 is tried outside the BVH walk, so its own box is tested
+    // (1 visit, a miss: not solved); then the BVH root, A, leaf 0 (a miss) and leaf 1: 5 visits,
+    // cube 1 solved. Skipping cube 0's test would make 4 visits.
+    ctx.stats = {};
+    EXPECT_TRUE(scene.occluded(along(3.0), ctx, cache));
+    EXPECT_EQ(ctx.stats.nodeVisits, 5u);
+    EXPECT_EQ(ctx.stats.primitiveTests, 1u);
+}
+
 // A map with exact 0 and +-1 entries: column j is sign[j] times axis to[j], then a shift.
 Mat4 axisMap(std::array<int, 3> to, std::array<double, 3> sign, Vec3 shift) {
     Mat4 m(0.0);
