@@ -14,7 +14,6 @@
 // read CPU time on a shared machine.
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -22,7 +21,6 @@
 #include <string>
 #include <vector>
 
-#include "csg/Tolerances.h"
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/Simplify.h"
 #include "csg/mesh/Tessellate.h"
@@ -128,13 +126,7 @@ int main(int argc, char** argv) {
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         grid = r.mesh;
-        // The budget of tessellate()'s first try (Tessellate.cpp, simplifyWithinBudget).
-        const double target = csg::tol::kMeshMeasureMargin * r.tolerance;
-        const double back = std::isfinite(r.backError.max) ? r.backError.max : 0.0;
-        const double worst = std::max(r.error.max, back);
-        gridBudget = worst <= target
-                         ? std::max(target - worst, csg::tol::kSimplifyMinBudget * r.tolerance)
-                         : csg::tol::kSimplifyFlatBudget * r.tolerance;
+        gridBudget = csg::firstSimplifyBudget(r);  // the budget of tessellate()'s first try
         std::printf("grid mesh: %zu triangles, T %.6g, measured %.6g / %.6g, %d passes, %.2f s\n",
                     grid.triangles.size(), r.tolerance, r.error.max, r.backError.max, r.passes,
                     seconds);

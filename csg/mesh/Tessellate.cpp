@@ -22,15 +22,31 @@ TriangleMesh tessellateAt(const Scene& scene, double h, int threads, uint64_t* r
 
 namespace {
 
+// The worst measured error of the grid's mesh that a simplification budget is drawn from. An
+// unresolved surface-to-mesh sample (+inf: a gap the grid fused, HermiteGrid::thinEdges) is not
+// a budget the collapses could spend; the finite figures are.
+double worstMeasured(const TessellateResult& grid) {
+    const double finiteBack = std::isfinite(grid.backError.max) ? grid.backError.max : 0.0;
+    return std::max(grid.error.max, finiteBack);
+}
+
+}  // namespace
+
+double firstSimplifyBudget(const TessellateResult& grid) {
+    const double target = tol::kMeshMeasureMargin * grid.tolerance;
+    const double worst = worstMeasured(grid);
+    return worst <= target ? std::max(target - worst, tol::kSimplifyMinBudget * grid.tolerance)
+                           : tol::kSimplifyFlatBudget * grid.tolerance;
+}
+
+namespace {
+
 // The simplification step of tessellate() (see Tessellate.h); result holds the grid's mesh and
 // its measurements, and keeps them unless a simplified mesh measures within bounds.
 void simplifyWithinBudget(const Scene& scene, TessellateResult& result,
                           const DistanceOptions& measure) {
     const double target = tol::kMeshMeasureMargin * result.tolerance;
-    // An unresolved surface-to-mesh sample (+inf: a gap the grid fused, HermiteGrid::thinEdges)
-    // is not a budget the collapses could spend; the finite figures are.
-    const double finiteBack = std::isfinite(result.backError.max) ? result.backError.max : 0.0;
-    const double worst = std::max(result.error.max, finiteBack);
+    const double worst = worstMeasured(result);
     // A grid mesh over the margin leaves only the flat-only pass. When refinement gave up on
     // the margin (the cell cap, or a stall at thin gaps), that mesh is the largest the part
     // gets and on csg_grid3 the pass took 2.7x the whole export for 25% fewer triangles: it
@@ -43,9 +59,7 @@ void simplifyWithinBudget(const Scene& scene, TessellateResult& result,
         double budget, bound;
     };
     std::vector<Try> tries;
-    if (worst <= target)
-        tries.push_back(
-            {std::max(target - worst, tol::kSimplifyMinBudget * result.tolerance), target});
+    if (worst <= target) tries.push_back({firstSimplifyBudget(result), target});
     tries.push_back({tol::kSimplifyFlatBudget * result.tolerance, result.tolerance});
     for (const auto [budget, bound] : tries) {
         const double allowedTo = std::max(bound, result.error.max);

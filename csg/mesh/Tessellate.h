@@ -97,6 +97,12 @@ struct TessellateResult {
 // gives an empty mesh with toleranceMet = true.
 TessellateResult tessellate(const Scene& scene, const TessellateOptions& options);
 
+// The error budget of the first simplification try for a grid mesh measured as in `grid`
+// (tolerance, error, backError): kMeshMeasureMargin T minus the worst measured error, at least
+// kSimplifyMinBudget T, when the mesh is within the margin; else the flat-only pass's
+// kSimplifyFlatBudget T. tessellate() uses it; exposed so benchmarks simplify as it does.
+double firstSimplifyBudget(const TessellateResult& grid);
+
 // One pass at a given spacing: grid (with thin-feature planes), Hermite data, contouring. For
 // tests and benchmarks.
 TriangleMesh tessellateAt(const Scene& scene, double h, int threads, uint64_t* rays = nullptr,
