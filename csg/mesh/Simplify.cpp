@@ -17,6 +17,7 @@
 
 #include "csg/Tolerances.h"
 #include "csg/mesh/ParallelFor.h"
+#include "csg/mesh/TriangleBvh.h"
 
 namespace csg {
 
@@ -158,29 +159,6 @@ Vec3 toVec(const OmMesh::Point& p) {
     return {p[0], p[1], p[2]};
 }
 
-// Squared distance from p to triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
-double distanceSquaredToTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
-    auto sq = [&](const Vec3& q) { return glm::dot(p - q, p - q); };
-    if (d1 <= 0.0 && d2 <= 0.0) return sq(a);
-    const Vec3 bp = p - b;
-    const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
-    if (d3 >= 0.0 && d4 <= d3) return sq(b);
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return sq(a + ab * (d1 / (d1 - d3)));
-    const Vec3 cp = p - c;
-    const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
-    if (d6 >= 0.0 && d5 <= d6) return sq(c);
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return sq(a + ac * (d2 / (d2 - d6)));
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0)
-        return sq(b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))));
-    const double denom = 1.0 / (va + vb + vc);
-    return sq(a + ab * (vb * denom) + ac * (vc * denom));
-}
-
 // The one priority module: see Simplify.h for the rules it enforces. The valence cap and the
 // quadric bound are tested by OmMesh::is_collapse_ok, which the decimater asks first.
 template <class MeshT>
@@ -211,8 +189,10 @@ public:
                 if (!(la > 0.0)) return float(Base::ILLEGAL_COLLAPSE);
                 if (lb > 0.0 && glm::dot(before, after) < tol::kSimplifyMaxFanTurnCos * lb * la)
                     return float(Base::ILLEGAL_COLLAPSE);
-                if (nearest > m.maxSquared)
-                    nearest = std::min(nearest, distanceSquaredToTriangle(p0, p1, b, c));
+                if (nearest > m.maxSquared) {
+                    const Vec3 gap = closestPointOnTriangle(p0, p1, b, c) - p0;
+                    nearest = std::min(nearest, glm::dot(gap, gap));
+                }
             }
             h = m.cw_rotated_halfedge_handle(h);
         } while (h != first);
