@@ -64,11 +64,11 @@ void simplifyWithinBudget(const Scene& scene, TessellateResult& result,
     for (const auto [budget, bound] : tries) {
         const double allowedTo = std::max(bound, result.error.max);
         const double allowedBack = std::max(bound, result.backError.max);
-        TriangleMesh coarse = simplify(result.mesh, budget);
+        TriangleMesh coarse = simplify(result.mesh, budget, nullptr, measure.threads);
         if (coarse.triangles.size() == result.mesh.triangles.size()) return;
         const DistanceStats to = meshToSurface(scene, coarse, measure);
         if (!(to.max <= allowedTo)) continue;
-        const TriangleBvh bvh(coarse);
+        const TriangleBvh bvh(coarse, measure.threads);
         const DistanceStats back = surfaceToMesh(scene, bvh, kSurfaceRaysPerAxis, measure);
         if (!(back.max <= allowedBack)) continue;
         result.mesh = std::move(coarse);
