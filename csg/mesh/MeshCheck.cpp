@@ -30,26 +30,32 @@ MeshTopology checkTopology(const TriangleMesh& mesh) {
                                                degenerate};
     }
 
+    // Per vertex, sorts of its own corners only, so the work is T log(valence), also where a
+    // loaded mesh has a vertex of very high valence (a cone's apex).
+    struct End {
+        uint32_t w;
+        bool forward;
+    };
+    std::vector<End> ends;
     for (size_t v = 0; v < mesh.positions.size(); ++v) {
         const uint32_t first = start[v], last = start[v + 1];
         if (first == last) continue;
 
         // Step 2: classify each undirected edge {v, w} with w > v by its uses in the corners
-        // of v (a vertex has few; no global sort): v -> w runs it forward, w -> v backward.
+        // of v: v -> w (a corner's next) runs it forward, w -> v (its prev) backward.
+        ends.clear();
         for (uint32_t i = first; i < last; ++i) {
             if (corners[i].degenerate) continue;
-            for (const uint32_t w : {corners[i].next, corners[i].prev}) {
-                if (w <= v) continue;
-                bool seen = false;  // counted at an earlier corner of v
-                for (uint32_t j = first; j < i && !seen; ++j)
-                    seen = !corners[j].degenerate && (corners[j].next == w || corners[j].prev == w);
-                if (seen) continue;
-                uint32_t uses = 0, forward = 0;
-                for (uint32_t j = i; j < last; ++j) {
-                    if (corners[j].degenerate) continue;
-                    forward += corners[j].next == w;
-                    uses += (corners[j].next == w) + (corners[j].prev == w);
-                }
+            ends.push_back({corners[i].next, true});
+            ends.push_back({corners[i].prev, false});
+        }
+        std::sort(ends.begin(), ends.end(), [](const End& a, const End& b) { return a.w < b.w; });
+        for (size_t i = 0; i < ends.size();) {
+            size_t k = i;
+            uint32_t forward = 0;
+            for (; k < ends.size() && ends[k].w == ends[i].w; ++k) forward += ends[k].forward;
+            const size_t uses = k - i;
+            if (ends[i].w > v) {
                 ++topo.edges;
                 if (uses == 1)
                     ++topo.boundaryEdges;
@@ -58,34 +64,40 @@ MeshTopology checkTopology(const TriangleMesh& mesh) {
                 else if (forward != 1)
                     ++topo.misorientedEdges;
             }
+            i = k;
         }
 
         // Step 3: v is a disk when the edges opposite it in its triangles form one chain: walk
         // the fan from next to prev and check that it reaches every triangle of the vertex.
         // Two corners leaving from the same next vertex make the walk ambiguous: not a disk.
+        // The walk starts at v's first corner in triangle order (on a messy fan the verdict
+        // can depend on where it starts), then the corners are sorted for the lookups.
+        const uint32_t begin = corners[first].next;
+        const auto byNext = [](const Corner& a, const Corner& b) { return a.next < b.next; };
+        std::sort(corners.begin() + first, corners.begin() + last, byNext);
         const uint32_t count = last - first;
         bool bad = false;
-        for (uint32_t i = first; i < last && !bad; ++i)
-            for (uint32_t j = first; j < i && !bad; ++j) bad = corners[j].next == corners[i].next;
+        for (uint32_t i = first + 1; i < last && !bad; ++i)
+            bad = corners[i - 1].next == corners[i].next;
         if (bad) {
             ++topo.nonManifoldVertices;
             continue;
         }
-        // Walk from the first triangle; on an open fan (a boundary) the walk ends early too,
+        // On an open fan (a boundary) the walk ends early too,
         // which boundaryEdges already reports, so only closed vertices are judged here.
         auto after = [&](uint32_t at) -> const Corner* {
-            for (uint32_t i = first; i < last; ++i)
-                if (corners[i].next == at) return &corners[i];
-            return nullptr;
+            const auto it = std::lower_bound(corners.begin() + first, corners.begin() + last,
+                                             Corner{at, 0, false}, byNext);
+            return it != corners.begin() + last && it->next == at ? &*it : nullptr;
         };
-        uint32_t steps = 0, at = corners[first].next;
+        uint32_t steps = 0, at = begin;
         do {
             const Corner* c = after(at);
             if (!c) break;
             at = c->prev;
             ++steps;
-        } while (at != corners[first].next && steps <= count);
-        if (at == corners[first].next && steps != count) ++topo.nonManifoldVertices;
+        } while (at != begin && steps <= count);
+        if (at == begin && steps != count) ++topo.nonManifoldVertices;
     }
     return topo;
 }
