@@ -116,9 +116,9 @@ Reference reference(const SurfaceClass& c, const Vec3& o, const Vec3& d,
     // closer than kMergeGap, or with |p| at their midpoint within its rounding noise (a pair
     // of multiple roots whose flat valley between them is below the noise). A midpoint value
     // within 1000 noise levels, or a gap below kResolvedGap, is a grey zone: ambiguous.
-    auto noiseRatio = [&](double a, double b) {
+    auto noiseRatio = [&](double lo, double hi) {
         double bound;
-        const double v = ch.poly.eval(0.5 * a + 0.5 * b, &bound);
+        const double v = ch.poly.eval(0.5 * lo + 0.5 * hi, &bound);
         return bound > 0.0 ? std::abs(v) / bound : kInfinity;
     };
     for (size_t i = 0; i < roots.size();) {
