@@ -8,8 +8,11 @@
 // Both then run Gauss-Newton on |S(u, v) - p|^2. p lies on the patch up to rounding, so the
 // residual at the answer is zero and Gauss-Newton converges quadratically (it is Newton
 // there); the grid picks the right fold of a patch that comes back near itself (the teapot's
-// handle). The search costs ~70 patch evaluations; the carried (u, v) keeps Hit small for
-// every ray and costs one copy of the crossings per spans() call, no allocation.
+// handle). The search costs ~70 patch evaluations. Carrying (u, v) this way keeps Hit small
+// for every ray; its cost is that every spans() call that finds crossings copies the line and
+// each crossing's (t, u, v, patch) into a thread_local array (no allocation, no point formed:
+// parameterOf forms one only for the shaded face's entries). A call that finds none, and
+// inside(), leave the last copy as it was.
 #include "primitives/PatchSet.h"
 
 #include <algorithm>
