@@ -73,28 +73,33 @@ struct Evaluator {
         }
     }
 
-    size_t evalLeaf(const LeafGeometry& leaf, uint32_t leafIndex, double t0, double t1) {
-        // Map the ray into the leaf's frame: by a matrix into its frame group once per run of
-        // leaves of that group (a part's leaves mostly share one), then by the leaf's exact
-        // axis permutation (the reciprocal of -x is -(1 / x), so permuting 1 / d is exact);
-        // d keeps its length so t is unchanged.
-        if (leaf.frame != group) enterGroup(leaf.frame);
+    struct LocalRay {
         Vec3 o, d, invD;
-        if (leaf.permuted) {
-            const uint8_t* a = leaf.axis;
-            const double* s = leaf.sign;
-            o = Vec3(s[0] * groupO[a[0]] + leaf.offset.x, s[1] * groupO[a[1]] + leaf.offset.y,
-                     s[2] * groupO[a[2]] + leaf.offset.z);
-            d = Vec3(s[0] * groupD[a[0]], s[1] * groupD[a[1]], s[2] * groupD[a[2]]);
-            invD = Vec3(s[0] * groupInvD[a[0]], s[1] * groupInvD[a[1]], s[2] * groupInvD[a[2]]);
-        } else {
-            o = Vec3(groupO[0], groupO[1], groupO[2]);
-            d = Vec3(groupD[0], groupD[1], groupD[2]);
-            invD = Vec3(groupInvD[0], groupInvD[1], groupInvD[2]);
-        }
+    };
+
+    // The ray in the leaf's frame: by a matrix into its frame group once per run of leaves of
+    // that group (a part's leaves mostly share one), then by the leaf's exact axis permutation
+    // (the reciprocal of -x is -(1 / x), so permuting 1 / d is exact); d keeps its length so t
+    // is unchanged.
+    LocalRay toLeafFrame(const LeafGeometry& leaf) {
+        if (leaf.frame != group) enterGroup(leaf.frame);
+        if (!leaf.permuted)
+            return {Vec3(groupO[0], groupO[1], groupO[2]), Vec3(groupD[0], groupD[1], groupD[2]),
+                    Vec3(groupInvD[0], groupInvD[1], groupInvD[2])};
+        const uint8_t* a = leaf.axis;
+        const double* s = leaf.sign;
+        return {Vec3(s[0] * groupO[a[0]] + leaf.offset.x, s[1] * groupO[a[1]] + leaf.offset.y,
+                     s[2] * groupO[a[2]] + leaf.offset.z),
+                Vec3(s[0] * groupD[a[0]], s[1] * groupD[a[1]], s[2] * groupD[a[2]]),
+                Vec3(s[0] * groupInvD[a[0]], s[1] * groupInvD[a[1]], s[2] * groupInvD[a[2]])};
+    }
+
+    size_t evalLeaf(const LeafGeometry& leaf, uint32_t leafIndex, double t0, double t1) {
+        const LocalRay leafRay = toLeafFrame(leaf);
+        const Vec3 &o = leafRay.o, &d = leafRay.d;
         // Solve near the primitive: restart the ray where it enters the local bounds.
         double b0 = -kInfinity, b1 = kInfinity;
-        if (!clipToBox(SlabRay(o, invD, SlabRay::Reciprocal{}), leaf.localBounds, b0, b1) ||
+        if (!clipToBox(SlabRay(o, leafRay.invD, SlabRay::Reciprocal{}), leaf.localBounds, b0, b1) ||
             b1 < t0 || b0 > t1)
             return 0;
         const double shift = std::isfinite(b0) ? b0 : (std::isfinite(b1) ? b1 : 0.0);
@@ -159,7 +164,11 @@ struct Evaluator {
     size_t evalCut(const CompiledNode& node, double t0, double t1) {
         const size_t base = top;
         const size_t na = eval(node.first, t0, t1);
-        if (na == 0) return 0;
+        return na == 0 ? 0 : finishCut(node, base, na);
+    }
+
+    // evalCut once the left operand's na > 0 spans are at base.
+    size_t finishCut(const CompiledNode& node, size_t base, size_t na) {
         // The right operand matters only where the left one is: narrow its range to that hull.
         const double lo = stack()[base].in.t, hi = stack()[base + na - 1].out.t;
         const size_t nb = eval(node.second, lo, hi);
@@ -171,6 +180,87 @@ struct Evaluator {
             return 0;
         }
         return mergeInPlace(SetOp::Intersection, base, na, nb);
+    }
+
+    // A difference's result without its right operand B solved, from boxes only: where along
+    // the ray can each of B's operands be? Each one's box (a leaf's local box, the one
+    // evalLeaf clips to, or a node's bounds) gives a conservative interval of t.
+    struct Reach {
+        double t0, t1;
+    };
+    static constexpr uint32_t kMaxReaches = 8;  // a longer union counts as one box
+
+    bool reach(uint32_t index, double t0, double t1, Reach& r) {
+        const CompiledNode& node = scene.nodes_[index];
+        r = {t0, t1};
+        if (node.kind != NodeKind::Leaf) return clipToBox(slab, node.bounds, r.t0, r.t1);
+        const LeafGeometry& leaf = scene.leaves_[node.first];
+        const LocalRay local = toLeafFrame(leaf);
+        return clipToBox(SlabRay(local.o, local.invD, SlabRay::Reciprocal{}), leaf.localBounds,
+                         r.t0, r.t1);
+    }
+
+    // With the left operand's na > 0 spans at base: does a piece of them (of the first span's
+    // start only, when atStart) lie outside every reach of the right operand's operands, by the
+    // margin of tol::kUncoveredPieceSlacks? Then the difference is not empty, and its first
+    // span begins with the left operand's first span (same Hit), without solving the right.
+    bool uncovered(uint32_t right, size_t base, size_t na, bool atStart) {
+        const Span* a = stack().data() + base;
+        const double lo = a[0].in.t, hi = a[na - 1].out.t;
+        const double slack = coincidenceSlack(originScale, lo, hi);
+        const double minPiece = tol::kUncoveredPieceSlacks * slack;
+        Reach covers[kMaxReaches];
+        uint32_t n = 0;
+        const auto add = [&](uint32_t index) {
+            Reach r;
+            if (reach(index, lo, hi, r)) covers[n++] = {r.t0 - slack, r.t1 + slack};
+        };
+        const CompiledNode& b = scene.nodes_[right];
+        if (b.kind == NodeKind::Union && b.bvhRoot == kNoNode && b.count <= kMaxReaches) {
+            for (uint32_t i = 0; i < b.count; ++i) add(scene.children_[b.first + i]);
+        } else {
+            add(right);
+        }
+        // Ascending by start, then overlapping covers fused: disjoint and ascending.
+        for (uint32_t i = 1; i < n; ++i)
+            for (uint32_t j = i; j > 0 && covers[j].t0 < covers[j - 1].t0; --j)
+                std::swap(covers[j], covers[j - 1]);
+        uint32_t m = 0;
+        for (uint32_t i = 0; i < n; ++i) {
+            if (m > 0 && covers[i].t0 <= covers[m - 1].t1)
+                covers[m - 1].t1 = std::max(covers[m - 1].t1, covers[i].t1);
+            else
+                covers[m++] = covers[i];
+        }
+        if (atStart) {
+            const double end = m > 0 ? std::min(a[0].out.t, covers[0].t0) : a[0].out.t;
+            return end - a[0].in.t > minPiece;
+        }
+        // The gaps between covers (before the first, after the last) against A's spans.
+        double gapStart = -kInfinity;
+        size_t i = 0;
+        for (uint32_t c = 0; c <= m; ++c) {
+            const double gapEnd = c < m ? covers[c].t0 : kInfinity;
+            while (i < na && a[i].out.t <= gapStart) ++i;
+            for (size_t k = i; k < na && a[k].in.t < gapEnd; ++k)
+                if (std::min(a[k].out.t, gapEnd) - std::max(a[k].in.t, gapStart) > minPiece)
+                    return true;
+            if (c < m) gapStart = covers[c].t1;
+        }
+        return false;
+    }
+
+    // Pushes a list whose first span begins where the node's first span does (the node's own
+    // list, or for a difference whose start no box of its right operand reaches, the left
+    // operand's): what closest() needs, without solving what cannot change it.
+    size_t evalFirst(uint32_t index, double t0, double t1) {
+        const CompiledNode& node = scene.nodes_[index];
+        if (node.kind != NodeKind::Difference) return eval(index, t0, t1);
+        if (!node.boundsImplied && !touches(node.bounds, t0, t1)) return 0;
+        const size_t base = top;
+        const size_t na = eval(node.first, t0, t1);
+        if (na == 0) return 0;
+        return uncovered(node.second, base, na, true) ? na : finishCut(node, base, na);
     }
 
     // Calls visit(child) for the union's children whose bounds the ray meets in [t0, t1],
@@ -227,7 +317,17 @@ struct Evaluator {
             return found;
         }
         const size_t base = top;
-        const size_t n = eval(index, t0, t1);
+        size_t n = 0;
+        if (node.kind == NodeKind::Difference) {
+            // Non-empty as soon as part of the left operand lies where no box of the right
+            // one reaches; solve the right operand only when none does.
+            if (node.boundsImplied || touches(node.bounds, t0, t1)) {
+                n = eval(node.first, t0, t1);
+                if (n > 0 && !uncovered(node.second, base, n, false)) n = finishCut(node, base, n);
+            }
+        } else {
+            n = eval(index, t0, t1);
+        }
         top = base;
         return n > 0;
     }
@@ -265,7 +365,7 @@ struct Evaluator {
         if (root.boundsImplied || touches(root.bounds, ray.tmin, t1)) {
             forEachChild(root, ray.tmin, t1, [&](uint32_t child) {
                 const size_t base = top;
-                const size_t n = eval(child, ray.tmin, t1);
+                const size_t n = evalFirst(child, ray.tmin, t1);
                 if (n > 0) {
                     const Hit first = stack()[base].in;
                     top = base;

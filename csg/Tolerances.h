@@ -26,6 +26,16 @@ constexpr double gamma(int n) {
 // coincident faces, tangent rays) and fuses spans separated by less (face-sharing parts).
 inline constexpr double kCoincidentRel = 1e-9;
 
+// A difference A - B keeps a span without B being solved when a piece of A's spans longer
+// than this many coincidence slacks lies outside every box that bounds one of B's operands
+// along the ray, each box widened by one slack (unit: the slack of kCoincidentRel at the ends
+// of A's hull, the largest any end of that merge gets). Why 2: B's span ends lie inside their
+// boxes up to one solve's error (a few hundred ulps, far below a slack), so B misses the piece
+// but for its widened ends, and the piece is then longer than the one slack below which the
+// merge would drop it: the regularized A - B is not empty, and its first span starts where
+// A's does when the piece does (csg/Query.cpp, Evaluator::uncovered).
+inline constexpr double kUncoveredPieceSlacks = 2.0;
+
 // A ray-box slab test widens both ends by this fraction of their magnitude so that rounding
 // in the test never culls a box the exact test would hit (pbrt's 2 gamma(3)).
 inline constexpr double kSlabWiden = 2 * gamma(3);

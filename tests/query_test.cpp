@@ -160,5 +160,36 @@ TEST(Query, SurfaceNormalsPointOutOfTheSolid) {
     EXPECT_LT(wrongWay, rightWay / 1000 + 1);
 }
 
+// A difference whose left operand sticks out of every box of its right operand is answered
+// without solving the right one (tol::kUncoveredPieceSlacks), but only where the merge would
+// keep what sticks out: the unit cube minus itself moved by `gap` along x, hit along x. A gap
+// of 1e-12 leaves a sliver the coincidence rule drops (no hit, nothing occluded); 1e-6 leaves
+// a span that starts at the cube's own face x = 0. Both with the right operand alone and as
+// one child of a short union (each child's box counts then).
+TEST(Query, DifferenceAnsweredFromBoxesOnlyWhereTheMergeKeepsTheRest) {
+    QueryContext ctx;
+    const Box unit{Vec3(0.0), Vec3(1.0)};
+    for (const double gap : {1e-12, 1e-6}) {
+        const NodePtr moved =
+            transformed(glm::translate(Mat4(1.0), Vec3(gap, 0.0, 0.0)), leaf(unit));
+        const NodePtr far =
+            transformed(glm::translate(Mat4(1.0), Vec3(0.5, 0.5, 4.0)), leaf(Sphere{0.25}));
+        for (const NodePtr& right : {moved, unite(moved, far)}) {
+            const Scene scene = Scene::compile(subtract(leaf(unit), right));
+            const Ray ray{Vec3(-5.0, 0.5, 0.5), Vec3(1.0, 0.0, 0.0), 0.0, 100.0};
+            const bool kept = gap > 1e-9;
+            ObjectCache cache;
+            EXPECT_EQ(scene.occluded(ray, ctx), kept) << "gap " << gap;
+            EXPECT_EQ(scene.occluded(ray, ctx, cache), kept) << "gap " << gap;
+            const std::optional<Hit> hit = scene.closest(ray, ctx);
+            ASSERT_EQ(hit.has_value(), kept) << "gap " << gap;
+            if (kept) {
+                EXPECT_EQ(hit->t, 5.0);
+                EXPECT_FALSE(hit->flipped);  // the cube's own face, not the cut's
+            }
+        }
+    }
+}
+
 }  // namespace
 }  // namespace csg
