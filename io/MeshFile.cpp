@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <fstream>
 #include <string>
 
 #include "csg/mesh/MeshCheck.h"
@@ -54,8 +55,10 @@ MeshReadResult readMesh(const std::filesystem::path& file) {
     MeshReadResult result;
     switch (meshFormatOf(file)) {
         case MeshFormat::Obj:
+            result = detail::readObj(file);
+            break;
         case MeshFormat::Stl:
-            result = detail::readWithOpenMesh(file);
+            result = detail::readStl(file);
             break;
         case MeshFormat::Glb:
             result = detail::readGltf(file, true);
@@ -70,5 +73,30 @@ MeshReadResult readMesh(const std::filesystem::path& file) {
     if (result.mesh) result.mesh = csg::weldExactDuplicates(*result.mesh);
     return result;
 }
+
+namespace detail {
+
+bool readBytes(const std::filesystem::path& file, std::string& bytes, MeshReadResult& result) {
+    std::ifstream in(file, std::ios::binary);
+    std::error_code ec;
+    if (!in || std::filesystem::is_directory(file, ec)) {
+        result.error = "cannot open the mesh";
+        result.unreadable = true;
+        return false;
+    }
+    in.seekg(0, std::ios::end);
+    const std::streamoff size = in.tellg();
+    in.seekg(0);
+    bytes.resize(size > 0 ? size_t(size) : 0);
+    if (size > 0) in.read(bytes.data(), size);
+    if (in.bad() || size < 0) {
+        result.error = "cannot read the mesh";
+        result.unreadable = true;
+        return false;
+    }
+    return true;
+}
+
+}  // namespace detail
 
 }  // namespace io

@@ -1,5 +1,6 @@
-// Mesh files: OBJ (checked by OpenMesh, normals split at creases), GLB and glTF (tinygltf)
-// written atomically, and OBJ, STL (OpenMesh IO), GLB and glTF (tinygltf) read back for
+// Mesh files: OBJ (normals split at creases), GLB and glTF (tinygltf)
+// written atomically, and OBJ, STL (our own readers: a triangle soup, no half-edge structure,
+// so non-manifold input is kept for compare to report), GLB and glTF (tinygltf) read back for
 // comparison. Lengths are written as they are in the part (OpenSCAD's unit, usually mm);
 // nothing is rescaled.
 #pragma once
@@ -33,11 +34,14 @@ struct MeshReadResult {
     std::optional<csg::TriangleMesh> mesh;  // positions and triangles in the part's frame
     std::string error;                      // when mesh is empty
     bool unreadable = false;                // the file could not be opened (an I/O failure)
+    uint32_t line = 0, column = 0;          // where in a text file the error is; 0: nowhere
 };
 
-// Reads an OBJ, STL, GLB or glTF file. glTF node transforms are applied, so a csgray GLB
-// comes back in its Z-up part frame (the root rotation undone). Vertices with bit-identical
-// positions are merged (STL soups, per-material primitives), so topology can be checked.
+// Reads an OBJ, STL, GLB or glTF file, in time linear in its size (n log n to weld) whatever
+// the vertex valences. glTF node transforms are applied, so a csgray GLB comes back in its
+// Z-up part frame (the root rotation undone). Vertices with bit-identical positions are merged
+// (STL soups, per-material primitives), so topology can be checked. An error in an OBJ or
+// ASCII STL file comes with its line and column.
 MeshReadResult readMesh(const std::filesystem::path& file);
 
 }  // namespace io

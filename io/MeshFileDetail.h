@@ -1,6 +1,8 @@
 // The per-format halves of io/MeshFile.h.
 #pragma once
 
+#include <string>
+
 #include "io/MeshFile.h"
 
 namespace io::detail {
@@ -10,7 +12,13 @@ std::optional<std::string> writeObj(const std::filesystem::path& file,
 std::optional<std::string> writeGltf(const std::filesystem::path& file,
                                      const csg::TriangleMesh& mesh,
                                      const std::vector<Material>& materials, bool binary);
-MeshReadResult readWithOpenMesh(const std::filesystem::path& file);
+
+// The readers return positions as written (not welded: readMesh welds) and triangles.
+MeshReadResult readObj(const std::filesystem::path& file);
+MeshReadResult readStl(const std::filesystem::path& file);
 MeshReadResult readGltf(const std::filesystem::path& file, bool binary);
+
+// The whole file into bytes; false (result.error and unreadable set) when it cannot be read.
+bool readBytes(const std::filesystem::path& file, std::string& bytes, MeshReadResult& result);
 
 }  // namespace io::detail

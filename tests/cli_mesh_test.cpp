@@ -171,6 +171,13 @@ TEST(CliMesh, ExitCodes) {
     EXPECT_EQ(runCsgray({"export", (dir.path() / "none.scad").string(), "-o", "x.glb"}, dir.path())
                   .exitCode,
               3);
+    // A malformed mesh: a bad model (1) and the error where it is in the file.
+    writeFile(dir.path() / "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
+    const RunResult bad =
+        runCsgray({"compare", part, (dir.path() / "bad.obj").string()}, dir.path());
+    EXPECT_EQ(bad.exitCode, 1);
+    EXPECT_NE(bad.err.find("bad.obj:4:7: error: vertex index 7 names no vertex"), std::string::npos)
+        << bad.err;
 }
 
 TEST(CliMesh, CompareFindsAWrongMeshAndAHole) {

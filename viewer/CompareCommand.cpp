@@ -89,7 +89,7 @@ int compareCommand(std::span<const std::string> args) {
     if (const int code = requireSolids(part, report, "compare"); code != kExitOk) return code;
     io::MeshReadResult read = io::readMesh(meshFile);
     if (!read.mesh) {
-        report.error(meshFile, read.error);
+        report.add({meshFile, read.line, read.column, io::Severity::Error, read.error});
         return read.unreadable ? kExitIo : kExitBadModel;
     }
     const csg::TriangleMesh& mesh = *read.mesh;

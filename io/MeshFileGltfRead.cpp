@@ -1,8 +1,5 @@
-// Reading meshes for comparison: OBJ and STL through OpenMesh IO, GLB and glTF through
-// tinygltf with node transforms applied.
+// Reading GLB and glTF for comparison through tinygltf, with node transforms applied.
 #include <tiny_gltf.h>
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include <glm/gtc/quaternion.hpp>
 
@@ -12,39 +9,6 @@
 #include "io/MeshFileDetail.h"
 
 namespace io::detail {
-
-MeshReadResult readWithOpenMesh(const std::filesystem::path& file) {
-    MeshReadResult result;
-    if (!std::ifstream(file, std::ios::binary)) {
-        result.error = "cannot open the mesh";
-        result.unreadable = true;
-        return result;
-    }
-    // OpenMesh triangulates polygons and refuses faces that would break its half-edge
-    // structure (a non-manifold input); those are lost here, so compare's topology check is
-    // only as strict as OpenMesh's reader.
-    OpenMesh::TriMesh_ArrayKernelT<> om;
-    OpenMesh::IO::Options options;
-    if (!OpenMesh::IO::read_mesh(om, file.string(), options)) {
-        result.error = "OpenMesh could not read the mesh";
-        return result;
-    }
-    csg::TriangleMesh mesh;
-    mesh.positions.reserve(om.n_vertices());
-    for (const auto v : om.vertices()) {
-        const auto p = om.point(v);
-        mesh.positions.emplace_back(p[0], p[1], p[2]);
-    }
-    for (const auto f : om.faces()) {
-        std::array<uint32_t, 3> tri{};
-        int i = 0;
-        for (const auto v : om.fv_range(f))
-            if (i < 3) tri[size_t(i++)] = uint32_t(v.idx());
-        if (i == 3) mesh.triangles.push_back(tri);
-    }
-    result.mesh = std::move(mesh);
-    return result;
-}
 
 namespace {
 
