@@ -12,7 +12,7 @@ BoundArgs bindArgs(Evaluator& e, const InstantiationStmt& s, const ContextPtr& c
                    std::initializer_list<RefusedParam> refused) {
     for (const Argument& a : s.args)
         for (const RefusedParam& r : refused)
-            if (a.name == r.name) e.fail(a.loc, r.message);
+            if (a.name == r.name) e.fail(a.loc, std::string(r.message));
     BoundArgs b{s,
                 std::move(form),
                 names,

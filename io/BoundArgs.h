@@ -30,10 +30,11 @@ struct BoundArgs {
 };
 
 // A parameter OpenSCAD's module of the same name has that this one refuses, and the error to
-// give at an argument of that name (the whole message).
+// give at an argument of that name (the whole message). Both are views of text that outlives
+// every call (literals, statics): bindArgs runs once per module call.
 struct RefusedParam {
     std::string_view name;
-    std::string message;
+    std::string_view message;
 };
 
 // names are the parameters in positional order; form is quoted in every message. A named
