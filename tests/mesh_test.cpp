@@ -4,7 +4,6 @@
 
 #include <filesystem>
 #include <numbers>
-#include <random>
 
 #include <unistd.h>
 
@@ -81,12 +80,11 @@ TEST(Qef, NearlyParallelPlanesKeepTheMassPoint) {
 }
 
 TEST(Qef, SymmetricEigenReconstructs) {
-    std::mt19937_64 rng(7);
-    std::uniform_real_distribution<double> u(-1, 1);
+    testing::Rng rng(7);
     for (int i = 0; i < 1000; ++i) {
         Mat3 m;
         for (int c = 0; c < 3; ++c)
-            for (int r = c; r < 3; ++r) m[c][r] = m[r][c] = u(rng);
+            for (int r = c; r < 3; ++r) m[c][r] = m[r][c] = rng.uniform(-1.0, 1.0);
         Vec3 w;
         Mat3 r;
         symmetricEigen(m, w, r);
@@ -420,12 +418,13 @@ TEST(ThinFeatures, BoxEdgesAndGrazingLinesGetNoPlanes) {
 // A rotated thin gap crosses the planes obliquely: whatever is resolved, the mesh stays a
 // closed oriented manifold with the volume of the two blocks.
 TEST(ThinFeatures, RotatedGapsStayManifold) {
-    std::mt19937_64 rng(5);
-    std::uniform_real_distribution<double> angle(-0.5, 0.5), gapWidth(0.002, 0.05);
+    testing::Rng rng(5);
     for (int trial = 0; trial < 12; ++trial) {
-        const double w = gapWidth(rng);
-        const Mat4 turn = glm::rotate(Mat4(1.0), angle(rng), glm::normalize(Vec3(1, 1, 3))) *
-                          glm::rotate(Mat4(1.0), angle(rng), Vec3(0, 1, 0));
+        const double w = rng.uniform(0.002, 0.05);
+        const double tilt = rng.uniform(-0.5, 0.5);
+        const double spin = rng.uniform(-0.5, 0.5);
+        const Mat4 turn = glm::rotate(Mat4(1.0), tilt, glm::normalize(Vec3(1, 1, 3))) *
+                          glm::rotate(Mat4(1.0), spin, Vec3(0, 1, 0));
         const Scene scene = Scene::compile(
             transformed(turn, unite(leaf(Box{Vec3(-1, -0.5, -0.5), Vec3(0, 0.5, 0.5)}),
                                     leaf(Box{Vec3(w, -0.5, -0.5), Vec3(1 + w, 0.5, 0.5)}))));
@@ -548,19 +547,19 @@ TEST(Tessellate, UnboundedPartIsRejected) {
 // Seeded random CSG of spheres and boxes at coarse grids: ambiguous faces, cells crossed by
 // two sheets and touching parts all occur; the mesh must stay a closed oriented manifold.
 TEST(Tessellate, RandomCsgIsAlwaysManifold) {
-    std::mt19937_64 rng(11);
-    std::uniform_real_distribution<double> u(-1, 1), r(0.1, 0.6);
+    testing::Rng rng(11);
     for (int trial = 0; trial < 60; ++trial) {
         std::vector<NodePtr> parts;
         for (int i = 0; i < 6; ++i) {
-            const Mat4 at = glm::translate(Mat4(1.0), Vec3(u(rng), u(rng), u(rng)));
+            const Mat4 at = glm::translate(Mat4(1.0), rng.inBox(Vec3(-1.0), Vec3(1.0)));
             if (i % 3 == 2) {
-                const Vec3 half(r(rng), r(rng), r(rng));
-                parts.push_back(transformed(
-                    glm::rotate(at, u(rng) * kPi, glm::normalize(Vec3(u(rng), u(rng), 1.0))),
-                    leaf(Box{-half, half})));
+                const Vec3 half = rng.inBox(Vec3(0.1), Vec3(0.6));
+                const double angle = rng.uniform(-kPi, kPi);
+                const Vec3 axis = rng.inBox(Vec3(-1.0, -1.0, 1.0), Vec3(1.0));
+                parts.push_back(transformed(glm::rotate(at, angle, glm::normalize(axis)),
+                                            leaf(Box{-half, half})));
             } else {
-                parts.push_back(transformed(at, leaf(Sphere{r(rng)})));
+                parts.push_back(transformed(at, leaf(Sphere{rng.uniform(0.1, 0.6)})));
             }
         }
         const NodePtr tree =
