@@ -216,7 +216,21 @@ struct Evaluator {
             if (reach(index, lo, hi, r)) covers[n++] = {r.t0 - slack, r.t1 + slack};
         };
         const CompiledNode& b = scene.nodes_[right];
-        if (b.kind == NodeKind::Union && b.bvhRoot == kNoNode && b.count <= kMaxReaches) {
+        const bool byOperand =
+            b.kind == NodeKind::Union && b.bvhRoot == kNoNode && b.count <= kMaxReaches;
+        if (atStart) {
+            // Only the first piece counts: A's first span must reach past start + minPiece,
+            // and no operand's box, widened by a slack, may begin before that, i.e. none may
+            // meet [start, clear]. Stops at the first one that does; nothing to sort.
+            const double start = a[0].in.t, clear = start + minPiece + slack;
+            if (!(a[0].out.t - start > minPiece)) return false;
+            Reach r;
+            for (uint32_t i = 0; i < (byOperand ? b.count : 1); ++i)
+                if (reach(byOperand ? scene.children_[b.first + i] : right, start, clear, r))
+                    return false;
+            return true;
+        }
+        if (byOperand) {
             for (uint32_t i = 0; i < b.count; ++i) add(scene.children_[b.first + i]);
         } else {
             add(right);
@@ -231,10 +245,6 @@ struct Evaluator {
                 covers[m - 1].t1 = std::max(covers[m - 1].t1, covers[i].t1);
             else
                 covers[m++] = covers[i];
-        }
-        if (atStart) {
-            const double end = m > 0 ? std::min(a[0].out.t, covers[0].t0) : a[0].out.t;
-            return end - a[0].in.t > minPiece;
         }
         // The gaps between covers (before the first, after the last) against A's spans.
         double gapStart = -kInfinity;
