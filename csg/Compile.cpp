@@ -149,7 +149,14 @@ struct Compiler {
                 const Bounds3 box = overlap(scene.nodes_[a].bounds, scene.nodes_[b].bounds);
                 if (box.empty()) return kNoNode;
                 markImpliedOperands(a, b);
-                return addNode({NodeKind::Intersection, false, box, a, b});
+                const uint32_t added = addNode({NodeKind::Intersection, false, box, a, b});
+                takeBall(added, scene.nodes_[b].ball != kNoNode &&
+                                        (scene.nodes_[a].ball == kNoNode ||
+                                         scene.balls_[scene.nodes_[b].ball].radius <
+                                             scene.balls_[scene.nodes_[a].ball].radius)
+                                    ? b
+                                    : a);
+                return added;
             }
             case Op::Difference: {
                 const BooleanScope scope(*this, node);
@@ -159,10 +166,37 @@ struct Compiler {
                 const Bounds3& box = scene.nodes_[a].bounds;
                 if (b == kNoNode || overlap(box, scene.nodes_[b].bounds).empty()) return a;
                 markImpliedOperands(a, b);
-                return addNode({NodeKind::Difference, false, box, a, b});
+                const uint32_t added = addNode({NodeKind::Difference, false, box, a, b});
+                takeBall(added, a);
+                return added;
             }
         }
         return kNoNode;
+    }
+
+    // Moves the operand's bounding ball, if any, up to its parent (CompiledNode::ball).
+    void takeBall(uint32_t parent, uint32_t operand) {
+        scene.nodes_[parent].ball = scene.nodes_[operand].ball;
+        scene.nodes_[operand].ball = kNoNode;
+    }
+
+    // A sphere leaf's bounding ball, when worldFromLocal is a similarity: the columns of its
+    // linear part are orthogonal and of one length (to tol::kSimilarityRel).
+    uint32_t sphereBall(const Sphere& sphere, const Mat4& worldFromLocal) {
+        const Vec3 c0(worldFromLocal[0]), c1(worldFromLocal[1]), c2(worldFromLocal[2]);
+        const double l0 = glm::length(c0), l1 = glm::length(c1), l2 = glm::length(c2);
+        const double scale = std::max({l0, l1, l2});
+        if (!(std::min({l0, l1, l2}) >= scale * (1.0 - tol::kSimilarityRel))) return kNoNode;
+        const double square = scale * scale;
+        if (std::abs(glm::dot(c0, c1)) > tol::kSimilarityRel * square ||
+            std::abs(glm::dot(c0, c2)) > tol::kSimilarityRel * square ||
+            std::abs(glm::dot(c1, c2)) > tol::kSimilarityRel * square)
+            return kNoNode;
+        const Vec3 center(worldFromLocal[3]);
+        const double radius = sphere.radius * scale;
+        if (!isFinite(worldFromLocal) || !std::isfinite(radius)) return kNoNode;
+        scene.balls_.push_back({center, radius, glm::length(center) + radius});
+        return static_cast<uint32_t>(scene.balls_.size() - 1);
     }
 
     // The operands of an intersection or difference whose bounds test the parent's implies
@@ -219,7 +253,10 @@ struct Compiler {
         scene.leaves_.push_back(geometry);
         scene.frames_.push_back({Affine(localFromWorld), worldFromLocal,
                                  glm::transpose(Mat3(localFromWorld)), node.tags});
-        return addNode({NodeKind::Leaf, false, box, index});
+        const uint32_t added = addNode({NodeKind::Leaf, false, box, index});
+        if (const Sphere* sphere = std::get_if<Sphere>(&node.primitive))
+            scene.nodes_[added].ball = sphereBall(*sphere, worldFromLocal);
+        return added;
     }
 
     // The leaf's frame group (made on its first leaf) and its frame within the group: a group

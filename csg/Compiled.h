@@ -43,6 +43,18 @@ struct LeafFrame {
 
 enum class NodeKind : uint8_t { Leaf, Union, Intersection, Difference };
 
+// A ball (world frame) that contains a node's solid: a sphere leaf placed by a similarity
+// (rotation, mirror, uniform scale, shift), which bounds every intersection and difference
+// it is the left operand of. A line is tested against it with a dot product and no division,
+// before any leaf's frame is entered: a cheaper exact reject than the leaves' own tests, and
+// tighter than the axis-aligned box of a turned part (bench/scenes/csg_grid: most rays that
+// meet a part's box miss the part).
+struct BoundingBall {
+    Vec3 center;
+    double radius = 0.0;
+    double size = 0.0;  // |center| + radius: the scale of the test's rounding (kBallMarginRel)
+};
+
 // Leaf:         first = leaf index.
 // Intersection, Difference: first = left node, second = right node.
 // Union:        children_[first, first + count) are the child nodes; the first `bounded`
@@ -71,6 +83,11 @@ struct CompiledNode {
     uint32_t count = 0;
     uint32_t bounded = 0;
     uint32_t bvhRoot = kNoNode;
+    // Index into Scene::balls_, or kNoNode. Held only by the topmost node it bounds: an
+    // intersection or difference takes over its operand's ball, which is then not tested
+    // again (the operand is evaluated only after the parent's test passed, and a line test
+    // does not depend on the range).
+    uint32_t ball = kNoNode;
 };
 
 // A BVH node over a union's bounded children. Interior: the left child follows at index + 1,

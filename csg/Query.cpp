@@ -17,12 +17,16 @@ struct Evaluator {
     QueryContext& ctx;
     const Ray& ray;
     SlabRay slab;
-    double originScale;  // |o| / |d|: see tol::kCoincidentRel
+    double originScale;   // |o| / |d|: see tol::kCoincidentRel
+    double originLength;  // |o|, and 1 / |d|^2: for missesBall
+    double invDD;
 
     Evaluator(const Scene& s, QueryContext& c, const Ray& r)
         : scene(s), ctx(c), ray(r), slab(r.o, r.d) {
         const double dLength = glm::length(r.d);
-        originScale = dLength > 0.0 ? glm::length(r.o) / dLength : 0.0;
+        originLength = glm::length(r.o);
+        originScale = dLength > 0.0 ? originLength / dLength : 0.0;
+        invDD = 1.0 / glm::dot(r.d, r.d);
     }
 
     // The span stack: ctx.stack_[0, top) is in use. The vector only grows (its size is the
@@ -42,9 +46,25 @@ struct Evaluator {
         return clipToBox(slab, box, t0, t1);
     }
 
+    // Does the ray's line pass outside the ball, by the margin of tol::kBallMarginRel? From the
+    // point of the line nearest the centre; false for a degenerate ray (NaN compares false).
+    bool missesBall(const BoundingBall& b) const {
+        const Vec3 oc = b.center - ray.o;
+        const Vec3 nearest = ray.o + (glm::dot(oc, ray.d) * invDD) * ray.d;
+        const Vec3 off = b.center - nearest;
+        const double reach = b.radius + tol::kBallMarginRel * (originLength + b.size);
+        return glm::dot(off, off) > reach * reach;
+    }
+
+    // May the ray within [t0, t1] meet the node: its bounds (unless implied), then its ball?
+    bool mayMeet(const CompiledNode& node, double t0, double t1) {
+        if (!node.boundsImplied && !touches(node.bounds, t0, t1)) return false;
+        return node.ball == kNoNode || !missesBall(scene.balls_[node.ball]);
+    }
+
     size_t eval(uint32_t index, double t0, double t1) {
         const CompiledNode& node = scene.nodes_[index];
-        if (!node.boundsImplied && !touches(node.bounds, t0, t1)) return 0;
+        if (!mayMeet(node, t0, t1)) return 0;
         switch (node.kind) {
             case NodeKind::Leaf:
                 return evalLeaf(scene.leaves_[node.first], node.first, t0, t1);
@@ -266,7 +286,7 @@ struct Evaluator {
     size_t evalFirst(uint32_t index, double t0, double t1) {
         const CompiledNode& node = scene.nodes_[index];
         if (node.kind != NodeKind::Difference) return eval(index, t0, t1);
-        if (!node.boundsImplied && !touches(node.bounds, t0, t1)) return 0;
+        if (!mayMeet(node, t0, t1)) return 0;
         const size_t base = top;
         const size_t na = eval(node.first, t0, t1);
         if (na == 0) return 0;
@@ -331,7 +351,7 @@ struct Evaluator {
         if (node.kind == NodeKind::Difference) {
             // Non-empty as soon as part of the left operand lies where no box of the right
             // one reaches; solve the right operand only when none does.
-            if (node.boundsImplied || touches(node.bounds, t0, t1)) {
+            if (mayMeet(node, t0, t1)) {
                 n = eval(node.first, t0, t1);
                 if (n > 0 && !uncovered(node.second, base, n, false)) n = finishCut(node, base, n);
             }

@@ -71,6 +71,7 @@ struct LeafGeometry;
 struct LeafFrame;
 struct CompiledNode;
 struct BvhNode;
+struct BoundingBall;
 
 class Scene {
 public:
@@ -112,6 +113,7 @@ private:
     std::vector<CompiledNode> nodes_;
     std::vector<uint32_t> children_;  // child node indices of n-ary unions
     std::vector<BvhNode> bvh_;
+    std::vector<BoundingBall> balls_;  // CompiledNode::ball
     uint32_t root_ = 0;
     bool hasSheets_ = false;  // a leaf is a sheet: unions must look for sheet crossings
 };

@@ -36,6 +36,22 @@ inline constexpr double kCoincidentRel = 1e-9;
 // A's does when the piece does (csg/Query.cpp, Evaluator::uncovered).
 inline constexpr double kUncoveredPieceSlacks = 2.0;
 
+// A ray is taken to miss a node's bounding ball (csg/Compiled.h, BoundingBall) only when the
+// line passes farther than radius + this fraction of (|ray origin| + |ball centre| + radius)
+// from the centre (unit: relative). Why: the line's distance is computed with an absolute
+// error of a few ulps of |o| + |c|; the sphere's own solve, in its local frame, errs by a
+// few hundred ulps of the same magnitudes (the frame map and the quadratic, whose tangent
+// rays it may still report as short spans). 1e-9 is the coincidence rule's margin
+// (kCoincidentRel) over both, so a ray the ball rejects is one the sphere never reports.
+inline constexpr double kBallMarginRel = 1e-9;
+
+// A sphere leaf gets a bounding ball only when its transform is a similarity: the columns of
+// the linear part have one length and are orthogonal, to this fraction of that length
+// (unit: relative). Why: the ball's radius is the sphere's times the longest column, which
+// bounds the ellipsoid to within this fraction, 1000x inside kBallMarginRel; rotations built
+// from rounded sines and cosines are orthogonal to a few ulps, far within it.
+inline constexpr double kSimilarityRel = 1e-12;
+
 // A ray-box slab test widens both ends by this fraction of their magnitude so that rounding
 // in the test never culls a box the exact test would hit (pbrt's 2 gamma(3)).
 inline constexpr double kSlabWiden = 2 * gamma(3);

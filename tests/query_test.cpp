@@ -191,5 +191,57 @@ TEST(Query, DifferenceAnsweredFromBoxesOnlyWhereTheMergeKeepsTheRest) {
     }
 }
 
+// A sphere placed by a similarity bounds the intersections and differences it is the left
+// operand of with a ball that rejects lines before any leaf is solved (CompiledNode::ball).
+// It must never reject a line that meets the sphere, however nearly tangent, at any scale:
+// parts (sphere(r) n cube) - a small central ball, turned, mirrored, scaled by 10^-3..10^3
+// and moved at random, hit by lines that pass r (1 - 1e-7) from the centre (chord half-length
+// ~4.5e-4 r) and missed by lines r (1 + 1e-6) from it, which the ball rejects without a solve.
+TEST(Query, BoundingBallRejectsOnlyLinesThatMissTheSphere) {
+    std::mt19937_64 rng(41);
+    std::uniform_real_distribution<double> u(-1.0, 1.0), angle(0.0, 6.283185307179586);
+    QueryContext ctx;
+    const auto unit = [&] {
+        Vec3 v(u(rng), u(rng), u(rng));
+        while (glm::length(v) < 0.1) v = Vec3(u(rng), u(rng), u(rng));
+        return glm::normalize(v);
+    };
+    for (int part = 0; part < 200; ++part) {
+        const double scale = std::pow(10.0, 3.0 * u(rng)), r = 0.7;
+        Mat4 m = glm::translate(Mat4(1.0), scale * 5.0 * Vec3(u(rng), u(rng), u(rng)));
+        m = glm::rotate(m, angle(rng), unit());
+        m = glm::scale(m, Vec3(part % 2 == 0 ? scale : -scale, scale, scale));
+        const Scene scene = Scene::compile(
+            transformed(m, subtract(intersect(leaf(Sphere{r}), leaf(Box{Vec3(-1.0), Vec3(1.0)})),
+                                    leaf(Sphere{0.1}))));
+        const Vec3 center(m[3]);
+        const double radius = r * scale;
+        for (int line = 0; line < 20; ++line) {
+            // A direction, and a point at the wanted distance from the centre across it.
+            const Vec3 d = unit() * std::pow(10.0, u(rng));
+            Vec3 across = glm::cross(d, unit());
+            across = glm::normalize(across);
+            for (const double factor : {1.0 - 1e-7, 1.0 + 1e-6}) {
+                const Vec3 nearest = center + factor * radius * across;
+                const double back = 10.0 * radius / glm::length(d);
+                const Ray ray{nearest - back * d, d, 0.0, 2.0 * back};
+                const bool meets = factor < 1.0;
+                const uint64_t solves = ctx.stats.primitiveTests;
+                const std::optional<Hit> hit = scene.closest(ray, ctx);
+                ASSERT_EQ(hit.has_value(), meets) << "part " << part << " line " << line;
+                if (meets) {
+                    // Entry at back - half the chord, in units of t.
+                    const double halfChord = radius * std::sqrt(1.0 - factor * factor);
+                    EXPECT_NEAR(hit->t, back - halfChord / glm::length(d), 1e-3 * back)
+                        << "part " << part << " line " << line;
+                } else {
+                    EXPECT_EQ(ctx.stats.primitiveTests, solves) << "part " << part;
+                }
+                EXPECT_EQ(scene.occluded(ray, ctx), meets) << "part " << part << " line " << line;
+            }
+        }
+    }
+}
+
 }  // namespace
 }  // namespace csg
