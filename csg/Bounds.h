@@ -81,9 +81,12 @@ inline bool clipToBox(const SlabRay& r, const Bounds3& b, double& t0, double& t1
         t0 = tNear > t0 ? tNear : t0;
         t1 = tFar < t1 ? tFar : t1;
     }
-    // Scale rather than add, so an infinite end stays infinite instead of inf - inf.
-    t0 *= 1.0 - std::copysign(tol::kSlabWiden, t0);
-    t1 *= 1.0 + std::copysign(tol::kSlabWiden, t1);
+    // Scale rather than add, so an infinite end stays infinite instead of inf - inf: t0 by
+    // 1 - w when positive and 1 + w when negative (t1 the other way round), which is the
+    // smaller (larger) of the two products; that takes no sign extraction, same values.
+    constexpr double kDown = 1.0 - tol::kSlabWiden, kUp = 1.0 + tol::kSlabWiden;
+    t0 = std::min(t0 * kDown, t0 * kUp);
+    t1 = std::max(t1 * kDown, t1 * kUp);
     return t0 <= t1;
 }
 
