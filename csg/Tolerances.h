@@ -113,6 +113,14 @@ inline constexpr double kTorusRangeMargin = 1e-6;
 // second for h below ~1e-8 (R + r), and 1e-9 r is below that for every torus. A critical point
 // needs less (G is flat there) but shares the rule. Smaller only adds an evaluation per root.
 inline constexpr double kTubeNewtonStep = 1e-9;
+// A tube-form crossing where the line meets the tube within this cosine of tangent (|G'| below
+// 2 r kTubeGrazingCos) gets one Newton step on G computed in double-double (Torus.cpp,
+// accurateG). G in double is off by ~ulp(|p|) r (the point b + s u and rho are rounded), which
+// moves a crossing by that over |G'| = 2 r cos: a few ulps at most angles, but up to ~12 ulps
+// of t at the grazing crossings of torus_test's lines (cos ~ 0.01). At 1/8, ~2% of the
+// crossings of random lines are polished and every test line's ends come within ~1.5 ulps
+// (1/4 gains a fraction of an ulp for three times the polishing).
+inline constexpr double kTubeGrazingCos = 0.125;
 
 // Mesh export (csg/mesh/). The QEF of a cell drops eigen-directions of A^T A whose eigenvalue
 // is below this fraction of the largest (unit: relative). Eigenvalues are squared singular

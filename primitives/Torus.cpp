@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 
+#include "csg/Fma.h"
 #include "primitives/solvers/LinePoint.h"
 #include "primitives/solvers/Roots.h"
 
@@ -138,24 +139,30 @@ double taylorRoot(double s, const TubeLine::At& v, double lo, double hi) {
 // The zero of G between lo and hi (lo < hi), where G rises (rising) or falls through zero and
 // has no other zero: Newton steps from x, replaced by bisection when they would leave the
 // shrinking bracket; done once a step is at most `converged` (quadratic convergence makes the
-// next error far smaller) or the bracket is two adjacent doubles.
-double crossing(const TubeLine& line, double lo, double hi, double x, bool rising,
-                double converged) {
+// next error far smaller) or the bracket is two adjacent doubles. Also returns G' where the
+// last step started (for Step 6's test of a grazing crossing).
+struct TubeRoot {
+    double s;
+    double dg;
+};
+TubeRoot crossing(const TubeLine& line, double lo, double hi, double x, bool rising,
+                  double converged) {
+    TubeLine::At v{};
     for (int i = 0; i < 100; ++i) {
-        const TubeLine::At v = line.at(x);
-        if (v.g == 0.0) return x;
+        v = line.at(x);
+        if (v.g == 0.0) return {x, v.dg};
         if ((v.g < 0.0) == rising)
             lo = x;
         else
             hi = x;
         double next = v.dg != 0.0 ? x - v.g / v.dg : lo;
         // A step this small is the last one (it may round onto the bracket's end).
-        if (std::abs(next - x) <= converged) return std::clamp(next, lo, hi);
+        if (std::abs(next - x) <= converged) return {std::clamp(next, lo, hi), v.dg};
         if (!(next > lo && next < hi)) next = 0.5 * lo + 0.5 * hi;
-        if (next <= lo || next >= hi) return x;
+        if (next <= lo || next >= hi) return {x, v.dg};
         x = next;
     }
-    return x;
+    return {x, v.dg};
 }
 
 // Newton on G from a root s of the quartic while |G| drops, kept within [lo, hi]: G has the
@@ -171,6 +178,55 @@ double polish(const TubeLine& line, double s, double lo, double hi) {
         s = next, v = nv;
     }
     return s;
+}
+
+// Error-free transformations: a + b and a * b as hi + lo exactly (Knuth's twoSum; the product's
+// low part by one fma).
+struct Sum2 {
+    double hi, lo;
+};
+Sum2 twoSum(double a, double b) {
+    const double s = a + b;
+    const double bb = s - a;
+    return {s, (a - (s - bb)) + (b - bb)};
+}
+Sum2 twoProduct(double a, double b) {
+    const double p = a * b;
+    return {p, fusedMultiplyAdd(a, b, -p)};
+}
+
+// G at the point o + (tBase + sigma) d of the caller's own line, to a few ulps of G itself
+// rather than of r^2: the point's coordinates, rho - R and the squares are carried as hi + lo
+// sums. TubeLine::at forms p = b + s u in double, and b is itself rounded, so its G is off by
+// ~ulp(|p|) r, which moves a crossing by that over |G'|: at a near-tangent crossing (the line
+// meets the tube at a grazing angle, |G'| = 2 r cos) that was ~12 ulps of t. NaN where rho = 0.
+// Out of line: called for a few percent of crossings.
+[[gnu::noinline]] double accurateG(const Vec3& o, const Vec3& d, double tBase, double sigma,
+                                   double R, double r) {
+    double hi[3], lo[3];
+    for (int i = 0; i < 3; ++i) {
+        const Sum2 base = twoProduct(tBase, d[i]), step = twoProduct(sigma, d[i]);
+        const Sum2 near = twoSum(o[i], base.hi);
+        const Sum2 p = twoSum(near.hi, step.hi);
+        hi[i] = p.hi;
+        lo[i] = p.lo + near.lo + base.lo + step.lo;
+    }
+    // rho^2 = x^2 + y^2, then rho and its low part from the square root's residual.
+    const Sum2 xx = twoProduct(hi[0], hi[0]), yy = twoProduct(hi[1], hi[1]);
+    const Sum2 rho2 = twoSum(xx.hi, yy.hi);
+    const double rho2Lo = rho2.lo + xx.lo + yy.lo + 2.0 * (hi[0] * lo[0] + hi[1] * lo[1]);
+    const double rho = std::sqrt(rho2.hi);
+    if (!(rho > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+    const double rhoLo = (fusedMultiplyAdd(-rho, rho, rho2.hi) + rho2Lo) / (2.0 * rho);
+    // G = (rho - R)^2 + z^2 - r^2.
+    const Sum2 dr = twoSum(rho, -R);
+    const double drLo = dr.lo + rhoLo;
+    const Sum2 dr2 = twoProduct(dr.hi, dr.hi), zz = twoProduct(hi[2], hi[2]);
+    const Sum2 rr = twoProduct(r, r);
+    const Sum2 g1 = twoSum(dr2.hi, zz.hi);
+    const Sum2 g2 = twoSum(g1.hi, -rr.hi);
+    return g2.hi +
+           (g2.lo + g1.lo + dr2.lo + zz.lo - rr.lo + 2.0 * dr.hi * drLo + 2.0 * hi[2] * lo[2]);
 }
 
 }  // namespace
@@ -195,11 +251,11 @@ Polynomial Torus::quarticAlong(const Vec3& b, const Vec3& u) const {
 
 namespace {
 
-// Steps 3-5 of spans() on the line b + s u, |u| = 1 (built once by spans()), inside [sLo, sHi]
+// Steps 3-6 of spans() on the line b + s u, |u| = 1 (built once by spans()), inside [sLo, sHi]
 // (the bounds), for t = tBase + s / len: the tube form's monotone pieces (Solver::Auto), or the
 // quartic by the solver asked for.
-void tubeSpans(const Torus& torus, const TubeLine& line, double sLo, double sHi, double tBase,
-               double len, LocalSpans& out) {
+void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine& line, double sLo,
+               double sHi, double tBase, double len, LocalSpans& out) {
     const double R = torus.majorRadius, r = torus.minorRadius;
     const double a = line.a;
 
@@ -261,6 +317,7 @@ void tubeSpans(const Torus& torus, const TubeLine& line, double sLo, double sHi,
     // is outside and so is the last, so crossings alternate entering and leaving.
     double ends[4];
     int m = 0;
+    const double polishBelow = 2.0 * r * tol::kTubeGrazingCos;
     for (int k = 0; k + 1 < nBreaks && m < 4; ++k) {
         const Break& lo = breaks[k];
         const Break& hi = breaks[k + 1];
@@ -272,10 +329,22 @@ void tubeSpans(const Torus& torus, const TubeLine& line, double sLo, double sHi,
         if (!(start > lo.s && start < hi.s) && (lo.v.g < 0.0) != (hi.v.g < 0.0))
             start = lo.s + (hi.s - lo.s) * (lo.v.g / (lo.v.g - hi.v.g));
         if (!(start > lo.s && start < hi.s)) start = 0.5 * lo.s + 0.5 * hi.s;
-        ends[m++] = crossing(line, lo.s, hi.s, start, lo.negative, convergedStep);
+        const TubeRoot root = crossing(line, lo.s, hi.s, start, lo.negative, convergedStep);
+        ends[m] = root.s / len;
+        // Step 6: where the line meets the tube at a grazing angle (|G'| = 2 r cos at the
+        // crossing), one Newton step on the accurate G, in sigma = t - tBase (G' from
+        // crossing's last step; its relative error only scales this step's own small size).
+        if (std::abs(root.dg) < polishBelow) {
+            const double g = accurateG(o, d, tBase, ends[m], R, r);
+            const double dg = root.dg * len;
+            if (std::isfinite(g) && dg != 0.0) {
+                const double next = ends[m] - g / dg;
+                if (next * len > lo.s && next * len < hi.s) ends[m] = next;
+            }
+        }
+        ++m;
     }
-    for (int i = 0; i + 1 < m; i += 2)
-        out.add(tBase + ends[i] / len, 0, tBase + ends[i + 1] / len, 0);
+    for (int i = 0; i + 1 < m; i += 2) out.add(tBase + ends[i], 0, tBase + ends[i + 1], 0);
 }
 
 void quarticSpans(const Torus& torus, const TubeLine& line, double sLo, double sHi, double tBase,
@@ -361,7 +430,7 @@ void Torus::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     sLo -= widen, sHi += widen;
 
     if (solver == Solver::Auto)
-        tubeSpans(*this, line, sLo, sHi, tBase, len, out);
+        tubeSpans(*this, o, d, line, sLo, sHi, tBase, len, out);
     else
         quarticSpans(*this, line, sLo, sHi, tBase, len, out);
 }

@@ -409,7 +409,7 @@ TEST(Torus, SpanEndsAgainstFiftyDigitReference) {
                 maxRel, std::sqrt(sumSquares / std::max(ends, 1)), wrongCount);
             if (solver == Solver::Auto) {
                 EXPECT_EQ(wrongCount, 0);
-                EXPECT_LE(maxRel, 1e-13);
+                EXPECT_LE(maxRel, 1e-15);
                 EXPECT_GT(ends, 2000);
             }
         }
