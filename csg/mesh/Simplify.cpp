@@ -69,6 +69,15 @@ public:
         q += property(quadrics, b);
         return std::max(0.0, q(point(b)));
     }
+    // mergedError(v0, v1) of the collapse along v0v1, which is_collapse_ok has just computed:
+    // the decimater asks for a collapse's priority (heap_vertex) only right after
+    // is_collapse_ok passed that same halfedge. A collapse changes quadrics only in
+    // postprocess_collapse, which forgets the value; the fallback never runs but keeps the
+    // answer right if the decimater's call order ever changes.
+    double collapseError(HalfedgeHandle v0v1, VertexHandle v0, VertexHandle v1) const {
+        return v0v1 == errorOf_ ? error_ : mergedError(v0, v1);
+    }
+    void forgetCollapseError() { errorOf_ = HalfedgeHandle(); }
 
     unsigned valence(VertexHandle v) const {
         const HalfedgeHandle first = halfedge_handle(v);
@@ -99,7 +108,9 @@ public:
         const VertexHandle v0 = to_vertex_handle(v1v0), v1 = to_vertex_handle(v0v1);
         if (status(v0).deleted() || status(v1).deleted()) return false;
         // The module's bound on the kept vertex (ModSurfaceDeviationT::collapse_priority).
-        if (mergedError(v0, v1) > maxSquared) return false;
+        error_ = mergedError(v0, v1);
+        errorOf_ = v0v1;
+        if (error_ > maxSquared) return false;
         // The edges v1-vl and vl-v0 (and v0-vr, vr-v1) must not both be boundary edges.
         VertexHandle vl, vr;
         if (!is_boundary(v0v1)) {
@@ -153,6 +164,8 @@ public:
 private:
     std::vector<uint32_t> ringMark_;
     uint32_t mark_ = 0;
+    HalfedgeHandle errorOf_;  // the halfedge whose mergedError error_ holds
+    double error_ = 0.0;
 };
 
 Vec3 toVec(const OmMesh::Point& p) {
@@ -170,7 +183,7 @@ public:
 
     float collapse_priority(const CollapseInfo& ci) override {
         const MeshT& m = Base::mesh();
-        const double error = m.mergedError(ci.v0, ci.v1);
+        const double error = m.collapseError(ci.v0v1, ci.v0, ci.v1);
         // The fan of v0 after the move: no fold, and p0 stays near it (once one triangle is
         // near enough, the others need not be measured).
         const Vec3 p0 = toVec(ci.p0), p1 = toVec(ci.p1);
@@ -203,6 +216,7 @@ public:
     void postprocess_collapse(const CollapseInfo& ci) override {
         MeshT& m = Base::mesh();
         m.property(m.quadrics, ci.v1) += m.property(m.quadrics, ci.v0);
+        m.forgetCollapseError();
     }
 };
 
