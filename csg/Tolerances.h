@@ -140,6 +140,31 @@ inline constexpr double kCreaseAngle = 0.349;
 // measure the error and refine, so a wrong guess costs a pass, not accuracy.
 inline constexpr double kMeshReferenceRadius = 0.05;
 
+// The adaptive octree of dual contouring (csg/mesh/DualContour.h) merges a block of cells into
+// one vertex only when that vertex lies within this fraction of the tolerance of every tangent
+// plane sampled in the block (unit: relative to T). A merged block's triangles run from its
+// vertex to crossings on its edges and to its neighbours' vertices, spanning up to twice the
+// block, so their sagitta over a curved patch is up to ~4x the per-block plane distance on
+// a sphere; a quarter keeps that within T where the grid's own error is small (smooth
+// patches: the grid's worst errors sit at creases, which never merge), and the
+// measure-and-refine loop still measures the result.
+inline constexpr double kOctreeFlatFraction = 0.25;
+
+// ... and only when every sampled normal in the block lies within this angle of their mean
+// (unit: radians, 8 degrees). Two normals of a block then differ by at most 16 degrees, below
+// kCreaseAngle's 20: no face of a merged block carries a crease vertex, and a crease (a box
+// edge, a rim) never merges.
+inline constexpr double kOctreeConeAngle = 0.1396;
+
+// A fan triangle of dual contouring at a merged octree block's vertex, where the crossing lies
+// on the block's own smooth patch, must face within this of the exact normal at the crossing
+// (unit: cosine, 30 degrees); else the ring is fanned from another of its vertices, or the block
+// is split up again. A merged block's triangles lie within its narrow normal cone
+// (kOctreeConeAngle) plus the curvature over its neighbours; one turned further is a fold (the
+// block's vertex sits where the surface does not cross the face it shares with a neighbour) or
+// a crease that the export's shading would split (kShadingCreaseDegrees) on a smooth surface.
+inline constexpr double kOctreeFanTurnCos = 0.866;
+
 // Meshing refines its grid until the *sampled* mesh-surface distance is within this fraction
 // of the tolerance (unit: relative). Samples (vertices, centroids, edge midpoints, a grid of
 // surface points) find the maximum to within ~10-20% on the samples; 0.8 leaves that margin so

@@ -36,6 +36,9 @@ const char* const kExportHelp =
     "                     the bounding box diagonal)\n"
     "  --max-cells N      cap on the grid's cells (default 16777216); when it binds, the\n"
     "                     mesh is written with a warning and the error reached\n"
+    "  --no-octree        one vertex per cell everywhere (default: blocks of up to 16^3\n"
+    "                     cells the surface crosses flat get one vertex each)\n"
+    "  --octree           the default, merging flat blocks\n"
     "  --no-simplify      keep the grid's mesh (no coarsening of flat regions)\n"
     "  --simplify         coarsen even a grid mesh over a million triangles (skipped by\n"
     "                     default: there it takes longer than the meshing, e.g. 2.7x)\n"
@@ -60,6 +63,10 @@ int exportCommand(std::span<const std::string> args) {
             options.maxCells = uint64_t(parsePositiveNumber(*n, "--max-cells"));
         } else if (auto th = cursor.option("--threads")) {
             options.threads = parsePositiveInt(*th, "--threads", 1024);
+        } else if (cursor.flag("--no-octree")) {
+            options.adaptive = false;
+        } else if (cursor.flag("--octree")) {
+            options.adaptive = true;
         } else if (cursor.flag("--no-simplify")) {
             options.simplify = false;
         } else if (cursor.flag("--simplify")) {
@@ -144,14 +151,18 @@ int exportCommand(std::span<const std::string> args) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
     if (verbose && !quiet)
         for (const csg::TessellatePass& p : result.history)
-            std::fprintf(stderr,
-                         "csgray: export: pass: cell %.6g, %llu cells (%llu thin-feature planes), "
-                         "%llu triangles, mesh->surface %.3g, surface->mesh %.3g, %.2f s (cast "
-                         "%.2f, contour %.2f, mesh->surface %.2f, bvh %.2f, surface->mesh %.2f)\n",
-                         p.cellSize, (unsigned long long)p.cells, (unsigned long long)p.thinPlanes,
-                         (unsigned long long)p.triangles, p.error, p.backError, p.seconds,
-                         p.castSeconds, p.contourSeconds, p.toSurfaceSeconds, p.bvhSeconds,
-                         p.backSeconds);
+            std::fprintf(
+                stderr,
+                "csgray: export: pass: cell %.6g, %llu cells (%llu thin-feature planes), "
+                "%llu triangles (octree: %llu of %llu active cells in %llu blocks, %d round(s)%s), "
+                "mesh->surface %.3g, surface->mesh %.3g, %.2f s (cast "
+                "%.2f, contour %.2f, mesh->surface %.2f, bvh %.2f, surface->mesh %.2f)\n",
+                p.cellSize, (unsigned long long)p.cells, (unsigned long long)p.thinPlanes,
+                (unsigned long long)p.triangles, (unsigned long long)p.octreeCells,
+                (unsigned long long)p.activeCells, (unsigned long long)p.octreeLeaves,
+                p.octreeRounds, p.octreeFallback ? ", not a manifold: uniform used" : "", p.error,
+                p.backError, p.seconds, p.castSeconds, p.contourSeconds, p.toSurfaceSeconds,
+                p.bvhSeconds, p.backSeconds);
     if (verbose && !quiet)
         std::fprintf(stderr, "csgray: export: writing %s (checks, crease normals) took %.2f s\n",
                      output.c_str(), writeSeconds);

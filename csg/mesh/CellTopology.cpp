@@ -39,6 +39,7 @@ CellCycles buildCycles(uint8_t mask) {
     }
 
     // Step 1: pair the sign-changing edges on each of the 6 faces and join pairs into cycles.
+    bool ambiguousFace = false;
     std::array<int, 12> parent;
     std::iota(parent.begin(), parent.end(), 0);
     for (int f = 0; f < 3; ++f) {
@@ -53,6 +54,8 @@ CellCycles buildCycles(uint8_t mask) {
                     off[v] = dv;
                     corner[size_t(du + 2 * dv)] = inside(off[0] | (off[1] << 1) | (off[2] << 2));
                 }
+            ambiguousFace = ambiguousFace || (corner[0] == corner[3] && corner[1] == corner[2] &&
+                                              corner[0] != corner[1]);
             // Cell edge of a face edge: along u at v-offset o, or along v at u-offset o.
             auto cellEdge = [&](int axis, int o) {
                 const int a = axis == 0 ? u : v;
@@ -79,6 +82,7 @@ CellCycles buildCycles(uint8_t mask) {
 
     // Step 2: number the cycles.
     CellCycles cycles;
+    cycles.ambiguousFace = ambiguousFace;
     cycles.edgeCycle.fill(-1);
     std::array<int8_t, 12> label;
     label.fill(-1);

@@ -21,6 +21,7 @@ struct CellCycles {
     int count = 0;  // sheets through the cell
     // Cycle of each edge, -1 when the edge has no sign change.
     std::array<int8_t, 12> edgeCycle{};
+    bool ambiguousFace = false;  // a face whose inside corners are only diagonal
 };
 
 // The cycles of a cell whose corners' inside bits are mask (bit c = corner c inside).

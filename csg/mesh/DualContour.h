@@ -9,6 +9,23 @@
 // Cubes' surface with each polygon fanned from its QEF vertex and each face curve bent at its
 // crease: a closed 2-manifold (the polygons of MC with one face rule are), oriented outward,
 // and every triangle lies inside one cell, so triangles of different cells never cross.
+//
+// Adaptive (DualContourOptions::flatTolerance > 0): an octree over the cells in index space
+// (Ju et al. 2002, "Dual contouring of Hermite data") merges blocks of 2^k x 2^k x 2^k cells,
+// k <= kOctreeMaxLevel, that the surface crosses flat (one sheet, every sample's tangent plane
+// within the tolerance of the block's one QEF vertex, normals in a narrow cone, every sample
+// measured) and whose corner signs keep the topology (Ju's test: one sign change per block
+// edge, face and block centres agreeing with a corner, no ambiguous face). Every cell of such
+// a block uses the block's vertex. The fans are the same per crossed edge with that mapping,
+// with no face vertex between two cells of one block; a ring with two distinct vertices or
+// fewer (an edge inside a block, or inside a face between two blocks) gets no fan: it would be
+// a pair of opposite triangles. The mesh is the image of the uniform one under merging
+// vertices, so it stays closed and oriented as a chain. A ring may be fanned from one of its
+// vertices instead of its crossing (same boundary; a ring of three becomes Ju's triangle)
+// where the crossing's fan would fold. Where no fan fits, or a vertex's triangles are not one
+// disk, the blocks there are forbidden and the contour is made again (at most
+// kOctreeMaxRounds rounds, then the uniform contour: DualContourStats::octreeFallback).
+// Triangles then span up to four blocks, so "one cell" above holds per block.
 #pragma once
 
 #include <cstdint>
@@ -24,8 +41,26 @@ struct DualContourStats {
     uint64_t sheetVertices = 0;     // QEF vertices (cells crossed by two sheets count twice)
     uint64_t faceVertices = 0;      // crease points on cell faces
     uint64_t missingCrossings = 0;  // sign changes whose ray saw no crossing (midpoint used)
-    uint64_t thinEdges = 0;  // edges crossed more than once: thinner than a cell (HermiteGrid)
-    Vec3 thinAt{0.0};        // one of them
+    uint64_t thinEdges = 0;       // edges crossed more than once: thinner than a cell (HermiteGrid)
+    Vec3 thinAt{0.0};             // one of them
+    uint64_t octreeLeaves = 0;    // merged blocks (each one vertex), see the header
+    uint64_t octreeCells = 0;     // active cells inside them
+    int octreeRounds = 0;         // contours made (each after one that folded at a block)
+    bool octreeFallback = false;  // the merged mesh folded or was not a manifold: uniform used
+};
+
+// A merged block spans at most 2^kOctreeMaxLevel cells per axis (16): a block never reaches
+// far past the surface it was measured on, and a top block's cells fit one worker's pass.
+inline constexpr int kOctreeMaxLevel = 4;
+
+// Rounds of merging before the uniform contour is used instead (DualContour.cpp's run()).
+inline constexpr int kOctreeMaxRounds = 8;
+
+struct DualContourOptions {
+    int threads = 0;  // 0: all cores; the mesh is the same for any count
+    // Largest distance of a merged block's vertex from any tangent plane in it (world units);
+    // <= 0: no octree, every cell keeps its own vertices.
+    double flatTolerance = 0.0;
 };
 
 // The mesh of the grid's surface; empty when no node is inside. Active cells are found and
@@ -33,5 +68,7 @@ struct DualContourStats {
 // thread count.
 TriangleMesh dualContour(const HermiteGrid& grid, DualContourStats* stats = nullptr,
                          int threads = 0);
+TriangleMesh dualContour(const HermiteGrid& grid, const DualContourOptions& options,
+                         DualContourStats* stats = nullptr);
 
 }  // namespace csg

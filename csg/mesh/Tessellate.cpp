@@ -13,11 +13,14 @@
 namespace csg {
 
 TriangleMesh tessellateAt(const Scene& scene, double h, int threads, uint64_t* rays,
-                          DualContourStats* stats, ThinPlanes* planes) {
+                          DualContourStats* stats, ThinPlanes* planes, double flatTolerance) {
     const Bounds3 box = scene.bounds();
     if (box.empty()) return {};
     const HermiteGrid grid = castResolvingThinFeatures(scene, box, h, threads, rays, planes);
-    return dualContour(grid, stats, threads);
+    DualContourOptions contour;
+    contour.threads = threads;
+    contour.flatTolerance = flatTolerance;
+    return dualContour(grid, contour, stats);
 }
 
 namespace {
@@ -160,7 +163,10 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
         const HermiteGrid grid = castResolvingThinFeatures(scene, box, h, options.threads,
                                                            &result.rays, &result.thinPlanes);
         record.castSeconds = lap();
-        result.mesh = dualContour(grid, &result.contour, options.threads);
+        DualContourOptions contour;
+        contour.threads = options.threads;
+        contour.flatTolerance = options.adaptive ? tol::kOctreeFlatFraction * tolerance : 0.0;
+        result.mesh = dualContour(grid, contour, &result.contour);
         record.contourSeconds = lap();
         result.cellSize = h;
         result.cells = result.contour.cells;
@@ -178,6 +184,11 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
         record.cells = result.cells;
         record.thinPlanes = result.thinPlanes.added;
         record.triangles = result.mesh.triangles.size();
+        record.activeCells = result.contour.activeCells;
+        record.octreeCells = result.contour.octreeCells;
+        record.octreeLeaves = result.contour.octreeLeaves;
+        record.octreeFallback = result.contour.octreeFallback;
+        record.octreeRounds = result.contour.octreeRounds;
         record.error = result.error.max;
         record.backError = result.backError.max;
         record.seconds = std::chrono::duration<double>(clock - passStart).count();

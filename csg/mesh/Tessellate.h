@@ -49,6 +49,10 @@ struct TessellateOptions {
     // Cap on the grid's cells (the work and memory of one pass grow with it).
     uint64_t maxCells = uint64_t(1) << 24;
     int maxPasses = 4;
+    // Merge flat blocks of cells into one vertex each while contouring (the octree of
+    // DualContour.h, flat to tol::kOctreeFlatFraction T): far fewer triangles on flat and gently
+    // curved faces, fine cells at creases, thin gaps and curved patches.
+    bool adaptive = true;
     bool simplify = true;  // coarsen flat regions after the grid passes (Simplify.h)
     // Grid meshes larger than this are not simplified (0: no limit). Decimation (in slabs on
     // all workers, then once over the whole) and its re-measurement both ways cost more than
@@ -65,6 +69,11 @@ struct TessellatePass {
     uint64_t cells = 0;
     uint64_t thinPlanes = 0;
     uint64_t triangles = 0;
+    uint64_t activeCells = 0;   // cells the surface crosses
+    uint64_t octreeCells = 0;   // of them, in merged blocks (DualContour.h's octree)
+    uint64_t octreeLeaves = 0;  // merged blocks
+    int octreeRounds = 0;
+    bool octreeFallback = false;
     double error = 0.0;      // mesh to surface, max
     double backError = 0.0;  // surface to mesh, max
     double seconds = 0.0;    // wall time of the pass (grid, contouring, measuring)
@@ -104,9 +113,10 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
 // kSimplifyFlatBudget T. tessellate() uses it; exposed so benchmarks simplify as it does.
 double firstSimplifyBudget(const TessellateResult& grid);
 
-// One pass at a given spacing: grid (with thin-feature planes), Hermite data, contouring. For
-// tests and benchmarks.
+// One pass at a given spacing: grid (with thin-feature planes), Hermite data, contouring (with
+// the octree when flatTolerance > 0, DualContourOptions). For tests and benchmarks.
 TriangleMesh tessellateAt(const Scene& scene, double h, int threads, uint64_t* rays = nullptr,
-                          DualContourStats* stats = nullptr, ThinPlanes* planes = nullptr);
+                          DualContourStats* stats = nullptr, ThinPlanes* planes = nullptr,
+                          double flatTolerance = 0.0);
 
 }  // namespace csg
