@@ -60,7 +60,10 @@ public:
             // (T = 0.028) 3556 blocks folded in the first round, then 701, 19, 4, 1, where this
             // rule gives 3556, 60, 19, 5, 3 (the tail is neighbours that fold once a block next
             // to them splits; each round costs about as much as the first).
-            for (const uint32_t leaf : foldedLeaves_) forbidden_.insert(leafKeys_[leaf]);
+            for (const uint32_t leaf : foldedLeaves_) {
+                forbidden_.insert(leafKeys_[leaf]);
+                dirtyTop_[leafTop_[leaf]] = 1;
+            }
         }
         if (!leafPositions_.empty()) dropUnusedVertices();
         finishNormals();
@@ -75,6 +78,7 @@ private:
         leafPositions_.clear();
         leafKeys_.clear();
         leafNormals_.clear();
+        leafTop_.clear();
         vertexLeaf_.clear();
         foldedLeaves_.clear();
         touched_.clear();
@@ -188,16 +192,44 @@ private:
         stats_.sheetVertices = next;
         std::vector<uint64_t> missing(size_t(workers_), 0);
         constexpr uint64_t kChunk = 1024;
-        parallelFor((active_.size() + kChunk - 1) / kChunk, workers_, [&](int w, uint64_t chunk) {
-            const size_t end = std::min<size_t>(active_.size(), (chunk + 1) * kChunk);
-            for (size_t i = chunk * kChunk; i < end; ++i)
-                if (leafOfActive_.empty() || leafOfActive_[i] == kNoLeaf)
-                    placeSheetVerticesOf(active_[i], missing[size_t(w)]);
-        });
-        for (const uint64_t m : missing) stats_.missingCrossings += m;
+        if (leafOfActive_.empty()) {
+            parallelFor(
+                (active_.size() + kChunk - 1) / kChunk, workers_, [&](int w, uint64_t chunk) {
+                    const size_t end = std::min<size_t>(active_.size(), (chunk + 1) * kChunk);
+                    for (size_t i = chunk * kChunk; i < end; ++i)
+                        placeSheetVerticesOf(active_[i], missing[size_t(w)],
+                                             &mesh_.positions[sheetBase_[active_[i]]]);
+                });
+            for (const uint64_t m : missing) stats_.missingCrossings += m;
+            return;
+        }
+        // With the octree, every cell's vertices are placed once (the first round) and copied
+        // in each round for the cells outside merged blocks.
+        if (fineStart_.empty()) {
+            fineStart_.resize(active_.size() + 1, 0);
+            for (size_t i = 0; i < active_.size(); ++i)
+                fineStart_[i + 1] =
+                    fineStart_[i] + uint32_t(cellCycles(cellMask(cellNode(active_[i]))).count);
+            finePlaced_.resize(fineStart_.back());
+            parallelFor(
+                (active_.size() + kChunk - 1) / kChunk, workers_, [&](int w, uint64_t chunk) {
+                    const size_t end = std::min<size_t>(active_.size(), (chunk + 1) * kChunk);
+                    for (size_t i = chunk * kChunk; i < end; ++i)
+                        placeSheetVerticesOf(active_[i], missing[size_t(w)],
+                                             &finePlaced_[fineStart_[i]]);
+                });
+            for (const uint64_t m : missing) fineMissing_ += m;
+        }
+        stats_.missingCrossings += fineMissing_;
+        for (size_t i = 0; i < active_.size(); ++i)
+            if (leafOfActive_[i] == kNoLeaf)
+                std::copy(finePlaced_.begin() + fineStart_[i],
+                          finePlaced_.begin() + fineStart_[i + 1],
+                          mesh_.positions.begin() + sheetBase_[active_[i]]);
     }
 
-    void placeSheetVerticesOf(uint64_t index, uint64_t& missing) {
+    // The sheet vertices of active cell index into out[0 .. its sheet count).
+    void placeSheetVerticesOf(uint64_t index, uint64_t& missing, Vec3* out) const {
         const Node3 c = cellNode(index);
         const CellCycles& cycles = cellCycles(cellMask(c));
         // The cell inset a hair, so sheet vertices of neighbouring cells (say both clamped
@@ -232,7 +264,7 @@ private:
                 const double len = glm::length(toward);
                 if (len > 0.0) placed[q] += toward * (std::min(len, 4.0 * apart) / len);
             }
-            mesh_.positions[sheetBase_[index] + uint32_t(q)] = placed[q];
+            out[q] = placed[q];
         }
     }
 
@@ -361,7 +393,7 @@ private:
     void addLeaf(const BlockState& block, const Node3& lo, int level, const uint32_t* first,
                  const uint32_t* last, TopBlockWork& work) {
         for (const uint32_t* p = first; p != last; ++p)
-            leafOfActive_[*p] = uint32_t(work.leaves.size());
+            localLeaf_[*p] = uint32_t(work.leaves.size());
         work.leaves.push_back(block.vertex);
         work.normals.push_back(block.normal);
         work.keys.push_back(blockKey(lo, level));
@@ -429,51 +461,63 @@ private:
         std::array<uint64_t, 3> tops;
         for (int a = 0; a < 3; ++a)
             tops[size_t(a)] = uint64_t(spec_.nodes[a] - 1 + kTop - 1) / kTop;
-        std::vector<std::pair<uint64_t, uint32_t>> keyed(active_.size());
-        for (size_t i = 0; i < active_.size(); ++i) {
-            const Node3 c = cellNode(active_[i]);
-            keyed[i] = {uint64_t(c[0] / kTop) +
-                            tops[0] * (uint64_t(c[1] / kTop) + tops[1] * uint64_t(c[2] / kTop)),
-                        uint32_t(i)};
+        // The first round sorts the active cells into top blocks; later rounds merge again only
+        // the top blocks where a block was forbidden (dirtyTop_), the others keep their leaves.
+        if (topStarts_.empty()) {
+            std::vector<std::pair<uint64_t, uint32_t>> keyed(active_.size());
+            for (size_t i = 0; i < active_.size(); ++i) {
+                const Node3 c = cellNode(active_[i]);
+                keyed[i] = {uint64_t(c[0] / kTop) +
+                                tops[0] * (uint64_t(c[1] / kTop) + tops[1] * uint64_t(c[2] / kTop)),
+                            uint32_t(i)};
+            }
+            std::sort(keyed.begin(), keyed.end());
+            topOrder_.resize(keyed.size());
+            for (size_t i = 0; i < keyed.size(); ++i) {
+                if (i == 0 || keyed[i].first != keyed[i - 1].first) {
+                    topStarts_.push_back(i);
+                    topKeys_.push_back(keyed[i].first);
+                }
+                topOrder_[i] = keyed[i].second;
+            }
+            topStarts_.push_back(topOrder_.size());
+            topWork_.resize(topKeys_.size());
+            dirtyTop_.assign(topKeys_.size(), 1);
+            localLeaf_.assign(active_.size(), kNoLeaf);
         }
-        std::sort(keyed.begin(), keyed.end());
-        std::vector<uint32_t> order(keyed.size());
-        std::vector<size_t> starts;  // per non-empty top block, its first entry of order
-        for (size_t i = 0; i < keyed.size(); ++i) {
-            if (i == 0 || keyed[i].first != keyed[i - 1].first) starts.push_back(i);
-            order[i] = keyed[i].second;
-        }
-        starts.push_back(order.size());
-        const size_t blocks = starts.size() - 1;
-        leafOfActive_.assign(active_.size(), kNoLeaf);
-        std::vector<TopBlockWork> work(blocks);
+        const size_t blocks = topKeys_.size();
         parallelFor(blocks, workers_, [&](int, uint64_t block) {
-            uint32_t* first = order.data() + starts[block];
-            uint32_t* last = order.data() + starts[block + 1];
-            const uint64_t key = keyed[starts[block]].first;
+            if (!dirtyTop_[block]) return;
+            uint32_t* first = topOrder_.data() + topStarts_[block];
+            uint32_t* last = topOrder_.data() + topStarts_[block + 1];
+            for (uint32_t* p = first; p != last; ++p) localLeaf_[*p] = kNoLeaf;
+            const uint64_t key = topKeys_[block];
             const Node3 lo{int(key % tops[0]) * kTop, int((key / tops[0]) % tops[1]) * kTop,
                            int(key / (tops[0] * tops[1])) * kTop};
-            TopBlockWork& w = work[block];
+            TopBlockWork& w = topWork_[block];
+            w = {};
             const BlockState top = mergeBlock(lo, kOctreeMaxLevel, first, last, w, false);
             if (top.mergeable && top.surface) addLeaf(top, lo, kOctreeMaxLevel, first, last, w);
             w.samples = {};
+            dirtyTop_[block] = 0;
         });
         // Number the leaves globally: top blocks in order.
+        leafOfActive_.assign(active_.size(), kNoLeaf);
         uint32_t offset = 0;
         for (size_t block = 0; block < blocks; ++block) {
-            for (size_t i = starts[block]; i < starts[block + 1]; ++i) {
-                uint32_t& leaf = leafOfActive_[order[i]];
-                if (leaf != kNoLeaf) {
-                    leaf += offset;
+            for (size_t i = topStarts_[block]; i < topStarts_[block + 1]; ++i) {
+                const uint32_t p = topOrder_[i];
+                if (localLeaf_[p] != kNoLeaf) {
+                    leafOfActive_[p] = localLeaf_[p] + offset;
                     ++stats_.octreeCells;
                 }
             }
-            offset += uint32_t(work[block].leaves.size());
-            leafPositions_.insert(leafPositions_.end(), work[block].leaves.begin(),
-                                  work[block].leaves.end());
-            leafKeys_.insert(leafKeys_.end(), work[block].keys.begin(), work[block].keys.end());
-            leafNormals_.insert(leafNormals_.end(), work[block].normals.begin(),
-                                work[block].normals.end());
+            const TopBlockWork& w = topWork_[block];
+            offset += uint32_t(w.leaves.size());
+            leafPositions_.insert(leafPositions_.end(), w.leaves.begin(), w.leaves.end());
+            leafKeys_.insert(leafKeys_.end(), w.keys.begin(), w.keys.end());
+            leafNormals_.insert(leafNormals_.end(), w.normals.begin(), w.normals.end());
+            leafTop_.insert(leafTop_.end(), w.leaves.size(), uint32_t(block));
         }
         stats_.octreeLeaves = leafPositions_.size();
     }
@@ -794,6 +838,21 @@ private:
     std::vector<Vec3> leafNormals_;       // per merged block, its mean sample normal
     std::vector<uint32_t> vertexLeaf_;    // per sheet vertex, its merged block or kNoLeaf
     std::vector<uint32_t> foldedLeaves_;  // merged blocks of rings no fan fits
+    // The top blocks of mergeFlatBlocks, kept across rounds: the active cells (positions in
+    // active_) by top block, each top block's first entry and key, its leaves, whether it must
+    // be merged again, and per active cell its leaf within its top block.
+    std::vector<uint32_t> topOrder_;
+    std::vector<size_t> topStarts_;
+    std::vector<uint64_t> topKeys_;
+    std::vector<TopBlockWork> topWork_;
+    std::vector<uint8_t> dirtyTop_;
+    std::vector<uint32_t> localLeaf_;
+    std::vector<uint32_t> leafTop_;  // per merged block, its top block
+    // Every active cell's own sheet vertices (placeSheetVertices, octree rounds): the first of
+    // active cell i is finePlaced_[fineStart_[i]]; fineMissing_ counts their missing crossings.
+    std::vector<uint32_t> fineStart_;
+    std::vector<Vec3> finePlaced_;
+    uint64_t fineMissing_ = 0;
     // blockKeys that may not merge, nor any block inside them.
     std::unordered_set<uint64_t> forbidden_;
     std::vector<uint8_t> touched_;  // per vertex: a corner of a ring with a merged block
