@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "csg/Fma.h"
+#include "primitives/solvers/ErrorFree.h"
 #include "primitives/solvers/LinePoint.h"
 #include "primitives/solvers/Roots.h"
 
@@ -178,21 +179,6 @@ double polish(const TubeLine& line, double s, double lo, double hi) {
         s = next, v = nv;
     }
     return s;
-}
-
-// Error-free transformations: a + b and a * b as hi + lo exactly (Knuth's twoSum; the product's
-// low part by one fma).
-struct Sum2 {
-    double hi, lo;
-};
-Sum2 twoSum(double a, double b) {
-    const double s = a + b;
-    const double bb = s - a;
-    return {s, (a - (s - bb)) + (b - bb)};
-}
-Sum2 twoProduct(double a, double b) {
-    const double p = a * b;
-    return {p, fusedMultiplyAdd(a, b, -p)};
 }
 
 // G at the point o + (tBase + sigma) d of the caller's own line, to a few ulps of G itself

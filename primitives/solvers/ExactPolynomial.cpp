@@ -1,38 +1,24 @@
-// Notation: a DD value is hi + lo with |lo| <= ulp(hi) / 2 (a double-double); twoSum and
-// twoProd are the error-free transformations (Knuth; fma for the product).
+// Notation: a DD value is hi + lo with |lo| <= ulp(hi) / 2 (a double-double), built from the
+// error-free transformations of ErrorFree.h.
 #include "primitives/solvers/ExactPolynomial.h"
 
 #include <cassert>
 #include <cmath>
 
+#include "primitives/solvers/ErrorFree.h"
+
 namespace csg {
 
-namespace {
-
-void twoSum(double a, double b, double& s, double& e) {
-    s = a + b;
-    const double bb = s - a;
-    e = (a - (s - bb)) + (b - bb);
-}
-
-}  // namespace
-
 ExactPolynomial::DD ExactPolynomial::add(DD a, DD b) {
-    double s, e;
-    twoSum(a.hi, b.hi, s, e);
-    e += a.lo + b.lo;
-    DD r;
-    twoSum(s, e, r.hi, r.lo);
-    return r;
+    const Sum2 s = twoSum(a.hi, b.hi);
+    const Sum2 r = twoSum(s.hi, s.lo + (a.lo + b.lo));
+    return {r.hi, r.lo};
 }
 
 ExactPolynomial::DD ExactPolynomial::mul(DD a, DD b) {
-    const double p = a.hi * b.hi;
-    double e = std::fma(a.hi, b.hi, -p);  // exact error of the product
-    e += a.hi * b.lo + a.lo * b.hi;
-    DD r;
-    twoSum(p, e, r.hi, r.lo);
-    return r;
+    const Sum2 p = twoProduct(a.hi, b.hi);
+    const Sum2 r = twoSum(p.hi, p.lo + (a.hi * b.lo + a.lo * b.hi));
+    return {r.hi, r.lo};
 }
 
 ExactPolynomial::ExactPolynomial() : c_(size_t(kSide) * kSide * kSide) {}
