@@ -229,32 +229,30 @@ struct Evaluator {
         const double lo = a[0].in.t, hi = a[na - 1].out.t;
         const double slack = coincidenceSlack(originScale, lo, hi);
         const double minPiece = tol::kUncoveredPieceSlacks * slack;
-        Reach covers[kMaxReaches];
-        uint32_t n = 0;
-        const auto add = [&](uint32_t index) {
-            Reach r;
-            if (reach(index, lo, hi, r)) covers[n++] = {r.t0 - slack, r.t1 + slack};
-        };
+        // The operands whose boxes count: a short union's children (not through its BVH), else
+        // the right operand itself as one box.
         const CompiledNode& b = scene.nodes_[right];
         const bool byOperand =
             b.kind == NodeKind::Union && b.bvhRoot == kNoNode && b.count <= kMaxReaches;
+        const uint32_t operands = byOperand ? b.count : 1;
+        const auto operand = [&](uint32_t k) {
+            return byOperand ? scene.children_[b.first + k] : right;
+        };
+        Reach r;
         if (atStart) {
             // Only the first piece counts: A's first span must reach past start + minPiece,
             // and no operand's box, widened by a slack, may begin before that, i.e. none may
             // meet [start, clear]. Stops at the first one that does; nothing to sort.
             const double start = a[0].in.t, clear = start + minPiece + slack;
             if (!(a[0].out.t - start > minPiece)) return false;
-            Reach r;
-            for (uint32_t i = 0; i < (byOperand ? b.count : 1); ++i)
-                if (reach(byOperand ? scene.children_[b.first + i] : right, start, clear, r))
-                    return false;
+            for (uint32_t k = 0; k < operands; ++k)
+                if (reach(operand(k), start, clear, r)) return false;
             return true;
         }
-        if (byOperand) {
-            for (uint32_t i = 0; i < b.count; ++i) add(scene.children_[b.first + i]);
-        } else {
-            add(right);
-        }
+        Reach covers[kMaxReaches];
+        uint32_t n = 0;
+        for (uint32_t k = 0; k < operands; ++k)
+            if (reach(operand(k), lo, hi, r)) covers[n++] = {r.t0 - slack, r.t1 + slack};
         // Ascending by start, then overlapping covers fused: disjoint and ascending.
         for (uint32_t i = 1; i < n; ++i)
             for (uint32_t j = i; j > 0 && covers[j].t0 < covers[j - 1].t0; --j)
