@@ -278,17 +278,18 @@ struct Evaluator {
         return false;
     }
 
-    // Pushes a list whose first span begins where the node's first span does (the node's own
-    // list, or for a difference whose start no box of its right operand reaches, the left
-    // operand's): what closest() needs, without solving what cannot change it.
-    size_t evalFirst(uint32_t index, double t0, double t1) {
+    // Pushes the node's list, or, for a difference whose left operand sticks out of every box
+    // of its right operand (uncovered()), the left operand's list, without solving the right:
+    // empty exactly when the node's list is, and when atStart, its first span begins where the
+    // node's does. What any() (atStart false) and closest() need.
+    size_t evalShortcut(uint32_t index, double t0, double t1, bool atStart) {
         const CompiledNode& node = scene.nodes_[index];
         if (node.kind != NodeKind::Difference) return eval(index, t0, t1);
         if (!mayMeet(node, t0, t1)) return 0;
         const size_t base = top;
         const size_t na = eval(node.first, t0, t1);
         if (na == 0) return 0;
-        return uncovered(node.second, base, na, true) ? na : finishCut(node, base, na);
+        return uncovered(node.second, base, na, atStart) ? na : finishCut(node, base, na);
     }
 
     // Calls visit(child) for the union's children whose bounds the ray meets in [t0, t1],
@@ -345,17 +346,7 @@ struct Evaluator {
             return found;
         }
         const size_t base = top;
-        size_t n = 0;
-        if (node.kind == NodeKind::Difference) {
-            // Non-empty as soon as part of the left operand lies where no box of the right
-            // one reaches; solve the right operand only when none does.
-            if (mayMeet(node, t0, t1)) {
-                n = eval(node.first, t0, t1);
-                if (n > 0 && !uncovered(node.second, base, n, false)) n = finishCut(node, base, n);
-            }
-        } else {
-            n = eval(index, t0, t1);
-        }
+        const size_t n = evalShortcut(index, t0, t1, false);
         top = base;
         return n > 0;
     }
@@ -393,7 +384,7 @@ struct Evaluator {
         if (root.boundsImplied || touches(root.bounds, ray.tmin, t1)) {
             forEachChild(root, ray.tmin, t1, [&](uint32_t child) {
                 const size_t base = top;
-                const size_t n = evalFirst(child, ray.tmin, t1);
+                const size_t n = evalShortcut(child, ray.tmin, t1, true);
                 if (n > 0) {
                     const Hit first = stack()[base].in;
                     top = base;
