@@ -150,12 +150,7 @@ struct Compiler {
                 if (box.empty()) return kNoNode;
                 markImpliedOperands(a, b);
                 const uint32_t added = addNode({NodeKind::Intersection, false, box, a, b});
-                takeBall(added, scene.nodes_[b].ball != kNoNode &&
-                                        (scene.nodes_[a].ball == kNoNode ||
-                                         scene.balls_[scene.nodes_[b].ball].radius <
-                                             scene.balls_[scene.nodes_[a].ball].radius)
-                                    ? b
-                                    : a);
+                takeBall(added, ballRadius(b) < ballRadius(a) ? b : a);  // the smaller ball
                 return added;
             }
             case Op::Difference: {
@@ -172,6 +167,12 @@ struct Compiler {
             }
         }
         return kNoNode;
+    }
+
+    // The radius of the node's bounding ball; infinite when it has none.
+    double ballRadius(uint32_t node) const {
+        const uint32_t ball = scene.nodes_[node].ball;
+        return ball == kNoNode ? kInfinity : scene.balls_[ball].radius;
     }
 
     // Moves the operand's bounding ball, if any, up to its parent (CompiledNode::ball).
