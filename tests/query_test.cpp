@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "csg/Scene.h"
+#include "tests/SeededRng.h"
 #include "tests/TreeOracle.h"
 
 namespace csg {
@@ -198,18 +199,14 @@ TEST(Query, DifferenceAnsweredFromBoxesOnlyWhereTheMergeKeepsTheRest) {
 // and moved at random, hit by lines that pass r (1 - 1e-7) from the centre (chord half-length
 // ~4.5e-4 r) and missed by lines r (1 + 1e-6) from it, which the ball rejects without a solve.
 TEST(Query, BoundingBallRejectsOnlyLinesThatMissTheSphere) {
-    std::mt19937_64 rng(41);
-    std::uniform_real_distribution<double> u(-1.0, 1.0), angle(0.0, 6.283185307179586);
+    testing::Rng rng(41);  // one value per statement or braced list: see SeededRng.h
     QueryContext ctx;
-    const auto unit = [&] {
-        Vec3 v(u(rng), u(rng), u(rng));
-        while (glm::length(v) < 0.1) v = Vec3(u(rng), u(rng), u(rng));
-        return glm::normalize(v);
-    };
     for (int part = 0; part < 200; ++part) {
-        const double scale = std::pow(10.0, 3.0 * u(rng)), r = 0.7;
-        Mat4 m = glm::translate(Mat4(1.0), scale * 5.0 * Vec3(u(rng), u(rng), u(rng)));
-        m = glm::rotate(m, angle(rng), unit());
+        const double scale = std::pow(10.0, rng.uniform(-3.0, 3.0)), r = 0.7;
+        const Vec3 shift = rng.inBox(Vec3(-1.0), Vec3(1.0));
+        Mat4 m = glm::translate(Mat4(1.0), scale * 5.0 * shift);
+        const double angle = rng.uniform(0.0, 6.283185307179586);
+        m = glm::rotate(m, angle, rng.unit());
         m = glm::scale(m, Vec3(part % 2 == 0 ? scale : -scale, scale, scale));
         const Scene scene = Scene::compile(
             transformed(m, subtract(intersect(leaf(Sphere{r}), leaf(Box{Vec3(-1.0), Vec3(1.0)})),
@@ -218,9 +215,9 @@ TEST(Query, BoundingBallRejectsOnlyLinesThatMissTheSphere) {
         const double radius = r * scale;
         for (int line = 0; line < 20; ++line) {
             // A direction, and a point at the wanted distance from the centre across it.
-            const Vec3 d = unit() * std::pow(10.0, u(rng));
-            Vec3 across = glm::cross(d, unit());
-            across = glm::normalize(across);
+            const Vec3 direction = rng.unit();
+            const Vec3 d = direction * std::pow(10.0, rng.uniform(-1.0, 1.0));
+            const Vec3 across = glm::normalize(glm::cross(d, rng.unit()));
             for (const double factor : {1.0 - 1e-7, 1.0 + 1e-6}) {
                 const Vec3 nearest = center + factor * radius * across;
                 const double back = 10.0 * radius / glm::length(d);
