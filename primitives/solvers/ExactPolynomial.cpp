@@ -117,9 +117,8 @@ std::optional<ExactPolynomial> ExactPolynomial::dividedBy(double v) const {
         const double q1 = c.hi / v;
         const double rem = std::fma(-q1, v, c.hi) + c.lo;
         const double q2 = rem / v;
-        double s, e;
-        twoSum(q1, q2, s, e);
-        c = {s, e};
+        const Sum2 q = twoSum(q1, q2);
+        c = {q.hi, q.lo};
     }
     return r;
 }
