@@ -189,6 +189,16 @@ inline constexpr double kDistanceFirstLineFraction = 0.25;
 // 1e-3 h stays clear of that, and each of these moves the mesh by at most 1e-3 h.
 inline constexpr double kMeshVertexSeparation = 1e-3;
 
+// Self-intersection check (csg/mesh/MeshCheck.h): two triangles count as crossing only when
+// they overlap by more than this fraction of the mesh's largest coordinate magnitude, and a
+// vertex this close to the other triangle's plane counts as on it (unit: relative). Why: a GLB
+// stores positions as float, rounded by up to 6e-8 of the largest coordinate, so two faces that
+// touch exactly (a vertex on a face, an edge along an edge) can come back crossing by a few
+// float ulps; 1e-6 is ~16 of them. Meshing keeps distinct vertices 1e-3 h apart
+// (kMeshVertexSeparation), 10^3 above this for parts up to ~10^3 h across, so a real fold of
+// the mesh is not hidden by it.
+inline constexpr double kSelfIntersectionContactRel = 1e-6;
+
 // Two crossings of one grid edge whose normals are further apart than this (unit: cosine,
 // about 105 degrees) bound a wall or gap thinner than the cell, and meshing adds a grid plane
 // between them (csg/mesh/ThinFeatures.h). A line grazing a convex surface also crosses one edge

@@ -1,8 +1,14 @@
 #include "csg/mesh/MeshCheck.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <vector>
+
+#include "csg/Tolerances.h"
+#include "csg/mesh/ParallelFor.h"
+#include "csg/mesh/TriangleBvh.h"
 
 namespace csg {
 
@@ -100,6 +106,210 @@ MeshTopology checkTopology(const TriangleMesh& mesh) {
         if (at == begin && steps != count) ++topo.nonManifoldVertices;
     }
     return topo;
+}
+
+namespace {
+
+// One triangle's corners and unit normal (zero for a sliver, which is not tested).
+struct Tri {
+    Vec3 p[3];
+    Vec3 n;
+};
+
+// Whether the interiors of coplanar triangles a and b overlap by more than tol, in a's plane:
+// they do unless an edge line of one has the other's corners all on its outer side or within
+// tol of it (the separating axis theorem for two convex polygons). Writes a point of the
+// overlap to where (the centroid of a clipped by b).
+bool coplanarOverlap(const Tri& a, const Tri& b, double tol, Vec3* where) {
+    // Orthonormal frame of a's plane.
+    const Vec3 u = glm::normalize(a.p[1] - a.p[0]);
+    const Vec3 w = glm::cross(a.n, u);
+    auto flat = [&](const Vec3& q) {
+        const Vec3 d = q - a.p[0];
+        return glm::dvec2(glm::dot(d, u), glm::dot(d, w));
+    };
+    glm::dvec2 pa[3], pb[3];
+    for (int i = 0; i < 3; ++i) pa[i] = flat(a.p[i]), pb[i] = flat(b.p[i]);
+    auto separates = [tol](const glm::dvec2* t, const glm::dvec2* other) {
+        for (int i = 0; i < 3; ++i) {
+            const glm::dvec2 p = t[i], e = t[(i + 1) % 3] - p;
+            const double len = glm::length(e);
+            if (!(len > 0.0)) continue;
+            glm::dvec2 inward(-e.y / len, e.x / len);
+            if (glm::dot(t[(i + 2) % 3] - p, inward) < 0.0) inward = -inward;
+            bool allOutside = true;
+            for (int k = 0; k < 3 && allOutside; ++k)
+                allOutside = glm::dot(other[k] - p, inward) <= tol;
+            if (allOutside) return true;
+        }
+        return false;
+    };
+    if (separates(pa, pb) || separates(pb, pa)) return false;
+    // Clip a by b's three inner half-planes (Sutherland-Hodgman) for a point of the overlap.
+    std::vector<glm::dvec2> poly(pa, pa + 3), next;
+    for (int i = 0; i < 3 && !poly.empty(); ++i) {
+        const glm::dvec2 p = pb[i], e = pb[(i + 1) % 3] - p;
+        glm::dvec2 inward(-e.y, e.x);
+        if (glm::dot(pb[(i + 2) % 3] - p, inward) < 0.0) inward = -inward;
+        next.clear();
+        for (size_t k = 0; k < poly.size(); ++k) {
+            const glm::dvec2 s = poly[k], f = poly[(k + 1) % poly.size()];
+            const double ds = glm::dot(s - p, inward), df = glm::dot(f - p, inward);
+            if (ds >= 0.0) next.push_back(s);
+            if ((ds < 0.0) != (df < 0.0)) next.push_back(s + (f - s) * (ds / (ds - df)));
+        }
+        poly.swap(next);
+    }
+    glm::dvec2 c(0.0);
+    for (const glm::dvec2& q : poly) c += q;
+    if (!poly.empty()) c /= double(poly.size());
+    *where = a.p[0] + c.x * u + c.y * w;
+    return true;
+}
+
+// The points where triangle t meets the plane (n, offset) of the other triangle, given the
+// signed distances d of its corners (zeroed within tol): corners on the plane and crossings of
+// edges whose ends lie strictly on opposite sides. Returns their count (0 to 3).
+int pointsOnPlane(const Tri& t, const double d[3], Vec3 out[3]) {
+    int count = 0;
+    for (int i = 0; i < 3; ++i) {
+        const int j = (i + 1) % 3;
+        if (d[i] == 0.0) out[count++] = t.p[i];
+        if ((d[i] < 0.0 && d[j] > 0.0) || (d[i] > 0.0 && d[j] < 0.0))
+            if (count < 3) out[count++] = t.p[i] + (t.p[j] - t.p[i]) * (d[i] / (d[i] - d[j]));
+    }
+    return count;
+}
+
+// Whether triangles a and b intersect other than at what they share (see
+// findSelfIntersections); writes a point of the intersection to where.
+bool trianglesCross(const Tri& a, const Tri& b, double tol, Vec3* where) {
+    // Shared corners: bit-identical positions.
+    int shared = 0;
+    bool aShared[3] = {false, false, false}, bShared[3] = {false, false, false};
+    for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k)
+            if (a.p[i] == b.p[k]) {
+                shared += !aShared[i];
+                aShared[i] = bShared[k] = true;
+            }
+    // Signed distances of each triangle's corners from the other's plane, zero within tol (and
+    // exactly zero for a shared corner, which lies in both planes).
+    double da[3], db[3];
+    bool aFlat = true, bFlat = true;
+    for (int i = 0; i < 3; ++i) {
+        da[i] = aShared[i] ? 0.0 : glm::dot(a.p[i] - b.p[0], b.n);
+        if (std::abs(da[i]) <= tol) da[i] = 0.0;
+        db[i] = bShared[i] ? 0.0 : glm::dot(b.p[i] - a.p[0], a.n);
+        if (std::abs(db[i]) <= tol) db[i] = 0.0;
+        aFlat &= da[i] == 0.0;
+        bFlat &= db[i] == 0.0;
+    }
+    auto oneSide = [](const double d[3]) {
+        return (d[0] > 0.0 && d[1] > 0.0 && d[2] > 0.0) || (d[0] < 0.0 && d[1] < 0.0 && d[2] < 0.0);
+    };
+    if (oneSide(da) || oneSide(db)) return false;
+    if (aFlat || bFlat) return coplanarOverlap(a, b, tol, where);
+    // Not coplanar, sharing an edge: they meet along it only.
+    if (shared >= 2) return false;
+    // Moeller: each triangle meets the other's plane in a segment on the line where the planes
+    // meet; the triangles cross where the two segments overlap.
+    Vec3 pa[3], pb[3];
+    const int na = pointsOnPlane(a, da, pa), nb = pointsOnPlane(b, db, pb);
+    if (na == 0 || nb == 0) return false;
+    const Vec3 dir = glm::normalize(glm::cross(a.n, b.n));
+    auto span = [&](const Vec3* p, int n, double& lo, double& hi, Vec3& pLo, Vec3& pHi) {
+        lo = std::numeric_limits<double>::infinity();
+        hi = -lo;
+        for (int i = 0; i < n; ++i) {
+            const double s = glm::dot(p[i], dir);
+            if (s < lo) lo = s, pLo = p[i];
+            if (s > hi) hi = s, pHi = p[i];
+        }
+    };
+    double loA, hiA, loB, hiB;
+    Vec3 aLo(0.0), aHi(0.0), bLo(0.0), bHi(0.0);
+    span(pa, na, loA, hiA, aLo, aHi);
+    span(pb, nb, loB, hiB, bLo, bHi);
+    const double lo = std::max(loA, loB), hi = std::min(hiA, hiB);
+    if (!(hi - lo > tol)) return false;
+    const double mid = 0.5 * (lo + hi);
+    *where = aLo + (aHi - aLo) * ((mid - loA) / (hiA - loA));
+    return true;
+}
+
+}  // namespace
+
+SelfIntersections findSelfIntersections(const TriangleMesh& mesh, double contactRel, int threads) {
+    SelfIntersections result;
+    const size_t n = mesh.triangles.size();
+    if (n < 2) return result;
+    double scale = 0.0;
+    for (const Vec3& p : mesh.positions)
+        scale = std::max({scale, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    const double tol = contactRel * scale;
+
+    std::vector<Tri> tris(n);
+    for (size_t i = 0; i < n; ++i) {
+        Tri& t = tris[i];
+        for (int k = 0; k < 3; ++k) t.p[k] = mesh.positions[mesh.triangles[i][size_t(k)]];
+        const Vec3 c = glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]);
+        const double twiceArea = glm::length(c);
+        double longest = 0.0;
+        for (int k = 0; k < 3; ++k)
+            longest = std::max(longest, glm::length(t.p[(k + 1) % 3] - t.p[k]));
+        // Height over the longest edge: a triangle thinner than tol has no reliable plane.
+        if (twiceArea > tol * longest && twiceArea > 0.0) {
+            t.n = c / twiceArea;
+        } else {
+            t.n = Vec3(0.0);
+            ++result.skippedSlivers;
+        }
+    }
+    const TriangleBvh bvh(mesh, threads);
+
+    // Per worker: its count and the first pair (in triangle order) it found.
+    struct Found {
+        uint64_t pairs = 0;
+        uint32_t a = UINT32_MAX, b = UINT32_MAX;
+        Vec3 where{0.0};
+    };
+    const int workers = resolveThreads(threads);
+    std::vector<Found> found(static_cast<size_t>(workers));
+    constexpr uint64_t kChunk = 1024;
+    parallelFor((n + kChunk - 1) / kChunk, workers, [&](int worker, uint64_t chunk) {
+        Found& f = found[size_t(worker)];
+        for (size_t i = chunk * kChunk; i < std::min<size_t>(n, (chunk + 1) * kChunk); ++i) {
+            const Tri& a = tris[i];
+            if (a.n == Vec3(0.0)) continue;
+            Bounds3 box;
+            for (const Vec3& p : a.p) box.extend(p);
+            box.lo -= Vec3(tol);
+            box.hi += Vec3(tol);
+            bvh.forEachOverlapping(box, [&](uint32_t j) {
+                if (j <= i || tris[j].n == Vec3(0.0)) return;
+                Vec3 where;
+                if (!trianglesCross(a, tris[j], tol, &where)) return;
+                ++f.pairs;
+                if (uint32_t(i) < f.a || (uint32_t(i) == f.a && j < f.b))
+                    f = {f.pairs, uint32_t(i), j, where};
+            });
+        }
+    });
+    uint32_t bestA = UINT32_MAX, bestB = UINT32_MAX;
+    for (const Found& f : found) {
+        result.pairs += f.pairs;
+        if (f.pairs > 0 && (f.a < bestA || (f.a == bestA && f.b < bestB))) {
+            bestA = f.a, bestB = f.b;
+            result.example = f.where;
+            result.exampleA = f.a, result.exampleB = f.b;
+        }
+    }
+    return result;
+}
+
+SelfIntersections findSelfIntersections(const TriangleMesh& mesh) {
+    return findSelfIntersections(mesh, tol::kSelfIntersectionContactRel);
 }
 
 double signedVolume(const TriangleMesh& mesh) {

@@ -29,6 +29,29 @@ MeshTopology checkTopology(const TriangleMesh& mesh);
 
 // Signed volume by the divergence theorem, sum over triangles of p0 . (p1 x p2) / 6: positive
 // for a closed mesh oriented outward, meaningful only when the mesh is closed.
+struct SelfIntersections {
+    uint64_t pairs = 0;           // triangle pairs that cross or overlap
+    uint64_t skippedSlivers = 0;  // triangles thinner than the contact tolerance, not tested
+    // On the crossing of the first pair in triangle order (deterministic), when pairs > 0.
+    Vec3 example{0.0};
+    uint32_t exampleA = 0, exampleB = 0;  // that pair's triangle indices
+};
+
+// Pairs of triangles that intersect other than where they share vertices (bit-identical
+// positions count as shared, so an unwelded soup works too). Counted: non-coplanar pairs whose
+// segments on the line where their planes meet overlap by more than the contact tolerance
+// (a transversal crossing, also one through a shared vertex, also an edge lying on the other
+// face); coplanar pairs (one triangle within the tolerance of the other's plane) whose
+// interiors overlap by more than it (duplicates, faces folded flat onto a neighbour). Not
+// counted: contacts within the tolerance (a vertex touching a face, touching edges) and pairs
+// sharing an edge that are not coplanar (they meet only along it). The tolerance is
+// contactRel times the largest coordinate magnitude (csg/Tolerances.h,
+// kSelfIntersectionContactRel); triangles whose height is within it are slivers without a
+// reliable plane, skipped and counted. Uses `threads` threads (0: all cores).
+SelfIntersections findSelfIntersections(const TriangleMesh& mesh, double contactRel,
+                                        int threads = 0);
+SelfIntersections findSelfIntersections(const TriangleMesh& mesh);
+
 double signedVolume(const TriangleMesh& mesh);
 double surfaceArea(const TriangleMesh& mesh);
 

@@ -1,0 +1,125 @@
+// findSelfIntersections (csg/mesh/MeshCheck.h) on hand-made triangle pairs and closed meshes,
+// each with a count known by construction.
+#include <gtest/gtest.h>
+
+#include "csg/mesh/MeshCheck.h"
+
+namespace csg {
+namespace {
+
+TriangleMesh pair(std::array<Vec3, 3> a, std::array<Vec3, 3> b) {
+    TriangleMesh m;
+    for (const Vec3& p : a) m.positions.push_back(p);
+    for (const Vec3& p : b) m.positions.push_back(p);
+    m.triangles = {{0, 1, 2}, {3, 4, 5}};
+    return m;
+}
+
+// An axis-aligned cube [0, 1]^3, two triangles a face, oriented outward.
+TriangleMesh cube() {
+    TriangleMesh m;
+    for (int i = 0; i < 8; ++i) m.positions.push_back(Vec3(i & 1, (i >> 1) & 1, (i >> 2) & 1));
+    m.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                   {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+    return m;
+}
+
+TEST(SelfIntersections, CrossingPairCountsOnce) {
+    // One triangle in z = 0, the other standing through it along x = 0.2.
+    const TriangleMesh m = pair({Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(0, 1, 0)},
+                                {Vec3(0.2, 0, -1), Vec3(0.2, 0.3, 1), Vec3(0.2, -0.3, 1)});
+    const SelfIntersections s = findSelfIntersections(m);
+    EXPECT_EQ(s.pairs, 1u);
+    EXPECT_EQ(s.exampleA, 0u);
+    EXPECT_EQ(s.exampleB, 1u);
+    EXPECT_NEAR(s.example.x, 0.2, 1e-12);
+    EXPECT_NEAR(s.example.z, 0.0, 1e-12);
+}
+
+TEST(SelfIntersections, SamePairApartIsClean) {
+    const TriangleMesh m = pair({Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(0, 1, 0)},
+                                {Vec3(5.2, 0, -1), Vec3(5.2, 0.3, 1), Vec3(5.2, -0.3, 1)});
+    EXPECT_EQ(findSelfIntersections(m).pairs, 0u);
+    // Lifted just above the plane: its box overlaps, the triangles do not.
+    const TriangleMesh above = pair({Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(0, 1, 0)},
+                                    {Vec3(0.2, 0, 0.01), Vec3(0.2, 0.3, 1), Vec3(0.2, -0.3, 1)});
+    EXPECT_EQ(findSelfIntersections(above).pairs, 0u);
+}
+
+TEST(SelfIntersections, ClosedMeshesAreClean) {
+    TriangleMesh tet;
+    tet.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+    tet.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    ASSERT_TRUE(checkTopology(tet).closedManifold());
+    EXPECT_EQ(findSelfIntersections(tet).pairs, 0u);
+    const TriangleMesh c = cube();
+    ASSERT_TRUE(checkTopology(c).closedManifold());
+    EXPECT_EQ(findSelfIntersections(c).pairs, 0u);
+}
+
+TEST(SelfIntersections, SharedVertexPiercingCounts) {
+    // Both share the origin; the second's far edge passes through the first's interior.
+    const Vec3 o(0, 0, 0);
+    const TriangleMesh pierce =
+        pair({o, Vec3(2, 0, 0), Vec3(0, 2, 0)}, {o, Vec3(0.5, 0.5, -1), Vec3(0.5, 0.5, 1)});
+    EXPECT_EQ(findSelfIntersections(pierce).pairs, 1u);
+    // Same shared vertex, the far edge beside the first triangle: they touch at o only.
+    TriangleMesh touch =
+        pair({o, Vec3(2, 0, 0), Vec3(0, 2, 0)}, {o, Vec3(-0.5, -0.5, -1), Vec3(-0.5, -0.5, 1)});
+    EXPECT_EQ(findSelfIntersections(touch).pairs, 0u);
+    // Shared by index rather than by a repeated position: the same verdicts.
+    touch.positions.resize(5);
+    touch.positions[3] = Vec3(-0.5, -0.5, -1);
+    touch.positions[4] = Vec3(-0.5, -0.5, 1);
+    touch.triangles = {{0, 1, 2}, {0, 3, 4}};
+    EXPECT_EQ(findSelfIntersections(touch).pairs, 0u);
+}
+
+TEST(SelfIntersections, SharedEdgeFoldedFlatCounts) {
+    const Vec3 p(0, 0, 0), q(1, 0, 0);
+    // The second triangle folded onto the first (its third corner on the same side of pq).
+    EXPECT_EQ(findSelfIntersections(pair({p, q, Vec3(0.5, 1, 0)}, {q, p, Vec3(0.3, 0.5, 0)})).pairs,
+              1u);
+    // Unfolded (a flat neighbour) and bent (a ridge): they meet along pq only.
+    EXPECT_EQ(
+        findSelfIntersections(pair({p, q, Vec3(0.5, 1, 0)}, {q, p, Vec3(0.3, -0.5, 0)})).pairs, 0u);
+    EXPECT_EQ(
+        findSelfIntersections(pair({p, q, Vec3(0.5, 1, 0)}, {q, p, Vec3(0.3, 0.5, 0.4)})).pairs,
+        0u);
+}
+
+TEST(SelfIntersections, ContactWithinRoundingIsNotACrossing) {
+    // A vertex of the second triangle on the first's face, the rest above it, and the same
+    // vertex pushed below the face by float-rounding size (1e-8 of coordinates ~1).
+    for (const double dz : {0.0, -1e-8, 1e-8}) {
+        const TriangleMesh m = pair({Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(0, 1, 0)},
+                                    {Vec3(0.1, 0, dz), Vec3(0.2, 0.3, 1), Vec3(0.2, -0.3, 1)});
+        EXPECT_EQ(findSelfIntersections(m).pairs, 0u) << dz;
+    }
+    // Pushed 1e-3 below: a crossing.
+    const TriangleMesh deep = pair({Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(0, 1, 0)},
+                                   {Vec3(0.1, 0, -1e-3), Vec3(0.2, 0.3, 1), Vec3(0.2, -0.3, 1)});
+    EXPECT_EQ(findSelfIntersections(deep).pairs, 1u);
+}
+
+TEST(SelfIntersections, TwoInterlockedCubesCrossAndThreadsAgree) {
+    TriangleMesh m = cube();
+    const TriangleMesh other = cube();
+    const uint32_t base = uint32_t(m.positions.size());
+    for (const Vec3& p : other.positions) m.positions.push_back(p + Vec3(0.5, 0.25, 0.125));
+    for (const auto& t : other.triangles)
+        m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    const SelfIntersections one = findSelfIntersections(m, 1e-6, 1);
+    const SelfIntersections two = findSelfIntersections(m, 1e-6, 2);
+    EXPECT_GT(one.pairs, 0u);
+    EXPECT_EQ(one.pairs, two.pairs);
+    EXPECT_EQ(one.exampleA, two.exampleA);
+    EXPECT_EQ(one.exampleB, two.exampleB);
+    // The example lies on both cubes' surfaces: inside the overlap box [0.5,1]x[0.25,1]x[0.125,1].
+    EXPECT_GE(one.example.x, 0.5 - 1e-12);
+    EXPECT_GE(one.example.y, 0.25 - 1e-12);
+    EXPECT_GE(one.example.z, 0.125 - 1e-12);
+}
+
+}  // namespace
+}  // namespace csg
