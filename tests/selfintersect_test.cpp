@@ -30,6 +30,7 @@ TEST(SelfIntersections, CrossingPairCountsOnce) {
                                 {Vec3(0.2, 0, -1), Vec3(0.2, 0.3, 1), Vec3(0.2, -0.3, 1)});
     const SelfIntersections s = findSelfIntersections(m);
     EXPECT_EQ(s.pairs, 1u);
+    EXPECT_EQ(s.coplanarPairs, 0u);
     EXPECT_EQ(s.exampleA, 0u);
     EXPECT_EQ(s.exampleB, 1u);
     EXPECT_NEAR(s.example.x, 0.2, 1e-12);
@@ -78,8 +79,10 @@ TEST(SelfIntersections, SharedVertexPiercingCounts) {
 TEST(SelfIntersections, SharedEdgeFoldedFlatCounts) {
     const Vec3 p(0, 0, 0), q(1, 0, 0);
     // The second triangle folded onto the first (its third corner on the same side of pq).
-    EXPECT_EQ(findSelfIntersections(pair({p, q, Vec3(0.5, 1, 0)}, {q, p, Vec3(0.3, 0.5, 0)})).pairs,
-              1u);
+    const SelfIntersections folded =
+        findSelfIntersections(pair({p, q, Vec3(0.5, 1, 0)}, {q, p, Vec3(0.3, 0.5, 0)}));
+    EXPECT_EQ(folded.pairs, 1u);
+    EXPECT_EQ(folded.coplanarPairs, 1u);
     // Unfolded (a flat neighbour) and bent (a ridge): they meet along pq only.
     EXPECT_EQ(
         findSelfIntersections(pair({p, q, Vec3(0.5, 1, 0)}, {q, p, Vec3(0.3, -0.5, 0)})).pairs, 0u);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "csg/Tolerances.h"
 #include "csg/Volume.h"
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/MeshDistance.h"
@@ -26,11 +27,13 @@ const char* const kCompareHelp =
     "edge midpoint, measured along lines through it: the mesh normal, the axes, the\n"
     "diagonals; an upper bound at each sample) and surface->mesh (exact surface points from\n"
     "a grid of rays along x, y and z, each at its Euclidean distance to the nearest triangle\n"
-    "of the mesh); watertightness and orientation of the mesh. The maxima are over the\n"
+    "of the mesh); watertightness and orientation of the mesh, and its self-intersections\n"
+    "(triangle pairs crossing other than where they share vertices; contacts within 1e-6 of\n"
+    "the largest coordinate, a GLB's float rounding, do not count). The maxima are over the\n"
     "samples. glTF node transforms are applied, so a csgray GLB compares in the part's own\n"
     "Z-up frame.\n"
     "Exit 0 when both distances are within the tolerance and the mesh is closed, manifold\n"
-    "and oriented outward; 1 when not.\n"
+    "and oriented outward; 1 when not (self-intersections are reported, not judged).\n"
     "\n"
     "options:\n"
     "  --tolerance T      the distance allowed (default: 1/500 of the part's bounding box\n"
@@ -105,6 +108,8 @@ int compareCommand(std::span<const std::string> args) {
     const double meshVolume = csg::signedVolume(mesh);
     const double partVolume = csg::volume(part.scene, 1024);
     const bool outward = meshVolume >= 0.0;
+    const csg::SelfIntersections crossings =
+        csg::findSelfIntersections(mesh, csg::tol::kSelfIntersectionContactRel, threads);
 
     // Step 2: distances, reaching well past the tolerance so a bad mesh shows its error.
     const double diagonal = box.empty() ? 0.0 : glm::length(box.extent());
@@ -138,6 +143,12 @@ int compareCommand(std::span<const std::string> args) {
         w.key("misorientedEdges").value(topo.misorientedEdges);
         w.key("nonManifoldVertices").value(topo.nonManifoldVertices);
         w.key("degenerateTriangles").value(topo.degenerateTriangles);
+        w.key("selfIntersections").value(crossings.pairs);
+        w.key("coplanarOverlaps").value(crossings.coplanarPairs);
+        if (crossings.pairs > 0) {
+            w.key("selfIntersectionAt").beginArray().value(crossings.example.x);
+            w.value(crossings.example.y).value(crossings.example.z).endArray();
+        }
         w.endObject();
         writeDistance(w, "meshToSurface", toSurface);
         writeDistance(w, "surfaceToMesh", toMesh);
@@ -155,12 +166,18 @@ int compareCommand(std::span<const std::string> args) {
         add("volume          mesh %.9g, part %.9g (%+.3e relative)\n", meshVolume, partVolume,
             partVolume > 0.0 ? (meshVolume - partVolume) / partVolume : 0.0);
         add("topology        %s, %s (boundary edges %llu, non-manifold edges %llu, misoriented "
-            "edges %llu, non-manifold vertices %llu, degenerate triangles %llu)\n",
+            "edges %llu, non-manifold vertices %llu, degenerate triangles %llu, "
+            "self-intersections %llu, %llu of them coplanar overlaps)\n",
             topo.closedManifold() ? "closed manifold" : "NOT closed manifold",
             outward ? "outward" : "INWARD", (unsigned long long)topo.boundaryEdges,
             (unsigned long long)topo.nonManifoldEdges, (unsigned long long)topo.misorientedEdges,
             (unsigned long long)topo.nonManifoldVertices,
-            (unsigned long long)topo.degenerateTriangles);
+            (unsigned long long)topo.degenerateTriangles, (unsigned long long)crossings.pairs,
+            (unsigned long long)crossings.coplanarPairs);
+        if (crossings.pairs > 0)
+            add("self-crossing   at %.9g, %.9g, %.9g (one of the %llu pairs)\n",
+                crossings.example.x, crossings.example.y, crossings.example.z,
+                (unsigned long long)crossings.pairs);
         add("mesh->surface   max %.6g, mean %.6g over %llu samples (%llu unresolved)\n",
             toSurface.max, toSurface.mean, (unsigned long long)toSurface.samples,
             (unsigned long long)toSurface.unresolved);

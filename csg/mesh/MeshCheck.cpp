@@ -167,8 +167,8 @@ bool coplanarOverlap(const Tri& a, const Tri& b, double tol, Vec3* where) {
     return true;
 }
 
-// The points where triangle t meets the plane (n, offset) of the other triangle, given the
-// signed distances d of its corners (zeroed within tol): corners on the plane and crossings of
+// The points where triangle t meets the other triangle's plane, given the signed distances d
+// of its corners from it: corners on the plane and crossings of
 // edges whose ends lie strictly on opposite sides. Returns their count (0 to 3).
 int pointsOnPlane(const Tri& t, const double d[3], Vec3 out[3]) {
     int count = 0;
@@ -181,9 +181,11 @@ int pointsOnPlane(const Tri& t, const double d[3], Vec3 out[3]) {
     return count;
 }
 
+enum class Contact { None, Crossing, Coplanar };
+
 // Whether triangles a and b intersect other than at what they share (see
-// findSelfIntersections); writes a point of the intersection to where.
-bool trianglesCross(const Tri& a, const Tri& b, double tol, Vec3* where) {
+// findSelfIntersections), and how; writes a point of the intersection to where.
+Contact trianglesCross(const Tri& a, const Tri& b, double tol, Vec3* where) {
     // Shared corners: bit-identical positions.
     int shared = 0;
     bool aShared[3] = {false, false, false}, bShared[3] = {false, false, false};
@@ -193,30 +195,34 @@ bool trianglesCross(const Tri& a, const Tri& b, double tol, Vec3* where) {
                 shared += !aShared[i];
                 aShared[i] = bShared[k] = true;
             }
-    // Signed distances of each triangle's corners from the other's plane, zero within tol (and
-    // exactly zero for a shared corner, which lies in both planes).
+    // Signed distances of each triangle's corners from the other's plane (exactly zero for a
+    // shared corner, which lies in both planes). A triangle whose corners all lie within tol of
+    // the other's plane is coplanar with it. Otherwise the distances keep their rounded signs:
+    // zeroing the small ones would let a near-parallel pair, each with an edge within tol of
+    // the other's plane, appear to meet along those edges, projected onto a line their planes
+    // barely define; a contact that rounding turns into a crossing gives a segment shorter
+    // than tol below instead.
     double da[3], db[3];
     bool aFlat = true, bFlat = true;
     for (int i = 0; i < 3; ++i) {
         da[i] = aShared[i] ? 0.0 : glm::dot(a.p[i] - b.p[0], b.n);
-        if (std::abs(da[i]) <= tol) da[i] = 0.0;
         db[i] = bShared[i] ? 0.0 : glm::dot(b.p[i] - a.p[0], a.n);
-        if (std::abs(db[i]) <= tol) db[i] = 0.0;
-        aFlat &= da[i] == 0.0;
-        bFlat &= db[i] == 0.0;
+        aFlat &= std::abs(da[i]) <= tol;
+        bFlat &= std::abs(db[i]) <= tol;
     }
+    if (aFlat || bFlat)
+        return coplanarOverlap(a, b, tol, where) ? Contact::Coplanar : Contact::None;
     auto oneSide = [](const double d[3]) {
         return (d[0] > 0.0 && d[1] > 0.0 && d[2] > 0.0) || (d[0] < 0.0 && d[1] < 0.0 && d[2] < 0.0);
     };
-    if (oneSide(da) || oneSide(db)) return false;
-    if (aFlat || bFlat) return coplanarOverlap(a, b, tol, where);
+    if (oneSide(da) || oneSide(db)) return Contact::None;
     // Not coplanar, sharing an edge: they meet along it only.
-    if (shared >= 2) return false;
+    if (shared >= 2) return Contact::None;
     // Moeller: each triangle meets the other's plane in a segment on the line where the planes
     // meet; the triangles cross where the two segments overlap.
     Vec3 pa[3], pb[3];
     const int na = pointsOnPlane(a, da, pa), nb = pointsOnPlane(b, db, pb);
-    if (na == 0 || nb == 0) return false;
+    if (na == 0 || nb == 0) return Contact::None;
     const Vec3 dir = glm::normalize(glm::cross(a.n, b.n));
     auto span = [&](const Vec3* p, int n, double& lo, double& hi, Vec3& pLo, Vec3& pHi) {
         lo = std::numeric_limits<double>::infinity();
@@ -232,10 +238,10 @@ bool trianglesCross(const Tri& a, const Tri& b, double tol, Vec3* where) {
     span(pa, na, loA, hiA, aLo, aHi);
     span(pb, nb, loB, hiB, bLo, bHi);
     const double lo = std::max(loA, loB), hi = std::min(hiA, hiB);
-    if (!(hi - lo > tol)) return false;
+    if (!(hi - lo > tol)) return Contact::None;
     const double mid = 0.5 * (lo + hi);
     *where = aLo + (aHi - aLo) * ((mid - loA) / (hiA - loA));
-    return true;
+    return Contact::Crossing;
 }
 
 }  // namespace
@@ -270,7 +276,7 @@ SelfIntersections findSelfIntersections(const TriangleMesh& mesh, double contact
 
     // Per worker: its count and the first pair (in triangle order) it found.
     struct Found {
-        uint64_t pairs = 0;
+        uint64_t pairs = 0, coplanar = 0;
         uint32_t a = UINT32_MAX, b = UINT32_MAX;
         Vec3 where{0.0};
     };
@@ -289,16 +295,19 @@ SelfIntersections findSelfIntersections(const TriangleMesh& mesh, double contact
             bvh.forEachOverlapping(box, [&](uint32_t j) {
                 if (j <= i || tris[j].n == Vec3(0.0)) return;
                 Vec3 where;
-                if (!trianglesCross(a, tris[j], tol, &where)) return;
+                const Contact contact = trianglesCross(a, tris[j], tol, &where);
+                if (contact == Contact::None) return;
                 ++f.pairs;
+                f.coplanar += contact == Contact::Coplanar;
                 if (uint32_t(i) < f.a || (uint32_t(i) == f.a && j < f.b))
-                    f = {f.pairs, uint32_t(i), j, where};
+                    f = {f.pairs, f.coplanar, uint32_t(i), j, where};
             });
         }
     });
     uint32_t bestA = UINT32_MAX, bestB = UINT32_MAX;
     for (const Found& f : found) {
         result.pairs += f.pairs;
+        result.coplanarPairs += f.coplanar;
         if (f.pairs > 0 && (f.a < bestA || (f.a == bestA && f.b < bestB))) {
             bestA = f.a, bestB = f.b;
             result.example = f.where;

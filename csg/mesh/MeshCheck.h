@@ -31,6 +31,7 @@ MeshTopology checkTopology(const TriangleMesh& mesh);
 // for a closed mesh oriented outward, meaningful only when the mesh is closed.
 struct SelfIntersections {
     uint64_t pairs = 0;           // triangle pairs that cross or overlap
+    uint64_t coplanarPairs = 0;   // of these, coplanar pairs whose interiors overlap
     uint64_t skippedSlivers = 0;  // triangles thinner than the contact tolerance, not tested
     // On the crossing of the first pair in triangle order (deterministic), when pairs > 0.
     Vec3 example{0.0};
