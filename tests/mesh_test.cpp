@@ -614,6 +614,24 @@ TEST(Tessellate, EverySampleMeshesWithinTolerance) {
             << " misoriented " << c.topo.misorientedEdges << " vertices "
             << c.topo.nonManifoldVertices << " degenerate " << c.topo.degenerateTriangles;
         EXPECT_LE(c.result.error.max, tol);
+        // Issue 7 promises no self-intersections; every sample is held to none but these, which
+        // print their count (open in issue 7). At this T the octree folds triangles flat onto
+        // their neighbours on flat faces of emblem, scene_emblem, pawn and pipe_tee (none
+        // without it); csg_grid crosses itself with and without the octree; table's legs touch
+        // its apron along an edge (the solid itself is not a manifold there).
+        const SelfIntersections crossings = findSelfIntersections(c.result.mesh);
+        const std::string name = entry.path().filename().string();
+        const bool knownCrossing = name == "csg_grid.scad" || name == "emblem.scad" ||
+                                   name == "scene_emblem.scad" || name == "pawn.scad" ||
+                                   name == "pipe_tee.scad" || name == "table.scad";
+        if (!knownCrossing) {
+            EXPECT_EQ(crossings.pairs, 0u) << "at " << crossings.example.x << ","
+                                           << crossings.example.y << "," << crossings.example.z;
+        } else if (crossings.pairs > 0) {
+            std::printf("  %-20s %llu self-intersecting triangle pairs, one at %.9g,%.9g,%.9g\n",
+                        name.c_str(), (unsigned long long)crossings.pairs, crossings.example.x,
+                        crossings.example.y, crossings.example.z);
+        }
         // Every sample, csg_grid too: its rotated neighbours cross at a few degrees and the
         // mesh fuses the tips of the wedge gaps between them (ThinFeatures.h resolves the gaps
         // only where a plane's lines cross them), but those tips lie within T of the mesh.
