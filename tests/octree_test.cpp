@@ -107,6 +107,26 @@ TEST(Octree, RandomCsgIsAlwaysManifold) {
     EXPECT_LT(octreeTriangles, uniformTriangles);
 }
 
+// Issue 7's "no self-intersections", open: on these parts the octree folds triangles flat onto
+// their neighbours on flat faces (coplanar overlaps), and the uniform contour crosses itself
+// too (as of f8d9439: 29 of the 40 octree meshes, 22 of the uniform ones). Disabled so the suite
+// stays green; run with --gtest_also_run_disabled_tests when working on DualContour.
+TEST(Octree, DISABLED_RandomCsgHasNoSelfIntersections) {
+    testing::Rng rng(23);
+    for (int trial = 0; trial < 40; ++trial) {
+        const Scene scene = Scene::compile(randomPart(rng));
+        const double h = 0.03 + 0.12 * (trial % 4) / 3.0;
+        for (const double flat : {0.5 * h, 0.0}) {
+            const SelfIntersections s =
+                findSelfIntersections(tessellateAt(scene, h, 0, nullptr, nullptr, nullptr, flat));
+            EXPECT_EQ(s.pairs, 0u)
+                << "trial " << trial << " h " << h << (flat > 0.0 ? " octree" : " uniform") << ": "
+                << s.coplanarPairs << " coplanar, one at " << s.example.x << "," << s.example.y
+                << "," << s.example.z;
+        }
+    }
+}
+
 // Top blocks are merged on any worker, but numbered in block order: the same mesh, bit for bit.
 TEST(Octree, SameMeshForAnyThreadCount) {
     testing::Rng rng(5);
