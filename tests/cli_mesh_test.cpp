@@ -201,8 +201,26 @@ TEST(CliMesh, CompareFindsAWrongMeshAndAHole) {
                           "--tolerance", "0.1"},
                          dir.path());
     };
+    // The right cube and a small one through its top face (z = 10) at x, y in [2, 4].
+    std::string pierced = cube("10", faces) +
+                          "v 2 2 8\nv 4 2 8\nv 4 4 8\nv 2 4 8\nv 2 2 12\nv 4 2 12\nv 4 4 12\n"
+                          "v 2 4 12\n";
+    for (const char* f : {"f 9 12 11 10\n", "f 13 14 15 16\n", "f 9 10 14 13\n", "f 10 11 15 14\n",
+                          "f 11 12 16 15\n", "f 12 9 13 16\n"})
+        pierced += f;
+    writeFile(dir.path() / "pierced.obj", pierced);
     const RunResult good = compare("good.obj");
     EXPECT_EQ(good.exitCode, 0) << good.out << good.err;
+    EXPECT_EQ(nlohmann::json::parse(good.out)["topology"]["selfIntersections"].get<uint64_t>(), 0u);
+    const nlohmann::json p = nlohmann::json::parse(compare("pierced.obj").out);
+    EXPECT_GT(p["topology"]["selfIntersections"].get<uint64_t>(), 0u) << p;
+    EXPECT_EQ(p["topology"]["coplanarOverlaps"].get<uint64_t>(), 0u) << p;
+    const auto at = p["topology"]["selfIntersectionAt"];
+    EXPECT_NEAR(at[2].get<double>(), 10.0, 1e-9) << p;
+    for (int a = 0; a < 2; ++a) {
+        EXPECT_GE(at[a].get<double>(), 2.0 - 1e-9) << p;
+        EXPECT_LE(at[a].get<double>(), 4.0 + 1e-9) << p;
+    }
     const RunResult tall = compare("tall.obj");
     EXPECT_EQ(tall.exitCode, 1) << tall.out;
     EXPECT_NEAR(nlohmann::json::parse(tall.out)["meshToSurface"]["max"].get<double>(), 0.5, 1e-9);
