@@ -54,8 +54,7 @@ CellCycles buildCycles(uint8_t mask) {
                     off[v] = dv;
                     corner[size_t(du + 2 * dv)] = inside(off[0] | (off[1] << 1) | (off[2] << 2));
                 }
-            ambiguousFace = ambiguousFace || (corner[0] == corner[3] && corner[1] == corner[2] &&
-                                              corner[0] != corner[1]);
+            ambiguousFace = ambiguousFace || faceIsAmbiguous(corner);
             // Cell edge of a face edge: along u at v-offset o, or along v at u-offset o.
             auto cellEdge = [&](int axis, int o) {
                 const int a = axis == 0 ? u : v;
@@ -109,10 +108,13 @@ const CellCycles& cellCycles(uint8_t mask) {
     return table.entries[mask];
 }
 
+bool faceIsAmbiguous(const std::array<bool, 4>& cornerInside) {
+    return cornerInside[0] == cornerInside[3] && cornerInside[1] == cornerInside[2] &&
+           cornerInside[0] != cornerInside[1];
+}
+
 int faceSegment(const std::array<bool, 4>& cornerInside, int edgeAxis, int edgeOffset) {
-    const bool ambiguous = cornerInside[0] == cornerInside[3] &&
-                           cornerInside[1] == cornerInside[2] && cornerInside[0] != cornerInside[1];
-    if (!ambiguous) return 0;
+    if (!faceIsAmbiguous(cornerInside)) return 0;
     // The edge's inside endpoint: its du is the segment index (inside corners are diagonal, so
     // one has du = 0 and the other du = 1).
     if (edgeAxis == 1) return edgeOffset;  // along v at u-offset edgeOffset: du is fixed

@@ -28,6 +28,10 @@ struct CellCycles {
 // Table lookup, built once on first use.
 const CellCycles& cellCycles(uint8_t mask);
 
+// Whether a face's inside corners are exactly one diagonal pair (cornerInside as for
+// faceSegment below): the face then carries two curves, one around each inside corner.
+bool faceIsAmbiguous(const std::array<bool, 4>& cornerInside);
+
 // The partner of a sign-changing edge on one face, in face-local terms. A face perpendicular
 // to axis f has in-plane axes u = f+1 and v = f+2 (mod 3) and corners (du, dv) in {0,1}^2;
 // cornerInside[du + 2 dv]. A face edge is named by its axis (0 = along u, 1 = along v) and its

@@ -598,7 +598,7 @@ private:
 
         // Step 3: bend the curve where the tangent lines meet; an ambiguous face always gets a
         // vertex, so two curves on one face never join the same two sheet vertices twice.
-        const bool ambiguous = corner[0] == corner[3] && corner[1] == corner[2];
+        const bool ambiguous = faceIsAmbiguous(corner);
         const Vec3 lo3 = spec_.node(faceMin[0], faceMin[1], faceMin[2]);
         Node3 faceMax = faceMin;
         ++faceMax[u];
