@@ -522,6 +522,10 @@ private:
         stats_.octreeLeaves = leafPositions_.size();
     }
 
+    // The merged block whose vertex mesh vertex v is, or kNoLeaf (a cell's own vertex, a face
+    // or crossing vertex).
+    uint32_t leafOf(uint32_t v) const { return v < vertexLeaf_.size() ? vertexLeaf_[v] : kNoLeaf; }
+
     uint32_t addVertex(const Vec3& p, const Vec3& n) {
         mesh_.positions.push_back(p);
         mesh_.normals.push_back(n);
@@ -696,7 +700,7 @@ private:
         if (!(facing > 0.0)) return false;
         const double sameSheet = std::cos(2.0 * tol::kOctreeConeAngle);
         for (const uint32_t v : {a, b, c}) {
-            const uint32_t leaf = v < vertexLeaf_.size() ? vertexLeaf_[v] : kNoLeaf;
+            const uint32_t leaf = leafOf(v);
             if (leaf != kNoLeaf && glm::dot(n, leafNormals_[leaf]) >= sameSheet &&
                 facing < tol::kOctreeFanTurnCos * glm::length(cross))
                 return false;
@@ -713,8 +717,7 @@ private:
     // (foldedLeaves_: the next round does not merge them) and the crossing's fan is kept.
     int chooseApex(const EdgeSample& s, bool in0, const uint32_t* ring, int count) {
         bool merged = false;
-        for (int t = 0; t < count; ++t)
-            merged = merged || (ring[t] < vertexLeaf_.size() && vertexLeaf_[ring[t]] != kNoLeaf);
+        for (int t = 0; t < count; ++t) merged = merged || leafOf(ring[t]) != kNoLeaf;
         if (!merged) return -1;
         const uint32_t center = uint32_t(mesh_.positions.size() - 1);
         touched_.resize(mesh_.positions.size(), 0);
@@ -732,8 +735,7 @@ private:
             if (ok) return apex;
         }
         for (int t = 0; t < count; ++t)
-            if (ring[t] < vertexLeaf_.size() && vertexLeaf_[ring[t]] != kNoLeaf)
-                foldedLeaves_.push_back(vertexLeaf_[ring[t]]);
+            if (leafOf(ring[t]) != kNoLeaf) foldedLeaves_.push_back(leafOf(ring[t]));
         return -1;
     }
 
@@ -754,8 +756,7 @@ private:
         auto noteAt = [&](uint32_t v) {
             for (uint32_t i = start[v]; i < start[v + 1]; ++i)
                 for (const uint32_t corner : mesh_.triangles[around[i]])
-                    if (corner < vertexLeaf_.size() && vertexLeaf_[corner] != kNoLeaf)
-                        foldedLeaves_.push_back(vertexLeaf_[corner]);
+                    if (leafOf(corner) != kNoLeaf) foldedLeaves_.push_back(leafOf(corner));
         };
         // Around a manifold vertex the far edges of its triangles (a -> b for triangle v, a, b)
         // form one cycle: every a starts one edge, and walking from any reaches all.
