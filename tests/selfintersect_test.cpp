@@ -99,6 +99,12 @@ TEST(SelfIntersections, ContactWithinRoundingIsNotACrossing) {
                                     {Vec3(0.1, 0, dz), Vec3(0.2, 0.3, 1), Vec3(0.2, -0.3, 1)});
         EXPECT_EQ(findSelfIntersections(m).pairs, 0u) << dz;
     }
+    // A nearly parallel triangle whose corner is 1e-8 through the face: the segment where they
+    // overlap is ~1e-5 long (longer than the tolerance), but it is a contact all the same.
+    const TriangleMesh shallow =
+        pair({Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(0, 1, 0)},
+             {Vec3(0.1, 0, -1e-8), Vec3(0.6, 0, 1e-3), Vec3(0.1, 0.5, 1e-3)});
+    EXPECT_EQ(findSelfIntersections(shallow).pairs, 0u);
     // Pushed 1e-3 below: a crossing.
     const TriangleMesh deep = pair({Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(0, 1, 0)},
                                    {Vec3(0.1, 0, -1e-3), Vec3(0.2, 0.3, 1), Vec3(0.2, -0.3, 1)});

@@ -212,10 +212,15 @@ Contact trianglesCross(const Tri& a, const Tri& b, double tol, Vec3* where) {
     }
     if (aFlat || bFlat)
         return coplanarOverlap(a, b, tol, where) ? Contact::Coplanar : Contact::None;
-    auto oneSide = [](const double d[3]) {
-        return (d[0] > 0.0 && d[1] > 0.0 && d[2] > 0.0) || (d[0] < 0.0 && d[1] < 0.0 && d[2] < 0.0);
+    // A crossing goes deeper than tol: each triangle has corners more than tol beyond the
+    // other's plane on both sides. A shallower pair is a contact that rounding may have pushed
+    // through: at a small angle between the planes, a corner 1e-7 through (a GLB's rounding)
+    // makes an overlap segment 1e-7 / sin(angle) long, longer than tol, so the segment's
+    // length alone does not tell them apart.
+    auto straddles = [tol](const double d[3]) {
+        return std::max({d[0], d[1], d[2]}) > tol && std::min({d[0], d[1], d[2]}) < -tol;
     };
-    if (oneSide(da) || oneSide(db)) return Contact::None;
+    if (!straddles(da) || !straddles(db)) return Contact::None;
     // Not coplanar, sharing an edge: they meet along it only.
     if (shared >= 2) return Contact::None;
     // Moeller: each triangle meets the other's plane in a segment on the line where the planes

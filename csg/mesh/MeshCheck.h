@@ -39,16 +39,16 @@ struct SelfIntersections {
 };
 
 // Pairs of triangles that intersect other than where they share vertices (bit-identical
-// positions count as shared, so an unwelded soup works too). Counted: non-coplanar pairs whose
-// segments on the line where their planes meet overlap by more than the contact tolerance
-// (a transversal crossing, also one through a shared vertex, also an edge lying on the other
-// face); coplanar pairs (one triangle within the tolerance of the other's plane) whose
-// interiors overlap by more than it (duplicates, faces folded flat onto a neighbour). Not
-// counted: contacts within the tolerance (a vertex touching a face, touching edges) and pairs
-// sharing an edge that are not coplanar (they meet only along it). The tolerance is
+// positions count as shared, so an unwelded soup works too), with a contact tolerance tol =
 // contactRel times the largest coordinate magnitude (csg/Tolerances.h,
-// kSelfIntersectionContactRel); triangles whose height is within it are slivers without a
-// reliable plane, skipped and counted. Uses `threads` threads (0: all cores).
+// kSelfIntersectionContactRel). Counted: crossings, where each triangle has corners more than
+// tol beyond the other's plane on both sides and their segments on the line where the planes
+// meet overlap by more than tol (also through a shared vertex); coplanar pairs (one triangle
+// within tol of the other's plane) whose interiors overlap by more than tol (duplicates, faces
+// folded flat onto a neighbour). Not counted: contacts (a vertex on a face, an edge along a
+// face or an edge, a corner through the other's plane by tol or less) and pairs sharing an edge
+// that are not coplanar (they meet only along it). Triangles whose height is within tol are
+// slivers without a reliable plane, skipped and counted. Uses `threads` threads (0: all cores).
 SelfIntersections findSelfIntersections(const TriangleMesh& mesh, double contactRel,
                                         int threads = 0);
 SelfIntersections findSelfIntersections(const TriangleMesh& mesh);
