@@ -678,14 +678,30 @@ private:
             // Outward is +a when the edge leaves the solid going up the axis. A ring with a
             // merged block's vertex may be fanned from one of its vertices instead (apex).
             const int apex = vertexLeaf_.empty() ? -1 : chooseApex(s, in0, ring, count);
-            for (int t = 0; t < count; ++t) {
-                uint32_t p = ring[t], q = ring[(t + 1) % count];
-                if (apex >= 0 && (t == apex || (t + 1) % count == apex)) continue;
-                if (!in0) std::swap(p, q);
-                mesh_.triangles.push_back({apex >= 0 ? ring[apex] : center, p, q});
-                mesh_.triangleMaterial.push_back(s.material);
-            }
+            forEachFanTriangle(in0, center, ring, count, apex,
+                               [&](uint32_t p, uint32_t q, uint32_t r) {
+                                   mesh_.triangles.push_back({p, q, r});
+                                   mesh_.triangleMaterial.push_back(s.material);
+                                   return true;
+                               });
         }
+    }
+
+    // The triangles, outward (ring order when in0, else reversed), of the ring fanned from
+    // center (apex < 0) or from ring[apex] (its two ring sides then left out), in ring order:
+    // f(p, q, r) for each, until it returns false. Returns whether none did.
+    template <class F>
+    static bool forEachFanTriangle(bool in0, uint32_t center, const uint32_t* ring, int count,
+                                   int apex, F&& f) {
+        const uint32_t from = apex >= 0 ? ring[apex] : center;
+        for (int t = 0; t < count; ++t) {
+            const int next = (t + 1) % count;
+            if (apex >= 0 && (t == apex || next == apex)) continue;
+            uint32_t p = ring[t], q = ring[next];
+            if (!in0) std::swap(p, q);
+            if (!f(from, p, q)) return false;
+        }
+        return true;
     }
 
     // Whether triangle (a, b, c), outward, fits the surface whose exact normal near it is n:
@@ -724,16 +740,11 @@ private:
         touched_[center] = 1;
         for (int t = 0; t < count; ++t) touched_[ring[t]] = 1;
         if (!s.measured) return -1;
-        for (int apex = -1; apex < count; ++apex) {
-            bool ok = true;
-            for (int t = 0; t < count && ok; ++t) {
-                uint32_t p = ring[t], q = ring[(t + 1) % count];
-                if (apex >= 0 && (t == apex || (t + 1) % count == apex)) continue;
-                if (!in0) std::swap(p, q);
-                ok = fits(apex >= 0 ? ring[apex] : center, p, q, s.normal);
-            }
-            if (ok) return apex;
-        }
+        for (int apex = -1; apex < count; ++apex)
+            if (forEachFanTriangle(
+                    in0, center, ring, count, apex,
+                    [&](uint32_t p, uint32_t q, uint32_t r) { return fits(p, q, r, s.normal); }))
+                return apex;
         for (int t = 0; t < count; ++t)
             if (leafOf(ring[t]) != kNoLeaf) foldedLeaves_.push_back(leafOf(ring[t]));
         return -1;
