@@ -190,8 +190,9 @@ inline constexpr double kDistanceFirstLineFraction = 0.25;
 inline constexpr double kMeshVertexSeparation = 1e-3;
 
 // Self-intersection check (csg/mesh/MeshCheck.h): two triangles count as crossing only when
-// they overlap by more than this fraction of the mesh's largest coordinate magnitude, and a
-// vertex this close to the other triangle's plane counts as on it (unit: relative). Why: a GLB
+// each reaches through the other's plane, and their overlap is longer, by more than this
+// fraction of the mesh's largest coordinate magnitude; a triangle within it of the other's
+// plane is coplanar with it (unit: relative). Why: a GLB
 // stores positions as float, rounded by up to 6e-8 of the largest coordinate, so two faces that
 // touch exactly (a vertex on a face, an edge along an edge) can come back crossing by a few
 // float ulps; 1e-6 is ~16 of them. Meshing keeps distinct vertices 1e-3 h apart
