@@ -190,17 +190,9 @@ private:
             vertexLeaf_[leafVertex[leaf]] = uint32_t(leaf);
         }
         stats_.sheetVertices = next;
-        std::vector<uint64_t> missing(size_t(workers_), 0);
-        constexpr uint64_t kChunk = 1024;
         if (leafOfActive_.empty()) {
-            parallelFor(
-                (active_.size() + kChunk - 1) / kChunk, workers_, [&](int w, uint64_t chunk) {
-                    const size_t end = std::min<size_t>(active_.size(), (chunk + 1) * kChunk);
-                    for (size_t i = chunk * kChunk; i < end; ++i)
-                        placeSheetVerticesOf(active_[i], missing[size_t(w)],
-                                             &mesh_.positions[sheetBase_[active_[i]]]);
-                });
-            for (const uint64_t m : missing) stats_.missingCrossings += m;
+            stats_.missingCrossings += placeAllSheetVertices(
+                [&](size_t i) { return &mesh_.positions[sheetBase_[active_[i]]]; });
             return;
         }
         // With the octree, every cell's vertices are placed once (the first round) and copied
@@ -211,14 +203,8 @@ private:
                 fineStart_[i + 1] =
                     fineStart_[i] + uint32_t(cellCycles(cellMask(cellNode(active_[i]))).count);
             finePlaced_.resize(fineStart_.back());
-            parallelFor(
-                (active_.size() + kChunk - 1) / kChunk, workers_, [&](int w, uint64_t chunk) {
-                    const size_t end = std::min<size_t>(active_.size(), (chunk + 1) * kChunk);
-                    for (size_t i = chunk * kChunk; i < end; ++i)
-                        placeSheetVerticesOf(active_[i], missing[size_t(w)],
-                                             &finePlaced_[fineStart_[i]]);
-                });
-            for (const uint64_t m : missing) fineMissing_ += m;
+            fineMissing_ =
+                placeAllSheetVertices([&](size_t i) { return &finePlaced_[fineStart_[i]]; });
         }
         stats_.missingCrossings += fineMissing_;
         for (size_t i = 0; i < active_.size(); ++i)
@@ -226,6 +212,22 @@ private:
                 std::copy(finePlaced_.begin() + fineStart_[i],
                           finePlaced_.begin() + fineStart_[i + 1],
                           mesh_.positions.begin() + sheetBase_[active_[i]]);
+    }
+
+    // The sheet vertices of every active cell i into out(i)[0 .. its sheet count), on all
+    // workers in chunks; returns the count of missing crossings.
+    template <class Out>
+    uint64_t placeAllSheetVertices(Out out) const {
+        std::vector<uint64_t> missing(size_t(workers_), 0);
+        constexpr uint64_t kChunk = 1024;
+        parallelFor((active_.size() + kChunk - 1) / kChunk, workers_, [&](int w, uint64_t chunk) {
+            const size_t end = std::min<size_t>(active_.size(), (chunk + 1) * kChunk);
+            for (size_t i = chunk * kChunk; i < end; ++i)
+                placeSheetVerticesOf(active_[i], missing[size_t(w)], out(i));
+        });
+        uint64_t total = 0;
+        for (const uint64_t m : missing) total += m;
+        return total;
     }
 
     // The sheet vertices of active cell index into out[0 .. its sheet count).
