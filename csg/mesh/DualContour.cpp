@@ -416,21 +416,17 @@ private:
         inForbiddenTree =
             inForbiddenTree || (!forbidden_.empty() && forbidden_.count(blockKey(lo, level)));
         // Split the cells into the 8 children (octant bit a: the cell is in the upper half on
-        // axis a), in order z, y, x so each child's cells are contiguous.
-        auto upper = [&](uint32_t p, int a) { return cellNode(active_[p])[a] >= lo[a] + half; };
+        // axis a), in order z, y, x so each child's cells are contiguous: on axis a, each run
+        // [bounds[o], bounds[o + 2 step]) splits at bounds[o + step], step = 2^a.
         uint32_t* bounds[9];
         bounds[0] = first;
         bounds[8] = last;
-        bounds[4] = std::partition(first, last, [&](uint32_t p) { return !upper(p, 2); });
-        for (int z = 0; z < 2; ++z) {
-            uint32_t* zEnd = bounds[4 * z + 4];
-            bounds[4 * z + 2] =
-                std::partition(bounds[4 * z], zEnd, [&](uint32_t p) { return !upper(p, 1); });
-            for (int y = 0; y < 2; ++y) {
-                uint32_t* yEnd = y ? zEnd : bounds[4 * z + 2];
-                bounds[4 * z + 2 * y + 1] = std::partition(
-                    bounds[4 * z + 2 * y], yEnd, [&](uint32_t p) { return !upper(p, 0); });
-            }
+        for (int a = 2; a >= 0; --a) {
+            const int step = 1 << a;
+            for (int o = 0; o < 8; o += 2 * step)
+                bounds[o + step] = std::partition(bounds[o], bounds[o + 2 * step], [&](uint32_t p) {
+                    return cellNode(active_[p])[a] < lo[a] + half;
+                });
         }
         BlockState child[8];
         Node3 childLo[8];
