@@ -158,9 +158,10 @@ int exportCommand(std::span<const std::string> args) {
                 "mesh->surface %.3g, surface->mesh %.3g, %.2f s (cast "
                 "%.2f, contour %.2f, mesh->surface %.2f, bvh %.2f, surface->mesh %.2f)\n",
                 p.cellSize, (unsigned long long)p.cells, (unsigned long long)p.thinPlanes,
-                (unsigned long long)p.triangles, (unsigned long long)p.octreeCells,
-                (unsigned long long)p.activeCells, (unsigned long long)p.octreeLeaves,
-                p.octreeRounds, p.octreeFallback ? ", not a manifold: uniform used" : "", p.error,
+                (unsigned long long)p.triangles, (unsigned long long)p.contour.octreeCells,
+                (unsigned long long)p.contour.activeCells,
+                (unsigned long long)p.contour.octreeLeaves, p.contour.octreeRounds,
+                p.contour.octreeFallback ? ", not a manifold: uniform used" : "", p.error,
                 p.backError, p.seconds, p.castSeconds, p.contourSeconds, p.toSurfaceSeconds,
                 p.bvhSeconds, p.backSeconds);
     if (verbose && !quiet)

@@ -184,11 +184,7 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
         record.cells = result.cells;
         record.thinPlanes = result.thinPlanes.added;
         record.triangles = result.mesh.triangles.size();
-        record.activeCells = result.contour.activeCells;
-        record.octreeCells = result.contour.octreeCells;
-        record.octreeLeaves = result.contour.octreeLeaves;
-        record.octreeFallback = result.contour.octreeFallback;
-        record.octreeRounds = result.contour.octreeRounds;
+        record.contour = result.contour;
         record.error = result.error.max;
         record.backError = result.backError.max;
         record.seconds = std::chrono::duration<double>(clock - passStart).count();

@@ -73,14 +73,10 @@ struct TessellatePass {
     uint64_t cells = 0;
     uint64_t thinPlanes = 0;
     uint64_t triangles = 0;
-    uint64_t activeCells = 0;   // cells the surface crosses
-    uint64_t octreeCells = 0;   // of them, in merged blocks (DualContour.h's octree)
-    uint64_t octreeLeaves = 0;  // merged blocks
-    int octreeRounds = 0;
-    bool octreeFallback = false;
-    double error = 0.0;      // mesh to surface, max
-    double backError = 0.0;  // surface to mesh, max
-    double seconds = 0.0;    // wall time of the pass (grid, contouring, measuring)
+    DualContourStats contour;  // the pass's contouring: active cells, the octree's blocks
+    double error = 0.0;        // mesh to surface, max
+    double backError = 0.0;    // surface to mesh, max
+    double seconds = 0.0;      // wall time of the pass (grid, contouring, measuring)
     // Wall time of its phases (they add up to seconds): the Hermite casts, thin-feature rounds
     // included; dual contouring; mesh to surface; the BVH over the mesh; surface to mesh.
     double castSeconds = 0.0, contourSeconds = 0.0, toSurfaceSeconds = 0.0, bvhSeconds = 0.0,
