@@ -48,7 +48,7 @@ public:
             if (flatTolerance_ > 0.0) mergeFlatBlocks();
             placeSheetVertices();
             for (const uint64_t cell : active_) fansOfCell(cell);
-            if (!leafPositions_.empty()) noteNonManifoldLeaves();
+            if (!leaves_.empty()) noteNonManifoldLeaves();
             if (foldedLeaves_.empty()) break;
             if (round + 1 >= kOctreeMaxRounds) {
                 flatTolerance_ = 0.0;
@@ -61,11 +61,11 @@ public:
             // rule gives 3556, 60, 19, 5, 3 (the tail is neighbours that fold once a block next
             // to them splits; each round costs about as much as the first).
             for (const uint32_t leaf : foldedLeaves_) {
-                forbidden_.insert(leafKeys_[leaf]);
-                dirtyTop_[leafTop_[leaf]] = 1;
+                forbidden_.insert(leaves_[leaf].key);
+                dirtyTop_[leaves_[leaf].top] = 1;
             }
         }
-        if (!leafPositions_.empty()) dropUnusedVertices();
+        if (!leaves_.empty()) dropUnusedVertices();
         finishNormals();
         return std::move(mesh_);
     }
@@ -75,10 +75,7 @@ private:
     void startRound() {
         mesh_ = {};
         leafOfActive_.clear();
-        leafPositions_.clear();
-        leafKeys_.clear();
-        leafNormals_.clear();
-        leafTop_.clear();
+        leaves_.clear();
         vertexLeaf_.clear();
         foldedLeaves_.clear();
         touched_.clear();
@@ -170,7 +167,7 @@ private:
         sheetBase_.resize(spec_.nodeCount());
         uint32_t next = 0;
         // A merged block's one vertex is numbered where its first cell comes.
-        std::vector<uint32_t> leafVertex(leafPositions_.size(), kNone);
+        std::vector<uint32_t> leafVertex(leaves_.size(), kNone);
         for (size_t i = 0; i < active_.size(); ++i) {
             const uint64_t index = active_[i];
             const uint32_t leaf = leafOfActive_.empty() ? kNoLeaf : leafOfActive_[i];
@@ -184,9 +181,9 @@ private:
         }
         mesh_.positions.resize(next);
         mesh_.normals.assign(next, Vec3(0.0));
-        if (!leafPositions_.empty()) vertexLeaf_.assign(next, kNoLeaf);
-        for (size_t leaf = 0; leaf < leafPositions_.size(); ++leaf) {
-            mesh_.positions[leafVertex[leaf]] = leafPositions_[leaf];
+        if (!leaves_.empty()) vertexLeaf_.assign(next, kNoLeaf);
+        for (size_t leaf = 0; leaf < leaves_.size(); ++leaf) {
+            mesh_.positions[leafVertex[leaf]] = leaves_[leaf].vertex;
             vertexLeaf_[leafVertex[leaf]] = uint32_t(leaf);
         }
         stats_.sheetVertices = next;
@@ -279,11 +276,16 @@ private:
         Vec3 vertex{0.0};        // the merged vertex, when mergeable with surface (level >= 1)
         Vec3 normal{0.0};        // the mean of its sample normals (unit), likewise
     };
-    // One top block's work on one worker: its leaves (vertices) and a sample buffer.
+    // A merged block (a leaf of the octree).
+    struct Leaf {
+        Vec3 vertex{0.0};  // its one vertex
+        Vec3 normal{0.0};  // the mean of its sample normals (unit)
+        uint64_t key = 0;  // its blockKey
+        uint32_t top = 0;  // its top block (mergeFlatBlocks)
+    };
+    // One top block's work on one worker: its leaves and a sample buffer.
     struct TopBlockWork {
-        std::vector<Vec3> leaves;
-        std::vector<uint64_t> keys;  // blockKey of each leaf
-        std::vector<Vec3> normals;   // mean sample normal of each leaf
+        std::vector<Leaf> leaves;
         std::vector<EdgeSample> samples;
     };
 
@@ -396,9 +398,7 @@ private:
                  const uint32_t* last, TopBlockWork& work) {
         for (const uint32_t* p = first; p != last; ++p)
             localLeaf_[*p] = uint32_t(work.leaves.size());
-        work.leaves.push_back(block.vertex);
-        work.normals.push_back(block.normal);
-        work.keys.push_back(blockKey(lo, level));
+        work.leaves.push_back({block.vertex, block.normal, blockKey(lo, level)});
     }
 
     // Block of 2^level cells per axis at lo whose active cells (positions in active_) are
@@ -512,12 +512,12 @@ private:
             }
             const TopBlockWork& w = topWork_[block];
             offset += uint32_t(w.leaves.size());
-            leafPositions_.insert(leafPositions_.end(), w.leaves.begin(), w.leaves.end());
-            leafKeys_.insert(leafKeys_.end(), w.keys.begin(), w.keys.end());
-            leafNormals_.insert(leafNormals_.end(), w.normals.begin(), w.normals.end());
-            leafTop_.insert(leafTop_.end(), w.leaves.size(), uint32_t(block));
+            for (Leaf leaf : w.leaves) {
+                leaf.top = uint32_t(block);
+                leaves_.push_back(leaf);
+            }
         }
-        stats_.octreeLeaves = leafPositions_.size();
+        stats_.octreeLeaves = leaves_.size();
     }
 
     // The merged block whose vertex mesh vertex v is, or kNoLeaf (a cell's own vertex, a face
@@ -715,7 +715,7 @@ private:
         const double sameSheet = std::cos(2.0 * tol::kOctreeConeAngle);
         for (const uint32_t v : {a, b, c}) {
             const uint32_t leaf = leafOf(v);
-            if (leaf != kNoLeaf && glm::dot(n, leafNormals_[leaf]) >= sameSheet &&
+            if (leaf != kNoLeaf && glm::dot(n, leaves_[leaf].normal) >= sameSheet &&
                 facing < tol::kOctreeFanTurnCos * glm::length(cross))
                 return false;
         }
@@ -841,11 +841,9 @@ private:
     double flatTolerance_;  // 0 after too many rounds: the uniform contour
     TriangleMesh mesh_;
     // The octree (mergeFlatBlocks): per entry of active_, its merged block or kNoLeaf (empty
-    // when the octree is off); per merged block, its vertex.
+    // when the octree is off); the merged blocks.
     std::vector<uint32_t> leafOfActive_;
-    std::vector<Vec3> leafPositions_;
-    std::vector<uint64_t> leafKeys_;      // per merged block, its blockKey
-    std::vector<Vec3> leafNormals_;       // per merged block, its mean sample normal
+    std::vector<Leaf> leaves_;
     std::vector<uint32_t> vertexLeaf_;    // per sheet vertex, its merged block or kNoLeaf
     std::vector<uint32_t> foldedLeaves_;  // merged blocks of rings no fan fits
     // The top blocks of mergeFlatBlocks, kept across rounds: the active cells (positions in
@@ -857,7 +855,6 @@ private:
     std::vector<TopBlockWork> topWork_;
     std::vector<uint8_t> dirtyTop_;
     std::vector<uint32_t> localLeaf_;
-    std::vector<uint32_t> leafTop_;  // per merged block, its top block
     // Every active cell's own sheet vertices (placeSheetVertices, octree rounds): the first of
     // active cell i is finePlaced_[fineStart_[i]]; fineMissing_ counts their missing crossings.
     std::vector<uint32_t> fineStart_;
