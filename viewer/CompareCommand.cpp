@@ -108,8 +108,9 @@ int compareCommand(std::span<const std::string> args) {
     const double meshVolume = csg::signedVolume(mesh);
     const double partVolume = csg::volume(part.scene, 1024);
     const bool outward = meshVolume >= 0.0;
+    const csg::TriangleBvh bvh(mesh, threads);
     const csg::SelfIntersections crossings =
-        csg::findSelfIntersections(mesh, csg::tol::kSelfIntersectionContactRel, threads);
+        csg::findSelfIntersections(mesh, bvh, csg::tol::kSelfIntersectionContactRel, threads);
 
     // Step 2: distances, reaching well past the tolerance so a bad mesh shows its error.
     const double diagonal = box.empty() ? 0.0 : glm::length(box.extent());
@@ -119,7 +120,6 @@ int compareCommand(std::span<const std::string> args) {
     options.goodEnough = tolerance;
     options.reach = std::max(10.0 * tolerance, diagonal / 50.0);
     const csg::DistanceStats toSurface = csg::meshToSurface(part.scene, mesh, options);
-    const csg::TriangleBvh bvh(mesh);
     const csg::DistanceStats toMesh = csg::surfaceToMesh(part.scene, bvh, samples, options);
     const bool within =
         toSurface.max <= tolerance && toMesh.max <= tolerance && topo.closedManifold() && outward;

@@ -252,6 +252,13 @@ Contact trianglesCross(const Tri& a, const Tri& b, double tol, Vec3* where) {
 }  // namespace
 
 SelfIntersections findSelfIntersections(const TriangleMesh& mesh, double contactRel, int threads) {
+    if (mesh.triangles.size() < 2) return {};
+    const TriangleBvh bvh(mesh, threads);
+    return findSelfIntersections(mesh, bvh, contactRel, threads);
+}
+
+SelfIntersections findSelfIntersections(const TriangleMesh& mesh, const TriangleBvh& bvh,
+                                        double contactRel, int threads) {
     SelfIntersections result;
     const size_t n = mesh.triangles.size();
     if (n < 2) return result;
@@ -277,7 +284,6 @@ SelfIntersections findSelfIntersections(const TriangleMesh& mesh, double contact
             ++result.skippedSlivers;
         }
     }
-    const TriangleBvh bvh(mesh, threads);
 
     // Per worker: its count and the first pair (in triangle order) it found.
     struct Found {

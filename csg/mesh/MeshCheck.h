@@ -8,6 +8,8 @@
 
 namespace csg {
 
+class TriangleBvh;
+
 struct MeshTopology {
     uint64_t edges = 0;                // distinct undirected edges
     uint64_t boundaryEdges = 0;        // used by one triangle: a hole
@@ -52,6 +54,9 @@ struct SelfIntersections {
 SelfIntersections findSelfIntersections(const TriangleMesh& mesh, double contactRel,
                                         int threads = 0);
 SelfIntersections findSelfIntersections(const TriangleMesh& mesh);
+// The same, reusing a BVH over mesh (its build is ~15 % of the work on a million triangles).
+SelfIntersections findSelfIntersections(const TriangleMesh& mesh, const TriangleBvh& bvh,
+                                        double contactRel, int threads = 0);
 
 double signedVolume(const TriangleMesh& mesh);
 double surfaceArea(const TriangleMesh& mesh);
