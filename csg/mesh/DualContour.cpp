@@ -675,7 +675,7 @@ private:
 
             // Outward is +a when the edge leaves the solid going up the axis. A ring with a
             // merged block's vertex may be fanned from one of its vertices instead (apex).
-            const int apex = vertexLeaf_.empty() ? -1 : chooseApex(s, in0, ring, count);
+            const int apex = vertexLeaf_.empty() ? -1 : chooseApex(s, in0, center, ring, count);
             forEachFanTriangle(in0, center, ring, count, apex,
                                [&](uint32_t p, uint32_t q, uint32_t r) {
                                    mesh_.triangles.push_back({p, q, r});
@@ -722,18 +722,18 @@ private:
         return true;
     }
 
-    // The vertex a ring with a merged block's vertex is fanned from: -1 for the crossing (the
-    // last vertex added), as every other ring, when that fan fits the surface (fits); else the
+    // The vertex a ring with a merged block's vertex is fanned from: -1 for the crossing
+    // (center), as every other ring, when that fan fits the surface (fits); else the
     // first ring vertex whose fan fits (the same boundary, so the mesh stays closed: a ring of
     // three becomes Ju's one triangle). A block's vertex lies anywhere in its block, so seen
     // from a crossing on the block's face it may lie past the ring's other vertices and the
     // crossing's fan fold over. When no fan fits, the blocks of the ring are noted
     // (foldedLeaves_: the next round does not merge them) and the crossing's fan is kept.
-    int chooseApex(const EdgeSample& s, bool in0, const uint32_t* ring, int count) {
+    int chooseApex(const EdgeSample& s, bool in0, uint32_t center, const uint32_t* ring,
+                   int count) {
         bool merged = false;
         for (int t = 0; t < count; ++t) merged = merged || leafOf(ring[t]) != kNoLeaf;
         if (!merged) return -1;
-        const uint32_t center = uint32_t(mesh_.positions.size() - 1);
         touched_.resize(mesh_.positions.size(), 0);
         touched_[center] = 1;
         for (int t = 0; t < count; ++t) touched_[ring[t]] = 1;
