@@ -5,16 +5,16 @@
 // Google Benchmark): one run per tolerance, a table, not a timing of one call.
 //
 //   mesh_sweep PART.scad... [-o DIR] [--from T] [--steps N] [--max-cells N] [--threads N]
-//              [--no-octree]
+//              [--octree | --no-octree]
 //
 // --from defaults to 1/50 of each part's bounds diagonal; each step halves it. Writes
 // DIR/mesh_sweep.csv, DIR/mesh_sweep.md and DIR/mesh_sweep.svg (time, triangles and distance
 // against tolerance, log-log, one line per part; generated, not committed) (default DIR: the
-// current directory); the table also goes to stdout. --no-octree meshes with one vertex per
-// cell everywhere (TessellateOptions::adaptive off), for before/after rows. CPU time (all threads)
-// is the figure to read on a shared machine. The distances are tessellate's own measurements
-// (MeshDistance.h: every vertex, centroid and edge midpoint of the mesh; 128^2 lines per axis from
-// the surface).
+// current directory); the table also goes to stdout. --octree merges flat blocks of cells
+// (TessellateOptions::adaptive, off by default as in export), for before/after rows. CPU time (all
+// threads) is the figure to read on a shared machine. The distances are tessellate's own
+// measurements (MeshDistance.h: every vertex, centroid and edge midpoint of the mesh; 128^2 lines
+// per axis from the surface).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -37,7 +37,7 @@ namespace {
 int usage() {
     std::fputs(
         "usage: mesh_sweep PART.scad... [-o DIR] [--from T] [--steps N] [--max-cells N] "
-        "[--threads N] [--no-octree]\n",
+        "[--threads N] [--octree | --no-octree]\n",
         stderr);
     return 2;
 }
@@ -134,15 +134,15 @@ int main(int argc, char** argv) {
     double from = 0.0;
     int steps = 5, threads = 0;
     uint64_t maxCells = uint64_t(1) << 24;
-    bool adaptive = true;
+    bool adaptive = false;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         if (arg.empty() || arg[0] != '-') {
             parts.emplace_back(arg);
             continue;
         }
-        if (arg == "--no-octree") {
-            adaptive = false;
+        if (arg == "--no-octree" || arg == "--octree") {
+            adaptive = arg == "--octree";
             continue;
         }
         if (i + 1 >= argc) return usage();

@@ -1,7 +1,7 @@
 // A scene to a triangle mesh within a distance tolerance: tri-dexel Hermite data on a uniform
 // grid with planes added through walls and gaps thinner than a cell (ThinFeatures.h), manifold
-// dual contouring with flat blocks of cells merged (the octree of DualContour.h, unless
-// TessellateOptions::adaptive is off), and a measure-and-refine loop on the grid spacing. The
+// dual contouring (with flat blocks of cells merged, the octree of DualContour.h, when
+// TessellateOptions::adaptive is on), and a measure-and-refine loop on the grid spacing. The
 // loop measures the merged mesh, so the octree's own error (at most ~kOctreeFlatFraction T per
 // block, see Tolerances.h) is refined away like the grid's.
 //
@@ -54,8 +54,11 @@ struct TessellateOptions {
     int maxPasses = 4;
     // Merge flat blocks of cells into one vertex each while contouring (the octree of
     // DualContour.h, flat to tol::kOctreeFlatFraction T): far fewer triangles on flat and gently
-    // curved faces, fine cells at creases, thin gaps and curved patches.
-    bool adaptive = true;
+    // curved faces, fine cells at creases, thin gaps and curved patches. Off by default: its
+    // fans fold slivers flat onto their neighbours on some flat faces (coplanar
+    // self-intersections on the emblem, pawn and pipe_tee samples that the uniform contour
+    // does not have; tests/octree_test.cpp's disabled RandomCsgHasNoSelfIntersections).
+    bool adaptive = false;
     bool simplify = true;  // coarsen flat regions after the grid passes (Simplify.h)
     // Grid meshes larger than this are not simplified (0: no limit). Decimation (in slabs on
     // all workers, then once over the whole) and its re-measurement both ways cost more than
