@@ -20,6 +20,7 @@
 #include "csg/mesh/TriangleBvh.h"
 #include "io/Evaluate.h"
 #include "io/MeshFile.h"
+#include "tests/BoxPlanes.h"
 #include "tests/SeededRng.h"
 
 namespace csg {
@@ -244,14 +245,6 @@ TEST(Tessellate, BoxIsExactWithSharpCorners) {
     EXPECT_NEAR(c.volume, 2.0 * 1.0 * 1.5, 1e-9);
     EXPECT_LT(c.result.error.max, 1e-9);
     EXPECT_EQ(c.result.passes, 1);
-}
-
-// Every point of a box's mesh must lie on one of its six planes.
-double offBoxSurface(const Vec3& p, const Vec3& lo, const Vec3& hi) {
-    double best = INFINITY;
-    for (int a = 0; a < 3; ++a)
-        best = std::min({best, std::abs(p[a] - lo[a]), std::abs(p[a] - hi[a])});
-    return best;
 }
 
 TEST(Simplify, BoxFacesCollapseToAFewTrianglesAndStayExact) {

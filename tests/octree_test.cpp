@@ -10,18 +10,11 @@
 #include "csg/mesh/DualContour.h"
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/Tessellate.h"
+#include "tests/BoxPlanes.h"
 #include "tests/SeededRng.h"
 
 namespace csg {
 namespace {
-
-// Distance of p from the nearest of the box's six planes (0 for a point on its surface).
-double offBoxSurface(const Vec3& p, const Vec3& lo, const Vec3& hi) {
-    double best = INFINITY;
-    for (int a = 0; a < 3; ++a)
-        best = std::min({best, std::abs(p[a] - lo[a]), std::abs(p[a] - hi[a])});
-    return best;
-}
 
 // A slab of 80 x 80 x 20 cells. The uniform contour puts a vertex in each of the ~2 x 80^2 +
 // 4 x 80 x 20 cells its faces cross (~19 200) and two triangles per crossed edge (~38 000
@@ -36,8 +29,7 @@ TEST(Octree, SlabFacesMergeAndStayExact) {
     const double h = 0.05;
     DualContourStats uniformStats, octreeStats;
     const TriangleMesh uniform = tessellateAt(scene, h, 0, nullptr, &uniformStats);
-    const TriangleMesh octree =
-        tessellateAt(scene, h, 0, nullptr, &octreeStats, nullptr, 0.25 * h);
+    const TriangleMesh octree = tessellateAt(scene, h, 0, nullptr, &octreeStats, nullptr, 0.25 * h);
     EXPECT_EQ(uniformStats.octreeLeaves, 0u);
     EXPECT_GT(octreeStats.octreeLeaves, 0u);
     EXPECT_FALSE(octreeStats.octreeFallback);
@@ -77,8 +69,7 @@ NodePtr randomPart(testing::Rng& rng) {
             parts.push_back(transformed(place, leaf(Sphere{rng.uniform(0.1, 0.7)})));
         }
     }
-    return subtract(uniteAll({parts[0], parts[1], parts[2], parts[3]}),
-                    unite(parts[4], parts[5]));
+    return subtract(uniteAll({parts[0], parts[1], parts[2], parts[3]}), unite(parts[4], parts[5]));
 }
 
 TEST(Octree, RandomCsgIsAlwaysManifold) {
