@@ -74,7 +74,7 @@ NodePtr randomPart(testing::Rng& rng) {
 
 TEST(Octree, RandomCsgIsAlwaysManifold) {
     testing::Rng rng(23);
-    uint64_t merged = 0, fallbacks = 0, octreeTriangles = 0, uniformTriangles = 0;
+    uint64_t merged = 0, octreeTriangles = 0, uniformTriangles = 0;
     for (int trial = 0; trial < 40; ++trial) {
         const Scene scene = Scene::compile(randomPart(rng));
         const double h = 0.03 + 0.12 * (trial % 4) / 3.0;
@@ -88,12 +88,13 @@ TEST(Octree, RandomCsgIsAlwaysManifold) {
         if (!mesh.empty()) {
             EXPECT_GT(signedVolume(mesh), 0.0) << trial;
         }
+        // A merge that broke the mesh falls back to the uniform contour, which the topology
+        // check above cannot see: this is what fails when merging goes wrong.
+        EXPECT_FALSE(stats.octreeFallback) << "trial " << trial << " h " << h;
         merged += stats.octreeLeaves;
-        fallbacks += stats.octreeFallback;
         octreeTriangles += mesh.triangles.size();
         uniformTriangles += tessellateAt(scene, h, 0).triangles.size();
     }
-    EXPECT_EQ(fallbacks, 0u);
     EXPECT_GT(merged, 1000u);
     EXPECT_LT(octreeTriangles, uniformTriangles);
 }
