@@ -21,6 +21,7 @@
 #include "io/Evaluate.h"
 #include "io/MeshFile.h"
 #include "tests/BoxPlanes.h"
+#include "tests/MeshTopologyText.h"
 #include "tests/SeededRng.h"
 
 namespace csg {
@@ -448,8 +449,7 @@ TEST(Tessellate, CornerOnAGridNodeStaysManifoldAsFloats) {
         EXPECT_TRUE(checkTopology(mesh).closedManifold()) << n;
         for (Vec3& p : mesh.positions) p = Vec3(glm::vec3(p));
         const MeshTopology t = checkTopology(weldExactDuplicates(mesh));
-        EXPECT_TRUE(t.closedManifold()) << n << ": non-manifold edges " << t.nonManifoldEdges
-                                        << ", vertices " << t.nonManifoldVertices;
+        EXPECT_TRUE(t.closedManifold()) << n << ": " << describe(t);
     }
 }
 
@@ -561,10 +561,7 @@ TEST(Tessellate, RandomCsgIsAlwaysManifold) {
         const double h = 0.05 + 0.2 * (trial % 5) / 4.0;
         const TriangleMesh mesh = tessellateAt(scene, h, 0);
         const MeshTopology t = checkTopology(mesh);
-        ASSERT_TRUE(t.closedManifold())
-            << "trial " << trial << " h " << h << ": boundary " << t.boundaryEdges
-            << " nonmanifold " << t.nonManifoldEdges << " misoriented " << t.misorientedEdges
-            << " vertices " << t.nonManifoldVertices << " degenerate " << t.degenerateTriangles;
+        ASSERT_TRUE(t.closedManifold()) << "trial " << trial << " h " << h << ": " << describe(t);
         if (!mesh.empty()) {
             EXPECT_GT(signedVolume(mesh), 0.0) << trial;
         }
@@ -602,10 +599,7 @@ TEST(Tessellate, EverySampleMeshesWithinTolerance) {
         c.result = tessellate(scene, options);
         c.topo = checkTopology(c.result.mesh);
         c.volume = signedVolume(c.result.mesh);
-        EXPECT_TRUE(c.topo.closedManifold())
-            << "boundary " << c.topo.boundaryEdges << " nonmanifold " << c.topo.nonManifoldEdges
-            << " misoriented " << c.topo.misorientedEdges << " vertices "
-            << c.topo.nonManifoldVertices << " degenerate " << c.topo.degenerateTriangles;
+        EXPECT_TRUE(c.topo.closedManifold()) << describe(c.topo);
         EXPECT_LE(c.result.error.max, tol);
         // Issue 7 promises no self-intersections; every sample is held to none but csg_grid,
         // which prints its count (open in issue 7): dual contouring crosses itself there (the

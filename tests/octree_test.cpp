@@ -11,6 +11,7 @@
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/Tessellate.h"
 #include "tests/BoxPlanes.h"
+#include "tests/MeshTopologyText.h"
 #include "tests/SeededRng.h"
 
 namespace csg {
@@ -81,10 +82,7 @@ TEST(Octree, RandomCsgIsAlwaysManifold) {
         DualContourStats stats;
         const TriangleMesh mesh = tessellateAt(scene, h, 0, nullptr, &stats, nullptr, 0.5 * h);
         const MeshTopology t = checkTopology(mesh);
-        ASSERT_TRUE(t.closedManifold())
-            << "trial " << trial << " h " << h << ": boundary " << t.boundaryEdges
-            << " nonmanifold " << t.nonManifoldEdges << " misoriented " << t.misorientedEdges
-            << " vertices " << t.nonManifoldVertices << " degenerate " << t.degenerateTriangles;
+        ASSERT_TRUE(t.closedManifold()) << "trial " << trial << " h " << h << ": " << describe(t);
         if (!mesh.empty()) {
             EXPECT_GT(signedVolume(mesh), 0.0) << trial;
         }
