@@ -35,10 +35,10 @@ public:
         while (top > 0) {
             const uint32_t index = stack[--top];
             const Node& node = nodes_[index];
-            if (!overlaps(node.box, box)) continue;
+            if (overlap(node.box, box).empty()) continue;
             if (node.count > 0) {
                 for (uint32_t i = node.first; i < node.first + node.count; ++i)
-                    if (overlaps(triangleBox(order_[i]), box)) fn(order_[i]);
+                    if (!overlap(triangleBox(order_[i]), box).empty()) fn(order_[i]);
                 continue;
             }
             stack[top++] = node.first;  // right child
@@ -57,10 +57,6 @@ private:
     void build(uint32_t begin, uint32_t end, uint32_t index, int parallelDepth);
     void tabulateNodeCounts(uint32_t n);
     Bounds3 triangleBox(uint32_t triangle) const;
-    static bool overlaps(const Bounds3& a, const Bounds3& b) {
-        return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y &&
-               a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
-    }
     uint32_t nodeCount(uint32_t count) const;  // nodes of a subtree over count triangles
 
     const TriangleMesh& mesh_;
