@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
 #include <string>
 
 #include "csg/mesh/MeshCheck.h"
 #include "io/MeshFileDetail.h"
+#include "io/ReadFile.h"
 
 namespace io {
 
@@ -77,24 +77,12 @@ MeshReadResult readMesh(const std::filesystem::path& file) {
 namespace detail {
 
 bool readBytes(const std::filesystem::path& file, std::string& bytes, MeshReadResult& result) {
-    std::ifstream in(file, std::ios::binary);
-    std::error_code ec;
-    if (!in || std::filesystem::is_directory(file, ec)) {
-        result.error = "cannot open the mesh";
-        result.unreadable = true;
-        return false;
-    }
-    in.seekg(0, std::ios::end);
-    const std::streamoff size = in.tellg();
-    in.seekg(0);
-    bytes.resize(size > 0 ? size_t(size) : 0);
-    if (size > 0) in.read(bytes.data(), size);
-    if (in.bad() || size < 0) {
-        result.error = "cannot read the mesh";
-        result.unreadable = true;
-        return false;
-    }
-    return true;
+    const ReadFailure failure = readWholeFile(file, bytes);
+    if (failure == ReadFailure::None) return true;
+    result.error =
+        failure == ReadFailure::CannotRead ? "cannot read the mesh" : "cannot open the mesh";
+    result.unreadable = true;
+    return false;
 }
 
 }  // namespace detail

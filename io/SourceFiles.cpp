@@ -1,8 +1,9 @@
 #include "io/SourceFiles.h"
 
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
+
+#include "io/ReadFile.h"
 
 namespace io {
 
@@ -16,29 +17,21 @@ std::optional<uint32_t> SourceFiles::load(const std::filesystem::path& path, std
         error = "reading files is not allowed here";
         return std::nullopt;
     }
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) {
-        error = "'" + path.string() + "' is a directory";
-        return std::nullopt;
-    }
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        error = "cannot open '" + path.string() + "'";
-        return std::nullopt;
-    }
     std::string text;
-    in.seekg(0, std::ios::end);
-    const auto size = in.tellg();
-    if (size > 0) {
-        text.resize(static_cast<size_t>(size));
-        in.seekg(0);
-        in.read(text.data(), size);
+    switch (readWholeFile(path, text)) {
+        case ReadFailure::None:
+            return add(path.string(), path, std::move(text));
+        case ReadFailure::IsDirectory:
+            error = "'" + path.string() + "' is a directory";
+            return std::nullopt;
+        case ReadFailure::CannotOpen:
+            error = "cannot open '" + path.string() + "'";
+            return std::nullopt;
+        case ReadFailure::CannotRead:
+            break;
     }
-    if (in.bad()) {
-        error = "cannot read '" + path.string() + "'";
-        return std::nullopt;
-    }
-    return add(path.string(), path, std::move(text));
+    error = "cannot read '" + path.string() + "'";
+    return std::nullopt;
 }
 
 // The library directories searched after the including file's own, in OpenSCAD's order.
