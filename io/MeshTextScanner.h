@@ -13,11 +13,22 @@ namespace io::detail {
 
 class MeshTextScanner {
 public:
-    explicit MeshTextScanner(std::string_view text) : text_(text) {}
+    // lineContinuations: a backslash ending a line joins the next line to it (OBJ's rule), so
+    // skipBlanks() steps over it as over a blank.
+    explicit MeshTextScanner(std::string_view text, bool lineContinuations = false)
+        : text_(text), lineContinuations_(lineContinuations) {}
 
-    // Skips spaces and tabs (and a carriage return before a newline), not newlines.
+    // Skips spaces and tabs (and a carriage return before a newline), not newlines, except
+    // the newline of a line continuation.
     void skipBlanks() {
-        while (pos_ < text_.size() && isBlank(text_[pos_])) advance();
+        while (pos_ < text_.size()) {
+            if (isBlank(text_[pos_]))
+                advance();
+            else if (const size_t end = continuationEnd(); end != pos_)
+                while (pos_ < end) advance();
+            else
+                return;
+        }
     }
     // Skips blanks and newlines.
     void skipWhitespace() {
@@ -30,6 +41,10 @@ public:
     }
     bool atEnd() const { return pos_ >= text_.size(); }
     bool atLineEnd() const { return atEnd() || text_[pos_] == '\n'; }
+    // At a line's end, a blank or a line continuation: where a token ends.
+    bool atSeparator() const {
+        return atLineEnd() || isBlank(text_[pos_]) || continuationEnd() != pos_;
+    }
 
     // The next run of characters that are not blanks or newlines (empty at a line's end).
     std::string_view word() {
@@ -81,7 +96,17 @@ public:
 private:
     static bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 
+    // Past the newline of a line continuation at the cursor (a backslash, optional carriage
+    // returns, a newline), or pos_ when there is none.
+    size_t continuationEnd() const {
+        if (!lineContinuations_ || text_[pos_] != '\\') return pos_;
+        size_t end = pos_ + 1;
+        while (end < text_.size() && text_[end] == '\r') ++end;
+        return end < text_.size() && text_[end] == '\n' ? end + 1 : pos_;
+    }
+
     std::string_view text_;
+    bool lineContinuations_;
     size_t pos_ = 0;
     uint32_t line_ = 1;
     uint32_t column_ = 1;

@@ -121,6 +121,35 @@ TEST_F(MeshFiles, ObjFacesTakeEveryCornerFormAndNegativeIndices) {
     EXPECT_NEAR(csg::signedVolume(*r.mesh), 1.0, 1e-15);
 }
 
+TEST_F(MeshFiles, ObjLineContinuationsJoinLines) {
+    // The same unit cube with statements split by a backslash at a line's end (after a blank,
+    // right after an index, before a CRLF); a backslash elsewhere is not a continuation.
+    const std::string obj =
+        "v 0 0 0\nv 1 \\\n 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+        "f 1 4 \\\n 3 2\n"
+        "f 5 6\\\r\n7 8\n"
+        "f 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+    const io::MeshReadResult r = io::readMesh(write("continued.obj", obj));
+    ASSERT_TRUE(r.mesh) << r.error;
+    EXPECT_EQ(r.mesh->positions.size(), 8u);
+    ASSERT_EQ(r.mesh->triangles.size(), 12u);
+    EXPECT_EQ(r.mesh->triangles[2], (std::array<uint32_t, 3>{4, 5, 6}));
+    EXPECT_TRUE(csg::checkTopology(*r.mesh).closedManifold());
+    EXPECT_NEAR(csg::signedVolume(*r.mesh), 1.0, 1e-15);
+
+    // An error on a continued line names that line and its column.
+    const io::MeshReadResult bad =
+        io::readMesh(write("badcont.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 \\\n  2 x\n"));
+    EXPECT_FALSE(bad.mesh);
+    EXPECT_EQ(bad.line, 5u);
+    EXPECT_EQ(bad.column, 5u);
+    const io::MeshReadResult stray =
+        io::readMesh(write("stray.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\\ 3\n"));
+    EXPECT_FALSE(stray.mesh);
+    EXPECT_EQ(stray.line, 4u);
+    EXPECT_EQ(stray.column, 6u);
+}
+
 TEST_F(MeshFiles, NonManifoldFacesAreKeptForCompareToReport) {
     // The tetrahedron with one face written three times: OpenMesh's half-edge structure
     // refused the copies, so compare saw a closed mesh.
