@@ -18,6 +18,8 @@ namespace viewer {
 
 namespace {
 
+// The help states the contact tolerance in words; a change of the constant must change it.
+static_assert(csg::tol::kSelfIntersectionContactRel == 1e-6);
 const char* const kCompareHelp =
     "usage: csgray compare PART MESH [options]\n"
     "\n"
