@@ -338,4 +338,11 @@ inline constexpr double kPatchClipMargin = 1e-7;
 // rounding-noise partial gives ~1e-16, far below.
 inline constexpr double kPatchNormalDegenerateRel = 1e-10;
 
+// A mesh read for comparison (io/MeshFile.h) may not have a vertex coordinate larger in
+// magnitude than this (unit: the file's own). Why: compare sums triple products of
+// coordinates for the volume and squares them for distances; at 1e30 a cube of a coordinate
+// is 1e90, so a billion triangles stay ~10^209 below double's overflow, where 1e300 gave
+// inf - inf = NaN. No part in any unit comes near it (the observable universe is ~1e27 m).
+inline constexpr double kMeshCoordinateMax = 1e30;
+
 }  // namespace csg::tol

@@ -51,40 +51,52 @@ std::optional<std::string> writeMesh(const std::filesystem::path& file,
     return "cannot write this format (use .glb, .gltf or .obj)";
 }
 
+namespace {
+
+const char* const kUnknownMeshFormat = "unknown mesh format (expected .obj, .stl, .glb or .gltf)";
+
+}  // namespace
+
 MeshReadResult readMesh(const std::filesystem::path& file) {
+    const MeshFormat format = meshFormatOf(file);
+    if (format == MeshFormat::Unknown) {
+        MeshReadResult result;
+        result.error = kUnknownMeshFormat;
+        return result;
+    }
+    std::string bytes;
+    if (const ReadFailure failure = readWholeFile(file, bytes); failure != ReadFailure::None) {
+        MeshReadResult result;
+        result.error =
+            failure == ReadFailure::CannotRead ? "cannot read the mesh" : "cannot open the mesh";
+        result.unreadable = true;
+        return result;
+    }
+    return parseMesh(bytes, format, file.parent_path());
+}
+
+MeshReadResult parseMesh(std::string_view bytes, MeshFormat format,
+                         const std::filesystem::path& baseDir) {
     MeshReadResult result;
-    switch (meshFormatOf(file)) {
+    switch (format) {
         case MeshFormat::Obj:
-            result = detail::readObj(file);
+            result = detail::parseObj(bytes);
             break;
         case MeshFormat::Stl:
-            result = detail::readStl(file);
+            result = detail::parseStl(bytes);
             break;
         case MeshFormat::Glb:
-            result = detail::readGltf(file, true);
+            result = detail::parseGltf(bytes, true, baseDir);
             break;
         case MeshFormat::Gltf:
-            result = detail::readGltf(file, false);
+            result = detail::parseGltf(bytes, false, baseDir);
             break;
         case MeshFormat::Unknown:
-            result.error = "unknown mesh format (expected .obj, .stl, .glb or .gltf)";
+            result.error = kUnknownMeshFormat;
             return result;
     }
     if (result.mesh) result.mesh = csg::weldExactDuplicates(*result.mesh);
     return result;
 }
-
-namespace detail {
-
-bool readBytes(const std::filesystem::path& file, std::string& bytes, MeshReadResult& result) {
-    const ReadFailure failure = readWholeFile(file, bytes);
-    if (failure == ReadFailure::None) return true;
-    result.error =
-        failure == ReadFailure::CannotRead ? "cannot read the mesh" : "cannot open the mesh";
-    result.unreadable = true;
-    return false;
-}
-
-}  // namespace detail
 
 }  // namespace io

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "csg/mesh/TriangleMesh.h"
@@ -41,7 +42,12 @@ struct MeshReadResult {
 // the vertex valences. glTF node transforms are applied, so a csgray GLB comes back in its
 // Z-up part frame (the root rotation undone). Vertices with bit-identical positions are merged
 // (STL soups, per-material primitives), so topology can be checked. An error in an OBJ or
-// ASCII STL file comes with its line and column.
+// ASCII STL file comes with its line and column. A coordinate beyond
+// ±csg::tol::kMeshCoordinateMax (or not finite) is an error: it cannot be measured.
 MeshReadResult readMesh(const std::filesystem::path& file);
+
+// readMesh on bytes already read: baseDir is where a glTF's external buffers are looked up.
+MeshReadResult parseMesh(std::string_view bytes, MeshFormat format,
+                         const std::filesystem::path& baseDir);
 
 }  // namespace io

@@ -1,8 +1,11 @@
 // The per-format halves of io/MeshFile.h.
 #pragma once
 
+#include <cmath>
 #include <string>
+#include <string_view>
 
+#include "csg/Tolerances.h"
 #include "io/MeshFile.h"
 
 namespace io::detail {
@@ -13,12 +16,23 @@ std::optional<std::string> writeGltf(const std::filesystem::path& file,
                                      const csg::TriangleMesh& mesh,
                                      const std::vector<Material>& materials, bool binary);
 
-// The readers return positions as written (not welded: readMesh welds) and triangles.
-MeshReadResult readObj(const std::filesystem::path& file);
-MeshReadResult readStl(const std::filesystem::path& file);
-MeshReadResult readGltf(const std::filesystem::path& file, bool binary);
+// The parsers of a file's bytes return positions as written (not welded: parseMesh welds) and
+// triangles, every position measurable (below).
+MeshReadResult parseObj(std::string_view text);
+MeshReadResult parseStl(std::string_view bytes);
+MeshReadResult parseGltf(std::string_view bytes, bool binary, const std::filesystem::path& baseDir);
 
-// The whole file into bytes; false (result.error and unreadable set) when it cannot be read.
-bool readBytes(const std::filesystem::path& file, std::string& bytes, MeshReadResult& result);
+// Whether a coordinate read can be measured: finite and within ±tol::kMeshCoordinateMax (NaN
+// compares false).
+inline bool measurable(double c) {
+    return std::abs(c) <= csg::tol::kMeshCoordinateMax;
+}
+inline bool measurable(const csg::Vec3& p) {
+    return measurable(p.x) && measurable(p.y) && measurable(p.z);
+}
+// The error for a coordinate that is not.
+inline const char* const kUnmeasurableCoordinate =
+    "a coordinate that is not a finite number within ±1e30 cannot be measured";
+static_assert(csg::tol::kMeshCoordinateMax == 1e30, "kUnmeasurableCoordinate states it");
 
 }  // namespace io::detail

@@ -12,11 +12,8 @@
 
 namespace io::detail {
 
-MeshReadResult readObj(const std::filesystem::path& file) {
+MeshReadResult parseObj(std::string_view text) {
     MeshReadResult result;
-    std::string text;
-    if (!readBytes(file, text, result)) return result;
-
     MeshTextScanner in(text, /*lineContinuations=*/true);
     csg::TriangleMesh mesh;
     auto fail = [&](uint32_t line, uint32_t column, std::string message) {
@@ -34,8 +31,10 @@ MeshReadResult readObj(const std::filesystem::path& file) {
             double xyz[3];
             for (double& c : xyz) {
                 in.skipBlanks();
+                const uint32_t numberLine = in.line(), column = in.column();
                 if (!in.number(c))
-                    return fail(in.line(), in.column(), "expected a finite number (v x y z)");
+                    return fail(numberLine, column, "expected a finite number (v x y z)");
+                if (!measurable(c)) return fail(numberLine, column, kUnmeasurableCoordinate);
             }
             mesh.positions.emplace_back(xyz[0], xyz[1], xyz[2]);
         } else if (keyword == "f") {

@@ -17,13 +17,13 @@ namespace {
 constexpr size_t kHeaderBytes = 80 + 4;  // a free header, then the facet count
 constexpr size_t kFacetBytes = 50;       // normal, 3 corners (12 floats), 2 attribute bytes
 
-uint32_t facetCount(const std::string& bytes) {
+uint32_t facetCount(std::string_view bytes) {
     uint32_t n = 0;
     for (int i = 3; i >= 0; --i) n = n << 8 | uint8_t(bytes[size_t(80 + i)]);  // little-endian
     return n;
 }
 
-float floatAt(const std::string& bytes, size_t offset) {
+float floatAt(std::string_view bytes, size_t offset) {
     uint32_t u = 0;
     for (int i = 3; i >= 0; --i) u = u << 8 | uint8_t(bytes[offset + size_t(i)]);
     float f;
@@ -32,7 +32,7 @@ float floatAt(const std::string& bytes, size_t offset) {
 }
 
 // Binary STL: little-endian float corners, each facet's three in order.
-MeshReadResult readBinary(const std::string& bytes) {
+MeshReadResult readBinary(std::string_view bytes) {
     MeshReadResult result;
     const size_t facets = facetCount(bytes);
     csg::TriangleMesh mesh;
@@ -44,9 +44,9 @@ MeshReadResult readBinary(const std::string& bytes) {
         for (size_t c = 0; c < 3; ++c) {
             const size_t at = corners + 12 * c;
             const csg::Vec3 p(floatAt(bytes, at), floatAt(bytes, at + 4), floatAt(bytes, at + 8));
-            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-                result.error = "binary STL: facet " + std::to_string(f + 1) +
-                               " has a corner that is not a finite number";
+            if (!measurable(p)) {
+                result.error =
+                    "binary STL: facet " + std::to_string(f + 1) + ": " + kUnmeasurableCoordinate;
                 return result;
             }
             mesh.positions.push_back(p);
@@ -59,7 +59,7 @@ MeshReadResult readBinary(const std::string& bytes) {
 
 // ASCII STL: solid NAME, then per facet "facet normal n n n / outer loop / vertex x y z (3 or
 // more, cut into a fan) / endloop / endfacet", then endsolid NAME; more solids may follow.
-MeshReadResult readAscii(const std::string& text) {
+MeshReadResult readAscii(std::string_view text) {
     MeshReadResult result;
     MeshTextScanner in(text);
     csg::TriangleMesh mesh;
@@ -78,14 +78,16 @@ MeshReadResult readAscii(const std::string& text) {
         return in.word();
     };
     auto expect = [&](std::string_view keyword) { return sameWord(next(), keyword); };
-    auto point = [&](csg::Vec3& p) {
+    // A corner's x y z, or the error (its position kept).
+    auto corner = [&](csg::Vec3& p) -> const char* {
         for (int k = 0; k < 3; ++k) {
             in.skipBlanks();
             line = in.line();
             column = in.column();
-            if (!in.number(p[k])) return false;
+            if (!in.number(p[k])) return "expected a finite number (vertex x y z)";
+            if (!measurable(p[k])) return kUnmeasurableCoordinate;
         }
-        return true;
+        return nullptr;
     };
 
     std::vector<uint32_t> corners;
@@ -96,14 +98,20 @@ MeshReadResult readAscii(const std::string& text) {
             if (word.empty()) break;  // a missing endsolid is forgiven
             if (!sameWord(word, "facet")) return fail("expected 'facet' or 'endsolid'");
             if (!expect("normal")) return fail("expected 'normal'");
-            csg::Vec3 normal;
-            if (!point(normal)) return fail("expected a finite number (facet normal x y z)");
+            // The normal is not used (compare takes the corners' order), so it is only
+            // skipped: writers put "nan" there for degenerate facets.
+            for (int k = 0; k < 3; ++k) {
+                in.skipBlanks();
+                line = in.line();
+                column = in.column();
+                if (in.word().empty()) return fail("expected 3 numbers (facet normal x y z)");
+            }
             if (!expect("outer")) return fail("expected 'outer loop'");
             if (!expect("loop")) return fail("expected 'outer loop'");
             corners.clear();
             for (word = next(); sameWord(word, "vertex"); word = next()) {
                 csg::Vec3 p;
-                if (!point(p)) return fail("expected a finite number (vertex x y z)");
+                if (const char* error = corner(p)) return fail(error);
                 corners.push_back(uint32_t(mesh.positions.size()));
                 mesh.positions.push_back(p);
             }
@@ -120,18 +128,16 @@ MeshReadResult readAscii(const std::string& text) {
     return result;
 }
 
-bool startsWithSolid(const std::string& bytes) {
+bool startsWithSolid(std::string_view bytes) {
     size_t i = 0;
     while (i < bytes.size() && std::isspace(uint8_t(bytes[i]))) ++i;
-    return bytes.size() - i >= 5 && sameWord(std::string_view(bytes).substr(i, 5), "solid");
+    return bytes.size() - i >= 5 && sameWord(bytes.substr(i, 5), "solid");
 }
 
 }  // namespace
 
-MeshReadResult readStl(const std::filesystem::path& file) {
+MeshReadResult parseStl(std::string_view bytes) {
     MeshReadResult result;
-    std::string bytes;
-    if (!readBytes(file, bytes, result)) return result;
     // A binary file's size is fixed by its facet count; its free header may start with
     // "solid" too (several exporters write that), so the size decides first.
     if (bytes.size() >= kHeaderBytes &&

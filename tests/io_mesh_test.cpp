@@ -1,6 +1,7 @@
 // Reading mesh files for compare (io/MeshFile.h): OBJ and STL (binary and ASCII) into a welded
 // triangle soup, in time linear in the file whatever the valences, keeping non-manifold faces
-// for compare to report, and errors with the line and column of the text formats.
+// for compare to report, errors with the line and column of the text formats, and malformed
+// glTF and unmeasurable coordinates refused with their reason.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -213,6 +214,7 @@ TEST_F(MeshFiles, ErrorsInTextFilesSayWhere) {
         {"two.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n", 3, 1, "at least 3"},
         {"junk.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2.5 3\n", 4, 6, "expected a vertex index"},
         {"inf.obj", "v 0 inf 0\n", 1, 5, "finite"},
+        {"huge.obj", "v 0 0 0\nv 0 -2e30 0\n", 2, 5, "cannot be measured"},
         {"loop.stl",
          "solid x\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n"
          "   vertex 1 0 0\n  endloop\n endfacet\nendsolid x\n",
@@ -222,6 +224,15 @@ TEST_F(MeshFiles, ErrorsInTextFilesSayWhere) {
          "solid x\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n"
          "   vertex 1 0 0\n   vertex 0 1 z\n",
          6, 15, "expected a finite number"},
+        {"huge.stl",
+         "solid x\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1e31 0 0\n", 5, 11,
+         "cannot be measured"},
+        {"normal.stl", "solid x\n facet normal 0 0\n  outer loop\n", 2, 18, "expected 3 numbers"},
+        // Normals are not used, so the "nan" some writers put there is skipped.
+        {"nan_normal.stl",
+         "solid x\n facet normal nan nan nan\n  outer loop\n   vertex 0 0 0\n"
+         "   vertex 1 0 0\n   vertex 0 1 0\n  endloop\n endfacet\nendsolid x\n",
+         0, 0, ""},
     };
     for (const BadFile& c : cases) {
         const io::MeshReadResult r = io::readMesh(write(c.name, c.text));
@@ -257,6 +268,62 @@ TEST_F(MeshFiles, BrokenBinaryStlAndMissingFiles) {
         const io::MeshReadResult r = io::readMesh(dir_ / missing);
         EXPECT_FALSE(r.mesh);
         EXPECT_TRUE(r.unreadable) << missing;
+    }
+}
+
+// A glTF of one triangle (POSITION floats, then uint16 indices in one data-URI buffer of 44
+// bytes), with the accessors and nodes given; indices2 is the third index.
+std::string gltfTriangle(const std::string& accessors, const std::string& nodes, int indices2 = 2) {
+    const std::string buffer = indices2 == 2
+                                   ? "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA="
+                                   : "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAMAAAA=";
+    return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":)" + nodes +
+           R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
+           R"("buffers":[{"byteLength":44,"uri":"data:application/octet-stream;base64,)" +
+           buffer +
+           R"("}],"bufferViews":[{"buffer":0,"byteLength":36},)"
+           R"({"buffer":0,"byteOffset":36,"byteLength":8}],"accessors":)" +
+           accessors + "}";
+}
+
+TEST_F(MeshFiles, MalformedGltfIsRefusedWithItsReason) {
+    const std::string position = R"({"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"})";
+    const std::string indices =
+        R"({"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"})";
+    const std::string good = "[" + position + "," + indices + "]";
+    const std::string oneNode = R"([{"mesh":0}])";
+    const io::MeshReadResult r = io::readMesh(write("good.gltf", gltfTriangle(good, oneNode)));
+    ASSERT_TRUE(r.mesh) << r.error;  // the file the cases below each break in one place
+    EXPECT_EQ(r.mesh->positions.size(), 3u);
+    EXPECT_EQ(r.mesh->triangles.size(), 1u);
+
+    struct Case {
+        const char* name;
+        std::string gltf;
+        const char* message;  // a part of the error
+    };
+    const Case cases[] = {
+        {"count",
+         gltfTriangle("[" + std::string(R"({"bufferView":0,"componentType":5126,)") +
+                          R"("count":1099511627776,"type":"VEC3"},)" + indices + "]",
+                      oneNode),
+         "reaching past its buffer"},
+        {"matrix",
+         gltfTriangle(good, R"([{"mesh":0,"matrix":[1e300,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]}])"),
+         "cannot be measured"},
+        // Node 0's children name node 1 twice: nodes must form trees.
+        {"shared", gltfTriangle(good, R"([{"children":[1,1]},{"mesh":0}])"), "reached twice"},
+        {"float_indices",
+         gltfTriangle("[" + position +
+                          R"(,{"bufferView":1,"componentType":5126,"count":2,"type":"SCALAR"}])",
+                      oneNode),
+         "not unsigned integer"},
+        {"index", gltfTriangle(good, oneNode, 3), "past the primitive's vertices"},
+    };
+    for (const Case& c : cases) {
+        const io::MeshReadResult bad = io::readMesh(write(std::string(c.name) + ".gltf", c.gltf));
+        EXPECT_FALSE(bad.mesh) << c.name;
+        EXPECT_NE(bad.error.find(c.message), std::string::npos) << c.name << ": " << bad.error;
     }
 }
 
