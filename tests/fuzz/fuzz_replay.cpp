@@ -1,6 +1,7 @@
-// Replays every file of the given directories through the fuzz target's body (FuzzInput.h)
-// without libFuzzer, so the normal build keeps the corpus (and each crash it records) fixed.
-// Usage: fuzz_replay DIR...; exit 0 when every input ran, 2 on bad usage.
+// Replays every file of the given directories through a fuzz target's body without libFuzzer,
+// so the normal build keeps the corpora (and each crash they record) fixed: `part` is the part
+// language's (FuzzInput.h), `mesh` the mesh readers' (FuzzMeshInput.h).
+// Usage: fuzz_replay part|mesh DIR...; exit 0 when every input ran, 2 on bad usage.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -10,14 +11,16 @@
 #include <vector>
 
 #include "tests/fuzz/FuzzInput.h"
+#include "tests/fuzz/FuzzMeshInput.h"
 
 int main(int argc, char** argv) {
-    if (argc < 2) {
-        std::fprintf(stderr, "usage: fuzz_replay DIR...\n");
+    const std::string_view target = argc > 1 ? argv[1] : "";
+    if (argc < 3 || (target != "part" && target != "mesh")) {
+        std::fprintf(stderr, "usage: fuzz_replay part|mesh DIR...\n");
         return 2;
     }
     std::vector<std::filesystem::path> files;
-    for (int i = 1; i < argc; ++i) {
+    for (int i = 2; i < argc; ++i) {
         std::error_code ec;
         for (const auto& entry : std::filesystem::directory_iterator(argv[i], ec))
             if (entry.is_regular_file()) files.push_back(entry.path());
@@ -34,7 +37,10 @@ int main(int argc, char** argv) {
         std::stringstream text;
         text << in.rdbuf();
         std::fprintf(stderr, "%s\n", file.filename().c_str());  // names the input if it crashes
-        fuzz::evaluateInput(text.str());
+        if (target == "part")
+            fuzz::evaluateInput(text.str());
+        else
+            fuzz::readMeshInput(text.str());
     }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
