@@ -1,5 +1,6 @@
-// PNG output: 8-bit RGB images, written atomically (io/AtomicFile.h), so a failed or
-// interrupted write never leaves a broken image behind.
+// PNG output: 8-bit RGB images marked sRGB, written atomically (io/AtomicFile.h), so a failed or
+// interrupted write never leaves a broken image behind. The chunks are written here and the
+// rows compressed by libdeflate in one piece (io/PngReader decodes through libpng).
 #pragma once
 
 #include <cstdint>
@@ -21,7 +22,8 @@ struct Rgb8Image {
 };
 
 // Writes image to path as PNG. Returns an empty string on success, else the reason (the
-// target is then untouched and no temporary file remains).
+// target is then untouched and no temporary file remains). Holds the filtered rows and their
+// compressed form in memory meanwhile: about twice the pixels' bytes.
 std::string writePng(const std::filesystem::path& path, const Rgb8Image& image);
 
 }  // namespace io

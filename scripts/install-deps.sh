@@ -9,7 +9,7 @@ packages=(
     libglm-dev            # vector/matrix math, through csg/Math.h only
     libopenmesh-dev       # mesh structure and OBJ IO (mesh export)
     libtinygltf-dev nlohmann-json3-dev libstb-dev  # glTF/GLB writer and its JSON/image deps
-    libpng-dev            # PNG output
+    libpng-dev libdeflate-dev  # PNG: reading textures (libpng), writing images (libdeflate)
     libopenexr-dev        # OpenEXR output (render --format exr)
     libsdl2-dev           # `csgray view`: the interactive window
     xvfb xdotool          # viewer_test: a virtual X server and the input it sends the window
