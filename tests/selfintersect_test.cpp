@@ -1,8 +1,10 @@
 // findSelfIntersections (csg/mesh/MeshCheck.h) on hand-made triangle pairs and closed meshes,
-// each with a count known by construction.
+// each with a count known by construction; unfoldVertices (csg/mesh/UnfoldVertices.h) on a
+// hand-folded one.
 #include <gtest/gtest.h>
 
 #include "csg/mesh/MeshCheck.h"
+#include "csg/mesh/UnfoldVertices.h"
 
 namespace csg {
 namespace {
@@ -128,6 +130,58 @@ TEST(SelfIntersections, TwoInterlockedCubesCrossAndThreadsAgree) {
     EXPECT_GE(one.example.x, 0.5 - 1e-12);
     EXPECT_GE(one.example.y, 0.25 - 1e-12);
     EXPECT_GE(one.example.z, 0.125 - 1e-12);
+}
+
+// The octahedron of unit vertices, outward; vertex 4 is +z.
+TriangleMesh octahedron() {
+    TriangleMesh m;
+    m.positions = {Vec3(1, 0, 0),  Vec3(-1, 0, 0), Vec3(0, 1, 0),
+                   Vec3(0, -1, 0), Vec3(0, 0, 1),  Vec3(0, 0, -1)};
+    m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                   {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    return m;
+}
+
+// The top vertex pulled down into the plane of its ring of neighbours and out past it: its
+// triangles fold flat over each other (coplanar overlaps). Unfolding toward the top (its safe
+// point) leaves it clean, part of the way there (the bisection stops at the first clean position it
+// finds from the fold); toward a point as bad as the fold, it stays folded at that point and says
+// so.
+TEST(UnfoldVertices, FoldedStarMovesTowardItsSafePointUntilClean) {
+    TriangleMesh folded = octahedron();
+    const Vec3 pulled(2.0, 0.3, 0.0);
+    folded.positions[4] = pulled;
+    ASSERT_TRUE(checkTopology(folded).closedManifold());
+    ASSERT_GT(findSelfIntersections(folded).pairs, 0u);
+    const double tol = selfIntersectionTolerance(folded, 1e-6);
+
+    std::vector<Vec3> safe(folded.positions.size(), Vec3(0.0));
+    safe[4] = Vec3(0, 0, 1);
+    TriangleMesh mesh = folded;
+    const UnfoldStats s = unfoldVertices(mesh, {{4, 1}}, safe, tol, 1);
+    EXPECT_EQ(s.movedGroups, 1u);
+    EXPECT_EQ(s.unresolvedGroups, 0u);
+    EXPECT_EQ(findSelfIntersections(mesh).pairs, 0u);
+    const Vec3 along = mesh.positions[4] - pulled, whole = safe[4] - pulled;
+    EXPECT_LT(glm::length(glm::cross(along, whole)), 1e-12);  // on the segment
+    const double t = glm::dot(along, whole) / glm::dot(whole, whole);
+    EXPECT_GT(t, 0.0);
+    EXPECT_LT(t, 1.0);
+    for (int v = 0; v < 6; ++v)
+        if (v != 4) EXPECT_EQ(mesh.positions[size_t(v)], folded.positions[size_t(v)]);
+
+    safe[4] = Vec3(2.0, -0.3, 0.0);
+    TriangleMesh stuck = folded;
+    const UnfoldStats bad = unfoldVertices(stuck, {{4, 1}}, safe, tol, 1);
+    EXPECT_EQ(bad.movedGroups, 0u);
+    EXPECT_EQ(bad.unresolvedGroups, 1u);
+    EXPECT_EQ(stuck.positions[4], safe[4]);
+
+    // A clean mesh is left alone.
+    TriangleMesh clean = octahedron();
+    safe[4] = Vec3(0.0);
+    EXPECT_EQ(unfoldVertices(clean, {{4, 1}}, safe, tol, 1).foldedGroups, 0u);
+    EXPECT_EQ(clean.positions[4], Vec3(0, 0, 1));
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/ParallelFor.h"
 #include "csg/mesh/Qef.h"
+#include "csg/mesh/UnfoldVertices.h"
 
 namespace csg {
 
@@ -65,6 +66,7 @@ public:
                 dirtyTop_[leaves_[leaf].top] = 1;
             }
         }
+        unfoldSheetVertices();
         if (!leaves_.empty()) dropUnusedVertices();
         finishNormals();
         return std::move(mesh_);
@@ -188,8 +190,10 @@ private:
         }
         stats_.sheetVertices = next;
         if (leafOfActive_.empty()) {
+            safe_.resize(next);
             stats_.missingCrossings += placeAllSheetVertices(
-                [&](size_t i) { return &mesh_.positions[sheetBase_[active_[i]]]; });
+                [&](size_t i) { return &mesh_.positions[sheetBase_[active_[i]]]; },
+                [&](size_t i) { return &safe_[sheetBase_[active_[i]]]; });
             return;
         }
         // With the octree, every cell's vertices are placed once (the first round) and copied
@@ -200,35 +204,43 @@ private:
                 fineStart_[i + 1] =
                     fineStart_[i] + uint32_t(cellCycles(cellMask(cellNode(active_[i]))).count);
             finePlaced_.resize(fineStart_.back());
+            fineSafe_.resize(fineStart_.back());
             fineMissing_ =
-                placeAllSheetVertices([&](size_t i) { return &finePlaced_[fineStart_[i]]; });
+                placeAllSheetVertices([&](size_t i) { return &finePlaced_[fineStart_[i]]; },
+                                      [&](size_t i) { return &fineSafe_[fineStart_[i]]; });
         }
         stats_.missingCrossings += fineMissing_;
+        safe_.resize(next);
         for (size_t i = 0; i < active_.size(); ++i)
-            if (leafOfActive_[i] == kNoLeaf)
+            if (leafOfActive_[i] == kNoLeaf) {
                 std::copy(finePlaced_.begin() + fineStart_[i],
                           finePlaced_.begin() + fineStart_[i + 1],
                           mesh_.positions.begin() + sheetBase_[active_[i]]);
+                std::copy(fineSafe_.begin() + fineStart_[i], fineSafe_.begin() + fineStart_[i + 1],
+                          safe_.begin() + sheetBase_[active_[i]]);
+            }
     }
 
-    // The sheet vertices of every active cell i into out(i)[0 .. its sheet count), on all
-    // workers in chunks; returns the count of missing crossings.
-    template <class Out>
-    uint64_t placeAllSheetVertices(Out out) const {
+    // The sheet vertices of every active cell i into out(i)[0 .. its sheet count) and their
+    // safe points into safe(i)[..], on all workers in chunks; returns the count of missing
+    // crossings.
+    template <class Out, class Safe>
+    uint64_t placeAllSheetVertices(Out out, Safe safe) const {
         std::vector<uint64_t> missing(size_t(workers_), 0);
         constexpr uint64_t kChunk = 1024;
         parallelFor((active_.size() + kChunk - 1) / kChunk, workers_, [&](int w, uint64_t chunk) {
             const size_t end = std::min<size_t>(active_.size(), (chunk + 1) * kChunk);
             for (size_t i = chunk * kChunk; i < end; ++i)
-                placeSheetVerticesOf(active_[i], missing[size_t(w)], out(i));
+                placeSheetVerticesOf(active_[i], missing[size_t(w)], out(i), safe(i));
         });
         uint64_t total = 0;
         for (const uint64_t m : missing) total += m;
         return total;
     }
 
-    // The sheet vertices of active cell index into out[0 .. its sheet count).
-    void placeSheetVerticesOf(uint64_t index, uint64_t& missing, Vec3* out) const {
+    // The sheet vertices of active cell index into out[0 .. its sheet count), and into
+    // safe[..] the mass points of their crossings (unfoldSheetVertices moves a vertex toward it).
+    void placeSheetVerticesOf(uint64_t index, uint64_t& missing, Vec3* out, Vec3* safe) const {
         const Node3 c = cellNode(index);
         const CellCycles& cycles = cellCycles(cellMask(c));
         // The cell inset a hair, so sheet vertices of neighbouring cells (say both clamped
@@ -264,7 +276,25 @@ private:
                 if (len > 0.0) placed[q] += toward * (std::min(len, 4.0 * apart) / len);
             }
             out[q] = placed[q];
+            safe[q] = mass[q];
         }
+    }
+
+    // Step 5: the sheet vertices of each cell outside merged blocks, where triangles around
+    // them cross or overlap, moved toward the mass points of their crossings (UnfoldVertices.h).
+    void unfoldSheetVertices() {
+        std::vector<UnfoldGroup> groups;
+        groups.reserve(active_.size());
+        for (size_t i = 0; i < active_.size(); ++i) {
+            if (!leafOfActive_.empty() && leafOfActive_[i] != kNoLeaf) continue;
+            const uint64_t cell = active_[i];
+            groups.push_back(
+                {sheetBase_[cell], uint32_t(cellCycles(cellMask(cellNode(cell))).count)});
+        }
+        const double tol = selfIntersectionTolerance(mesh_, tol::kSelfIntersectionContactRel);
+        const UnfoldStats unfolded = unfoldVertices(mesh_, groups, safe_, tol, workers_);
+        stats_.unfoldedCells = unfolded.movedGroups;
+        stats_.unfoldFailures = unfolded.unresolvedGroups;
     }
 
     // ---- The octree: blocks of 2^k cells per axis merged into one vertex (DualContour.h) ----
@@ -562,6 +592,32 @@ private:
         if (layer.slots[i] == kUnknown) layer.written.push_back(i);
         return layer.slots[i];
     }
+    // Whether crease point x of the curve on an ambiguous face from crossing p0 (edge (a0, n0))
+    // to p1 (edge (a1, n1)) lies strictly inside the triangle of p0, p1 and the inside corner
+    // the curve goes around (the node the two edges share), in the face's axes u, v. The face's
+    // other curve stays in the triangle of the opposite corner, so two bent curves on one face
+    // cannot cross (a crease past the chord could reach over the other curve: the crossings
+    // of issue 7's random CSG where two sheets' fans met on an ambiguous face).
+    bool bendsTowardCorner(const Vec3& x, const Vec3& p0, const Vec3& p1, const Node3& n0, int a0,
+                           const Node3& n1, int a1, int u, int v) const {
+        Node3 corner = n0;
+        Node3 n0End = n0, n1End = n1;
+        ++n0End[a0];
+        ++n1End[a1];
+        if (n0End == n1 || n0End == n1End) corner = n0End;
+        const Vec3 c = spec_.node(corner[0], corner[1], corner[2]);
+        const Vec2 q(x[u], x[v]);
+        const Vec2 t[3] = {{c[u], c[v]}, {p0[u], p0[v]}, {p1[u], p1[v]}};
+        auto side = [&](const Vec2& from, const Vec2& to, const Vec2& at) {
+            const Vec2 e = to - from, d = at - from;
+            return e.x * d.y - e.y * d.x;
+        };
+        const double turn = side(t[0], t[1], t[2]);
+        for (int i = 0; i < 3; ++i)
+            if (!(side(t[i], t[(i + 1) % 3], q) * turn > 0.0)) return false;
+        return true;
+    }
+
     uint32_t faceVertex(int a, const Node3& n0, int g, int h, int dh) {
         // Step 1: the face, its corners' signs, and which of its edges is ours.
         Node3 faceMin = n0;
@@ -614,7 +670,9 @@ private:
         const double apart = separation(std::min(hi[0] - lo[0], hi[1] - lo[1]));
         if (s0.measured && s1.measured &&
             creaseOnFace(s0.point, s0.normal, s1.point, s1.normal, u, v, lo, hi, crease) &&
-            glm::length(crease - s0.point) > apart && glm::length(crease - s1.point) > apart) {
+            glm::length(crease - s0.point) > apart && glm::length(crease - s1.point) > apart &&
+            (!ambiguous || bendsTowardCorner(crease, s0.point, s1.point, n0, a, partnerNode,
+                                             partnerAxis == 0 ? u : v, u, v))) {
             crease[g] = lo3[g];
             vertex = addVertex(crease, Vec3(0.0));
         } else if (ambiguous) {
@@ -859,6 +917,9 @@ private:
     // active cell i is finePlaced_[fineStart_[i]]; fineMissing_ counts their missing crossings.
     std::vector<uint32_t> fineStart_;
     std::vector<Vec3> finePlaced_;
+    std::vector<Vec3> fineSafe_;  // their safe points (the mass points of their crossings)
+    // Per sheet vertex, the mass point of its crossings (unfoldSheetVertices).
+    std::vector<Vec3> safe_;
     uint64_t fineMissing_ = 0;
     // blockKeys that may not merge, nor any block inside them.
     std::unordered_set<uint64_t> forbidden_;

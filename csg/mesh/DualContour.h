@@ -8,10 +8,18 @@
 // sheet vertices of its four cells and the face vertices between them. So the mesh is Marching
 // Cubes' surface with each polygon fanned from its QEF vertex and each face curve bent at its
 // crease: a closed 2-manifold (the polygons of MC with one face rule are), oriented outward,
-// and each triangle lies within the cells around its crossed edge. Nothing keeps two fans from
-// crossing, though: MeshCheck.h's findSelfIntersections finds such pairs (planes ~70 degrees
-// apart, overlapping over ~0.1 cell) on csg_grid and on random CSG; why is open (issue 7,
-// tests/octree_test.cpp's disabled RandomCsgHasNoSelfIntersections).
+// and each triangle lies within the cells around its crossed edge.
+//
+// Fans can still cross where a cell's vertex sits badly, and the crossings found (MeshCheck.h's
+// findSelfIntersections on csg_grid, csg_grid3 and random CSG) were all between triangles
+// around the sheet vertices of one cell: a vertex clamped a hair inside a face whose fan folds
+// flat onto that face, or two sheets of one cell (a wall thinner than the cell) whose QEF
+// vertices meet where the two sheets' planes do. So, last, each cell whose vertices' triangles
+// cross or overlap moves its vertices toward the mass points of their crossings, just far
+// enough (UnfoldVertices.h; DualContourStats::unfoldedCells). On an ambiguous face the two
+// curves' crease points are kept on their own corners' sides of the curves' chords, so they
+// cannot cross each other. Cells inside merged blocks are not moved (the octree's sliver folds
+// stay open: tests/octree_test.cpp's disabled OctreeRandomCsgHasNoSelfIntersections).
 //
 // Adaptive (DualContourOptions::flatTolerance > 0): an octree over the cells in index space
 // (Ju et al. 2002, "Dual contouring of Hermite data") merges blocks of 2^k x 2^k x 2^k cells,
@@ -50,6 +58,8 @@ struct DualContourStats {
     uint64_t octreeCells = 0;     // active cells inside them
     int octreeRounds = 0;         // contours made (each after one that folded at a block)
     bool octreeFallback = false;  // the merged mesh folded or was not a manifold: uniform used
+    uint64_t unfoldedCells = 0;   // cells whose vertices moved off a fold (UnfoldVertices.h)
+    uint64_t unfoldFailures = 0;  // cells still folded at their crossings' mass points
 };
 
 // A merged block spans at most 2^kOctreeMaxLevel cells per axis (16): a block never reaches

@@ -110,11 +110,7 @@ MeshTopology checkTopology(const TriangleMesh& mesh) {
 
 namespace {
 
-// One triangle's corners and unit normal (zero for a sliver, which is not tested).
-struct Tri {
-    Vec3 p[3];
-    Vec3 n;
-};
+using Tri = ContactTriangle;
 
 // Whether the interiors of coplanar triangles a and b overlap by more than tol, in a's plane:
 // they do unless an edge line of one has the other's corners all on its outer side or within
@@ -181,7 +177,7 @@ int pointsOnPlane(const Tri& t, const double d[3], Vec3 out[3]) {
     return count;
 }
 
-enum class Contact { None, Crossing, Coplanar };
+using Contact = TriangleContact;
 
 // Whether triangles a and b intersect other than at what they share (see
 // findSelfIntersections), and how; writes a point of the intersection to where.
@@ -251,6 +247,30 @@ Contact trianglesCross(const Tri& a, const Tri& b, double tol, Vec3* where) {
 
 }  // namespace
 
+double selfIntersectionTolerance(const TriangleMesh& mesh, double contactRel) {
+    double scale = 0.0;
+    for (const Vec3& p : mesh.positions)
+        scale = std::max({scale, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    return contactRel * scale;
+}
+
+ContactTriangle contactTriangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, double tol) {
+    ContactTriangle t{{p0, p1, p2}, Vec3(0.0)};
+    const Vec3 c = glm::cross(p1 - p0, p2 - p0);
+    const double twiceArea = glm::length(c);
+    double longest = 0.0;
+    for (int k = 0; k < 3; ++k) longest = std::max(longest, glm::length(t.p[(k + 1) % 3] - t.p[k]));
+    // Height over the longest edge: a triangle thinner than tol has no reliable plane.
+    if (twiceArea > tol * longest && twiceArea > 0.0) t.n = c / twiceArea;
+    return t;
+}
+
+TriangleContact triangleContact(const ContactTriangle& a, const ContactTriangle& b, double tol) {
+    if (a.n == Vec3(0.0) || b.n == Vec3(0.0)) return Contact::None;
+    Vec3 where;
+    return trianglesCross(a, b, tol, &where);
+}
+
 SelfIntersections findSelfIntersections(const TriangleMesh& mesh, double contactRel, int threads) {
     if (mesh.triangles.size() < 2) return {};
     const TriangleBvh bvh(mesh, threads);
@@ -262,27 +282,14 @@ SelfIntersections findSelfIntersections(const TriangleMesh& mesh, const Triangle
     SelfIntersections result;
     const size_t n = mesh.triangles.size();
     if (n < 2) return result;
-    double scale = 0.0;
-    for (const Vec3& p : mesh.positions)
-        scale = std::max({scale, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-    const double tol = contactRel * scale;
+    const double tol = selfIntersectionTolerance(mesh, contactRel);
 
     std::vector<Tri> tris(n);
     for (size_t i = 0; i < n; ++i) {
-        Tri& t = tris[i];
-        for (int k = 0; k < 3; ++k) t.p[k] = mesh.positions[mesh.triangles[i][size_t(k)]];
-        const Vec3 c = glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]);
-        const double twiceArea = glm::length(c);
-        double longest = 0.0;
-        for (int k = 0; k < 3; ++k)
-            longest = std::max(longest, glm::length(t.p[(k + 1) % 3] - t.p[k]));
-        // Height over the longest edge: a triangle thinner than tol has no reliable plane.
-        if (twiceArea > tol * longest && twiceArea > 0.0) {
-            t.n = c / twiceArea;
-        } else {
-            t.n = Vec3(0.0);
-            ++result.skippedSlivers;
-        }
+        const auto& tri = mesh.triangles[i];
+        tris[i] = contactTriangle(mesh.positions[tri[0]], mesh.positions[tri[1]],
+                                  mesh.positions[tri[2]], tol);
+        result.skippedSlivers += tris[i].n == Vec3(0.0);
     }
 
     // Per worker: its count and the first pair (in triangle order) it found.

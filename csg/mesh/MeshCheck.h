@@ -58,6 +58,24 @@ SelfIntersections findSelfIntersections(const TriangleMesh& mesh);
 SelfIntersections findSelfIntersections(const TriangleMesh& mesh, const TriangleBvh& bvh,
                                         double contactRel, int threads = 0);
 
+// findSelfIntersections' contact tolerance for mesh: contactRel times its largest coordinate
+// magnitude (world units).
+double selfIntersectionTolerance(const TriangleMesh& mesh, double contactRel);
+
+// A triangle as findSelfIntersections tests it: corners in winding order and unit normal, zero
+// for a sliver (height over its longest edge within the contact tolerance), which is not tested.
+struct ContactTriangle {
+    Vec3 p[3];
+    Vec3 n;
+};
+ContactTriangle contactTriangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, double tol);
+
+// How two triangles meet, by findSelfIntersections' rules with contact tolerance tol (world
+// units, the one they were made with): crossing, overlapping coplanar, or neither (apart, a
+// contact, sharing an edge without being coplanar, or one of them a sliver).
+enum class TriangleContact { None, Crossing, Coplanar };
+TriangleContact triangleContact(const ContactTriangle& a, const ContactTriangle& b, double tol);
+
 double signedVolume(const TriangleMesh& mesh);
 double surfaceArea(const TriangleMesh& mesh);
 

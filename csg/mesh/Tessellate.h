@@ -57,7 +57,8 @@ struct TessellateOptions {
     // curved faces, fine cells at creases, thin gaps and curved patches. Off by default: its
     // fans fold slivers flat onto their neighbours on some flat faces (coplanar
     // self-intersections on the emblem, pawn and pipe_tee samples that the uniform contour
-    // does not have; tests/octree_test.cpp's disabled RandomCsgHasNoSelfIntersections).
+    // does not have; tests/octree_test.cpp's disabled
+    // OctreeRandomCsgHasNoSelfIntersections).
     bool adaptive = false;
     bool simplify = true;  // coarsen flat regions after the grid passes (Simplify.h)
     // Grid meshes larger than this are not simplified (0: no limit). Decimation (in slabs on

@@ -1,0 +1,210 @@
+#include "csg/mesh/UnfoldVertices.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "csg/Bounds.h"
+#include "csg/mesh/MeshCheck.h"
+#include "csg/mesh/ParallelFor.h"
+
+namespace csg {
+
+namespace {
+
+constexpr uint32_t kNoGroup = UINT32_MAX;
+// How far from a full turn (radians) the angles around a vertex may add up, by rounding, for its
+// star to count as embedded; a star that winds twice is 2 pi off, one that folds is at least
+// twice its folded angle off.
+constexpr double kFullTurnSlack = 1e-9;
+
+class Unfolder {
+public:
+    // Per worker: a group's triangles, as tested, and their boxes (grown by the tolerance).
+    struct Scratch {
+        std::vector<uint32_t> tris;
+        std::vector<ContactTriangle> made;
+        std::vector<Bounds3> boxes;
+        uint64_t pairwise = 0;  // groups tested pair by pair
+    };
+
+    Unfolder(TriangleMesh& mesh, const std::vector<UnfoldGroup>& groups,
+             const std::vector<Vec3>& safe, double tol, int threads)
+        : mesh_(mesh), groups_(groups), safe_(safe), tol_(tol), workers_(resolveThreads(threads)) {
+        buildStars();
+    }
+
+    UnfoldStats run() {
+        // Round 1: every group, on all workers.
+        std::vector<uint8_t> folded(groups_.size(), 0);
+        std::vector<Scratch> scratch(static_cast<size_t>(workers_));
+        constexpr uint64_t kChunk = 256;
+        parallelFor((groups_.size() + kChunk - 1) / kChunk, workers_, [&](int w, uint64_t chunk) {
+            const size_t end = std::min<size_t>(groups_.size(), (chunk + 1) * kChunk);
+            for (size_t g = chunk * kChunk; g < end; ++g)
+                folded[g] = folds(groups_[g], scratch[size_t(w)]);
+        });
+        stats_.checkedGroups += groups_.size();
+        for (const Scratch& w : scratch) stats_.pairwiseGroups += w.pairwise;
+        std::vector<uint32_t> pending;
+        for (size_t g = 0; g < groups_.size(); ++g)
+            if (folded[g]) pending.push_back(uint32_t(g));
+
+        // Each round: move the folded groups, then check the groups around the moved vertices.
+        Scratch& buffer = scratch[0];
+        std::vector<uint8_t> stuck(groups_.size(), 0);
+        for (int round = 0; round < kUnfoldRounds && !pending.empty(); ++round) {
+            std::vector<uint32_t> around;
+            for (const uint32_t g : pending) {
+                ++stats_.foldedGroups;
+                if (unfold(groups_[g], buffer)) {
+                    ++stats_.movedGroups;
+                } else {
+                    ++stats_.unresolvedGroups;
+                    stuck[g] = 1;  // at its safe points: moving it again changes nothing
+                }
+                groupsAround(groups_[g], around);
+            }
+            std::sort(around.begin(), around.end());
+            around.erase(std::unique(around.begin(), around.end()), around.end());
+            pending.clear();
+            buffer.pairwise = 0;
+            for (const uint32_t g : around) {
+                if (stuck[g]) continue;
+                ++stats_.checkedGroups;
+                if (folds(groups_[g], buffer)) pending.push_back(g);
+            }
+            stats_.pairwiseGroups += buffer.pairwise;
+        }
+        return stats_;
+    }
+
+private:
+    // Per vertex, the triangles using it (a counting sort), and per vertex its group.
+    void buildStars() {
+        const size_t n = mesh_.positions.size();
+        starStart_.assign(n + 1, 0);
+        for (const auto& tri : mesh_.triangles)
+            for (const uint32_t v : tri) ++starStart_[v + 1];
+        for (size_t v = 0; v < n; ++v) starStart_[v + 1] += starStart_[v];
+        star_.resize(starStart_[n]);
+        std::vector<uint32_t> fill(starStart_.begin(), starStart_.end() - 1);
+        for (size_t t = 0; t < mesh_.triangles.size(); ++t)
+            for (const uint32_t v : mesh_.triangles[t]) star_[fill[v]++] = uint32_t(t);
+        groupOf_.assign(n, kNoGroup);
+        for (size_t g = 0; g < groups_.size(); ++g)
+            for (uint32_t k = 0; k < groups_[g].count; ++k)
+                groupOf_[groups_[g].first + k] = uint32_t(g);
+    }
+
+    // A certificate that no two triangles around vertex v meet other than along what they
+    // share: seen along the mean of their normals, each of them turns the same way around v
+    // and their angles at v add up to one full turn, so their projections tile a disk around
+    // v once and do not overlap (nor do the triangles, which project one-to-one). Cheap (no
+    // pair of triangles is tested): most vertices pass, and only the rest are tested pairwise.
+    bool starIsEmbedded(uint32_t v) const {
+        const Vec3 at = mesh_.positions[v];
+        Vec3 mean(0.0);
+        for (uint32_t i = starStart_[v]; i < starStart_[v + 1]; ++i) {
+            const auto& tri = mesh_.triangles[star_[i]];
+            mean += glm::cross(mesh_.positions[tri[1]] - mesh_.positions[tri[0]],
+                               mesh_.positions[tri[2]] - mesh_.positions[tri[0]]);
+        }
+        const double len = glm::length(mean);
+        if (!(len > 0.0)) return false;
+        const Vec3 d = mean / len;
+        double turn = 0.0;
+        for (uint32_t i = starStart_[v]; i < starStart_[v + 1]; ++i) {
+            const auto& tri = mesh_.triangles[star_[i]];
+            const int k = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
+            const Vec3 b = mesh_.positions[tri[size_t((k + 1) % 3)]] - at;
+            const Vec3 c = mesh_.positions[tri[size_t((k + 2) % 3)]] - at;
+            const double sine = glm::dot(glm::cross(b, c), d);
+            if (!(sine > 0.0)) return false;
+            turn += std::atan2(sine, glm::dot(b, c) - glm::dot(b, d) * glm::dot(c, d));
+        }
+        return std::abs(turn - 2.0 * std::numbers::pi) < kFullTurnSlack;
+    }
+
+    // Whether two triangles of the group's stars cross or overlap. scratch is per worker.
+    bool folds(const UnfoldGroup& group, Scratch& scratch) const {
+        if (group.count == 1 && starIsEmbedded(group.first)) return false;
+        ++scratch.pairwise;
+        std::vector<uint32_t>& tris = scratch.tris;
+        tris.clear();
+        for (uint32_t v = group.first; v < group.first + group.count; ++v)
+            for (uint32_t i = starStart_[v]; i < starStart_[v + 1]; ++i) tris.push_back(star_[i]);
+        std::sort(tris.begin(), tris.end());
+        tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+        scratch.made.clear();
+        scratch.boxes.clear();
+        for (const uint32_t t : tris) {
+            const auto& tri = mesh_.triangles[t];
+            const Vec3 &p0 = mesh_.positions[tri[0]], &p1 = mesh_.positions[tri[1]],
+                       &p2 = mesh_.positions[tri[2]];
+            scratch.made.push_back(contactTriangle(p0, p1, p2, tol_));
+            Bounds3 box;
+            box.extend(p0);
+            box.extend(p1);
+            box.extend(p2);
+            box.lo -= Vec3(tol_);
+            box.hi += Vec3(tol_);
+            scratch.boxes.push_back(box);
+        }
+        for (size_t i = 0; i < tris.size(); ++i)
+            for (size_t j = i + 1; j < tris.size(); ++j) {
+                if (overlap(scratch.boxes[i], scratch.boxes[j]).empty()) continue;
+                if (triangleContact(scratch.made[i], scratch.made[j], tol_) !=
+                    TriangleContact::None)
+                    return true;
+            }
+        return false;
+    }
+
+    // Moves a folded group toward its safe points (see unfoldVertices); whether it ends clean.
+    bool unfold(const UnfoldGroup& group, Scratch& scratch) {
+        Vec3 from[4];
+        const uint32_t count = std::min<uint32_t>(group.count, 4);
+        for (uint32_t k = 0; k < count; ++k) from[k] = mesh_.positions[group.first + k];
+        auto place = [&](double t) {
+            for (uint32_t k = 0; k < count; ++k)
+                mesh_.positions[group.first + k] = from[k] + t * (safe_[group.first + k] - from[k]);
+        };
+        place(1.0);
+        if (folds(group, scratch)) return false;
+        double lo = 0.0, hi = 1.0;  // folded at lo, clean at hi
+        for (int step = 0; step < kUnfoldBisections; ++step) {
+            const double mid = 0.5 * (lo + hi);
+            place(mid);
+            (folds(group, scratch) ? lo : hi) = mid;
+        }
+        place(hi);
+        return true;
+    }
+
+    // Appends the groups of every vertex sharing a triangle with the group's vertices.
+    void groupsAround(const UnfoldGroup& group, std::vector<uint32_t>& out) const {
+        for (uint32_t v = group.first; v < group.first + group.count; ++v)
+            for (uint32_t i = starStart_[v]; i < starStart_[v + 1]; ++i)
+                for (const uint32_t corner : mesh_.triangles[star_[i]])
+                    if (groupOf_[corner] != kNoGroup) out.push_back(groupOf_[corner]);
+    }
+
+    TriangleMesh& mesh_;
+    const std::vector<UnfoldGroup>& groups_;
+    const std::vector<Vec3>& safe_;
+    const double tol_;
+    const int workers_;
+    UnfoldStats stats_;
+    std::vector<uint32_t> starStart_, star_, groupOf_;
+};
+
+}  // namespace
+
+UnfoldStats unfoldVertices(TriangleMesh& mesh, const std::vector<UnfoldGroup>& groups,
+                           const std::vector<Vec3>& safe, double tol, int threads) {
+    if (groups.empty() || mesh.triangles.empty()) return {};
+    return Unfolder(mesh, groups, safe, tol, threads).run();
+}
+
+}  // namespace csg
