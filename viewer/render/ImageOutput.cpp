@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "io/AtomicFile.h"
 #include "viewer/render/Color.h"
@@ -33,14 +34,12 @@ std::string writePfm(const std::filesystem::path& path, const LinearImage& image
     return {};
 }
 
-}  // namespace
-
-io::Rgb8Image encodeSrgb(const LinearImage& image) {
-    // The 8-bit code of a linear value is the number of code boundaries below it: boundary k
-    // is the linear value whose sRGB encoding is (k + 0.5) / 255, where rounding moves from
-    // code k to k + 1. Counting them gives exactly linearToSrgb8 without a pow() per channel.
-    static const std::array<float, 255> boundaries = [] {
-        std::array<float, 255> b{};
+// The 8-bit code of a linear value is the number of code boundaries below it: boundary k is
+// the linear value whose sRGB encoding is (k + 0.5) / 255, where rounding moves from code k to
+// k + 1. Counting them gives exactly linearToSrgb8 without a pow() per channel.
+class SrgbEncoder {
+public:
+    SrgbEncoder() {
         for (int k = 0; k < 255; ++k) {
             // The float nearest the exact boundary, nudged so that the float comparison below
             // agrees with linearToSrgb8 on every float (checked by the test Output.*).
@@ -48,41 +47,47 @@ io::Rgb8Image encodeSrgb(const LinearImage& image) {
             while (linearToSrgb8(f) <= k) f = std::nextafter(f, 2.0f);
             while (f > 0.0f && linearToSrgb8(std::nextafter(f, 0.0f)) > k)
                 f = std::nextafter(f, 0.0f);
-            b[k] = f;
+            boundaries_[k] = f;
         }
-        return b;
-    }();
-    // The count is started from a table indexed by the top 16 bits of the float (sign,
-    // exponent, 7 mantissa bits): positive floats order as their bits do, so the code of the
-    // smallest float of each bucket is a lower bound, and at most a few boundaries lie inside
-    // one bucket. Floats from 1.0 (bucket kOne) up encode as 255.
-    constexpr uint32_t kOne = std::bit_cast<uint32_t>(1.0f) >> 16;
-    static const std::array<uint8_t, kOne> bucketStart = [] {
-        std::array<uint8_t, kOne> s{};
-        for (uint32_t i = 0; i < kOne; ++i) {
-            const float first = std::bit_cast<float>(i << 16);
-            s[i] = uint8_t(std::upper_bound(boundaries.begin(), boundaries.end(), first) -
-                           boundaries.begin());
-        }
-        return s;
-    }();
-    io::Rgb8Image out(image.width, image.height);
-    for (size_t i = 0; i < image.rgb.size(); ++i) {
-        const float v = image.rgb[i];
-        // NaN (never expected) encodes as 0, like a negative value.
-        if (!(v > 0.0f)) {
-            out.pixels[i] = 0;
-            continue;
-        }
-        const uint32_t bucket = std::bit_cast<uint32_t>(v) >> 16;
-        if (bucket >= kOne) {
-            out.pixels[i] = 255;
-            continue;
-        }
-        unsigned code = bucketStart[bucket];
-        while (code < 255 && boundaries[code] <= v) ++code;
-        out.pixels[i] = uint8_t(code);
+        boundaries_[255] = std::numeric_limits<float>::infinity();  // nothing passes code 255
+        // Positive floats order as their bits do, so the code of a bucket's smallest float
+        // (buckets: the top 16 bits, i.e. exponent and 7 mantissa bits) starts the count.
+        for (uint32_t bucket = 0; bucket <= kOne; ++bucket)
+            bucketStart_[bucket] =
+                uint8_t(std::upper_bound(boundaries_.begin(), boundaries_.end() - 1,
+                                         std::bit_cast<float>(bucket << 16)) -
+                        boundaries_.begin());
     }
+
+    uint8_t operator()(float v) const {
+        // Clamped to [0, 1] first, without branches: negatives and NaN (never expected) to 0
+        // (std::max(0, NaN) is its first argument), so they encode as 0; 1 and above to 1,
+        // whose bucket starts at 255.
+        const float c = std::min(std::max(0.0f, v), 1.0f);
+        // A bucket spans at most 1/128 of its smallest value, less than one code step anywhere
+        // on the curve (a step is at least 2.4 / (1.055 * 255) ~ 1/112 of the value on the
+        // power part, 1/code on the linear part), so at most one boundary lies inside it: one
+        // comparison finishes the count. (Checked on all 2^32 floats against the earlier
+        // encoder, which counted boundaries in a loop: the same bytes.)
+        const unsigned start = bucketStart_[std::bit_cast<uint32_t>(c) >> 16];
+        return uint8_t(start + (c >= boundaries_[start] ? 1u : 0u));
+    }
+
+private:
+    static constexpr uint32_t kOne = std::bit_cast<uint32_t>(1.0f) >> 16;
+    std::array<float, 256> boundaries_{};
+    std::array<uint8_t, kOne + 1> bucketStart_{};
+};
+
+}  // namespace
+
+io::Rgb8Image encodeSrgb(const LinearImage& image) {
+    static const SrgbEncoder encode;
+    io::Rgb8Image out(image.width, image.height);
+    const float* in = image.rgb.data();
+    uint8_t* pixels = out.pixels.data();
+    const size_t count = image.rgb.size();
+    for (size_t i = 0; i < count; ++i) pixels[i] = encode(in[i]);
     return out;
 }
 
