@@ -92,7 +92,10 @@ struct CompiledNode {
 
 // A BVH node over a union's bounded children. Interior: the left child follows at index + 1,
 // the right child is at `right`; count == 0. Leaf: children_[first, first + count).
-struct BvhNode {
+// One cache line each (56 bytes of fields): a node never straddles two lines, and its index
+// becomes a byte offset by a shift, not a multiplication by 56 (the walk pops ~14 per ray on
+// bench/scenes/csg_grid).
+struct alignas(64) BvhNode {
     Bounds3 box;
     uint32_t firstOrRight = 0;
     uint16_t count = 0;

@@ -320,7 +320,8 @@ struct Evaluator {
             int pending = 0;
             todo[pending++] = node.bvhRoot;
             while (pending > 0) {
-                const BvhNode& b = scene.bvh_[todo[--pending]];
+                const uint32_t self = todo[--pending];
+                const BvhNode& b = scene.bvh_[self];
                 if (!touches(b.box, t0, t1)) continue;
                 if (b.count > 0) {
                     for (uint32_t i = 0; i < b.count; ++i)
@@ -328,7 +329,6 @@ struct Evaluator {
                     continue;
                 }
                 // Push the far child first so the near one is visited first.
-                const uint32_t self = static_cast<uint32_t>(&b - scene.bvh_.data());
                 const bool nearIsLeft = ray.d[b.axis] >= 0.0;
                 todo[pending++] = nearIsLeft ? b.firstOrRight : self + 1;
                 todo[pending++] = nearIsLeft ? self + 1 : b.firstOrRight;
