@@ -17,30 +17,17 @@ struct Evaluator {
     QueryContext& ctx;
     const Ray& ray;
     SlabRay slab;
+    double originScale;   // |o| / |d|: see tol::kCoincidentRel
+    double originLength;  // |o|, and 1 / |d|^2: for missesBall
+    double invDD;
 
     Evaluator(const Scene& s, QueryContext& c, const Ray& r)
-        : scene(s), ctx(c), ray(r), slab(r.o, r.d) {}
-
-    // The ray's lengths, measured on first use (two square roots and two divisions): a ray
-    // that meets no ball and no leaf, most rays through a sparse scene, never needs them.
-    struct Lengths {
-        double originScale;   // |o| / |d|: see tol::kCoincidentRel
-        double originLength;  // |o|: missesBall's margin
-        double invDD;         // 1 / |d|^2: missesBall's nearest point
-    };
-    bool measured = false;
-    Lengths lengths_;
-    const Lengths& lengths() {
-        if (!measured) {
-            const double dLength = glm::length(ray.d);
-            lengths_.originLength = glm::length(ray.o);
-            lengths_.originScale = dLength > 0.0 ? lengths_.originLength / dLength : 0.0;
-            lengths_.invDD = 1.0 / glm::dot(ray.d, ray.d);
-            measured = true;
-        }
-        return lengths_;
+        : scene(s), ctx(c), ray(r), slab(r.o, r.d) {
+        const double dLength = glm::length(r.d);
+        originLength = glm::length(r.o);
+        originScale = dLength > 0.0 ? originLength / dLength : 0.0;
+        invDD = 1.0 / glm::dot(r.d, r.d);
     }
-    double originScale() { return lengths().originScale; }
 
     // The span stack: ctx.stack_[0, top) is in use. The vector only grows (its size is the
     // high-water mark), so pushing never value-initializes spans in the steady state.
@@ -61,12 +48,11 @@ struct Evaluator {
 
     // Does the ray's line pass outside the ball, by the margin of tol::kBallMarginRel? From the
     // point of the line nearest the centre; false for a degenerate ray (NaN compares false).
-    bool missesBall(const BoundingBall& b) {
-        const Lengths& l = lengths();
+    bool missesBall(const BoundingBall& b) const {
         const Vec3 oc = b.center - ray.o;
-        const Vec3 nearest = ray.o + (glm::dot(oc, ray.d) * l.invDD) * ray.d;
+        const Vec3 nearest = ray.o + (glm::dot(oc, ray.d) * invDD) * ray.d;
         const Vec3 off = b.center - nearest;
-        const double reach = b.radius + tol::kBallMarginRel * (l.originLength + b.size);
+        const double reach = b.radius + tol::kBallMarginRel * (originLength + b.size);
         return glm::dot(off, off) > reach * reach;
     }
 
@@ -157,7 +143,7 @@ struct Evaluator {
             return n;
         }
         // Clip to [t0, t1] and regularize; a primitive yields at most LocalSpans::kCapacity.
-        SpanWriter writer(room(local.count), originScale());
+        SpanWriter writer(room(local.count), originScale);
         for (int i = 0; i < local.count; ++i) {
             const LocalSpans::Entry& e = local.entries[i];
             Span s{{e.tIn + shift, leafIndex, e.faceIn, false},
@@ -177,10 +163,10 @@ struct Evaluator {
         Span* out = room(na + nb);
         Span* s = stack().data();
         // Without sheets in the scene (known at compile), skip mergeSpans' scan for them.
-        const double scale = originScale();
-        const size_t n = scene.hasSheets_
-                             ? mergeSpans(op, s + base, na, s + base + na, nb, out, scale)
-                             : mergeSolidSpans(op, s + base, na, s + base + na, nb, out, scale);
+        const size_t n =
+            scene.hasSheets_
+                ? mergeSpans(op, s + base, na, s + base + na, nb, out, originScale)
+                : mergeSolidSpans(op, s + base, na, s + base + na, nb, out, originScale);
         // Most results are a span or two: copy those field by field (they were just written
         // so, see SpanWriter::emit), not by a memmove call.
         if (n <= 2) {
@@ -241,7 +227,7 @@ struct Evaluator {
     bool uncovered(uint32_t right, size_t base, size_t na, bool atStart) {
         const Span* a = stack().data() + base;
         const double lo = a[0].in.t, hi = a[na - 1].out.t;
-        const double slack = coincidenceSlack(originScale(), lo, hi);
+        const double slack = coincidenceSlack(originScale, lo, hi);
         const double minPiece = tol::kUncoveredPieceSlacks * slack;
         // The operands whose boxes count: a short union's children (not through its BVH), else
         // the right operand itself as one box.
