@@ -13,13 +13,16 @@ namespace io {
 
 namespace {
 
-// libdeflate's fastest level. csg_grid at 1600x1600 (7.68 MB of filtered rows), writePng's
-// instructions (callgrind, with a scalar Up filter of ~54 M) and file size by level:
-//   1: 180 M, 497 kB   2: 292 M, 481 kB   3: 297 M, 475 kB   4: 302 M, 471 kB
-//   5: 326 M, 452 kB   6: 354 M, 444 kB
-// against libpng with zlib at level 1: 288 M, 567 kB. Level 1 is both the fastest and smaller
-// than what zlib gave; the higher levels buy a few percent of size for 60-100 % more time.
-constexpr int kDeflateLevel = 1;
+// libdeflate's level 2, the fastest in time here. csg_grid at 1600x1600 (7.68 MB of filtered
+// rows), compressing alone: instructions (callgrind), thread CPU time (median of 31 interleaved
+// runs on this project's 2-core AMD EPYC machine, 2026-11-22) and size:
+//   zlib level 1 (libpng's before): 246 M, 19.0 ms, 566 kB
+//   libdeflate 1: 126 M, 21.3 ms, 497 kB      libdeflate 2: 238 M, 15.2 ms, 481 kB
+//   libdeflate 3: 243 M, 16.4 ms, 475 kB      libdeflate 4: 248 M, 17.3 ms, 471 kB
+//   libdeflate 5: 272 M, 19.6 ms, 452 kB      libdeflate 6: 300 M, 24.5 ms, 444 kB
+// Level 1 runs half the instructions of level 2 yet takes longer (not investigated); CPU time
+// is what render is judged by, so it decided.
+constexpr int kDeflateLevel = 2;
 
 // The compressed stream is cut into IDAT chunks of at most this many bytes. Any size up to
 // 2^31 - 1 is valid PNG; a bounded one keeps each chunk's length far from that limit for the
