@@ -41,15 +41,21 @@ public:
 
     TriangleMesh run() {
         collectActiveCells();
-        // With the octree, a round with a ring no fan fits at a merged block (chooseApex) or a
-        // vertex whose triangles are not one disk (noteNonManifoldLeaves) forbids the blocks
-        // there and runs again. After kOctreeMaxRounds the uniform contour is used.
+        // With the octree, a round with a ring no fan fits at a merged block (chooseApex), a
+        // vertex whose triangles are not one disk (noteNonManifoldLeaves), a block vertex whose
+        // triangles cross or overlap (noteFoldedLeaves) or a cell that stays folded next to
+        // blocks (unfoldSheetVertices) forbids the blocks there and runs again. After
+        // kOctreeMaxRounds the uniform contour is used.
         for (int round = 0;; ++round) {
             startRound();
             if (flatTolerance_ > 0.0) mergeFlatBlocks();
             placeSheetVertices();
             for (const uint64_t cell : active_) fansOfCell(cell);
-            if (!leaves_.empty()) noteNonManifoldLeaves();
+            unfoldSheetVertices();
+            if (!leaves_.empty()) {
+                noteNonManifoldLeaves();
+                noteFoldedLeaves();
+            }
             if (foldedLeaves_.empty()) break;
             if (round + 1 >= kOctreeMaxRounds) {
                 flatTolerance_ = 0.0;
@@ -66,7 +72,6 @@ public:
                 dirtyTop_[leaves_[leaf].top] = 1;
             }
         }
-        unfoldSheetVertices();
         if (!leaves_.empty()) dropUnusedVertices();
         finishNormals();
         return std::move(mesh_);
@@ -295,6 +300,31 @@ private:
         const UnfoldStats unfolded = unfoldVertices(mesh_, groups, safe_, tol, workers_);
         stats_.unfoldedCells = unfolded.movedGroups;
         stats_.unfoldFailures = unfolded.unresolvedGroups;
+        if (leaves_.empty() || unfolded.unresolved.empty()) return;
+        // With the octree, a cell still folded at its mass points sits next to merged blocks
+        // whose fans leave it no clean position: the blocks at its triangles are noted
+        // (foldedLeaves_), so the next round does not merge them.
+        std::vector<uint8_t> stuck(mesh_.positions.size(), 0);
+        for (const uint32_t g : unfolded.unresolved)
+            for (uint32_t k = 0; k < groups[g].count; ++k) stuck[groups[g].first + k] = 1;
+        for (const auto& tri : mesh_.triangles) {
+            if (!stuck[tri[0]] && !stuck[tri[1]] && !stuck[tri[2]]) continue;
+            for (const uint32_t corner : tri)
+                if (leafOf(corner) != kNoLeaf) foldedLeaves_.push_back(leafOf(corner));
+        }
+    }
+
+    // The merged blocks whose vertex's triangles cross or overlap (a sliver folded flat onto a
+    // neighbour where a ring next to the block was fanned), noted in foldedLeaves_: the next
+    // round does not merge them (their vertices may not move as a cell's do, unfoldSheetVertices:
+    // the block's other triangles would move too).
+    void noteFoldedLeaves() {
+        std::vector<UnfoldGroup> groups;
+        for (uint32_t v = 0; v < uint32_t(vertexLeaf_.size()); ++v)
+            if (vertexLeaf_[v] != kNoLeaf) groups.push_back({v, 1});
+        const double tol = selfIntersectionTolerance(mesh_, tol::kSelfIntersectionContactRel);
+        for (const uint32_t g : findFoldedGroups(mesh_, groups, tol, workers_))
+            foldedLeaves_.push_back(vertexLeaf_[groups[g].first]);
     }
 
     // ---- The octree: blocks of 2^k cells per axis merged into one vertex (DualContour.h) ----

@@ -18,8 +18,9 @@
 // cross or overlap moves its vertices toward the mass points of their crossings, just far
 // enough (UnfoldVertices.h; DualContourStats::unfoldedCells). On an ambiguous face the two
 // curves' crease points are kept on their own corners' sides of the curves' chords, so they
-// cannot cross each other. Cells inside merged blocks are not moved (the octree's sliver folds
-// stay open: tests/octree_test.cpp's disabled OctreeRandomCsgHasNoSelfIntersections).
+// cannot cross each other. Vertices of merged blocks (below) are not moved: a block whose
+// vertex's triangles cross or overlap, or next to a cell still folded at its mass points, is
+// not merged in the next round instead.
 //
 // Adaptive (DualContourOptions::flatTolerance > 0): an octree over the cells in index space
 // (Ju et al. 2002, "Dual contouring of Hermite data") merges blocks of 2^k x 2^k x 2^k cells,
@@ -33,8 +34,8 @@
 // a pair of opposite triangles. The mesh is the image of the uniform one under merging
 // vertices, so it stays closed and oriented as a chain. A ring may be fanned from one of its
 // vertices instead of its crossing (same boundary; a ring of three becomes Ju's triangle)
-// where the crossing's fan would fold. Where no fan fits, or a vertex's triangles are not one
-// disk, the blocks there are forbidden and the contour is made again (at most
+// where the crossing's fan would fold. Where no fan fits, a vertex's triangles are not one
+// disk, or they cross (above), the blocks there are forbidden and the contour is made again (at most
 // kOctreeMaxRounds rounds, then the uniform contour: DualContourStats::octreeFallback).
 // Triangles then span up to four blocks, so "one cell" above holds per block.
 #pragma once

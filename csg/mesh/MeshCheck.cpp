@@ -181,7 +181,7 @@ using Contact = TriangleContact;
 
 // Whether triangles a and b intersect other than at what they share (see
 // findSelfIntersections), and how; writes a point of the intersection to where.
-Contact trianglesCross(const Tri& a, const Tri& b, double tol, Vec3* where) {
+Contact trianglesCross(const Tri& a, const Tri& b, double tol, double flatTol, Vec3* where) {
     // Shared corners: bit-identical positions.
     int shared = 0;
     bool aShared[3] = {false, false, false}, bShared[3] = {false, false, false};
@@ -203,8 +203,8 @@ Contact trianglesCross(const Tri& a, const Tri& b, double tol, Vec3* where) {
     for (int i = 0; i < 3; ++i) {
         da[i] = aShared[i] ? 0.0 : glm::dot(a.p[i] - b.p[0], b.n);
         db[i] = bShared[i] ? 0.0 : glm::dot(b.p[i] - a.p[0], a.n);
-        aFlat &= std::abs(da[i]) <= tol;
-        bFlat &= std::abs(db[i]) <= tol;
+        aFlat &= std::abs(da[i]) <= flatTol;
+        bFlat &= std::abs(db[i]) <= flatTol;
     }
     if (aFlat || bFlat)
         return coplanarOverlap(a, b, tol, where) ? Contact::Coplanar : Contact::None;
@@ -265,10 +265,11 @@ ContactTriangle contactTriangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, 
     return t;
 }
 
-TriangleContact triangleContact(const ContactTriangle& a, const ContactTriangle& b, double tol) {
+TriangleContact triangleContact(const ContactTriangle& a, const ContactTriangle& b, double tol,
+                                double flatMargin) {
     if (a.n == Vec3(0.0) || b.n == Vec3(0.0)) return Contact::None;
     Vec3 where;
-    return trianglesCross(a, b, tol, &where);
+    return trianglesCross(a, b, tol, tol * flatMargin, &where);
 }
 
 SelfIntersections findSelfIntersections(const TriangleMesh& mesh, double contactRel, int threads) {
@@ -313,7 +314,7 @@ SelfIntersections findSelfIntersections(const TriangleMesh& mesh, const Triangle
             bvh.forEachOverlapping(box, [&](uint32_t j) {
                 if (j <= i || tris[j].n == Vec3(0.0)) return;
                 Vec3 where;
-                const Contact contact = trianglesCross(a, tris[j], tol, &where);
+                const Contact contact = trianglesCross(a, tris[j], tol, tol, &where);
                 if (contact == Contact::None) return;
                 ++f.pairs;
                 f.coplanar += contact == Contact::Coplanar;

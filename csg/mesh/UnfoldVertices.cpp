@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "csg/Bounds.h"
+#include "csg/Tolerances.h"
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/ParallelFor.h"
 
@@ -30,12 +31,17 @@ public:
 
     Unfolder(TriangleMesh& mesh, const std::vector<UnfoldGroup>& groups,
              const std::vector<Vec3>& safe, double tol, int threads)
-        : mesh_(mesh), groups_(groups), safe_(safe), tol_(tol), workers_(resolveThreads(threads)) {
+        : mesh_(mesh),
+          groups_(groups),
+          safe_(safe),
+          depthTol_(tol / tol::kUnfoldCheckMargin),
+          flatTol_(tol * tol::kUnfoldCheckMargin),
+          workers_(resolveThreads(threads)) {
         buildStars();
     }
 
-    UnfoldStats run() {
-        // Round 1: every group, on all workers.
+    // Every group whose stars fold, checked on all workers, in group order.
+    std::vector<uint32_t> foldedGroups() {
         std::vector<uint8_t> folded(groups_.size(), 0);
         std::vector<Scratch> scratch(static_cast<size_t>(workers_));
         constexpr uint64_t kChunk = 256;
@@ -49,9 +55,15 @@ public:
         std::vector<uint32_t> pending;
         for (size_t g = 0; g < groups_.size(); ++g)
             if (folded[g]) pending.push_back(uint32_t(g));
+        return pending;
+    }
+
+    UnfoldStats run() {
+        std::vector<uint32_t> pending = foldedGroups();
+        Scratch scratchOfMoves;
 
         // Each round: move the folded groups, then check the groups around the moved vertices.
-        Scratch& buffer = scratch[0];
+        Scratch& buffer = scratchOfMoves;
         std::vector<uint8_t> stuck(groups_.size(), 0);
         for (int round = 0; round < kUnfoldRounds && !pending.empty(); ++round) {
             std::vector<uint32_t> around;
@@ -61,6 +73,7 @@ public:
                     ++stats_.movedGroups;
                 } else {
                     ++stats_.unresolvedGroups;
+                    stats_.unresolved.push_back(g);
                     stuck[g] = 1;  // at its safe points: moving it again changes nothing
                 }
                 groupsAround(groups_[g], around);
@@ -76,6 +89,7 @@ public:
             }
             stats_.pairwiseGroups += buffer.pairwise;
         }
+        std::sort(stats_.unresolved.begin(), stats_.unresolved.end());
         return stats_;
     }
 
@@ -126,9 +140,12 @@ private:
         return std::abs(turn - 2.0 * std::numbers::pi) < kFullTurnSlack;
     }
 
-    // Whether two triangles of the group's stars cross or overlap. scratch is per worker.
-    bool folds(const UnfoldGroup& group, Scratch& scratch) const {
-        if (group.count == 1 && starIsEmbedded(group.first)) return false;
+    // Whether a triangle of the group's stars crosses or overlaps another of them or, when
+    // wide, any triangle sharing a corner with them (a move changes the group's triangles
+    // only, but those may then fold onto a neighbour's that holds none of the group's
+    // vertices). scratch is per worker.
+    bool folds(const UnfoldGroup& group, Scratch& scratch, bool wide = false) const {
+        if (!wide && group.count == 1 && starIsEmbedded(group.first)) return false;
         ++scratch.pairwise;
         std::vector<uint32_t>& tris = scratch.tris;
         tris.clear();
@@ -136,25 +153,41 @@ private:
             for (uint32_t i = starStart_[v]; i < starStart_[v + 1]; ++i) tris.push_back(star_[i]);
         std::sort(tris.begin(), tris.end());
         tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+        const size_t own = tris.size();
+        if (wide) {
+            for (size_t i = 0; i < own; ++i)
+                for (const uint32_t corner : mesh_.triangles[tris[i]])
+                    for (uint32_t k = starStart_[corner]; k < starStart_[corner + 1]; ++k)
+                        tris.push_back(star_[k]);
+            std::sort(tris.begin() + std::ptrdiff_t(own), tris.end());
+            tris.erase(std::unique(tris.begin() + std::ptrdiff_t(own), tris.end()), tris.end());
+            // Drop the group's own triangles from the neighbours' (both lists are sorted).
+            const auto mine = tris.begin() + std::ptrdiff_t(own);
+            tris.erase(std::remove_if(
+                           mine, tris.end(),
+                           [&](uint32_t t) { return std::binary_search(tris.begin(), mine, t); }),
+                       tris.end());
+        }
         scratch.made.clear();
         scratch.boxes.clear();
         for (const uint32_t t : tris) {
             const auto& tri = mesh_.triangles[t];
             const Vec3 &p0 = mesh_.positions[tri[0]], &p1 = mesh_.positions[tri[1]],
                        &p2 = mesh_.positions[tri[2]];
-            scratch.made.push_back(contactTriangle(p0, p1, p2, tol_));
+            scratch.made.push_back(contactTriangle(p0, p1, p2, depthTol_));
             Bounds3 box;
             box.extend(p0);
             box.extend(p1);
             box.extend(p2);
-            box.lo -= Vec3(tol_);
-            box.hi += Vec3(tol_);
+            box.lo -= Vec3(flatTol_);
+            box.hi += Vec3(flatTol_);
             scratch.boxes.push_back(box);
         }
-        for (size_t i = 0; i < tris.size(); ++i)
+        for (size_t i = 0; i < own; ++i)
             for (size_t j = i + 1; j < tris.size(); ++j) {
                 if (overlap(scratch.boxes[i], scratch.boxes[j]).empty()) continue;
-                if (triangleContact(scratch.made[i], scratch.made[j], tol_) !=
+                if (triangleContact(scratch.made[i], scratch.made[j], depthTol_,
+                                    tol::kUnfoldCheckMargin * tol::kUnfoldCheckMargin) !=
                     TriangleContact::None)
                     return true;
             }
@@ -171,12 +204,12 @@ private:
                 mesh_.positions[group.first + k] = from[k] + t * (safe_[group.first + k] - from[k]);
         };
         place(1.0);
-        if (folds(group, scratch)) return false;
+        if (folds(group, scratch, true)) return false;
         double lo = 0.0, hi = 1.0;  // folded at lo, clean at hi
         for (int step = 0; step < kUnfoldBisections; ++step) {
             const double mid = 0.5 * (lo + hi);
             place(mid);
-            (folds(group, scratch) ? lo : hi) = mid;
+            (folds(group, scratch, true) ? lo : hi) = mid;
         }
         place(hi);
         return true;
@@ -193,13 +226,24 @@ private:
     TriangleMesh& mesh_;
     const std::vector<UnfoldGroup>& groups_;
     const std::vector<Vec3>& safe_;
-    const double tol_;
+    // The contact tolerance of the check, divided and multiplied by tol::kUnfoldCheckMargin.
+    const double depthTol_, flatTol_;
     const int workers_;
     UnfoldStats stats_;
     std::vector<uint32_t> starStart_, star_, groupOf_;
 };
 
 }  // namespace
+
+std::vector<uint32_t> findFoldedGroups(const TriangleMesh& mesh,
+                                       const std::vector<UnfoldGroup>& groups, double tol,
+                                       int threads) {
+    if (groups.empty() || mesh.triangles.empty()) return {};
+    // The unfolder only reads the mesh and moves nothing when asked for the folded groups.
+    static const std::vector<Vec3> kNoSafePoints;
+    return Unfolder(const_cast<TriangleMesh&>(mesh), groups, kNoSafePoints, tol, threads)
+        .foldedGroups();
+}
 
 UnfoldStats unfoldVertices(TriangleMesh& mesh, const std::vector<UnfoldGroup>& groups,
                            const std::vector<Vec3>& safe, double tol, int threads) {

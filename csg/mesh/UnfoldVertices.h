@@ -37,11 +37,14 @@ struct UnfoldStats {
     uint64_t pairwiseGroups = 0;  // of these, tested pair by pair (no quick certificate)
     uint64_t foldedGroups = 0;    // groups whose stars crossed (a group folded twice counts twice)
     uint64_t movedGroups = 0;     // of these, moved to a clean position
-    uint64_t unresolvedGroups = 0;  // of these, still crossing at their safe points (left there)
+    uint64_t unresolvedGroups = 0;     // of these, still crossing at their safe points (left there)
+    std::vector<uint32_t> unresolved;  // those groups (indices into the groups given), ascending
 };
 
 // For each group, whether two triangles of the stars of its vertices (every triangle using one
-// of them) cross or overlap (triangleContact, MeshCheck.h, with contact tolerance tol). A group
+// of them) cross or overlap (triangleContact, MeshCheck.h, for contact tolerance tol made
+// stricter by tol::kUnfoldCheckMargin both ways, so the mesh passes findSelfIntersections with
+// tol also after rounding to float). A group
 // that does moves each vertex v from p to p + t (safe[v] - p) for the smallest t in (0, 1] whose
 // stars are clean, found by kUnfoldBisections steps of bisection; if they are not clean at
 // t = 1, the group stays at its safe points (counted unresolved, and not moved again). Then the
@@ -51,5 +54,12 @@ struct UnfoldStats {
 // are read).
 UnfoldStats unfoldVertices(TriangleMesh& mesh, const std::vector<UnfoldGroup>& groups,
                            const std::vector<Vec3>& safe, double tol, int threads = 0);
+
+// The groups (indices into groups, ascending) whose stars cross or overlap, as unfoldVertices
+// checks them, without moving anything: for vertices that may not move (the octree's merged
+// blocks, whose folds are undone by splitting the block).
+std::vector<uint32_t> findFoldedGroups(const TriangleMesh& mesh,
+                                       const std::vector<UnfoldGroup>& groups, double tol,
+                                       int threads = 0);
 
 }  // namespace csg
