@@ -60,10 +60,8 @@ public:
 
     UnfoldStats run() {
         std::vector<uint32_t> pending = foldedGroups();
-        Scratch scratchOfMoves;
-
         // Each round: move the folded groups, then check the groups around the moved vertices.
-        Scratch& buffer = scratchOfMoves;
+        Scratch buffer;
         std::vector<uint8_t> stuck(groups_.size(), 0);
         for (int round = 0; round < kUnfoldRounds && !pending.empty(); ++round) {
             std::vector<uint32_t> around;

@@ -1,7 +1,8 @@
 // Local repair of a mesh's self-intersections by moving vertices toward safe points.
 //
 // Dual contouring's triangles around the sheet vertices of one cell (their stars) lie in that
-// cell and its neighbours, and where they cross, the crossing is between two of them: a vertex
+// cell and its neighbours, and the crossings found on csg_grid, csg_grid3 and random CSG were
+// all between two of them (DualContour.h): a vertex
 // clamped into the cell a hair from a face, with its fan flattened onto that face and folded
 // over itself there, or two sheets of one cell (a wall thinner than the cell, whose edges carry
 // only the first of their two crossings) whose QEF vertices both land on the line where the
@@ -18,8 +19,8 @@
 
 namespace csg {
 
-// Steps of bisection between a folded group's positions and its safe points: the group ends
-// within 2^-kUnfoldBisections of the way from the first clean position found to the QEF's.
+// Steps of bisection between a folded group's positions (t = 0) and its safe points (t = 1): the
+// group ends at a clean t within 2^-kUnfoldBisections of a folded one.
 inline constexpr int kUnfoldBisections = 5;
 // Rounds of checking the groups around moved vertices again (a move changes the triangles a
 // neighbouring group's vertices share with the moved one).
@@ -44,14 +45,15 @@ struct UnfoldStats {
 // For each group, whether two triangles of the stars of its vertices (every triangle using one
 // of them) cross or overlap (triangleContact, MeshCheck.h, for contact tolerance tol made
 // stricter by tol::kUnfoldCheckMargin both ways, so the mesh passes findSelfIntersections with
-// tol also after rounding to float). A group
-// that does moves each vertex v from p to p + t (safe[v] - p) for the smallest t in (0, 1] whose
-// stars are clean, found by kUnfoldBisections steps of bisection; if they are not clean at
-// t = 1, the group stays at its safe points (counted unresolved, and not moved again). Then the
-// groups sharing a triangle with a moved vertex are checked again, up to kUnfoldRounds rounds. The
-// first round's checks run on `threads` threads (0: all cores); moves are serial, in group order,
-// so the mesh is the same for any thread count. safe is indexed by vertex (only groups' vertices
-// are read).
+// tol also after rounding to float). A group that does moves each vertex v from p to
+// p + t (safe[v] - p), t in (0, 1] found by kUnfoldBisections steps of bisection between t = 0
+// (folded) and t = 1 (clean); after a move, clean also means that no triangle of its stars
+// crosses or overlaps one sharing a corner with them (a move may fold onto a neighbour's
+// triangle that holds none of the group's vertices). If not clean at t = 1, the group stays at
+// its safe points (counted unresolved, and not moved again). Then the groups sharing a triangle
+// with a moved vertex are checked again, up to kUnfoldRounds rounds. The first round's checks
+// run on `threads` threads (0: all cores); moves are serial, in group order, so the mesh is the
+// same for any thread count. safe is indexed by vertex (only groups' vertices are read).
 UnfoldStats unfoldVertices(TriangleMesh& mesh, const std::vector<UnfoldGroup>& groups,
                            const std::vector<Vec3>& safe, double tol, int threads = 0);
 
