@@ -3,6 +3,7 @@
 // children; an unknown name is a warning, one positional argument too many an error.
 #pragma once
 
+#include <array>
 #include <initializer_list>
 #include <string>
 #include <string_view>
@@ -12,14 +13,30 @@
 
 namespace io {
 
+// Most parameters a built-in module has (material() has 12).
+inline constexpr size_t kMaxBuiltinParams = 12;
+
+// One entry per parameter, stored inline: bindArgs runs once per module call, and four
+// vectors were four heap allocations there.
+template <class T>
+struct ParamArray {
+    std::array<T, kMaxBuiltinParams> items{};
+    size_t count = 0;
+    T& operator[](size_t i) { return items[i]; }
+    const T& operator[](size_t i) const { return items[i]; }
+    size_t size() const { return count; }
+};
+
 struct BoundArgs {
     const InstantiationStmt& call;
-    std::string form;  // the expected form, for messages: "cube(size, center)"
-    std::vector<std::string_view> names;
-    std::vector<Value> values;       // undef where not given
-    std::vector<Loc> locs;           // the call's location where not given
-    std::vector<const Expr*> exprs;  // the expression each came from; null where not given
-    ArgValues all;                   // every argument as evaluated, $-arguments included
+    // The expected form, for messages: "cube(size, center)". A view of text that outlives
+    // every call (a literal or a static), as the parameter names are.
+    std::string_view form;
+    ParamArray<std::string_view> names;
+    ParamArray<Value> values;       // undef where not given
+    ParamArray<Loc> locs;           // the call's location where not given
+    ParamArray<const Expr*> exprs;  // the expression each came from; null where not given
+    ArgValues all;                  // every argument as evaluated, $-arguments included
 
     const Value& operator[](size_t i) const { return values[i]; }
     bool given(size_t i) const { return !values[i].isUndef(); }
@@ -37,11 +54,11 @@ struct RefusedParam {
     std::string_view message;
 };
 
-// names are the parameters in positional order; form is quoted in every message. A named
-// argument whose name is refused is an error at that argument, before any argument is
-// evaluated.
+// names are the parameters in positional order (at most kMaxBuiltinParams); form is quoted
+// in every message and must outlive the result. A named argument whose name is refused is an
+// error at that argument, before any argument is evaluated.
 BoundArgs bindArgs(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
-                   std::initializer_list<std::string_view> names, std::string form,
+                   std::initializer_list<std::string_view> names, std::string_view form,
                    std::initializer_list<RefusedParam> refused = {});
 
 }  // namespace io

@@ -153,13 +153,14 @@ Instance torus(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                const GeomState& state) {
     BoundArgs b = bindArgs(e, s, ctx, {"R", "r", "D", "d"}, "torus(R, r) with R > r > 0");
     if (!(b.given(0) || b.given(2)) || !(b.given(1) || b.given(3)))
-        e.fail(s.loc, "torus() needs both radii; expected " + b.form + " (or D, d for diameters)");
+        e.fail(s.loc, "torus() needs both radii; expected " + std::string(b.form) +
+                          " (or D, d for diameters)");
     const double major = b.given(2) ? numberArg(e, b, 2, 0.0) / 2.0 : numberArg(e, b, 0, 0.0);
     const double minor = b.given(3) ? numberArg(e, b, 3, 0.0) / 2.0 : numberArg(e, b, 1, 0.0);
     const csg::Torus shape{major, minor};
     if (shape.invalidReason())
         e.fail(s.loc, "torus(): R = " + formatNumber(major) + ", r = " + formatNumber(minor) +
-                          " is not a ring torus; expected " + b.form);
+                          " is not a ring torus; expected " + std::string(b.form));
     return csg::leaf(shape, {leafTag(e, s, state), state.material});
 }
 
@@ -177,7 +178,11 @@ Instance halfspace(Evaluator& e, const InstantiationStmt& s, const ContextPtr& c
 Instance unionModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                      const GeomState& state) {
     // union, group and render are the same to a ray caster.
-    BoundArgs b = bindArgs(e, s, ctx, {"convexity"}, (s.name + "() { ... }").c_str());
+    // The form is a literal (BoundArgs keeps a view of it); the table maps these three here.
+    const char* form = s.name == "group"    ? "group() { ... }"
+                       : s.name == "render" ? "render() { ... }"
+                                            : "union() { ... }";
+    BoundArgs b = bindArgs(e, s, ctx, {"convexity"}, form);
     return childrenGroup(e, b, ctx, state);
 }
 

@@ -22,8 +22,8 @@ std::vector<csg::Vec3> pointsArg(Evaluator& e, const BoundArgs& b, size_t i, siz
     const std::string what = count > 0 ? "a list of " + std::to_string(count) + " points [x, y, z]"
                                        : "a non-empty list of points [x, y, z]";
     if (b.values[i].isUndef())
-        e.fail(b.call.loc,
-               b.call.name + "() needs '" + std::string(b.names[i]) + "'; expected " + b.form);
+        e.fail(b.call.loc, b.call.name + "() needs '" + std::string(b.names[i]) + "'; expected " +
+                               std::string(b.form));
     const Value& v = b.values[i];
     if (!v.isVector() || v.list().empty() || (count > 0 && v.list().size() != count))
         b.bad(e, i, what);
@@ -69,7 +69,7 @@ Instance finish(Evaluator& e, const InstantiationStmt& s, const GeomState& state
     if (!s.children.empty()) e.warn(s.loc, s.name + "() takes no children; they are ignored");
     const csg::PatchSet set = csg::PatchSet::make(std::move(patches), method, solid);
     if (const char* why = set.invalidReason())
-        e.fail(s.loc, s.name + "(): " + why + "; expected " + b.form);
+        e.fail(s.loc, s.name + "(): " + why + "; expected " + std::string(b.form));
     return csg::leaf(set, {e.sourceTag(s.loc, e.childPath(state, s.name)), state.material});
 }
 
@@ -89,7 +89,8 @@ Instance bezierPatchesModule(Evaluator& e, const InstantiationStmt& s, const Con
     const BoundArgs b = bindArgs(e, s, ctx, {"points", "patches", "method", "solid"}, kPatchesForm);
     const std::vector<csg::Vec3> points = pointsArg(e, b, 0, 0);
     // patches: lists of 16 whole indices into points.
-    if (b.values[1].isUndef()) e.fail(s.loc, s.name + "() needs 'patches'; expected " + b.form);
+    if (b.values[1].isUndef())
+        e.fail(s.loc, s.name + "() needs 'patches'; expected " + std::string(b.form));
     const Value& v = b.values[1];
     if (!v.isVector() || v.list().empty()) b.bad(e, 1, "a non-empty list of patches");
     std::vector<csg::BezierPatch> patches;
