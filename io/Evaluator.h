@@ -206,6 +206,10 @@ private:
     Instance instantiateChildrenCall(const InstantiationStmt& s, const ContextPtr& ctx,
                                      const GeomState& state);
     void loadUses(const ParsedFile& file, const ContextPtr& fileContext);
+    // Whether a block assigns or defines anything. A block that does not needs no scope of
+    // its own: an empty one (no variables, modules or functions, not a module call) between
+    // it and its parent changes no lookup, lexical or dynamic.
+    static bool definesNames(const Body& body);
 
 public:
     // Iterates a for-loop value (vector items, range numbers, string characters, any other
@@ -232,6 +236,33 @@ private:
     const char* stackTop_ = nullptr;
     size_t stackBytes_ = 0;
     std::unordered_map<std::string, uint32_t> pathIndex_;
+    // childPath's answers by (parent path index, child name), looked up without a string.
+    struct ChildPathKey {
+        uint32_t parent;
+        std::string name;
+    };
+    struct ChildPathKeyView {
+        uint32_t parent;
+        std::string_view name;
+    };
+    struct ChildPathHash {
+        using is_transparent = void;
+        size_t operator()(const ChildPathKeyView& k) const {
+            return std::hash<std::string_view>{}(k.name) ^
+                   (size_t(k.parent) * 0x9E3779B97F4A7C15ull);
+        }
+        size_t operator()(const ChildPathKey& k) const {
+            return (*this)(ChildPathKeyView{k.parent, k.name});
+        }
+    };
+    struct ChildPathEqual {
+        using is_transparent = void;
+        template <class A, class B>
+        bool operator()(const A& a, const B& b) const {
+            return a.parent == b.parent && std::string_view(a.name) == std::string_view(b.name);
+        }
+    };
+    std::unordered_map<ChildPathKey, uint32_t, ChildPathHash, ChildPathEqual> childPaths_;
     std::vector<std::unique_ptr<ParsedFile>> usedFiles_;
     std::unordered_map<std::string, ContextPtr> usedFileContexts_;
     ContextPtr root_;                           // built-in constants and the default $-variables

@@ -71,16 +71,17 @@ ContextPtr Evaluator::bindParameters(const Parameters& params, const ArgValues& 
 
 std::optional<Evaluator::FunctionRef> Evaluator::findFunction(const std::string& name,
                                                               const ContextPtr& ctx) {
-    for (ContextPtr c = ctx; c; c = c->lexicalParent) {
-        if (const Value* v = c->findLocal(name); v && v->isFunction())
+    // A pointer to each ContextPtr, not a copy: no reference-count traffic per level.
+    for (const ContextPtr* c = &ctx; *c; c = &(*c)->lexicalParent) {
+        if (const Value* v = (*c)->findLocal(name); v && v->isFunction())
             return FunctionRef{&v->function().literal->params, v->function().literal->body.get(),
                                v->function().closure};
-        if (c->body) {
-            auto it = c->body->functions.find(name);
-            if (it != c->body->functions.end())
-                return FunctionRef{&it->second->params, it->second->body.get(), c};
+        if ((*c)->body) {
+            auto it = (*c)->body->functions.find(name);
+            if (it != (*c)->body->functions.end())
+                return FunctionRef{&it->second->params, it->second->body.get(), *c};
         }
-        for (const ContextPtr& used : c->usedFiles) {
+        for (const ContextPtr& used : (*c)->usedFiles) {
             auto it = used->body->functions.find(name);
             if (it != used->body->functions.end())
                 return FunctionRef{&it->second->params, it->second->body.get(), used};

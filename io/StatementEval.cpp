@@ -95,16 +95,27 @@ void Evaluator::evalScope(const ContextPtr& ctx, const Body& body, const GeomSta
         if (Instance i = instantiate(*s, ctx, state)) out.push_back(std::move(*i));
 }
 
+bool Evaluator::definesNames(const Body& body) {
+    return !body.assignments.empty() || !body.modules.empty() || !body.functions.empty();
+}
+
 uint32_t Evaluator::sourceTag(Loc loc, uint32_t modulePath) {
     model_.sources.push_back({loc.file, loc.line, loc.col, modulePath});
     return static_cast<uint32_t>(model_.sources.size() - 1);
 }
 
 uint32_t Evaluator::childPath(const GeomState& state, std::string_view name) {
+    // Every node asks for its path; building "parent > name" and hashing it each time was a
+    // tenth of the evaluation. A path's index never changes once given, so remembering it
+    // per (parent, name) gives the same answer without the string.
+    if (auto known = childPaths_.find(ChildPathKeyView{state.modulePath, name});
+        known != childPaths_.end())
+        return known->second;
     const std::string& parent = model_.modulePaths[state.modulePath];
     std::string path = parent.empty() ? std::string(name) : parent + " > " + std::string(name);
     auto [it, inserted] = pathIndex_.try_emplace(std::move(path), model_.modulePaths.size());
     if (inserted) model_.modulePaths.push_back(it->first);
+    childPaths_.emplace(ChildPathKey{state.modulePath, std::string(name)}, it->second);
     return it->second;
 }
 
@@ -173,10 +184,17 @@ std::vector<csg::NodePtr> Evaluator::instantiateChildren(const InstantiationStmt
     std::vector<csg::NodePtr> parts;
     anyPresent = false;
     if (s.children.empty()) return parts;
-    ContextPtr c = Context::make(ctx, ctx, &s.children);
-    for (const ArgValue& a : args)  // translate(v, $fn = 8) { ... }: children see $fn
-        if (!a.name.empty() && a.name[0] == '$') c->set(a.name, a.value);
-    evalScope(c, s.children, state, parts);
+    bool dollarArgs = false;
+    for (const ArgValue& a : args) dollarArgs |= !a.name.empty() && a.name[0] == '$';
+    if (!dollarArgs && !definesNames(s.children)) {
+        // An empty scope would look every name up exactly as ctx does: skip making it.
+        evalScope(ctx, s.children, state, parts);
+    } else {
+        ContextPtr c = Context::make(ctx, ctx, &s.children);
+        for (const ArgValue& a : args)  // translate(v, $fn = 8) { ... }: children see $fn
+            if (!a.name.empty() && a.name[0] == '$') c->set(a.name, a.value);
+        evalScope(c, s.children, state, parts);
+    }
     anyPresent = !parts.empty();
     return parts;
 }
@@ -214,13 +232,15 @@ Instance Evaluator::instantiateCall(const InstantiationStmt& s, const ContextPtr
         auto parts = instantiateChildren(s, c, state, noArgs, any);
         return group(std::move(parts), any, any ? sourceTag(s.loc, state.modulePath) : 0);
     }
-    // User modules shadow built-ins, as in OpenSCAD.
-    for (ContextPtr c = ctx; c; c = c->lexicalParent) {
-        if (c->body) {
-            auto it = c->body->modules.find(name);
-            if (it != c->body->modules.end()) return callUserModule(*it->second, c, s, ctx, state);
+    // User modules shadow built-ins, as in OpenSCAD. The walk holds a pointer to each
+    // ContextPtr rather than a copy: no reference-count traffic per level.
+    for (const ContextPtr* c = &ctx; *c; c = &(*c)->lexicalParent) {
+        if ((*c)->body) {
+            auto it = (*c)->body->modules.find(name);
+            if (it != (*c)->body->modules.end())
+                return callUserModule(*it->second, *c, s, ctx, state);
         }
-        for (const ContextPtr& used : c->usedFiles) {
+        for (const ContextPtr& used : (*c)->usedFiles) {
             auto it = used->body->modules.find(name);
             if (it != used->body->modules.end())
                 return callUserModule(*it->second, used, s, ctx, state);
@@ -305,7 +325,8 @@ Instance Evaluator::instantiateForLoop(const InstantiationStmt& s, const Context
     // for (a = A, b = B): nested loops, a outermost; B may use a.
     auto loop = [&](auto& self, size_t index, const ContextPtr& c) -> void {
         if (index == s.args.size()) {
-            ContextPtr body = Context::make(c, c, &s.children);
+            // The body's own scope only when it defines names (see instantiateChildren).
+            const ContextPtr body = definesNames(s.children) ? Context::make(c, c, &s.children) : c;
             if (!intersect) {
                 evalScope(body, s.children, inner, parts);
                 return;

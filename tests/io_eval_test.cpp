@@ -612,3 +612,46 @@ TEST(IoEval, EmptyFileIsAnEmptyModel) {
     EXPECT_FALSE(r.result.model->root);
     EXPECT_TRUE(r.result.diagnostics.empty());
 }
+
+// Module paths are interned once per distinct path, in order of first use, however often and
+// from wherever the same module is instantiated (childPath remembers (parent, name) pairs).
+TEST(Eval, ModulePathsAreDistinctAndInFirstUseOrder) {
+    Outcome r =
+        run("module a() cube(); module b() a();\n"
+            "a(); b(); b(); a(); translate([1, 0, 0]) a(); translate([2, 0, 0]) b();");
+    ASSERT_TRUE(r.result.ok());
+    const std::vector<std::string> expected = {"",
+                                               "a()",
+                                               "a() > cube",
+                                               "b()",
+                                               "b() > a()",
+                                               "b() > a() > cube",
+                                               "translate",
+                                               "translate > a()",
+                                               "translate > a() > cube",
+                                               "translate > b()",
+                                               "translate > b() > a()",
+                                               "translate > b() > a() > cube"};
+    EXPECT_EQ(r.result.model->modulePaths, expected);
+}
+
+// Blocks that define nothing share their parent's scope; ones that do get their own. Either
+// way names, $-variables, children() and local definitions resolve as OpenSCAD's scopes say.
+TEST(Eval, BlocksSeeTheRightScopes) {
+    EXPECT_EQ(echoes("translate([0, 0, 0], $fn = 5) { echo($fn); } echo($fn);"),
+              (std::vector<std::string>{"ECHO: 5", "ECHO: 0"}));
+    // Children take $-variables from where children() is called (OpenSCAD's dynamic scope).
+    EXPECT_EQ(echoes("module m() translate([1, 0, 0]) { children(); }\n"
+                     "x = 3; m($fn = 7) { echo(x, $fn); }"),
+              (std::vector<std::string>{"ECHO: 3, 7"}));
+    EXPECT_EQ(echoes("for (i = [1, 2]) { echo(i); }"),
+              (std::vector<std::string>{"ECHO: 1", "ECHO: 2"}));
+    EXPECT_EQ(echoes("j = 0; for (i = [1, 2]) { j = i * 10; echo(j); } echo(j);"),
+              (std::vector<std::string>{"ECHO: 10", "ECHO: 20", "ECHO: 0"}));
+    EXPECT_EQ(echoes("function f() = 1; translate([0, 0, 0]) { function f() = 2; echo(f()); }\n"
+                     "echo(f());"),
+              (std::vector<std::string>{"ECHO: 2", "ECHO: 1"}));
+    EXPECT_EQ(echoes("module m() { $fn = 9; translate([0, 0, 0]) children(); }\n"
+                     "m() echo($fn);"),
+              (std::vector<std::string>{"ECHO: 9"}));
+}
