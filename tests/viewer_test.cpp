@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "CliRunner.h"
+#include "viewer/window/SdlLibrary.h"
 
 namespace {
 
@@ -275,6 +276,49 @@ TEST(ViewerWithoutDisplay, UnreadablePartExitsWithThree) {
     const RunResult r = runCsgray({"view", "missing.scad"}, dir.path());
     EXPECT_EQ(r.exitCode, 3) << r.err;
     EXPECT_NE(r.err.find("missing.scad: error: cannot open the part"), std::string::npos) << r.err;
+}
+
+// `csgray view` loads SDL at run time (viewer/window/SdlLibrary.h) so that the other commands
+// do not load its ~45 libraries. A machine without it gets a message naming the library and
+// the Debian package, not a crash.
+TEST(SdlLoader, MissingLibraryNamesItAndThePackage) {
+    viewer::window::SdlFunctions table;
+    const std::string error = viewer::window::loadSdlFunctions("libcsgray-no-such-sdl.so.0", table);
+    EXPECT_NE(error.find("cannot load libcsgray-no-such-sdl.so.0"), std::string::npos) << error;
+    EXPECT_NE(error.find("libsdl2-2.0-0"), std::string::npos) << error;
+    EXPECT_EQ(table.SDL_Init, nullptr);
+}
+
+// A library that loads but is not SDL (libm): the first function it lacks is named.
+TEST(SdlLoader, LibraryWithoutTheFunctionsNamesTheMissingOne) {
+    viewer::window::SdlFunctions table;
+    const std::string error = viewer::window::loadSdlFunctions("libm.so.6", table);
+    EXPECT_NE(error.find("libm.so.6: it has no SDL_"), std::string::npos) << error;
+    EXPECT_NE(error.find("libsdl2-2.0-0"), std::string::npos) << error;
+    EXPECT_EQ(table.SDL_Init, nullptr);
+}
+
+TEST(SdlLoader, InstalledSdlHasEveryFunctionTheViewerCalls) {
+    viewer::window::SdlFunctions table;
+    const std::string error =
+        viewer::window::loadSdlFunctions(viewer::window::kSdlLibraryName, table);
+    ASSERT_EQ(error, "");
+#define CSGRAY_SDL_EXPECT_SET(name) EXPECT_NE(table.name, nullptr) << #name;
+    CSGRAY_SDL_FUNCTIONS(CSGRAY_SDL_EXPECT_SET)
+#undef CSGRAY_SDL_EXPECT_SET
+}
+
+// The point of loading SDL at run time: csgray itself does not link it (nor X11 through it).
+TEST(SdlLoader, CsgrayDoesNotLinkSdl) {
+    FILE* pipe = ::popen(("ldd " + shellQuote(CSGRAY_EXE) + " 2>&1").c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::string libraries;
+    char buffer[512];
+    while (std::fgets(buffer, sizeof buffer, pipe)) libraries += buffer;
+    ASSERT_EQ(::pclose(pipe), 0) << libraries;
+    EXPECT_NE(libraries.find("libc.so"), std::string::npos) << libraries;
+    EXPECT_EQ(libraries.find("libSDL2"), std::string::npos) << libraries;
+    EXPECT_EQ(libraries.find("libX11"), std::string::npos) << libraries;
 }
 
 TEST_F(ViewerTest, FinestFrameShowsThePartAsRenderDoes) {

@@ -1,7 +1,5 @@
 #include "viewer/window/PanelDrawing.h"
 
-#include <SDL.h>
-
 #include <algorithm>
 
 // stb_easy_font is all static functions; this file uses some of them.
@@ -9,6 +7,8 @@
 #pragma GCC diagnostic ignored "-Wunused-function"
 #include <stb/stb_easy_font.h>
 #pragma GCC diagnostic pop
+
+#include "viewer/window/SdlLibrary.h"
 
 namespace viewer::window {
 
@@ -79,8 +79,8 @@ float PanelPainter::band(SDL_Renderer* renderer, float x, float y, float width,
                          const std::vector<std::string>& lines, Colour text, Colour back) {
     const float height = float(lines.size()) * kLineHeight + kPad;
     const SDL_FRect backRect{x * scale_, y * scale_, width * scale_, height * scale_};
-    SDL_SetRenderDrawColor(renderer, back.r, back.g, back.b, back.a);
-    SDL_RenderFillRectF(renderer, &backRect);
+    sdl().SDL_SetRenderDrawColor(renderer, back.r, back.g, back.b, back.a);
+    sdl().SDL_RenderFillRectF(renderer, &backRect);
 
     // Each stb quad is an axis-aligned bar: corners 0 and 2 are opposite.
     struct Vertex {
@@ -103,23 +103,23 @@ float PanelPainter::band(SDL_Renderer* renderer, float x, float y, float width,
         }
         lineY += kLineHeight;
     }
-    SDL_SetRenderDrawColor(renderer, text.r, text.g, text.b, text.a);
-    if (!bars_.empty()) SDL_RenderFillRectsF(renderer, bars_.data(), int(bars_.size()));
+    sdl().SDL_SetRenderDrawColor(renderer, text.r, text.g, text.b, text.a);
+    if (!bars_.empty()) sdl().SDL_RenderFillRectsF(renderer, bars_.data(), int(bars_.size()));
     return height;
 }
 
 void PanelPainter::draw(SDL_Renderer* renderer, const Panel& panel) {
     if (!panel.visible) return;
     int outW = 0, outH = 0;
-    SDL_GetRendererOutputSize(renderer, &outW, &outH);
+    sdl().SDL_GetRendererOutputSize(renderer, &outW, &outH);
     // Bigger text where there is room for it.
     scale_ = outH >= 480 ? 2.0f : 1.0f;
     const float width = float(outW) / scale_, height = float(outH) / scale_;
     const float textRoom = std::max(width - 2.0f * kPad, 8.0f);
 
     SDL_BlendMode previous;
-    SDL_GetRenderDrawBlendMode(renderer, &previous);
-    SDL_SetRenderDrawBlendMode(renderer, SDL_BLENDMODE_BLEND);
+    sdl().SDL_GetRenderDrawBlendMode(renderer, &previous);
+    sdl().SDL_SetRenderDrawBlendMode(renderer, SDL_BLENDMODE_BLEND);
 
     float top = 0.0f;
     if (!panel.error.empty()) {
@@ -151,7 +151,7 @@ void PanelPainter::draw(SDL_Renderer* renderer, const Panel& panel) {
             band(renderer, 0.0f, top, widest + 2.0f * kPad, lines, {255, 235, 150, 255},
                  {0, 0, 0, 170});
     }
-    SDL_SetRenderDrawBlendMode(renderer, previous);
+    sdl().SDL_SetRenderDrawBlendMode(renderer, previous);
 }
 
 }  // namespace viewer::window

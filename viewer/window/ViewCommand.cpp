@@ -1,6 +1,5 @@
 #include "viewer/window/ViewCommand.h"
 
-#include <SDL.h>
 #include <time.h>
 
 #include <atomic>
@@ -17,6 +16,7 @@
 #include "viewer/window/PartWatcher.h"
 #include "viewer/window/ProgressiveRenderer.h"
 #include "viewer/window/Screenshot.h"
+#include "viewer/window/SdlLibrary.h"
 #include "viewer/window/ViewCamera.h"
 #include "viewer/window/ViewProbe.h"
 #include "viewer/window/ViewWindow.h"
@@ -100,7 +100,7 @@ public:
           started_(started),
           width_(options.width),
           height_(options.height),
-          wakeEvent_(SDL_RegisterEvents(1)),
+          wakeEvent_(sdl().SDL_RegisterEvents(1)),
           renderer_(threadCount(options), [this] { wake(); }),
           watcher_(options.common, [this] { wake(); }) {
         if (const char* dump = std::getenv("CSGRAY_VIEW_DUMP")) dumpFile_ = dump;
@@ -142,9 +142,9 @@ public:
                 reportFirstFrame();
             }
             SDL_Event event;
-            if (SDL_WaitEventTimeout(&event, 50)) {
+            if (sdl().SDL_WaitEventTimeout(&event, 50)) {
                 handle(event);
-                while (SDL_PollEvent(&event)) handle(event);
+                while (sdl().SDL_PollEvent(&event)) handle(event);
             }
             // Hot reload: four polls a second cost a few stat() calls.
             if (millisecondsSince(lastPoll) >= 250.0) {
@@ -166,7 +166,7 @@ private:
         if (!wakeReady_) return;
         SDL_Event event{};
         event.type = wakeEvent_;
-        SDL_PushEvent(&event);
+        sdl().SDL_PushEvent(&event);
     }
 
     io::Camera initialCamera() const {
@@ -419,8 +419,8 @@ private:
 
 int viewCommand(std::span<const std::string> args) {
     const Clock::time_point started = Clock::now();
-    // The process's CPU time so far: exec, dynamic loading (SDL and the X11 libraries) and
-    // static initialisation, which no clock inside the program sees start.
+    // The process's CPU time so far: exec, dynamic loading and static initialisation, which
+    // no clock inside the program sees start (SDL and the X11 libraries come later: loadSdl).
     timespec cpuNow{};
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &cpuNow);
     const double cpuBeforeMain = double(cpuNow.tv_sec) * 1e3 + double(cpuNow.tv_nsec) * 1e-6;
@@ -429,6 +429,11 @@ int viewCommand(std::span<const std::string> args) {
         std::fputs(kViewHelp, stdout);
         std::fputs(kCommonOptionsHelp, stdout);
         return kExitOk;
+    }
+    // SDL is loaded here, not linked (see SdlLibrary.h); without it there is no window.
+    if (const std::string& sdlError = loadSdl(); !sdlError.empty()) {
+        std::fprintf(stderr, "csgray: error: %s\n", sdlError.c_str());
+        return kExitIo;
     }
     // Start-up in parallel: SDL's video start (tens of milliseconds of X11 set-up) on this
     // thread, the part's evaluation, compilation and first coarse levels on others. The

@@ -1,13 +1,13 @@
 #include "viewer/window/ViewWindow.h"
 
-#include <SDL.h>
-
 #include <stdlib.h>
 #include <time.h>
 
 #include <chrono>
 #include <cstdlib>
 #include <string>
+
+#include "viewer/window/SdlLibrary.h"
 
 namespace viewer::window {
 
@@ -43,23 +43,23 @@ ViewWindow::ViewWindow() {
     // (Mesa's llvmpipe) and compiled shaders on the first present. So: software, straight to
     // the X11 framebuffer (no GL window texture behind it). SDL_RENDER_DRIVER and
     // SDL_FRAMEBUFFER_ACCELERATION in the environment still win over these hints.
-    SDL_SetHint(SDL_HINT_RENDER_DRIVER, "software");
-    SDL_SetHint(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0");
+    sdl().SDL_SetHint(SDL_HINT_RENDER_DRIVER, "software");
+    sdl().SDL_SetHint(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0");
     // A preview window has no reason to keep the screen awake (OpenSCAD's does not either);
     // inhibiting the screen saver also costs a D-Bus round trip at start-up.
-    SDL_SetHint(SDL_HINT_VIDEO_ALLOW_SCREENSAVER, "1");
+    sdl().SDL_SetHint(SDL_HINT_VIDEO_ALLOW_SCREENSAVER, "1");
     // Blocks, not blur: a coarse level should look like what it is.
-    SDL_SetHint(SDL_HINT_RENDER_SCALE_QUALITY, "0");
+    sdl().SDL_SetHint(SDL_HINT_RENDER_SCALE_QUALITY, "0");
     const Clock::time_point step = Clock::now();
     const double cpu = threadCpuMilliseconds();
-    if (SDL_Init(SDL_INIT_VIDEO) != 0) {
-        error_ = std::string("cannot open a window: ") + SDL_GetError();
+    if (sdl().SDL_Init(SDL_INIT_VIDEO) != 0) {
+        error_ = std::string("cannot open a window: ") + sdl().SDL_GetError();
         return;
     }
     videoStarted_ = true;
     // Without a display SDL falls back to its offscreen driver: a window nobody can see, and
     // a viewer that never ends. Only when asked for (SDL_VIDEODRIVER) is that a window.
-    const char* driver = SDL_GetCurrentVideoDriver();
+    const char* driver = sdl().SDL_GetCurrentVideoDriver();
     if (driver && !std::getenv("SDL_VIDEODRIVER") &&
         (std::string(driver) == "offscreen" || std::string(driver) == "dummy")) {
         error_ = "cannot open a window: no display (neither DISPLAY nor WAYLAND_DISPLAY works)";
@@ -72,64 +72,64 @@ ViewWindow::ViewWindow() {
 bool ViewWindow::open(const std::string& title, int width, int height) {
     if (!videoStarted_) return false;
     Clock::time_point step = Clock::now();
-    window_ = SDL_CreateWindow(title.c_str(), SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED,
-                               width, height, SDL_WINDOW_RESIZABLE);
+    window_ = sdl().SDL_CreateWindow(title.c_str(), SDL_WINDOWPOS_UNDEFINED,
+                                     SDL_WINDOWPOS_UNDEFINED, width, height, SDL_WINDOW_RESIZABLE);
     if (!window_) {
-        error_ = std::string("cannot open a window: ") + SDL_GetError();
+        error_ = std::string("cannot open a window: ") + sdl().SDL_GetError();
         return false;
     }
     startup_.window = millisecondsSince(step);
     step = Clock::now();
-    renderer_ = SDL_CreateRenderer(window_, -1, 0);
-    if (!renderer_) renderer_ = SDL_CreateRenderer(window_, -1, SDL_RENDERER_SOFTWARE);
+    renderer_ = sdl().SDL_CreateRenderer(window_, -1, 0);
+    if (!renderer_) renderer_ = sdl().SDL_CreateRenderer(window_, -1, SDL_RENDERER_SOFTWARE);
     if (!renderer_) {
-        error_ = std::string("cannot draw in the window: ") + SDL_GetError();
+        error_ = std::string("cannot draw in the window: ") + sdl().SDL_GetError();
         return false;
     }
     startup_.renderer = millisecondsSince(step);
     SDL_RendererInfo info;
-    if (SDL_GetRendererInfo(renderer_, &info) == 0) startup_.driver = info.name;
-    if (const char* video = SDL_GetCurrentVideoDriver())
+    if (sdl().SDL_GetRendererInfo(renderer_, &info) == 0) startup_.driver = info.name;
+    if (const char* video = sdl().SDL_GetCurrentVideoDriver())
         startup_.driver += std::string(" on ") + video;
     return true;
 }
 
 ViewWindow::~ViewWindow() {
-    if (texture_) SDL_DestroyTexture(texture_);
-    if (renderer_) SDL_DestroyRenderer(renderer_);
-    if (window_) SDL_DestroyWindow(window_);
-    if (videoStarted_) SDL_Quit();
+    if (texture_) sdl().SDL_DestroyTexture(texture_);
+    if (renderer_) sdl().SDL_DestroyRenderer(renderer_);
+    if (window_) sdl().SDL_DestroyWindow(window_);
+    if (videoStarted_) sdl().SDL_Quit();
 }
 
 void ViewWindow::setImage(const io::Rgb8Image& image) {
     if (!texture_ || textureWidth_ != image.width || textureHeight_ != image.height) {
-        if (texture_) SDL_DestroyTexture(texture_);
-        texture_ = SDL_CreateTexture(renderer_, SDL_PIXELFORMAT_RGB24, SDL_TEXTUREACCESS_STREAMING,
-                                     image.width, image.height);
+        if (texture_) sdl().SDL_DestroyTexture(texture_);
+        texture_ = sdl().SDL_CreateTexture(renderer_, SDL_PIXELFORMAT_RGB24,
+                                           SDL_TEXTUREACCESS_STREAMING, image.width, image.height);
         textureWidth_ = image.width;
         textureHeight_ = image.height;
     }
-    if (texture_) SDL_UpdateTexture(texture_, nullptr, image.pixels.data(), image.width * 3);
+    if (texture_) sdl().SDL_UpdateTexture(texture_, nullptr, image.pixels.data(), image.width * 3);
 }
 
 void ViewWindow::setTitle(const std::string& title) {
-    SDL_SetWindowTitle(window_, title.c_str());
+    sdl().SDL_SetWindowTitle(window_, title.c_str());
 }
 
 void ViewWindow::present() {
-    SDL_SetRenderDrawColor(renderer_, 0, 0, 0, 255);
-    SDL_RenderClear(renderer_);
-    if (texture_) SDL_RenderCopy(renderer_, texture_, nullptr, nullptr);
+    sdl().SDL_SetRenderDrawColor(renderer_, 0, 0, 0, 255);
+    sdl().SDL_RenderClear(renderer_);
+    if (texture_) sdl().SDL_RenderCopy(renderer_, texture_, nullptr, nullptr);
     if (errorBorder_) {
         int w = 0, h = 0;
-        SDL_GetRendererOutputSize(renderer_, &w, &h);
+        sdl().SDL_GetRendererOutputSize(renderer_, &w, &h);
         const int b = 6;  // pixels: visible, yet hides little of the part
         const SDL_Rect sides[] = {{0, 0, w, b}, {0, h - b, w, b}, {0, 0, b, h}, {w - b, 0, b, h}};
-        SDL_SetRenderDrawColor(renderer_, 220, 30, 30, 255);
-        SDL_RenderFillRects(renderer_, sides, 4);
+        sdl().SDL_SetRenderDrawColor(renderer_, 220, 30, 30, 255);
+        sdl().SDL_RenderFillRects(renderer_, sides, 4);
     }
     painter_.draw(renderer_, panel_);
-    SDL_RenderPresent(renderer_);
+    sdl().SDL_RenderPresent(renderer_);
 }
 
 }  // namespace viewer::window
