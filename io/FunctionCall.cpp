@@ -37,13 +37,25 @@ ContextPtr Evaluator::bindParameters(const Parameters& params, const ArgValues& 
                                      ContextPtr definition, ContextPtr caller, Loc loc,
                                      const std::string& what) {
     ContextPtr c = Context::make(std::move(definition), std::move(caller), nullptr);
-    std::vector<bool> bound(params.size(), false);
+    // Which parameters got an argument: a word of bits for the usual few (no allocation per
+    // call), a vector beyond 64.
+    uint64_t boundBits = 0;
+    std::vector<bool> boundMore(params.size() > 64 ? params.size() : 0, false);
+    auto markBound = [&](size_t k) {
+        if (k < 64)
+            boundBits |= uint64_t(1) << k;
+        else
+            boundMore[k] = true;
+    };
+    auto isBound = [&](size_t k) {
+        return k < 64 ? (boundBits >> k & 1) != 0 : static_cast<bool>(boundMore[k]);
+    };
     size_t nextPositional = 0;
     for (const ArgValue& a : args) {
         if (a.name.empty()) {
             if (nextPositional < params.size()) {
                 c->set(params[nextPositional].name, a.value);
-                bound[nextPositional++] = true;
+                markBound(nextPositional++);
             } else {
                 warn(a.loc, "too many unnamed arguments supplied to '" + what + "'");
             }
@@ -53,7 +65,7 @@ ContextPtr Evaluator::bindParameters(const Parameters& params, const ArgValues& 
         while (k < params.size() && params[k].name != a.name) ++k;
         if (k < params.size()) {
             c->set(a.name, a.value);
-            bound[k] = true;
+            markBound(k);
         } else if (a.name[0] == '$') {
             c->set(a.name, a.value);
         } else {
@@ -63,7 +75,7 @@ ContextPtr Evaluator::bindParameters(const Parameters& params, const ArgValues& 
     (void)loc;
     // Defaults see the parameters bound before them.
     for (size_t k = 0; k < params.size(); ++k)
-        if (!bound[k])
+        if (!isBound(k))
             c->set(params[k].name,
                    params[k].defaultValue ? eval(*params[k].defaultValue, c) : Value());
     return c;
@@ -91,15 +103,18 @@ std::optional<Evaluator::FunctionRef> Evaluator::findFunction(const std::string&
 }
 
 Value Evaluator::callFunctionExpr(const CallExpr& call, const ContextPtr& ctx) {
-    std::string name = "function literal";
+    // The name messages give the callee; a pointer, so a call copies no string (this one is
+    // longer than std::string's inline buffer).
+    static const std::string kLiteralName = "function literal";
+    const std::string* name = &kLiteralName;
     std::optional<FunctionRef> user;
     if (call.callee->kind == ExprKind::Identifier) {
-        name = static_cast<const IdentifierExpr&>(*call.callee).name;
-        user = findFunction(name, ctx);
+        name = &static_cast<const IdentifierExpr&>(*call.callee).name;
+        user = findFunction(*name, ctx);
         if (!user) {
-            if (const BuiltinFunction* b = findBuiltinFunction(name))
+            if (const BuiltinFunction* b = findBuiltinFunction(*name))
                 return (*b)(*this, evalArgs(call.args, ctx), call.loc);
-            fail(call.loc, "unknown function '" + name + "'");
+            fail(call.loc, "unknown function '" + *name + "'");
         }
     } else {
         const Value v = eval(*call.callee, ctx);
@@ -109,7 +124,7 @@ Value Evaluator::callFunctionExpr(const CallExpr& call, const ContextPtr& ctx) {
                            v.function().closure};
     }
     return callUserFunction(user->params, user->body, user->definition, evalArgs(call.args, ctx),
-                            ctx, call.loc, name);
+                            ctx, call.loc, *name);
 }
 
 Value Evaluator::callUserFunction(const Parameters* params, const Expr* body, ContextPtr definition,

@@ -655,3 +655,17 @@ TEST(Eval, BlocksSeeTheRightScopes) {
                      "m() echo($fn);"),
               (std::vector<std::string>{"ECHO: 9"}));
 }
+
+// Parameters past the 64 bindParameters tracks in a word still take their arguments or their
+// defaults.
+TEST(Eval, ManyParametersTakeArgumentsAndDefaults) {
+    std::string params, positional;
+    for (int i = 0; i < 70; ++i) {
+        params += (i ? ", p" : "p") + std::to_string(i) + " = " + std::to_string(i);
+        positional += (i ? ", " : "") + std::to_string(100 + i);
+    }
+    EXPECT_EQ(echoes("function f(" + params + ") = [p0, p63, p64, p69];\n" +
+                     "echo(f(), f(p69 = -1, p64 = -2), f(" + positional + "));"),
+              (std::vector<std::string>{"ECHO: [0, 63, 64, 69], [0, 63, -2, -1], "
+                                        "[100, 163, 164, 169]"}));
+}
