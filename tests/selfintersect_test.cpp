@@ -3,6 +3,9 @@
 // hand-folded one.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <numbers>
+
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/UnfoldVertices.h"
 
@@ -182,6 +185,43 @@ TEST(UnfoldVertices, FoldedStarMovesTowardItsSafePointUntilClean) {
     safe[4] = Vec3(0.0);
     EXPECT_EQ(unfoldVertices(clean, {{4, 1}}, safe, tol, 1).foldedGroups, 0u);
     EXPECT_EQ(clean.positions[4], Vec3(0, 0, 1));
+}
+
+// A fan of 7 triangles around vertex 0 in the plane z = 0, its ring at steps of turns/7 of a
+// full turn. Every triangle turns the same way around the vertex (each step is less than half a
+// turn), so only the angles' sum tells a disk (turns = 1) from a star that winds twice over
+// itself (turns = 2: coplanar overlaps).
+TriangleMesh planarFan(int turns) {
+    constexpr int kRing = 7;
+    TriangleMesh m;
+    m.positions.push_back(Vec3(0.0));
+    for (int i = 0; i < kRing; ++i) {
+        const double angle = 2.0 * std::numbers::pi * turns * i / kRing;
+        m.positions.push_back(Vec3(std::cos(angle), std::sin(angle), 0.0));
+    }
+    for (uint32_t i = 0; i < kRing; ++i) m.triangles.push_back({0, 1 + i, 1 + (i + 1) % kRing});
+    return m;
+}
+
+// The quick certificate that passes a vertex without testing its triangles pair by pair (all
+// of them turning one way around it, seen along their mean normal, and their angles there
+// adding up to one full turn) must not pass a star that winds twice: without the full-turn
+// condition it would, and the overlaps would be missed.
+TEST(UnfoldVertices, AStarThatWindsTwiceIsFoundFolded) {
+    const TriangleMesh twice = planarFan(2);
+    ASSERT_GT(findSelfIntersections(twice).pairs, 0u);
+    const double tol = selfIntersectionTolerance(twice, 1e-6);
+    EXPECT_EQ(findFoldedGroups(twice, {{0, 1}}, tol, 1), std::vector<uint32_t>{0});
+
+    // The disk passes on the certificate alone: no pair of its triangles is tested.
+    TriangleMesh disk = planarFan(1);
+    ASSERT_EQ(findSelfIntersections(disk).pairs, 0u);
+    EXPECT_TRUE(findFoldedGroups(disk, {{0, 1}}, tol, 1).empty());
+    const std::vector<Vec3> safe(disk.positions.size(), Vec3(0.0));
+    const UnfoldStats s = unfoldVertices(disk, {{0, 1}}, safe, tol, 1);
+    EXPECT_EQ(s.checkedGroups, 1u);
+    EXPECT_EQ(s.pairwiseGroups, 0u);
+    EXPECT_EQ(s.foldedGroups, 0u);
 }
 
 }  // namespace
