@@ -266,10 +266,10 @@ ContactTriangle contactTriangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, 
 }
 
 TriangleContact triangleContact(const ContactTriangle& a, const ContactTriangle& b, double tol,
-                                double flatMargin) {
+                                double flatTol) {
     if (a.n == Vec3(0.0) || b.n == Vec3(0.0)) return Contact::None;
     Vec3 where;
-    return trianglesCross(a, b, tol, tol * flatMargin, &where);
+    return trianglesCross(a, b, tol, flatTol, &where);
 }
 
 SelfIntersections findSelfIntersections(const TriangleMesh& mesh, double contactRel, int threads) {

@@ -72,12 +72,13 @@ ContactTriangle contactTriangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, 
 
 // How two triangles meet, by findSelfIntersections' rules with contact tolerance tol (world
 // units): crossing, overlapping coplanar, or neither (apart, a contact, sharing an edge without
-// being coplanar, or one of them a sliver). flatMargin > 1 counts a triangle within
-// flatMargin tol (rather than tol) of the other's plane as coplanar: a stricter test, for a
-// pair that must also pass findSelfIntersections after rounding (see kUnfoldCheckMargin).
+// being coplanar, or one of them a sliver). A triangle within flatTol (world units) of the
+// other's plane counts as coplanar; findSelfIntersections uses flatTol = tol, and a larger one
+// makes a stricter test, for a pair that must also pass findSelfIntersections after rounding
+// (see kUnfoldCheckMargin).
 enum class TriangleContact { None, Crossing, Coplanar };
 TriangleContact triangleContact(const ContactTriangle& a, const ContactTriangle& b, double tol,
-                                double flatMargin = 1.0);
+                                double flatTol);
 
 double signedVolume(const TriangleMesh& mesh);
 double surfaceArea(const TriangleMesh& mesh);

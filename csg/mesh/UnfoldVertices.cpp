@@ -184,8 +184,7 @@ private:
         for (size_t i = 0; i < own; ++i)
             for (size_t j = i + 1; j < tris.size(); ++j) {
                 if (overlap(scratch.boxes[i], scratch.boxes[j]).empty()) continue;
-                if (triangleContact(scratch.made[i], scratch.made[j], depthTol_,
-                                    tol::kUnfoldCheckMargin * tol::kUnfoldCheckMargin) !=
+                if (triangleContact(scratch.made[i], scratch.made[j], depthTol_, flatTol_) !=
                     TriangleContact::None)
                     return true;
             }
