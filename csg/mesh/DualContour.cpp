@@ -196,9 +196,9 @@ private:
         stats_.sheetVertices = next;
         if (leafOfActive_.empty()) {
             safe_.resize(next);
-            stats_.missingCrossings += placeAllSheetVertices(
-                [&](size_t i) { return &mesh_.positions[sheetBase_[active_[i]]]; },
-                [&](size_t i) { return &safe_[sheetBase_[active_[i]]]; });
+            stats_.missingCrossings +=
+                placeAllSheetVertices(mesh_.positions.data(), safe_.data(),
+                                      [&](size_t i) { return sheetBase_[active_[i]]; });
             return;
         }
         // With the octree, every cell's vertices are placed once (the first round) and copied
@@ -210,9 +210,8 @@ private:
                     fineStart_[i] + uint32_t(cellCycles(cellMask(cellNode(active_[i]))).count);
             finePlaced_.resize(fineStart_.back());
             fineSafe_.resize(fineStart_.back());
-            fineMissing_ =
-                placeAllSheetVertices([&](size_t i) { return &finePlaced_[fineStart_[i]]; },
-                                      [&](size_t i) { return &fineSafe_[fineStart_[i]]; });
+            fineMissing_ = placeAllSheetVertices(finePlaced_.data(), fineSafe_.data(),
+                                                 [&](size_t i) { return fineStart_[i]; });
         }
         stats_.missingCrossings += fineMissing_;
         safe_.resize(next);
@@ -226,17 +225,18 @@ private:
             }
     }
 
-    // The sheet vertices of every active cell i into out(i)[0 .. its sheet count) and their
-    // safe points into safe(i)[..], on all workers in chunks; returns the count of missing
-    // crossings.
-    template <class Out, class Safe>
-    uint64_t placeAllSheetVertices(Out out, Safe safe) const {
+    // The sheet vertices of every active cell i into out[first(i) ..) (its sheet count of them)
+    // and their safe points into safe[first(i) ..), on all workers in chunks; returns the count
+    // of missing crossings.
+    template <class First>
+    uint64_t placeAllSheetVertices(Vec3* out, Vec3* safe, First first) const {
         std::vector<uint64_t> missing(size_t(workers_), 0);
         constexpr uint64_t kChunk = 1024;
         parallelFor((active_.size() + kChunk - 1) / kChunk, workers_, [&](int w, uint64_t chunk) {
             const size_t end = std::min<size_t>(active_.size(), (chunk + 1) * kChunk);
             for (size_t i = chunk * kChunk; i < end; ++i)
-                placeSheetVerticesOf(active_[i], missing[size_t(w)], out(i), safe(i));
+                placeSheetVerticesOf(active_[i], missing[size_t(w)], out + first(i),
+                                     safe + first(i));
         });
         uint64_t total = 0;
         for (const uint64_t m : missing) total += m;
