@@ -299,7 +299,7 @@ private:
         const double tol = selfIntersectionTolerance(mesh_, tol::kSelfIntersectionContactRel);
         const UnfoldStats unfolded = unfoldVertices(mesh_, groups, safe_, tol, workers_);
         stats_.unfoldedCells = unfolded.movedGroups;
-        stats_.unfoldFailures = unfolded.unresolvedGroups;
+        stats_.unfoldFailures = unfolded.unresolvedGroups + unfolded.leftFoldedGroups;
         if (leaves_.empty() || unfolded.unresolved.empty()) return;
         // With the octree, a cell still folded at its mass points sits next to merged blocks
         // whose fans leave it no clean position: the blocks at its triangles are noted

@@ -35,8 +35,8 @@
 // vertices, so it stays closed and oriented as a chain. A ring may be fanned from one of its
 // vertices instead of its crossing (same boundary; a ring of three becomes Ju's triangle)
 // where the crossing's fan would fold. Where no fan fits, a vertex's triangles are not one
-// disk, or they cross (above), the blocks there are forbidden and the contour is made again (at most
-// kOctreeMaxRounds rounds, then the uniform contour: DualContourStats::octreeFallback).
+// disk, or they cross (above), the blocks there are forbidden and the contour is made again (at
+// most kOctreeMaxRounds rounds, then the uniform contour: DualContourStats::octreeFallback).
 // Triangles then span up to four blocks, so "one cell" above holds per block.
 #pragma once
 
@@ -60,7 +60,8 @@ struct DualContourStats {
     int octreeRounds = 0;         // contours made (each after one that folded at a block)
     bool octreeFallback = false;  // the merged mesh folded or was not a manifold: uniform used
     uint64_t unfoldedCells = 0;   // cells whose vertices moved off a fold (UnfoldVertices.h)
-    uint64_t unfoldFailures = 0;  // cells still folded at their crossings' mass points
+    uint64_t unfoldFailures = 0;  // cells left folded: at their crossings' mass points, or
+                                  // found folded again after the last round of unfolding
 };
 
 // A merged block spans at most 2^kOctreeMaxLevel cells per axis (16): a block never reaches

@@ -87,6 +87,7 @@ public:
             }
             stats_.pairwiseGroups += buffer.pairwise;
         }
+        stats_.leftFoldedGroups = pending.size();
         std::sort(stats_.unresolved.begin(), stats_.unresolved.end());
         return stats_;
     }

@@ -40,6 +40,7 @@ struct UnfoldStats {
     uint64_t movedGroups = 0;     // of these, moved to a clean position
     uint64_t unresolvedGroups = 0;     // of these, still crossing at their safe points (left there)
     std::vector<uint32_t> unresolved;  // those groups (indices into the groups given), ascending
+    uint64_t leftFoldedGroups = 0;     // found folded by the last round's checks, left as they are
 };
 
 // For each group, whether two triangles of the stars of its vertices (every triangle using one
@@ -51,7 +52,8 @@ struct UnfoldStats {
 // crosses or overlaps one sharing a corner with them (a move may fold onto a neighbour's
 // triangle that holds none of the group's vertices). If not clean at t = 1, the group stays at
 // its safe points (counted unresolved, and not moved again). Then the groups sharing a triangle
-// with a moved vertex are checked again, up to kUnfoldRounds rounds. The first round's checks
+// with a moved vertex are checked again, up to kUnfoldRounds rounds (those still folded after
+// the last are not moved: leftFoldedGroups). The first round's checks
 // run on `threads` threads (0: all cores); moves are serial, in group order, so the mesh is the
 // same for any thread count. safe is indexed by vertex (only groups' vertices are read).
 UnfoldStats unfoldVertices(TriangleMesh& mesh, const std::vector<UnfoldGroup>& groups,
