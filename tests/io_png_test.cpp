@@ -3,7 +3,6 @@
 // checks the zlib stream, its Adler-32 and every critical chunk's CRC). Failed writes leave
 // no file.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdint>
 #include <filesystem>
@@ -15,21 +14,13 @@
 #include "io/PngReader.h"
 #include "io/PngWriter.h"
 #include "tests/SeededRng.h"
+#include "tests/TempDir.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh directory under the system's temporary one, removed with its files.
-struct TempDir {
-    fs::path path;
-    explicit TempDir(const std::string& name)
-        : path(fs::temp_directory_path() / (name + "_" + std::to_string(getpid()))) {
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~TempDir() { fs::remove_all(path); }
-};
+using csg::testing::TempDir;
 
 io::Rgb8Image randomImage(int width, int height, uint64_t seed) {
     csg::testing::Rng rng(seed);

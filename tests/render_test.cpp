@@ -42,6 +42,7 @@ extern char** environ;
 // cannot see that the counting operator new is malloc, hence the pragma for the matching free.
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 #include "tests/CountingNew.h"
+#include "tests/TempDir.h"
 
 namespace viewer::render {
 namespace {
@@ -386,17 +387,7 @@ DecodedPng decodePng(const fs::path& path) {
     return out;
 }
 
-// A fresh directory under the system temp directory (emptied first: a crashed run with the
-// same pid may have left one), removed when the test ends (also when an ASSERT returns early).
-struct TempDir {
-    fs::path path;
-    explicit TempDir(const std::string& name)
-        : path(fs::temp_directory_path() / (name + "_" + std::to_string(getpid()))) {
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~TempDir() { fs::remove_all(path); }
-};
+using csg::testing::TempDir;
 
 TEST(Output, PngIsSrgbEncodedAndDecodesBack) {
     // An ambient-only white square (ambient 0.5: linear 0.5) on a background of sRGB 0.4,
