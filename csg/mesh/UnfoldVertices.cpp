@@ -29,11 +29,11 @@ public:
         uint64_t pairwise = 0;  // groups tested pair by pair
     };
 
-    Unfolder(TriangleMesh& mesh, const std::vector<UnfoldGroup>& groups,
-             const std::vector<Vec3>& safe, double tol, int threads)
+    // Reads mesh; only run moves its vertices.
+    Unfolder(const TriangleMesh& mesh, const std::vector<UnfoldGroup>& groups, double tol,
+             int threads)
         : mesh_(mesh),
           groups_(groups),
-          safe_(safe),
           depthTol_(tol / tol::kUnfoldCheckMargin),
           flatTol_(tol * tol::kUnfoldCheckMargin),
           workers_(resolveThreads(threads)) {
@@ -58,7 +58,9 @@ public:
         return pending;
     }
 
-    UnfoldStats run() {
+    // Moves the folded groups' vertices in positions, which are the mesh's own (the checks
+    // read them through mesh_), toward safe (see unfoldVertices).
+    UnfoldStats run(std::vector<Vec3>& positions, const std::vector<Vec3>& safe) {
         std::vector<uint32_t> pending = foldedGroups();
         // Each round: move the folded groups, then check the groups around the moved vertices.
         Scratch buffer;
@@ -67,7 +69,7 @@ public:
             std::vector<uint32_t> around;
             for (const uint32_t g : pending) {
                 ++stats_.foldedGroups;
-                if (unfold(groups_[g], buffer)) {
+                if (unfold(groups_[g], positions, safe, buffer)) {
                     ++stats_.movedGroups;
                 } else {
                     ++stats_.unresolvedGroups;
@@ -193,13 +195,14 @@ private:
     }
 
     // Moves a folded group toward its safe points (see unfoldVertices); whether it ends clean.
-    bool unfold(const UnfoldGroup& group, Scratch& scratch) {
+    bool unfold(const UnfoldGroup& group, std::vector<Vec3>& positions,
+                const std::vector<Vec3>& safe, Scratch& scratch) {
         Vec3 from[4];
         const uint32_t count = std::min<uint32_t>(group.count, 4);
-        for (uint32_t k = 0; k < count; ++k) from[k] = mesh_.positions[group.first + k];
+        for (uint32_t k = 0; k < count; ++k) from[k] = positions[group.first + k];
         auto place = [&](double t) {
             for (uint32_t k = 0; k < count; ++k)
-                mesh_.positions[group.first + k] = from[k] + t * (safe_[group.first + k] - from[k]);
+                positions[group.first + k] = from[k] + t * (safe[group.first + k] - from[k]);
         };
         place(1.0);
         if (folds(group, scratch, true)) return false;
@@ -221,9 +224,8 @@ private:
                     if (groupOf_[corner] != kNoGroup) out.push_back(groupOf_[corner]);
     }
 
-    TriangleMesh& mesh_;
+    const TriangleMesh& mesh_;
     const std::vector<UnfoldGroup>& groups_;
-    const std::vector<Vec3>& safe_;
     // The contact tolerance of the check, divided and multiplied by tol::kUnfoldCheckMargin.
     const double depthTol_, flatTol_;
     const int workers_;
@@ -237,16 +239,13 @@ std::vector<uint32_t> findFoldedGroups(const TriangleMesh& mesh,
                                        const std::vector<UnfoldGroup>& groups, double tol,
                                        int threads) {
     if (groups.empty() || mesh.triangles.empty()) return {};
-    // The unfolder only reads the mesh and moves nothing when asked for the folded groups.
-    static const std::vector<Vec3> kNoSafePoints;
-    return Unfolder(const_cast<TriangleMesh&>(mesh), groups, kNoSafePoints, tol, threads)
-        .foldedGroups();
+    return Unfolder(mesh, groups, tol, threads).foldedGroups();
 }
 
 UnfoldStats unfoldVertices(TriangleMesh& mesh, const std::vector<UnfoldGroup>& groups,
                            const std::vector<Vec3>& safe, double tol, int threads) {
     if (groups.empty() || mesh.triangles.empty()) return {};
-    return Unfolder(mesh, groups, safe, tol, threads).run();
+    return Unfolder(mesh, groups, tol, threads).run(mesh.positions, safe);
 }
 
 }  // namespace csg
