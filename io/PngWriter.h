@@ -6,7 +6,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
-#include <vector>
+
+#include "csg/HugePages.h"
 
 namespace io {
 
@@ -14,7 +15,7 @@ namespace io {
 struct Rgb8Image {
     int width = 0;
     int height = 0;
-    std::vector<uint8_t> pixels;  // size width * height * 3
+    csg::HugePageVector<uint8_t> pixels;  // size width * height * 3
 
     Rgb8Image() = default;
     Rgb8Image(int w, int h) : width(w), height(h), pixels(size_t(w) * size_t(h) * 3, 0) {}

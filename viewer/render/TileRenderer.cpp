@@ -44,7 +44,9 @@ RenderResult renderImage(const csg::Scene& scene, const EffectsPlan& plan,
     LinearImage& image = result.image;
     image.width = settings.width;
     image.height = settings.height;
-    image.rgb.assign(size_t(image.width) * size_t(image.height) * 3, 0.0f);
+    // Left unset: every pixel is written before the image is used (an interrupted render's
+    // image is not).
+    image.rgb.resize(size_t(image.width) * size_t(image.height) * 3);
 
     const int tile = settings.tileSize;
     const int tilesX = (image.width + tile - 1) / tile;

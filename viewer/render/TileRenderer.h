@@ -6,6 +6,7 @@
 #include <atomic>
 #include <vector>
 
+#include "csg/HugePages.h"
 #include "csg/Scene.h"
 #include "viewer/render/EffectsPlan.h"
 #include "viewer/render/Progress.h"
@@ -21,10 +22,10 @@ struct ImageSettings {
     int tileSize = 16;       // pixels per tile side
 };
 
-// Linear RGB, row-major, top row first, 3 floats per pixel.
+// Linear RGB, row-major, top row first, 3 floats per pixel (on huge pages: csg/HugePages.h).
 struct LinearImage {
     int width = 0, height = 0;
-    std::vector<float> rgb;
+    csg::HugePageVector<float> rgb;
 };
 
 struct RenderResult {
