@@ -26,6 +26,7 @@
 
 #include "io/Evaluate.h"
 #include "io/PngWriter.h"
+#include "tests/SeededRng.h"
 #include "viewer/render/Color.h"
 #include "viewer/render/EffectsPlan.h"
 #include "viewer/render/ImageOutput.h"
@@ -494,6 +495,28 @@ TEST(Materials, PresetsMatchTheirClasses) {
     EXPECT_EQ(materialPreset(MaterialClass::Mirror).reflect, 0.9);
     EXPECT_EQ(materialPreset(MaterialClass::Transparent).transmit, 0.9);
     EXPECT_EQ(materialPreset(MaterialClass::Transparent).ior, 1.5);
+}
+
+TEST(Materials, HighlightIsThePowerWithinItsErrorBound) {
+    // Against long double's pow (11 more bits): squaring stays within shininess * 2^-53
+    // relative, plus an absolute hair where the power underflows to subnormals.
+    csg::testing::Rng rng(4);
+    for (const double shininess : {1.0, 2.0, 3.0, 7.0, 50.0, 64.0, 200.0, 999.0, 1024.0}) {
+        const ShadingMaterial s = shadingMaterial(io::Material{.shininess = shininess});
+        ASSERT_EQ(s.wholeShininess, uint32_t(shininess));
+        for (int i = 0; i < 20000; ++i) {
+            const double cos = i == 0 ? 1.0 : i == 1 ? 0.0 : 1.0 - std::pow(rng.uniform(), 3.0);
+            const long double exact = std::pow((long double)cos, (long double)shininess);
+            const double bound = double(exact) * shininess * 0x1p-53 + 1e-300;
+            ASSERT_NEAR(highlight(cos, s), double(exact), bound) << cos << "^" << shininess;
+        }
+    }
+    // Other exponents are std::pow's.
+    for (const double shininess : {0.5, 12.25, 1025.0, 0.0}) {
+        const ShadingMaterial s = shadingMaterial(io::Material{.shininess = shininess});
+        EXPECT_EQ(s.wholeShininess, 0u);
+        EXPECT_EQ(highlight(0.73, s), std::pow(0.73, shininess));
+    }
 }
 
 TEST(Sampling, StratifiedSamplesStayInTheirStrataAndRepeat) {

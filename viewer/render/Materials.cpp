@@ -11,6 +11,9 @@ ShadingMaterial shadingMaterial(const io::Material& m) {
     s.diffuse = m.diffuse;
     s.specular = m.specular;
     s.shininess = m.shininess;
+    if (m.shininess >= 1.0 && m.shininess <= kMaxSquaringExponent &&
+        m.shininess == std::floor(m.shininess))
+        s.wholeShininess = uint32_t(m.shininess);
     s.reflect = m.reflect;
     s.transmit = m.transmit;
     s.ior = m.ior > 0.0 ? m.ior : 1.0;  // the language rejects ior <= 0; stay finite anyway

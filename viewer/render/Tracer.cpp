@@ -104,7 +104,7 @@ csg::Vec3 Tracer::directLight(const PlannedMaterial& m, const csg::Vec3& albedo,
             // Blinn-Phong: the half vector between light and viewer against the normal.
             const csg::Vec3 h = glm::normalize(l + view);
             const double nDotH = glm::dot(n, h);
-            if (nDotH > 0.0) term += csg::Vec3(s.specular * std::pow(nDotH, s.shininess));
+            if (nDotH > 0.0) term += csg::Vec3(s.specular * highlight(nDotH, s));
         }
         sum += light.radiance * term;
     }
