@@ -16,12 +16,21 @@ constexpr double kTraversalCost = 0.5;
 // Below this depth splits fall back to the median, so traversal's fixed stack (kBvhMaxDepth)
 // can never overflow whatever the SAH would choose.
 constexpr int kSahMaxDepth = kBvhMaxDepth - 24;
+static_assert(4 * kMaxLeafItems <= kBvhMaxLeafCount);
+
+// The binary tree the SAH builds. Interior: the left child follows at index + 1, the right
+// child is at firstOrRight; count == 0. Leaf: items [firstOrRight, firstOrRight + count).
+struct BinaryNode {
+    Bounds3 box;
+    uint32_t firstOrRight = 0;
+    uint32_t count = 0;
+    int axis = 0;  // an interior node's split axis: its left child lies toward -axis
+};
 
 struct Builder {
     std::span<uint32_t> items;
     const std::vector<CompiledNode>& itemNodes;
-    uint32_t itemsOffset;
-    std::vector<BvhNode>& nodes;
+    std::vector<BinaryNode> nodes;
 
     uint32_t build(uint32_t lo, uint32_t hi, int depth) {
         const uint32_t index = static_cast<uint32_t>(nodes.size());
@@ -94,13 +103,12 @@ struct Builder {
             mid = lo + n / 2;
         }
         if (mid == lo || mid == hi) mid = lo + n / 2;
-        const int axis = bestAxis >= 0 ? bestAxis : 0;
 
         build(lo, mid, depth + 1);
         const uint32_t right = build(mid, hi, depth + 1);
         nodes[index].firstOrRight = right;
         nodes[index].count = 0;
-        nodes[index].axis = static_cast<uint8_t>(axis);
+        nodes[index].axis = bestAxis >= 0 ? bestAxis : 0;
         return index;
     }
 
@@ -110,9 +118,78 @@ struct Builder {
     }
 
     uint32_t makeLeaf(uint32_t index, uint32_t lo, uint32_t n) {
-        nodes[index].firstOrRight = itemsOffset + lo;
-        nodes[index].count = static_cast<uint16_t>(n);
+        nodes[index].firstOrRight = lo;
+        nodes[index].count = n;
         return index;
+    }
+};
+
+// Collapses the binary tree into 4-wide nodes: a wide node takes a binary node's two children
+// and keeps opening the interior one of largest area among its slots (its two children take
+// its place) until it has four, so the slots a ray is most likely to enter are the ones the
+// wide node resolves at once (the usual BVH2 -> BVH4 collapse, as in Embree).
+struct Collapser {
+    const std::vector<BinaryNode>& binary;
+    uint32_t itemsOffset;
+    std::vector<BvhNode>& wide;
+
+    uint32_t collapse(uint32_t interior) {
+        uint32_t slots[4] = {interior + 1, binary[interior].firstOrRight, 0, 0};
+        int count = 2;
+        while (count < 4) {
+            int open = -1;
+            double openArea = -1.0;
+            for (int k = 0; k < count; ++k) {
+                const BinaryNode& b = binary[slots[k]];
+                if (b.count == 0 && b.box.halfArea() > openArea) {
+                    open = k;
+                    openArea = b.box.halfArea();
+                }
+            }
+            if (open < 0) break;  // only leaves left
+            const uint32_t opened = slots[open];
+            slots[open] = opened + 1;
+            slots[count++] = binary[opened].firstOrRight;
+        }
+
+        const uint32_t index = static_cast<uint32_t>(wide.size());
+        wide.emplace_back();
+        for (unsigned octant = 0; octant < 8; ++octant) {
+            unsigned order = 0;
+            int placed = 0;
+            appendOrder(interior, octant, slots, count, order, placed);
+            wide[index].order[octant] = static_cast<uint8_t>(order);
+        }
+        for (int k = 0; k < count; ++k) {
+            const BinaryNode& b = binary[slots[k]];
+            const uint32_t target = b.count > 0 ? itemsOffset + b.firstOrRight : collapse(slots[k]);
+            BvhNode& node = wide[index];  // collapse() may have moved the array
+            for (int a = 0; a < 3; ++a) {
+                node.boxes.lo[a][k] = b.box.lo[a];
+                node.boxes.hi[a][k] = b.box.hi[a];
+            }
+            node.slot[k] = target;
+            node.leafCount[k] = static_cast<uint8_t>(b.count);
+        }
+        wide[index].slots = static_cast<uint8_t>(count);
+        return index;
+    }
+
+    // Appends the slots under binary node b to `order` (two bits each), nearer first for a ray
+    // of the given direction octant (bit a set: d[a] < 0): at each split the side toward which
+    // the ray runs comes second, as the binary walk would visit them.
+    void appendOrder(uint32_t b, unsigned octant, const uint32_t (&slots)[4], int count,
+                     unsigned& order, int& placed) const {
+        for (int k = 0; k < count; ++k) {
+            if (slots[k] == b) {
+                order |= unsigned(k) << (2 * placed++);
+                return;
+            }
+        }
+        const uint32_t left = b + 1, right = binary[b].firstOrRight;
+        const bool leftFirst = (octant >> binary[b].axis & 1u) == 0;
+        appendOrder(leftFirst ? left : right, octant, slots, count, order, placed);
+        appendOrder(leftFirst ? right : left, octant, slots, count, order, placed);
     }
 };
 
@@ -120,8 +197,24 @@ struct Builder {
 
 uint32_t buildBvh(std::span<uint32_t> items, const std::vector<CompiledNode>& itemNodes,
                   uint32_t itemsOffset, std::vector<BvhNode>& nodes) {
-    Builder builder{items, itemNodes, itemsOffset, nodes};
-    return builder.build(0, static_cast<uint32_t>(items.size()), 0);
+    Builder builder{items, itemNodes, {}};
+    builder.nodes.reserve(2 * items.size());
+    builder.build(0, static_cast<uint32_t>(items.size()), 0);
+    // A root that is a leaf (items too few or all at one centre) is wrapped in one wide node.
+    if (builder.nodes[0].count > 0) {
+        const uint32_t index = static_cast<uint32_t>(nodes.size());
+        BvhNode& node = nodes.emplace_back();
+        for (int a = 0; a < 3; ++a) {
+            node.boxes.lo[a][0] = builder.nodes[0].box.lo[a];
+            node.boxes.hi[a][0] = builder.nodes[0].box.hi[a];
+        }
+        node.slot[0] = itemsOffset;
+        node.leafCount[0] = static_cast<uint8_t>(builder.nodes[0].count);
+        node.slots = 1;
+        return index;
+    }
+    Collapser collapser{builder.nodes, itemsOffset, nodes};
+    return collapser.collapse(0);
 }
 
 }  // namespace csg

@@ -302,13 +302,15 @@ struct Compiler {
         if (u.bounded >= kBvhMinChildren) {
             u.bvhRoot =
                 buildBvh(std::span(children.data(), u.bounded), scene.nodes_, u.first, scene.bvh_);
-            // The BVH root's box is the hull of the same children, i.e. u.bounds.
+            // The BVH root's slots cover the same children: a ray that misses u.bounds misses
+            // them all, so testing u.bounds first would only add a test.
             u.boundsImplied = u.bounded == u.count;
-            // A BVH leaf of one child has that child's box, tested just before it.
+            // A leaf slot of one child has that child's box, tested just before it.
             for (size_t b = u.bvhRoot; b < scene.bvh_.size(); ++b) {
                 const BvhNode& node = scene.bvh_[b];
-                if (node.count == 1)
-                    scene.nodes_[children[node.firstOrRight - u.first]].boundsImplied = true;
+                for (int k = 0; k < node.slots; ++k)
+                    if (node.leafCount[k] == 1)
+                        scene.nodes_[children[node.slot[k] - u.first]].boundsImplied = true;
             }
         }
         scene.children_.insert(scene.children_.end(), children.begin(), children.end());

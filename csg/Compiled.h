@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "csg/Bounds.h"
+#include "csg/Bounds4.h"
 #include "csg/Tree.h"
 
 namespace csg {
@@ -71,11 +72,12 @@ struct CompiledNode {
     //   only over the hull of the left operand's spans, which lies in the left's box, hence
     //   in its own (a skipped cull only ever costs work: the bounds are conservative, so the
     //   spans found are the same);
-    // - a union whose children all lie in its BVH: the BVH root's box is this same box and
-    //   is tested first, over the same range;
-    // - a union's child alone in a BVH leaf: the leaf's box is the child's, tested just before
-    //   it over the same range (anyCached, which tries an object outside the BVH walk, tests
-    //   the object's box itself).
+    // - a union whose children all lie in its BVH: the BVH root's slots are tested first,
+    //   over the same range, and a ray that misses this box misses them all;
+    // - a union's child alone in a BVH leaf slot: the slot's box is the child's, tested over
+    //   a range [t0, t1'] with t1' no lower than the child is evaluated over, and the walk
+    //   skips the child when its entry lies past the lowered t1 (anyCached, which tries an
+    //   object outside the BVH walk, tests the object's box itself).
     bool boundsImplied = false;
     Bounds3 bounds;
     uint32_t first = 0;
@@ -90,16 +92,21 @@ struct CompiledNode {
     uint32_t ball = kNoNode;
 };
 
-// A BVH node over a union's bounded children. Interior: the left child follows at index + 1,
-// the right child is at `right`; count == 0. Leaf: children_[first, first + count).
-// One cache line each (56 bytes of fields): a node never straddles two lines, and its index
-// becomes a byte offset by a shift, not a multiplication by 56 (the walk pops ~14 per ray on
-// bench/scenes/csg_grid).
+// A node of the 4-wide BVH over a union's bounded children: up to four slots, each a child
+// node of this BVH or a leaf, a run of the union's children. The slots' boxes are stored by
+// axis and slot, so that one clipToBoxes (Bounds4.h) tests all four. A node is 256 bytes
+// (221 of fields), four cache lines, aligned so that it never straddles a fifth.
 struct alignas(64) BvhNode {
-    Bounds3 box;
-    uint32_t firstOrRight = 0;
-    uint16_t count = 0;
-    uint8_t axis = 0;  // split axis of an interior node: visit order for closest()
+    Bounds4 boxes;             // slot k's box is lane k; unused lanes are never read (mask)
+    uint32_t slot[4] = {};     // leaf: index into Scene::children_ of its first child; else
+                               // the child node's index in Scene::bvh_
+    uint8_t leafCount[4] = {}; // children in a leaf slot (1..kBvhMaxLeafCount); 0: a node
+    uint8_t slots = 0;         // slots in use (1..4), the first ones
+    // Per direction octant (bit a: d[a] < 0), the slots nearest first, two bits each: the
+    // order the binary tree's splits give, so the walk needs no sort.
+    uint8_t order[8] = {};
+
+    unsigned usedMask() const { return (1u << slots) - 1u; }
 };
 
 }  // namespace csg

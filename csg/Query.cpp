@@ -3,6 +3,8 @@
 // pushed; intermediate lists live on that stack, so a query allocates nothing once the stack
 // has grown to the deepest ray seen.
 #include <algorithm>
+#include <bit>
+#include <cstring>
 
 #include "csg/Bvh.h"
 #include "csg/Compiled.h"
@@ -20,9 +22,14 @@ struct Evaluator {
     double originScale;   // |o| / |d|: see tol::kCoincidentRel
     double originLength;  // |o|, and 1 / |d|^2: for missesBall
     double invDD;
+    unsigned octant;  // bit a: d[a] < 0 (BvhNode::order)
 
     Evaluator(const Scene& s, QueryContext& c, const Ray& r)
-        : scene(s), ctx(c), ray(r), slab(r.o, r.d) {
+        : scene(s),
+          ctx(c),
+          ray(r),
+          slab(r.o, r.d),
+          octant(unsigned(r.d.x < 0.0) | unsigned(r.d.y < 0.0) << 1 | unsigned(r.d.z < 0.0) << 2) {
         const double dLength = glm::length(r.d);
         originLength = glm::length(r.o);
         originScale = dLength > 0.0 ? originLength / dLength : 0.0;
@@ -293,7 +300,7 @@ struct Evaluator {
     }
 
     // Calls visit(child) for the union's children whose bounds the ray meets in [t0, t1],
-    // nearer BVH subtrees first; visit returns false to stop, and may lower t1 through the
+    // nearer BVH slots first; visit returns false to stop, and may lower t1 through the
     // reference it is given.
     template <class Visit>
     void forEachChild(const CompiledNode& node, double t0, double& t1, Visit&& visit) {
@@ -301,27 +308,53 @@ struct Evaluator {
         if (node.bvhRoot == kNoNode) {
             for (uint32_t i = 0; i < node.bounded; ++i)
                 if (!visit(children[node.first + i])) return;
-        } else {
-            uint32_t todo[kBvhMaxDepth + 1];
-            int pending = 0;
-            todo[pending++] = node.bvhRoot;
-            while (pending > 0) {
-                const uint32_t self = todo[--pending];
-                const BvhNode& b = scene.bvh_[self];
-                if (!touches(b.box, t0, t1)) continue;
-                if (b.count > 0) {
-                    for (uint32_t i = 0; i < b.count; ++i)
-                        if (!visit(children[b.firstOrRight + i])) return;
-                    continue;
-                }
-                // Push the far child first so the near one is visited first.
-                const bool nearIsLeft = ray.d[b.axis] >= 0.0;
-                todo[pending++] = nearIsLeft ? b.firstOrRight : self + 1;
-                todo[pending++] = nearIsLeft ? self + 1 : b.firstOrRight;
-            }
+        } else if (!walkBvh(node.bvhRoot, t0, t1, visit)) {
+            return;
         }
         for (uint32_t i = node.bounded; i < node.count; ++i)
             if (!visit(children[node.first + i])) return;
+    }
+
+    // A BVH slot the walk has yet to enter: a node (leafCount 0) or a leaf's children.
+    struct PendingSlot {
+        double tNear;  // its box's widened entry: nothing in it lies before
+        uint32_t target;
+        uint32_t leafCount;
+    };
+
+    // forEachChild's walk of the BVH: the slots of a node are tested at once and pushed far to
+    // near, so the nearest is entered next; a slot whose entry lies past t1 (lowered by visit
+    // since it was pushed) is dropped unopened. False when visit stopped the walk.
+    template <class Visit>
+    bool walkBvh(uint32_t root, double t0, double& t1, Visit& visit) {
+        // Each node pops one entry and pushes at most four: depth grows the stack by three.
+        PendingSlot todo[3 * kBvhMaxDepth + 4];
+        int pending = 0;
+        const BvhNode* b = &scene.bvh_[root];
+        for (;;) {
+            ctx.stats.nodeVisits += b->slots;
+            alignas(32) double near[4];
+            const unsigned hits = clipToBoxes(slab, b->boxes, t0, t1, near) & b->usedMask();
+            // The slots hit, farthest first, so the nearest is popped next.
+            const unsigned order = b->order[octant];
+            for (int i = b->slots - 1; i >= 0; --i) {
+                const unsigned k = order >> (2 * i) & 3u;
+                if (hits >> k & 1u) todo[pending++] = {near[k], b->slot[k], b->leafCount[k]};
+            }
+            // Pop until a node to enter, visiting the leaves on the way.
+            for (;;) {
+                if (pending == 0) return true;
+                const PendingSlot& entry = todo[--pending];
+                if (entry.tNear > t1) continue;
+                if (entry.leafCount == 0) {
+                    b = &scene.bvh_[entry.target];
+                    break;
+                }
+                const uint32_t first = entry.target, count = entry.leafCount;
+                for (uint32_t i = 0; i < count; ++i)
+                    if (!visit(scene.children_[first + i])) return false;
+            }
+        }
     }
 
     size_t evalUnion(const CompiledNode& node, double t0, double t1) {

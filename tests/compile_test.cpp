@@ -151,12 +151,12 @@ TEST(Compile, BvhMakesNodeVisitsLogarithmic) {
 // work (a wrong flag still finds the same spans), so the counts are what pins the rules. Four unit
 // cubes centred at x = 0, 3, 6, 9: the binned SAH splits them 2 | 2 (cost 0.5 + (9 + 9) / 21
 // against 0.5 + (3 + 45) / 21 for 1 | 3; half areas 3, 9, 15, 21 for 1 to 4 cubes), then each pair
-// 1 | 1 (0.5 + 6 / 9 < 2), so the BVH is root -> {A: cubes 0, 1; B: cubes 2, 3} with one cube
-// per leaf. A ray along +y through a cube's centre meets only the BVH nodes over that cube.
-// spans() through cube 0: the root union's own box is not tested (the BVH root's is the same);
-// the BVH root, A, B, leaf 0 and leaf 1 are (the children of each node the ray enters): 5
-// visits; cube 0's own box is not tested again (leaf 0's is the same): cube 0 is solved, 1 test.
-// Testing either box again would make 6 visits.
+// 1 | 1 (0.5 + 6 / 9 < 2), so the binary tree is root -> {A: cubes 0, 1; B: cubes 2, 3} with one
+// cube per leaf, and the 4-wide BVH is one node whose four slots are the cubes. A ray along +y
+// through a cube's centre meets only that cube's slot. spans() through cube 0: the root union's
+// own box is not tested (the BVH's slots lie in it); the four slots are (one wide test, 4
+// visits); cube 0's own box is not tested again (its slot's box is the same): cube 0 is solved,
+// 1 test. Testing either box again would make 5 visits.
 TEST(Compile, BoxTestsTheBvhImpliesAreSkipped) {
     std::vector<NodePtr> cubes;
     for (int i = 0; i < 4; ++i)
@@ -170,23 +170,100 @@ TEST(Compile, BoxTestsTheBvhImpliesAreSkipped) {
     ASSERT_EQ(spans.size(), 1u);
     EXPECT_EQ(spans[0].in.t, 4.5);
     EXPECT_EQ(spans[0].out.t, 5.5);
-    EXPECT_EQ(ctx.stats.nodeVisits, 5u);
+    EXPECT_EQ(ctx.stats.nodeVisits, 4u);
     EXPECT_EQ(ctx.stats.primitiveTests, 1u);
 
-    // occluded() with an object cache. First, empty: the BVH root, A and leaf 0 are tested
-    // (3 visits), cube 0 is solved (1 test) and answers; the search stops and caches it.
+    // occluded() with an object cache. First, empty: the four slots are tested (4 visits),
+    // cube 0 is solved (1 test) and answers; the search stops and caches it.
     ObjectCache cache;
     ctx.stats = {};
     EXPECT_TRUE(scene.occluded(along(0.0), ctx, cache));
-    EXPECT_EQ(ctx.stats.nodeVisits, 3u);
+    EXPECT_EQ(ctx.stats.nodeVisits, 4u);
     EXPECT_EQ(ctx.stats.primitiveTests, 1u);
     // Through cube 1: the cached cube 0 is tried outside the BVH walk, so its own box is tested
-    // (1 visit, a miss: not solved); then the BVH root, A, leaf 0 (a miss) and leaf 1: 5 visits,
-    // cube 1 solved. Skipping cube 0's test would make 4 visits.
+    // (1 visit, a miss: not solved); then the four slots: 5 visits, cube 1 solved. Skipping
+    // cube 0's test would make 4 visits.
     ctx.stats = {};
     EXPECT_TRUE(scene.occluded(along(3.0), ctx, cache));
     EXPECT_EQ(ctx.stats.nodeVisits, 5u);
     EXPECT_EQ(ctx.stats.primitiveTests, 1u);
+}
+
+// The 4-wide BVH walk against every part on its own: a union of 400 overlapping parts (several
+// levels of wide nodes, slots of nodes and of parts mixed) answers each ray as the parts do
+// together: spans() is inside exactly where some part's spans are, closest() is the nearest of
+// the parts' first hits (rays starting outside every part), occluded() is whether any part is
+// met. Rays start anywhere: outside, inside parts, and late (tmin > 0).
+TEST(Compile, WideBvhWalkAnswersAsThePartsDoTogether) {
+    testing::Rng rng(400);
+    std::vector<NodePtr> parts;
+    std::vector<Scene> alone;
+    for (int i = 0; i < 400; ++i) {
+        const Vec3 at = rng.inBox(Vec3(-10.0), Vec3(10.0));
+        const double size = rng.uniform(0.2, 1.5);
+        const NodePtr shape = rng.chance(0.5)
+                                  ? leaf(Sphere{size})
+                                  : leaf(Box{Vec3(-size), Vec3(size, 0.5 * size, 2 * size)});
+        parts.push_back(transformed(glm::translate(Mat4(1.0), at), shape));
+        alone.push_back(Scene::compile(parts.back()));
+    }
+    const Scene scene = Scene::compile(uniteAll(parts));
+    QueryContext ctx, partCtx;
+    int hits = 0, inside = 0;
+    for (int r = 0; r < 3000; ++r) {
+        const Vec3 o = rng.inBox(Vec3(-14.0), Vec3(14.0));
+        const Vec3 d = glm::normalize(rng.inBox(Vec3(-1.0), Vec3(1.0)) + Vec3(0.0, 0.0, 1e-3));
+        const Ray ray{o, d, r % 3 == 0 ? rng.uniform(0.0, 5.0) : 0.0, 40.0};
+        const std::vector<Span> all(scene.spans(ray, ctx).begin(), scene.spans(ray, ctx).end());
+        // spans(): membership at sampled t, away from every end.
+        std::vector<std::vector<Span>> each;
+        for (const Scene& part : alone) {
+            const auto s = part.spans(ray, partCtx);
+            each.emplace_back(s.begin(), s.end());
+        }
+        const auto in = [](const std::vector<Span>& spans, double t) {
+            for (const Span& s : spans)
+                if (t >= s.in.t && t <= s.out.t) return true;
+            return false;
+        };
+        const auto nearEnd = [](const std::vector<Span>& spans, double t) {
+            for (const Span& s : spans)
+                if (std::abs(t - s.in.t) < 1e-9 || std::abs(t - s.out.t) < 1e-9) return true;
+            return false;
+        };
+        for (int k = 0; k < 64; ++k) {
+            const double t = ray.tmin + (ray.tmax - ray.tmin) * (k + 0.5) / 64;
+            bool want = false, ambiguous = nearEnd(all, t);
+            for (const auto& s : each) {
+                want = want || in(s, t);
+                ambiguous = ambiguous || nearEnd(s, t);
+            }
+            if (!ambiguous) {
+                ASSERT_EQ(in(all, t), want) << "ray " << r << " t " << t;
+            }
+        }
+        // occluded(): any part met.
+        bool anyMet = false, startsInside = false;
+        double nearest = kInfinity;
+        for (const auto& s : each) {
+            anyMet = anyMet || !s.empty();
+            if (s.empty()) continue;
+            if (!s[0].in.isSurface()) startsInside = true;
+            nearest = std::min(nearest, s[0].in.t);
+        }
+        ASSERT_EQ(scene.occluded(ray, ctx), anyMet) << "ray " << r;
+        // closest(): the nearest part's first hit, for rays that start outside every part.
+        const std::optional<Hit> got = scene.closest(ray, ctx);
+        inside += startsInside;
+        if (startsInside) continue;
+        ASSERT_EQ(got.has_value(), anyMet) << "ray " << r;
+        if (got) {
+            ++hits;
+            EXPECT_EQ(got->t, nearest) << "ray " << r;
+        }
+    }
+    EXPECT_GT(hits, 600);  // many rays meet a part, and some start inside one
+    EXPECT_GT(inside, 50);
 }
 
 // A map with exact 0 and +-1 entries: column j is sign[j] times axis to[j], then a shift.

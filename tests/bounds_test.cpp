@@ -1,0 +1,75 @@
+// Boxes and slab tests: clipToBoxes (four boxes at once, the wide BVH's test) gives clipToBox's
+// answer and entry bit for bit, on ordinary and on degenerate rays and boxes.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <limits>
+
+#include "csg/Bounds4.h"
+#include "tests/SeededRng.h"
+
+namespace csg {
+namespace {
+
+// A coordinate that is sometimes exactly 0, +-0, an integer, or infinite: the cases where a
+// slab's products are NaN (0 * inf) or its bounds coincide with the origin.
+double awkward(testing::Rng& rng) {
+    switch (rng.index(8)) {
+        case 0:
+            return 0.0;
+        case 1:
+            return -0.0;
+        case 2:
+            return double(rng.integer(-2, 2));
+        case 3:
+            return rng.chance(0.5) ? kInfinity : -kInfinity;
+        default:
+            return rng.uniform(-3.0, 3.0);
+    }
+}
+
+TEST(Bounds, FourBoxesAtOnceMatchOneAtATime) {
+    testing::Rng rng(44);
+    int hits = 0, misses = 0;
+    for (int trial = 0; trial < 200000; ++trial) {
+        // Integer-ish origins and directions put the ray in a box's face planes (0 * inf).
+        const Vec3 o{awkward(rng), awkward(rng), awkward(rng)};
+        const Vec3 d{awkward(rng), awkward(rng), awkward(rng)};
+        if (!std::isfinite(o.x) || !std::isfinite(o.y) || !std::isfinite(o.z)) continue;
+        const SlabRay ray(o, d);
+        Bounds3 boxes[4];
+        Bounds4 wide;
+        for (int k = 0; k < 4; ++k) {
+            for (int a = 0; a < 3; ++a) {
+                double lo = awkward(rng), hi = awkward(rng);
+                if (rng.chance(0.9) && lo > hi) std::swap(lo, hi);  // some stay empty
+                boxes[k].lo[a] = lo;
+                boxes[k].hi[a] = hi;
+                wide.lo[a][k] = lo;
+                wide.hi[a][k] = hi;
+            }
+        }
+        const double t0 = rng.chance(0.5) ? 0.0 : rng.uniform(-1.0, 1.0);
+        const double t1 = rng.chance(0.3) ? kInfinity : t0 + rng.uniform(0.0, 5.0);
+        double near[4];
+        const unsigned got = clipToBoxes(ray, wide, t0, t1, near);
+        for (int k = 0; k < 4; ++k) {
+            double a = t0, b = t1;
+            const bool want = clipToBox(ray, boxes[k], a, b);
+            ASSERT_EQ((got >> k & 1u) != 0, want) << "trial " << trial << " box " << k;
+            if (want) {
+                // Same bits (+0 and -0 apart): the walk skips a slot by this entry.
+                ASSERT_EQ(std::bit_cast<uint64_t>(near[k]), std::bit_cast<uint64_t>(a))
+                    << "trial " << trial << " box " << k;
+            }
+            (want ? hits : misses)++;
+        }
+    }
+    // Both answers occur often enough for the comparison to mean something.
+    EXPECT_GT(hits, 50000);
+    EXPECT_GT(misses, 50000);
+}
+
+}  // namespace
+}  // namespace csg
