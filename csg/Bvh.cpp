@@ -124,6 +124,16 @@ struct Builder {
     }
 };
 
+// Slot k of a wide node: its box, and the node or the leaf's first child it leads to.
+void setSlot(BvhNode& node, int k, const Bounds3& box, uint32_t target, uint32_t leafCount) {
+    for (int a = 0; a < 3; ++a) {
+        node.boxes.lo[a][k] = box.lo[a];
+        node.boxes.hi[a][k] = box.hi[a];
+    }
+    node.slot[k] = target;
+    node.leafCount[k] = static_cast<uint8_t>(leafCount);
+}
+
 // Collapses the binary tree into 4-wide nodes: a wide node takes a binary node's two children
 // and keeps opening the interior one of largest area among its slots (its two children take
 // its place) until it has four, so the slots a ray is most likely to enter are the ones the
@@ -163,13 +173,7 @@ struct Collapser {
         for (int k = 0; k < count; ++k) {
             const BinaryNode& b = binary[slots[k]];
             const uint32_t target = b.count > 0 ? itemsOffset + b.firstOrRight : collapse(slots[k]);
-            BvhNode& node = wide[index];  // collapse() may have moved the array
-            for (int a = 0; a < 3; ++a) {
-                node.boxes.lo[a][k] = b.box.lo[a];
-                node.boxes.hi[a][k] = b.box.hi[a];
-            }
-            node.slot[k] = target;
-            node.leafCount[k] = static_cast<uint8_t>(b.count);
+            setSlot(wide[index], k, b.box, target, b.count);  // after collapse() grew `wide`
         }
         wide[index].slots = static_cast<uint8_t>(count);
         return index;
@@ -204,12 +208,7 @@ uint32_t buildBvh(std::span<uint32_t> items, const std::vector<CompiledNode>& it
     if (builder.nodes[0].count > 0) {
         const uint32_t index = static_cast<uint32_t>(nodes.size());
         BvhNode& node = nodes.emplace_back();
-        for (int a = 0; a < 3; ++a) {
-            node.boxes.lo[a][0] = builder.nodes[0].box.lo[a];
-            node.boxes.hi[a][0] = builder.nodes[0].box.hi[a];
-        }
-        node.slot[0] = itemsOffset;
-        node.leafCount[0] = static_cast<uint8_t>(builder.nodes[0].count);
+        setSlot(node, 0, builder.nodes[0].box, itemsOffset, builder.nodes[0].count);
         node.slots = 1;
         return index;
     }
