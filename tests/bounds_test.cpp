@@ -50,7 +50,7 @@ TEST(Bounds, FourBoxesAtOnceMatchOneAtATime) {
                 wide.hi[a][k] = hi;
             }
         }
-        const double t0 = rng.chance(0.5) ? 0.0 : rng.uniform(-1.0, 1.0);
+        const double t0 = rng.chance(0.5) ? (rng.chance(0.5) ? 0.0 : -0.0) : rng.uniform(-1.0, 1.0);
         const double t1 = rng.chance(0.3) ? kInfinity : t0 + rng.uniform(0.0, 5.0);
         double near[4];
         const unsigned got = clipToBoxes(ray, wide, t0, t1, near);
