@@ -71,7 +71,7 @@ struct Rendered {
 };
 
 Rendered render(const LoadedScene& s, int width, int height, PlanSettings settings = {},
-                int threads = 2) {
+                int threads = 2, PixelStore store = PixelStore::LinearFloat, int aa = 1) {
     const io::Camera camera =
         s.model.camera ? *s.model.camera : frameBounds(s.scene, double(width) / height);
     Rendered r;
@@ -80,6 +80,8 @@ Rendered render(const LoadedScene& s, int width, int height, PlanSettings settin
     image.width = width;
     image.height = height;
     image.threads = threads;
+    image.store = store;
+    image.samplesPerAxis = aa;
     r.result =
         renderImage(s.scene, r.plan, RenderCamera(camera, width, height), image, nullptr, nullptr);
     return r;
@@ -543,6 +545,21 @@ TEST(Threads, ImageDoesNotDependOnTheThreadCount) {
     const Rendered three = render(s, 40, 30, {}, 3);
     EXPECT_EQ(one.result.image.rgb, three.result.image.rgb);
     EXPECT_EQ(one.result.rays.total(), three.result.rays.total());
+}
+
+// A PNG render keeps only each tile's 8-bit encoding: the same bytes as encoding the float
+// image, on sizes that cut tiles (16 pixels) at the right and bottom, with anti-aliasing.
+TEST(Threads, TilesEncodedToSrgbAreTheFloatImageEncoded) {
+    const LoadedScene s = load(scaledScene(1.0));
+    for (const auto& [width, height] : {std::pair{40, 30}, {17, 33}, {1, 1}}) {
+        const Rendered linear = render(s, width, height, {}, 2, PixelStore::LinearFloat, 2);
+        const Rendered srgb = render(s, width, height, {}, 3, PixelStore::Srgb8, 2);
+        EXPECT_TRUE(srgb.result.image.rgb.empty());
+        const io::Rgb8Image want = encodeSrgb(linear.result.image);
+        ASSERT_EQ(srgb.result.srgb.width, width);
+        ASSERT_EQ(srgb.result.srgb.height, height);
+        EXPECT_EQ(srgb.result.srgb.pixels, want.pixels) << width << "x" << height;
+    }
 }
 
 // Every pixel's primary ray of the scene's camera, traced twice by one Tracer: the heap

@@ -81,13 +81,14 @@ private:
 
 }  // namespace
 
-io::Rgb8Image encodeSrgb(const LinearImage& image) {
+void encodeSrgb(const float* linear, size_t count, uint8_t* out) {
     static const SrgbEncoder encode;
+    for (size_t i = 0; i < count; ++i) out[i] = encode(linear[i]);
+}
+
+io::Rgb8Image encodeSrgb(const LinearImage& image) {
     io::Rgb8Image out(image.width, image.height);
-    const float* in = image.rgb.data();
-    uint8_t* pixels = out.pixels.data();
-    const size_t count = image.rgb.size();
-    for (size_t i = 0; i < count; ++i) pixels[i] = encode(in[i]);
+    encodeSrgb(image.rgb.data(), image.rgb.size(), out.pixels.data());
     return out;
 }
 

@@ -16,6 +16,8 @@ enum class ImageFormat { Png, Pfm, Exr };
 
 // Linear RGB to 8-bit sRGB (the transfer function, not a plain 2.2 power).
 io::Rgb8Image encodeSrgb(const LinearImage& image);
+// The same for `count` channel values, from linear to out.
+void encodeSrgb(const float* linear, size_t count, uint8_t* out);
 
 // Returns an empty string on success, else the reason (the target is then untouched).
 std::string writeImage(const std::filesystem::path& path, ImageFormat format,

@@ -5,6 +5,7 @@
 #include <mutex>
 #include <thread>
 
+#include "viewer/render/ImageOutput.h"
 #include "viewer/render/Tracer.h"
 
 namespace viewer::render {
@@ -41,16 +42,24 @@ RenderResult renderImage(const csg::Scene& scene, const EffectsPlan& plan,
                          const RenderCamera& camera, const ImageSettings& settings,
                          const std::atomic<bool>* cancel, ProgressMeter* progress) {
     RenderResult result;
-    LinearImage& image = result.image;
-    image.width = settings.width;
-    image.height = settings.height;
+    const int width = settings.width, height = settings.height;
+    const bool srgb = settings.store == PixelStore::Srgb8;
     // Left unset: every pixel is written before the image is used (an interrupted render's
     // image is not).
-    image.rgb.resize(size_t(image.width) * size_t(image.height) * 3);
+    const size_t channels = size_t(width) * size_t(height) * 3;
+    if (srgb) {
+        result.srgb.width = width;
+        result.srgb.height = height;
+        result.srgb.pixels.resize(channels);
+    } else {
+        result.image.width = width;
+        result.image.height = height;
+        result.image.rgb.resize(channels);
+    }
 
     const int tile = settings.tileSize;
-    const int tilesX = (image.width + tile - 1) / tile;
-    const int tilesY = (image.height + tile - 1) / tile;
+    const int tilesX = (width + tile - 1) / tile;
+    const int tilesY = (height + tile - 1) / tile;
     const int tileCount = tilesX * tilesY;
     const int n = settings.samplesPerAxis;
     const double sampleWeight = 1.0 / double(n * n);
@@ -66,14 +75,18 @@ RenderResult renderImage(const csg::Scene& scene, const EffectsPlan& plan,
 
     auto work = [&](int worker) {
         Tracer tracer(scene, plan);
+        // An Srgb8 render's floats, one tile at a time (rows of `tile` pixels).
+        std::vector<float> tileFloats(srgb ? size_t(tile) * size_t(tile) * 3 : 0);
         for (int index; (index = nextTile.fetch_add(1)) < tileCount;) {
             if (cancel && cancel->load(std::memory_order_relaxed)) {
                 stopped = true;
                 break;
             }
             const int x0 = (index % tilesX) * tile, y0 = (index / tilesX) * tile;
-            const int x1 = std::min(x0 + tile, image.width), y1 = std::min(y0 + tile, image.height);
+            const int x1 = std::min(x0 + tile, width), y1 = std::min(y0 + tile, height);
             for (int y = y0; y < y1; ++y) {
+                float* row = srgb ? &tileFloats[size_t(y - y0) * size_t(tile) * 3]
+                                  : &result.image.rgb[(size_t(y) * size_t(width) + x0) * 3];
                 for (int x = x0; x < x1; ++x) {
                     csg::Vec3 sum(0.0);
                     for (int sy = 0; sy < n; ++sy) {
@@ -83,9 +96,11 @@ RenderResult renderImage(const csg::Scene& scene, const EffectsPlan& plan,
                             sum += tracer.tracePrimary(camera.ray(x + u, y + v));
                         }
                     }
-                    float* px = &image.rgb[(size_t(y) * size_t(image.width) + size_t(x)) * 3];
+                    float* px = row + size_t(x - x0) * 3;
                     for (int c = 0; c < 3; ++c) px[c] = float(sum[c] * sampleWeight);
                 }
+                if (srgb)
+                    encodeSrgb(row, size_t(x1 - x0) * 3, result.srgb.row(y) + size_t(x0) * 3);
             }
             tilesDone.fetch_add(1, std::memory_order_relaxed);
         }

@@ -8,6 +8,7 @@
 
 #include "csg/HugePages.h"
 #include "csg/Scene.h"
+#include "io/PngWriter.h"
 #include "viewer/render/EffectsPlan.h"
 #include "viewer/render/Progress.h"
 #include "viewer/render/RayCounts.h"
@@ -15,11 +16,17 @@
 
 namespace viewer::render {
 
+// What the workers keep of each pixel: linear float RGB (PFM, EXR, the viewer, tests), or only
+// its 8-bit sRGB encoding (PNG), made per tile while the tile's floats are in cache, so that
+// the float image (12 bytes a pixel, 30 MB at 1600x1600) is never made nor read back.
+enum class PixelStore { LinearFloat, Srgb8 };
+
 struct ImageSettings {
     int width = 800, height = 600;
     int samplesPerAxis = 1;  // --aa N: N x N stratified samples per pixel
     int threads = 1;         // >= 1
     int tileSize = 16;       // pixels per tile side
+    PixelStore store = PixelStore::LinearFloat;
 };
 
 // Linear RGB, row-major, top row first, 3 floats per pixel (on huge pages: csg/HugePages.h).
@@ -29,7 +36,8 @@ struct LinearImage {
 };
 
 struct RenderResult {
-    LinearImage image;
+    LinearImage image;         // when settings.store is LinearFloat
+    io::Rgb8Image srgb;        // when it is Srgb8: encodeSrgb of the same pixels
     RayCounts rays;            // summed over threads
     csg::QueryStats queries;   // summed over threads
     bool interrupted = false;  // the image is incomplete and must not be written
