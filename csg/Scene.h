@@ -34,7 +34,7 @@ struct CompileError : std::runtime_error {
 // Work counters of one context, summed over its queries (benchmarks and --stats read them).
 struct QueryStats {
     uint64_t rays = 0;
-    uint64_t nodeVisits = 0;      // CSG nodes and BVH nodes whose bounds were tested
+    uint64_t nodeVisits = 0;      // CSG nodes and BVH slots whose boxes were tested
     uint64_t primitiveTests = 0;  // primitive solves after their bounds were hit
 };
 
