@@ -2,9 +2,10 @@
 // puts a fan of triangles on every crossed grid edge, so a box face of n x n cells carries
 // ~4 n^2 triangles that all lie in one plane.
 //
-// OpenMesh's decimater by halfedge collapse: a collapse moves one vertex onto a neighbour, so
-// every kept vertex is one of the input's (exact crossings and QEF feature points stay where
-// dual contouring put them). A collapse is allowed only when
+// Halfedge collapses on an OpenMesh mesh, in the order OpenMesh's decimater makes them
+// (Decimate.h): a collapse moves one vertex onto a neighbour, so every kept vertex is one of the
+// input's (exact crossings and QEF feature points stay where dual contouring put them). A
+// collapse is allowed only when
 //   - OpenMesh's link condition holds (the mesh stays a closed 2-manifold),
 //   - the kept vertex is within maxDeviation of every plane of the input triangles merged into
 //     it (Garland-Heckbert quadrics, unweighted: a sum of squared plane distances bounds each
