@@ -4,13 +4,17 @@
 // structure, decimating, extracting the result) are timed. A plain program: one run, figures.
 //
 //   simplify_bench PART.scad [--tolerance T] [--threads N] [--budget B] [--runs N]
-//                  [--save FILE | --load FILE] [--out FILE]
+//                  [--save FILE | --load FILE] [--out FILE] [--checked | --unchecked]
+//                  [--count-crossings]
 //
 // --save writes the grid's mesh (and the budget) to FILE in a raw binary form and --load reads
 // it back, so repeated runs skip meshing (GLB and OBJ would round the positions; this keeps
 // them bit for bit); --out writes the simplified mesh of the last run in the same form (to check
 // that a change to simplify() keeps its result: compare the files). --budget overrides the budget;
-// --threads is simplify()'s worker count (0: all cores). Prints wall and CPU seconds of each run:
+// --threads is simplify()'s worker count (0: all cores). --unchecked simplifies without refusing
+// collapses that make triangles cross (what the check costs and what it prevents), --checked with
+// it (simplify()'s default); --count-crossings counts the result's self-intersections
+// (findSelfIntersections, as `csgray compare` does). Prints wall and CPU seconds of each run:
 // read CPU time on a shared machine.
 #include <algorithm>
 #include <chrono>
@@ -32,7 +36,7 @@ namespace {
 int usage() {
     std::fputs(
         "usage: simplify_bench PART.scad [--tolerance T] [--threads N] [--budget B] [--runs N] "
-        "[--save FILE | --load FILE] [--out FILE]\n",
+        "[--save FILE | --load FILE] [--out FILE] [--checked | --unchecked] [--count-crossings]\n",
         stderr);
     return 2;
 }
@@ -72,10 +76,19 @@ int main(int argc, char** argv) {
     std::string part, save, load, outFile;
     double tolerance = 0.0, budget = 0.0;
     int threads = 0, runs = 1;
+    bool refuseCrossings = true, countCrossings = false;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         if (arg.empty() || arg[0] != '-') {
             part = arg;
+            continue;
+        }
+        if (arg == "--unchecked" || arg == "--checked") {
+            refuseCrossings = arg == "--checked";
+            continue;
+        }
+        if (arg == "--count-crossings") {
+            countCrossings = true;
             continue;
         }
         if (i + 1 >= argc) return usage();
@@ -144,7 +157,8 @@ int main(int argc, char** argv) {
         csg::SimplifyStats stats;
         const double cpu0 = cpuSeconds();
         const auto start = std::chrono::steady_clock::now();
-        const csg::TriangleMesh coarse = csg::simplify(grid, budget, &stats, threads);
+        const csg::TriangleMesh coarse =
+            csg::simplify(grid, budget, &stats, threads, refuseCrossings);
         const double wall =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const double cpu = cpuSeconds() - cpu0;
@@ -160,6 +174,13 @@ int main(int argc, char** argv) {
             (unsigned long long)stats.trianglesAfter, wall, stats.buildSeconds,
             stats.decimateSeconds, stats.extractSeconds, cpu,
             manifold ? "closed manifold" : "NOT A CLOSED MANIFOLD");
+        std::printf("run %d: %llu collapses, %llu refused for crossing\n", run,
+                    (unsigned long long)stats.collapses, (unsigned long long)stats.refusedCrossing);
+        if (countCrossings) {
+            const csg::SelfIntersections x = csg::findSelfIntersections(coarse);
+            std::printf("run %d: self-intersections %llu, %llu of them coplanar\n", run,
+                        (unsigned long long)x.pairs, (unsigned long long)x.coplanarPairs);
+        }
         if (run + 1 == runs && !outFile.empty() && !writeMeshFile(outFile, budget, coarse)) {
             std::fprintf(stderr, "simplify_bench: cannot write %s\n", outFile.c_str());
             return 1;

@@ -200,13 +200,13 @@ inline constexpr double kMeshVertexSeparation = 1e-3;
 // the mesh is not hidden by it.
 inline constexpr double kSelfIntersectionContactRel = 1e-6;
 
-// Dual contouring's unfolding (csg/mesh/UnfoldVertices.h) tests its triangle pairs stricter than
-// findSelfIntersections does, by this factor both ways: a contact tolerance this many times
-// smaller (depths, overlaps, slivers) and coplanarity this many times looser (unit: ratio).
-// Why: it tests the double mesh, the check often runs on the GLB's floats, rounded by up to
-// 1/16 of the tolerance; on csg_grid3 (T = 0.05) a sliver folded onto its neighbour, tilted
-// from its plane by just over the tolerance (a contact in double), came back from the GLB
-// within it, a coplanar overlap.
+// Dual contouring's unfolding (csg/mesh/UnfoldVertices.h) and the simplifier's crossing rule
+// (csg/mesh/Simplify.h) test their triangle pairs stricter than findSelfIntersections does, by
+// this factor both ways: a contact tolerance this many times smaller (depths, overlaps,
+// slivers) and coplanarity this many times looser (unit: ratio). Why: they test the double
+// mesh, the check often runs on the GLB's floats, rounded by up to 1/16 of the tolerance; on
+// csg_grid3 (T = 0.05) a sliver folded onto its neighbour, tilted from its plane by just over
+// the tolerance (a contact in double), came back from the GLB within it, a coplanar overlap.
 inline constexpr double kUnfoldCheckMargin = 2.0;
 
 // Two crossings of one grid edge whose normals are further apart than this (unit: cosine,

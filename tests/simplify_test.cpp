@@ -1,13 +1,16 @@
 // Simplification of a big grid mesh in blocks (csg/mesh/Simplify.h): slabs decimated on their own
 // workers with their borders locked, then one pass over the whole mesh, must keep the rules a
-// one-piece run keeps. The small-mesh tests of Simplify are in mesh_test.cpp.
+// one-piece run keeps; and no collapse may make triangles cross. The small-mesh tests of
+// Simplify are in mesh_test.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <optional>
 #include <set>
+#include <utility>
 
 #include "csg/Tree.h"
 #include "csg/mesh/MeshCheck.h"
@@ -82,6 +85,7 @@ TEST_F(SimplifyBlocks, ManifoldWithinBudgetAndBordersKept) {
         EXPECT_GE(stats.blocks, 2);
         EXPECT_EQ(stats.trianglesAfter, coarse.triangles.size());
         EXPECT_TRUE(checkTopology(coarse).closedManifold());
+        EXPECT_EQ(findSelfIntersections(coarse).pairs, 0u);
         EXPECT_LT(coarse.triangles.size(), grid.triangles.size() / 5);
         // The pass over the whole mesh coarsens the strips the blocks' locks held back.
         EXPECT_LT(coarse.triangles.size(), stats.trianglesAfterBlocks);
@@ -115,6 +119,70 @@ TEST_F(SimplifyBlocks, ManifoldWithinBudgetAndBordersKept) {
         EXPECT_LE(to, gridError + budget);
         EXPECT_LE(back, gridError + budget);
     }
+}
+
+// A sphere of radius r about the origin: an icosahedron subdivided `levels` times, vertices
+// pushed onto the sphere, appended to mesh; facing outward, or inward when `inward` (the inner
+// wall of a hollow ball).
+void appendIcosphere(TriangleMesh& mesh, double r, int levels, bool inward) {
+    const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+    std::vector<Vec3> p = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                           {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                           {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<std::array<uint32_t, 3>> f = {
+        {0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+        {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+        {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+    for (Vec3& q : p) q = glm::normalize(q);
+    for (int level = 0; level < levels; ++level) {
+        std::map<std::pair<uint32_t, uint32_t>, uint32_t> middle;
+        auto mid = [&](uint32_t a, uint32_t b) {
+            const auto key = std::minmax(a, b);
+            const auto [it, added] = middle.emplace(key, uint32_t(p.size()));
+            if (added) p.push_back(glm::normalize(p[a] + p[b]));
+            return it->second;
+        };
+        std::vector<std::array<uint32_t, 3>> next;
+        for (const auto& [a, b, c] : f) {
+            const uint32_t ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
+            next.insert(next.end(), {{a, ab, ca}, {b, bc, ab}, {c, ca, bc}, {ab, bc, ca}});
+        }
+        f.swap(next);
+    }
+    const auto base = uint32_t(mesh.positions.size());
+    for (const Vec3& q : p) mesh.positions.push_back(r * q);
+    for (const auto& [a, b, c] : f)
+        mesh.triangles.push_back(inward ? std::array<uint32_t, 3>{base + a, base + c, base + b}
+                                        : std::array<uint32_t, 3>{base + a, base + b, base + c});
+}
+
+// A hollow ball whose wall (0.005) is thinner than the budget (0.02): a chord of the outer wall
+// that the deviation rules allow (its sagitta within the budget) dips through the inner wall,
+// which no rule that looks at the outer wall's own fans sees. The inner wall's chords bend away.
+TEST(Simplify, CollapsesDoNotCrossAThinWall) {
+    TriangleMesh shell;
+    appendIcosphere(shell, 1.0, 4, false);
+    appendIcosphere(shell, 0.995, 4, true);
+    ASSERT_TRUE(checkTopology(shell).closedManifold());
+    ASSERT_EQ(findSelfIntersections(shell).pairs, 0u);
+    const double budget = 0.02;
+
+    // Unchecked, the outer wall crosses the inner one (what the test is about).
+    SimplifyStats unchecked;
+    const TriangleMesh crossing = simplify(shell, budget, &unchecked, 1, false);
+    EXPECT_GT(findSelfIntersections(crossing).pairs, 0u)
+        << "the thin wall no longer tests anything";
+    EXPECT_EQ(unchecked.refusedCrossing, 0u);
+
+    SimplifyStats stats;
+    const TriangleMesh coarse = simplify(shell, budget, &stats, 1);
+    EXPECT_TRUE(checkTopology(coarse).closedManifold());
+    const SelfIntersections x = findSelfIntersections(coarse);
+    EXPECT_EQ(x.pairs, 0u) << x.coplanarPairs << " coplanar, one at " << x.example.x << ","
+                           << x.example.y << "," << x.example.z;
+    EXPECT_GT(stats.refusedCrossing, 0u);
+    // Refusing collapses at the wall does not stop the coarsening elsewhere.
+    EXPECT_LT(coarse.triangles.size(), shell.triangles.size() / 2);
 }
 
 }  // namespace

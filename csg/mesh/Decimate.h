@@ -8,6 +8,7 @@
 #include <OpenMesh/Core/Geometry/QuadricT.hh>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -28,9 +29,27 @@ struct Piece {
     std::vector<uint32_t> materials;
 };
 
+// What a collapse may do besides the deviation rules.
+struct CollapseLimits {
+    double maxDeviation = 0.0;  // world units (Simplify.h)
+    // Refuse a collapse that makes a triangle of its new fan cross or overlap another triangle
+    // of the piece (MeshCheck.h triangleContact with these tolerances, world units). Off when
+    // contactTol <= 0.
+    double contactTol = 0.0, flatTol = 0.0;
+    // Triangles outside the piece that do not change while it is decimated and that its new
+    // triangles must not cross or overlap either (when contactTol > 0): the near triangles of
+    // the neighbouring slabs (Simplify.cpp).
+    std::vector<std::array<Vec3, 3>> obstacles;
+};
+
+struct DecimateStats {
+    uint64_t collapses = 0;
+    uint64_t refusedCrossing = 0;  // collapses refused because their fan would cross a triangle
+};
+
 // Decimates a piece in place: the kept vertices (in their order, with their merged quadrics)
 // and the triangles left. False when OpenMesh refuses a face (a piece that is not a 2-manifold
-// with boundary); the piece is then unchanged. maxDeviation: world units (Simplify.h).
-bool decimate(Piece& piece, double maxDeviation);
+// with boundary); the piece is then unchanged. stats, when given, is added to.
+bool decimate(Piece& piece, const CollapseLimits& limits, DecimateStats* stats = nullptr);
 
 }  // namespace csg

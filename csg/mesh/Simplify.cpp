@@ -11,6 +11,7 @@
 
 #include "csg/Tolerances.h"
 #include "csg/mesh/Decimate.h"
+#include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/ParallelFor.h"
 
 namespace csg {
@@ -30,10 +31,12 @@ constexpr size_t kMaxBlocks = 16;
 // and every neighbour of those locked. An unlocked vertex then has its whole fan and every
 // neighbour's whole fan in the slab, so the slab's link condition, fan and quadrics are the
 // whole mesh's for every collapse it makes; what the locks held back is left to the pass over
-// the whole mesh that follows. Returns the merged mesh as one piece, or nothing when a slab is
-// not a 2-manifold with boundary (a vertex pinched at the slab's border).
-std::optional<Piece> decimateInBlocks(const Piece& whole, double maxDeviation, int blocks,
-                                      int threads) {
+// the whole mesh that follows. With crossings checked, a slab also sees the triangles of the
+// slabs that can come near it (step 4). Returns the merged mesh as one piece, or nothing when
+// a slab is not a 2-manifold with boundary (a vertex pinched at the slab's border). stats is
+// added to.
+std::optional<Piece> decimateInBlocks(const Piece& whole, const CollapseLimits& limits, int blocks,
+                                      int threads, DecimateStats& stats) {
     const size_t nv = whole.positions.size(), nt = whole.triangles.size();
     // Step 1: the slab of every triangle, by its first corner along the longest axis.
     Vec3 lo(INFINITY), hi(-INFINITY);
@@ -79,7 +82,7 @@ std::optional<Piece> decimateInBlocks(const Piece& whole, double maxDeviation, i
             for (const uint32_t v : tri) locked[v] = 1;
     }
 
-    // Step 3: the slabs as pieces (local vertex indices), decimated in parallel.
+    // Step 3: the slabs as pieces (local vertex indices).
     std::vector<std::vector<uint32_t>> slabTriangles(static_cast<size_t>(blocks));
     for (size_t t = 0; t < nt; ++t) slabTriangles[slab[t]].push_back(uint32_t(t));
     std::vector<Piece> pieces(static_cast<size_t>(blocks));
@@ -107,13 +110,74 @@ std::optional<Piece> decimateInBlocks(const Piece& whole, double maxDeviation, i
             }
         }
     }
+    // Step 4: the slabs decimated, in parallel. With crossings checked, a slab must also keep
+    // clear of its neighbours' triangles, which it cannot see change: slabs whose triangles can
+    // come near each other are decimated in different rounds, and each tests its collapses
+    // against the near triangles of those others as they are then (unchanged during its round).
+    // A triangle's corners are vertices of its slab, and a slab's vertices lie within `reach`
+    // (the largest extent along the axis of a triangle of whole) of its keys: slabs i < j can
+    // meet only where [cuts[j - 1] - reach, ...) comes within the contact margin of
+    // (..., cuts[i] + reach], always for neighbours, rarely for others (a slab between them
+    // thinner than 2 reach). Unchecked, every slab runs in the first round, with no obstacles.
+    const bool checking = limits.contactTol > 0.0;
+    double reach = 0.0;
+    for (const auto& tri : whole.triangles) {
+        const double a = whole.positions[tri[0]][axis], b = whole.positions[tri[1]][axis],
+                     c = whole.positions[tri[2]][axis];
+        reach = std::max(reach, std::max({a, b, c}) - std::min({a, b, c}));
+    }
+    const double margin = 2.0 * (limits.contactTol + limits.flatTol);
+    auto lowest = [&](int b) { return b == 0 ? -INFINITY : cuts[size_t(b - 1)] - reach; };
+    auto highest = [&](int b) { return b + 1 == blocks ? INFINITY : cuts[size_t(b)] + reach; };
+    auto meet = [&](int i, int j) {  // i < j
+        return j == i + 1 || lowest(j) <= highest(i) + margin;
+    };
+    std::vector<int> round(static_cast<size_t>(blocks), 0);
+    int rounds = 1;
+    if (checking)
+        for (int b = 0; b < blocks; ++b) {
+            // The first round no earlier slab that b meets runs in.
+            std::vector<uint8_t> taken(static_cast<size_t>(blocks), 0);
+            for (int i = 0; i < b; ++i)
+                if (meet(i, b)) taken[size_t(round[size_t(i)])] = 1;
+            while (taken[size_t(round[size_t(b)])]) ++round[size_t(b)];
+            rounds = std::max(rounds, round[size_t(b)] + 1);
+        }
     std::atomic<bool> refused{false};
-    parallelFor(uint64_t(blocks), threads, [&](int, uint64_t b) {
-        if (!decimate(pieces[b], maxDeviation)) refused = true;
-    });
+    std::vector<DecimateStats> slabStats(static_cast<size_t>(blocks));
+    for (int r = 0; r < rounds; ++r) {
+        std::vector<uint32_t> now;
+        for (int b = 0; b < blocks; ++b)
+            if (round[size_t(b)] == r) now.push_back(uint32_t(b));
+        parallelFor(now.size(), threads, [&](int, uint64_t k) {
+            const int b = int(now[k]);
+            CollapseLimits slabLimits = limits;
+            if (checking) {
+                const double from = lowest(b) - margin, to = highest(b) + margin;
+                for (int j = 0; j < blocks; ++j) {
+                    if (j == b || !meet(std::min(b, j), std::max(b, j))) continue;
+                    const Piece& other = pieces[size_t(j)];
+                    for (const auto& tri : other.triangles) {
+                        const std::array<Vec3, 3> corners{other.positions[tri[0]],
+                                                          other.positions[tri[1]],
+                                                          other.positions[tri[2]]};
+                        const double a = corners[0][axis], c = corners[1][axis],
+                                     d = corners[2][axis];
+                        if (std::max({a, c, d}) >= from && std::min({a, c, d}) <= to)
+                            slabLimits.obstacles.push_back(corners);
+                    }
+                }
+            }
+            if (!decimate(pieces[size_t(b)], slabLimits, &slabStats[size_t(b)])) refused = true;
+        });
+    }
     if (refused) return std::nullopt;
+    for (const DecimateStats& d : slabStats) {
+        stats.collapses += d.collapses;
+        stats.refusedCrossing += d.refusedCrossing;
+    }
 
-    // Step 4: the slabs merged into one piece, vertices indexed as in the input's order of
+    // Step 5: the slabs merged into one piece, vertices indexed as in the input's order of
     // first use; a shared vertex (never moved, never merged into: its neighbours are locked)
     // appears once, its quadric the input's, and the slabs' locks are lifted.
     Piece merged;
@@ -145,7 +209,7 @@ std::optional<Piece> decimateInBlocks(const Piece& whole, double maxDeviation, i
 }  // namespace
 
 TriangleMesh simplify(const TriangleMesh& mesh, double maxDeviation, SimplifyStats* stats,
-                      int threads) {
+                      int threads, bool refuseCrossings) {
     using Clock = std::chrono::steady_clock;
     auto since = [](Clock::time_point t) {
         return std::chrono::duration<double>(Clock::now() - t).count();
@@ -192,11 +256,22 @@ TriangleMesh simplify(const TriangleMesh& mesh, double maxDeviation, SimplifySta
     s.buildSeconds = since(phase);
     phase = Clock::now();
 
-    // Step 2: decimate, a big mesh in blocks first (on all workers), then the whole.
+    // Step 2: decimate, a big mesh in blocks first (on all workers), then the whole. Crossings
+    // are tested as findSelfIntersections would test the mesh, made stricter by the margin the
+    // unfolding uses, so that the result passes that test also after rounding to float.
+    CollapseLimits limits;
+    limits.maxDeviation = maxDeviation;
+    if (refuseCrossings) {
+        const double contact = selfIntersectionTolerance(mesh, tol::kSelfIntersectionContactRel);
+        limits.contactTol = contact / tol::kUnfoldCheckMargin;
+        limits.flatTol = contact * tol::kUnfoldCheckMargin;
+    }
+    DecimateStats counts;
     const int blocks = int(std::min(kMaxBlocks, nt / kTrianglesPerBlock));
     Piece piece;
     if (blocks >= 2) {
-        if (std::optional<Piece> merged = decimateInBlocks(whole, maxDeviation, blocks, threads)) {
+        if (std::optional<Piece> merged =
+                decimateInBlocks(whole, limits, blocks, threads, counts)) {
             piece = std::move(*merged);
             s.blocks = blocks;
             s.trianglesAfterBlocks = piece.triangles.size();
@@ -204,8 +279,11 @@ TriangleMesh simplify(const TriangleMesh& mesh, double maxDeviation, SimplifySta
         s.blocksSeconds = since(phase);
     }
     if (piece.triangles.empty()) piece = std::move(whole);
-    if (!decimate(piece, maxDeviation)) return mesh;  // not manifold: left to the checks downstream
+    // Not manifold: left to the checks downstream.
+    if (!decimate(piece, limits, &counts)) return mesh;
     s.built = true;
+    s.collapses = counts.collapses;
+    s.refusedCrossing = counts.refusedCrossing;
     s.decimateSeconds = since(phase);
     phase = Clock::now();
 

@@ -12,15 +12,23 @@
 //     one, so a crease or corner cannot be cut),
 //   - the removed vertex is within maxDeviation of the triangles that replace its fan,
 //   - no triangle of the fan turns by more than tol::kSimplifyMaxFanTurnCos (no fold-overs),
-//   - the removed vertex touches triangles of one material only (material borders stay).
+//   - the removed vertex touches triangles of one material only (material borders stay),
+//   - no triangle of the new fan crosses or overlaps another triangle of the mesh as it is when
+//     the collapse is made (MeshCheck.h triangleContact, the pair test of findSelfIntersections,
+//     made stricter by tol::kUnfoldCheckMargin both ways so the result passes it also as
+//     floats): the rules above look at the fan only, and a chord they allow may still cut
+//     through the other side of a wall or gap thinner than the budget. The triangles near the
+//     fan come from a grid of boxes kept up to date (BoxGrid.h); a refused collapse leaves the
+//     vertex to its next best one.
 // Collapses go cheapest first (quadric error, then edge length, so flat regions coarsen
 // evenly). A mesh of a few hundred thousand triangles or more is first cut into slabs
 // (how many depends on the mesh only) decimated in parallel, each with the vertices on and next to
 // its borders locked (so every collapse a slab makes sees the whole mesh's fans, rings and
-// quadrics), and then decimated as a whole, which coarsens the border strips: the same rules hold,
-// the collapse order differs from one piece's. The result is checked by the caller against the
-// exact surface (Tessellate.cpp): these rules bound the deviation from the *input mesh* locally,
-// not the distance to the part.
+// quadrics; slabs that could come near each other run one after the other, each seeing the
+// other's triangles), and then decimated as a whole, which coarsens the border strips: the same
+// rules hold, the collapse order differs from one piece's. The result is checked by the caller
+// against the exact surface (Tessellate.cpp): these rules bound the deviation from the *input
+// mesh* locally, not the distance to the part.
 #pragma once
 
 #include <cstdint>
@@ -40,12 +48,16 @@ struct SimplifyStats {
     int blocks = 0;
     double blocksSeconds = 0.0;
     uint64_t trianglesAfterBlocks = 0;
+    uint64_t collapses = 0;        // collapses made, blocks and whole pass
+    uint64_t refusedCrossing = 0;  // collapses refused: a new triangle would cross another
 };
 
 // The simplified mesh; normals and materials of kept vertices and triangles are carried over.
 // maxDeviation <= 0 or an empty mesh returns the input unchanged. threads: workers for the
-// slabs (0: all cores); the result does not depend on it.
+// slabs (0: all cores); the result does not depend on it. refuseCrossings = false drops the
+// crossing rule (for tests and benchmarks of what it costs and prevents; the collapses are then
+// exactly those made before it existed).
 TriangleMesh simplify(const TriangleMesh& mesh, double maxDeviation, SimplifyStats* stats = nullptr,
-                      int threads = 0);
+                      int threads = 0, bool refuseCrossings = true);
 
 }  // namespace csg
