@@ -224,5 +224,35 @@ TEST(UnfoldVertices, AStarThatWindsTwiceIsFoundFolded) {
     EXPECT_EQ(s.foldedGroups, 0u);
 }
 
+// A sheet vertex's star from csg_grid's GLB at T = 0.013 (vertex 0, clamped 1e-3 h inside the
+// cell face x = 0.8104531, float coordinates): two of its neighbours, (4 0 5) and (8 5 0), lie
+// almost in that face, seen edge-on along the star's mean normal, and fold 8 degrees apart
+// across their edge 0-5; the second is a sliver 3e-5 wide. Every triangle turns the same way
+// seen along the mean and the angles add up to one turn, yet the pair test finds the two
+// overlapping within its coplanarity tolerance. The certificate must not pass it: neighbours
+// facing more than 90 degrees apart send a star to the pair test (without that, the unfolding
+// never saw this cell and the GLB kept the pair).
+TEST(UnfoldVertices, NeighboursFoldedFlatWithinTheToleranceAreFoundFolded) {
+    TriangleMesh star;
+    star.positions = {{0.81046903133392334, 0.072003215551377009, 2.95116138458252},
+                      {0.81832945346832275, 0.060693595558405589, 2.948065042495728},
+                      {0.82371342182159424, 0.061364781111479472, 2.947914838790894},
+                      {0.81307852268218994, 0.060038994997740458, 2.9482116699218754},
+                      {0.81045305728912354, 0.060693595558405589, 2.9485051631927495},
+                      {0.81045305728912354, 0.076615631580353449, 2.9520716667175297},
+                      {0.82640540599822998, 0.062707155942917536, 2.948065042495728},
+                      {0.8343815803527832, 0.070670880377293299, 2.9494035243988042},
+                      {0.81045305728912354, 0.076645925641060542, 2.952067613601685},
+                      {0.81046748161315918, 0.076645925641060542, 2.9520776271820073},
+                      {0.82640540599822998, 0.076645925641060542, 2.9511876106262211}};
+    star.triangles = {{1, 2, 0}, {1, 0, 3}, {4, 3, 0}, {4, 0, 5},  {6, 0, 2},
+                      {6, 7, 0}, {8, 5, 0}, {8, 0, 9}, {10, 0, 7}, {10, 9, 0}};
+    const SelfIntersections x = findSelfIntersections(star);
+    ASSERT_EQ(x.pairs, 1u);
+    ASSERT_EQ(x.coplanarPairs, 1u);
+    const double tol = selfIntersectionTolerance(star, 1e-6);
+    EXPECT_EQ(findFoldedGroups(star, {{0, 1}}, tol, 1), std::vector<uint32_t>{0});
+}
+
 }  // namespace
 }  // namespace csg

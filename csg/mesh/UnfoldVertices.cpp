@@ -117,6 +117,13 @@ private:
     // and their angles at v add up to one full turn, so their projections tile a disk around
     // v once and do not overlap (nor do the triangles, which project one-to-one). Cheap (no
     // pair of triangles is tested): most vertices pass, and only the rest are tested pairwise.
+    // The pair test has tolerances the certificate does not: two neighbours folded onto each
+    // other to within the coplanarity tolerance overlap by its rules although they are apart
+    // (csg_grid at T = 0.013: a vertex clamped 1e-3 h inside a cell face, a sliver of its fan
+    // folded 8 degrees from its neighbour, both seen edge-on along the mean). So neighbours
+    // (triangles sharing an edge at v) must also face within 90 degrees of each other: then
+    // their third corners lie on either side of the shared edge in either one's plane, where
+    // the pair test finds them apart too.
     bool starIsEmbedded(uint32_t v) const {
         const Vec3 at = mesh_.positions[v];
         Vec3 mean(0.0);
@@ -129,16 +136,30 @@ private:
         if (!(len > 0.0)) return false;
         const Vec3 d = mean / len;
         double turn = 0.0;
-        for (uint32_t i = starStart_[v]; i < starStart_[v + 1]; ++i) {
-            const auto& tri = mesh_.triangles[star_[i]];
+        // Per triangle: the corners after v in its winding, and its normal (unnormalized).
+        constexpr uint32_t kMaxStar = 32;
+        const uint32_t count = starStart_[v + 1] - starStart_[v];
+        if (count > kMaxStar) return false;
+        uint32_t next[kMaxStar], prev[kMaxStar];
+        Vec3 normal[kMaxStar];
+        for (uint32_t i = 0; i < count; ++i) {
+            const auto& tri = mesh_.triangles[star_[starStart_[v] + i]];
             const int k = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
-            const Vec3 b = mesh_.positions[tri[size_t((k + 1) % 3)]] - at;
-            const Vec3 c = mesh_.positions[tri[size_t((k + 2) % 3)]] - at;
-            const double sine = glm::dot(glm::cross(b, c), d);
+            next[i] = tri[size_t((k + 1) % 3)];
+            prev[i] = tri[size_t((k + 2) % 3)];
+            const Vec3 b = mesh_.positions[next[i]] - at;
+            const Vec3 c = mesh_.positions[prev[i]] - at;
+            normal[i] = glm::cross(b, c);
+            const double sine = glm::dot(normal[i], d);
             if (!(sine > 0.0)) return false;
             turn += std::atan2(sine, glm::dot(b, c) - glm::dot(b, d) * glm::dot(c, d));
         }
-        return std::abs(turn - 2.0 * std::numbers::pi) < kFullTurnSlack;
+        if (!(std::abs(turn - 2.0 * std::numbers::pi) < kFullTurnSlack)) return false;
+        // Neighbour j of i follows it around v: it shares the edge from v to i's last corner.
+        for (uint32_t i = 0; i < count; ++i)
+            for (uint32_t j = 0; j < count; ++j)
+                if (next[j] == prev[i] && !(glm::dot(normal[i], normal[j]) > 0.0)) return false;
+        return true;
     }
 
     // Whether a triangle of the group's stars crosses or overlaps another of them or, when
