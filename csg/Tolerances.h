@@ -183,11 +183,20 @@ inline constexpr double kDistanceFirstLineFraction = 0.25;
 // How far apart dual contouring keeps vertices that must stay distinct points once written as
 // float to a GLB (unit: multiples of the cell size h; a cell thinner than 4x this, one through a
 // thin gap, uses a quarter of its width instead): a crossing is kept this far inside its grid
-// edge, sheet vertices this far inside their cell and from each other, and a crease vertex on a
-// cell face closer than this to a crossing on the face is dropped (it would only make a sliver
-// triangle). Why: float's relative 6e-8 of a coordinate is ~1e-5 h for parts ~100 h across, so
-// 1e-3 h stays clear of that, and each of these moves the mesh by at most 1e-3 h.
+// edge, and sheet vertices this far inside their cell and from each other. Why: float's relative
+// 6e-8 of a coordinate is ~1e-5 h for parts ~100 h across, so 1e-3 h stays clear of that, and
+// each of these moves the mesh by at most 1e-3 h.
 inline constexpr double kMeshVertexSeparation = 1e-3;
+
+// A crease vertex on a cell face closer than this to a crossing on the face is dropped, the face
+// curve then runs straight between its crossings (unit: multiples of h; a quarter of a thinner
+// cell's width, as for kMeshVertexSeparation). Such a vertex only adds a sliver triangle, and a
+// sliver this short folds onto its neighbour within the self-intersection check's coplanarity
+// tolerance (kSelfIntersectionContactRel) at a few degrees: csg_grid at T = 0.013 had two
+// crease vertices 1.1e-3 h from the crossing of one edge, on its two faces, on the same side
+// (the surface runs almost along the edge), so the cell's ring doubled back there and no place
+// of its sheet vertex unfolded it. Dropping it moves the face curve by at most this much.
+inline constexpr double kCreaseVertexSeparation = 1e-2;
 
 // Self-intersection check (csg/mesh/MeshCheck.h): two triangles count as crossing only when
 // each reaches through the other's plane, and their overlap is longer, by more than this

@@ -2,14 +2,17 @@
 // distances and every sample meshed within its tolerance.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <numbers>
 
 #include <unistd.h>
 
+#include "csg/Tolerances.h"
 #include "csg/Volume.h"
 #include "csg/mesh/CellTopology.h"
 #include "csg/mesh/CreaseNormals.h"
+#include "csg/mesh/DualContour.h"
 #include "csg/mesh/HermiteGrid.h"
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/MeshDistance.h"
@@ -451,6 +454,46 @@ TEST(Tessellate, CornerOnAGridNodeStaysManifoldAsFloats) {
         const MeshTopology t = checkTopology(weldExactDuplicates(mesh));
         EXPECT_TRUE(t.closedManifold()) << n << ": " << describe(t);
     }
+}
+
+// A crease vertex on a cell face (where the two crossings' tangent lines meet) is kept only when
+// it is tol::kCreaseVertexSeparation h or more from both crossings: nearer, it adds only a
+// sliver that can fold onto its neighbour within the self-intersection check's tolerance
+// (csg_grid at T = 0.013). Box edges at random angles pierce cell faces anywhere, so some land
+// near a face's crossings (with 1e-3 h as the limit, edges of 1e-3 h to 1e-2 h occurred here).
+TEST(DualContour, CreaseVerticesKeepClearOfCrossings) {
+    testing::Rng rng(17);
+    const double h = 0.1;
+    int creaseVertices = 0;
+    for (int trial = 0; trial < 8; ++trial) {
+        const Mat4 turn =
+            glm::rotate(Mat4(1.0), rng.uniform(-kPi, kPi),
+                        glm::normalize(rng.inBox(Vec3(-1.0), Vec3(1.0)) + Vec3(0.0, 0.0, 2.0)));
+        const Scene scene = Scene::compile(
+            transformed(turn, leaf(Box{Vec3(-0.7, -0.5, -0.6), Vec3(0.6, 0.7, 0.5)})));
+        const GridSpec spec = makeGrid(scene.bounds(), h);
+        const TriangleMesh mesh = dualContour(HermiteGrid::cast(scene, spec, 0), nullptr, 0);
+        ASSERT_TRUE(checkTopology(mesh).closedManifold());
+        // How many coordinates of a vertex lie on grid planes: 2 for a crossing (on a grid
+        // edge), 1 for a vertex on a cell face, 0 inside a cell.
+        auto onPlanes = [&](const Vec3& p) {
+            int n = 0;
+            for (int a = 0; a < 3; ++a)
+                n += std::binary_search(spec.coords[size_t(a)].begin(),
+                                        spec.coords[size_t(a)].end(), p[a]);
+            return n;
+        };
+        for (const auto& tri : mesh.triangles)
+            for (int k = 0; k < 3; ++k) {
+                const Vec3 &p = mesh.positions[tri[size_t(k)]],
+                           &q = mesh.positions[tri[size_t((k + 1) % 3)]];
+                if (onPlanes(p) != 1 || onPlanes(q) != 2) continue;
+                ++creaseVertices;
+                EXPECT_GE(glm::length(p - q), tol::kCreaseVertexSeparation * h * (1.0 - 1e-9))
+                    << "trial " << trial << " at " << p.x << "," << p.y << "," << p.z;
+            }
+    }
+    EXPECT_GT(creaseVertices, 100);
 }
 
 // io::writeMesh refuses a mesh that is not a closed manifold, in every format, and leaves no

@@ -696,8 +696,9 @@ private:
         Vec3 crease;
         uint32_t vertex = kNone;
         // A crease point (almost) on one of the crossings adds nothing but a sliver triangle
-        // whose corners round to one point when written as float: skip it.
-        const double apart = separation(std::min(hi[0] - lo[0], hi[1] - lo[1]));
+        // that can fold onto its neighbour (tol::kCreaseVertexSeparation): skip it.
+        const double width = std::min(hi[0] - lo[0], hi[1] - lo[1]);
+        const double apart = std::min(0.25 * width, tol::kCreaseVertexSeparation * spec_.h);
         if (s0.measured && s1.measured &&
             creaseOnFace(s0.point, s0.normal, s1.point, s1.normal, u, v, lo, hi, crease) &&
             glm::length(crease - s0.point) > apart && glm::length(crease - s1.point) > apart &&
