@@ -329,20 +329,25 @@ private:
         }
     }
 
-    // A triangle's box and its form for the contact test, kept for every triangle.
+    // A triangle's box, from its corners as kept for the contact test.
+    static Bounds3 boxOf(const ContactTriangle& t) {
+        Bounds3 box;
+        for (const Vec3& p : t.p) box.extend(p);
+        return box;
+    }
+
+    // A triangle as the contact test takes it, kept for every triangle, and listed in the grid
+    // under its box (which its kept corners give back when it is unlisted).
+    void store(uint32_t id, const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+        faceTriangles_[id] = contactTriangle(p0, p1, p2, limits_.contactTol);
+        grid_->insert(id, boxOf(faceTriangles_[id]));
+    }
     void store(FaceHandle f) {
         const HalfedgeHandle a = m_.halfedge_handle(f);
         const HalfedgeHandle b = m_.next_halfedge_handle(a);
-        const Vec3 p0 = toVec(m_.point(m_.to_vertex_handle(a)));
-        const Vec3 p1 = toVec(m_.point(m_.to_vertex_handle(b)));
-        const Vec3 p2 = toVec(m_.point(m_.to_vertex_handle(m_.next_halfedge_handle(b))));
-        Bounds3& box = faceBoxes_[size_t(f.idx())];
-        box = Bounds3();
-        box.extend(p0);
-        box.extend(p1);
-        box.extend(p2);
-        faceTriangles_[size_t(f.idx())] = contactTriangle(p0, p1, p2, limits_.contactTol);
-        grid_->insert(uint32_t(f.idx()), box);
+        store(uint32_t(f.idx()), toVec(m_.point(m_.to_vertex_handle(a))),
+              toVec(m_.point(m_.to_vertex_handle(b))),
+              toVec(m_.point(m_.to_vertex_handle(m_.next_halfedge_handle(b)))));
     }
 
     void buildGrid() {
@@ -355,19 +360,13 @@ private:
         const double cell = m_.n_edges() > 0 ? kGridCellEdges * length / double(m_.n_edges()) : 0.0;
         grid_.emplace(bounds.lo, cell > 0.0 ? cell : 1.0);
         // The piece's triangles by face index, then the obstacles after them.
-        const size_t faces = m_.n_faces(), all = faces + limits_.obstacles.size();
-        faceBoxes_.resize(all);
-        faceTriangles_.resize(all);
+        const size_t faces = m_.n_faces();
+        faceTriangles_.resize(faces + limits_.obstacles.size());
         for (const FaceHandle f : m_.faces())
             if (!m_.status(f).deleted()) store(f);
         for (size_t i = 0; i < limits_.obstacles.size(); ++i) {
             const auto& [p0, p1, p2] = limits_.obstacles[i];
-            Bounds3& box = faceBoxes_[faces + i];
-            box.extend(p0);
-            box.extend(p1);
-            box.extend(p2);
-            faceTriangles_[faces + i] = contactTriangle(p0, p1, p2, limits_.contactTol);
-            grid_->insert(uint32_t(faces + i), box);
+            store(uint32_t(faces + i), p0, p1, p2);
         }
     }
 
@@ -376,7 +375,7 @@ private:
         changed_.clear();
         for (auto vf = m_.vf_iter(v0); vf.is_valid(); ++vf) {
             changed_.push_back(*vf);
-            grid_->remove(uint32_t(vf->idx()), faceBoxes_[size_t(vf->idx())]);
+            grid_->remove(uint32_t(vf->idx()), boxOf(faceTriangles_[size_t(vf->idx())]));
         }
     }
     // After it: those that remain, at their new corners.
@@ -480,10 +479,9 @@ private:
     std::vector<float> priority_;
     std::vector<int> heapPosition_;
     OpenMesh::Utils::HeapT<VertexHandle, HeapInterface> heap_;
-    // The crossing check: the triangles' boxes in a grid and as tested (the obstacles after the
+    // The crossing check: the triangles in a grid and as tested (the obstacles after the
     // piece's), per refused halfedge the (v0, v1) pair it was refused for.
     std::optional<BoxGrid> grid_;
-    std::vector<Bounds3> faceBoxes_;
     std::vector<ContactTriangle> faceTriangles_;
     std::unordered_map<uint32_t, uint64_t> refused_;
     std::vector<FaceHandle> changed_;  // the triangles at v0 of the collapse being made
