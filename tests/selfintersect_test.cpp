@@ -170,8 +170,11 @@ TEST(UnfoldVertices, FoldedStarMovesTowardItsSafePointUntilClean) {
     const double t = glm::dot(along, whole) / glm::dot(whole, whole);
     EXPECT_GT(t, 0.0);
     EXPECT_LT(t, 1.0);
-    for (int v = 0; v < 6; ++v)
-        if (v != 4) EXPECT_EQ(mesh.positions[size_t(v)], folded.positions[size_t(v)]);
+    for (int v = 0; v < 6; ++v) {
+        if (v != 4) {
+            EXPECT_EQ(mesh.positions[size_t(v)], folded.positions[size_t(v)]);
+        }
+    }
 
     safe[4] = Vec3(2.0, -0.3, 0.0);
     TriangleMesh stuck = folded;
