@@ -29,6 +29,19 @@ TEST(Help, TopLevelAndEverySubcommand) {
     }
 }
 
+// csgray's heap is jemalloc on transparent huge pages (viewer/HeapConfig.cpp): its statistics,
+// printed at exit when asked through MALLOC_CONF (merged with the built-in configuration), show
+// the options in force. glibc's malloc would ignore the variable and print nothing.
+TEST(Heap, JemallocRunsWithTransparentHugePages) {
+    ScratchDir dir;
+    ASSERT_EQ(::setenv("MALLOC_CONF", "stats_print:true", 1), 0);
+    const RunResult r = runCsgray({"--help"}, dir.path());
+    ::unsetenv("MALLOC_CONF");
+    EXPECT_EQ(r.exitCode, 0);
+    EXPECT_NE(r.err.find("opt.thp: \"always\""), std::string::npos) << r.err.substr(0, 2000);
+    EXPECT_NE(r.err.find("opt.metadata_thp: \"auto\""), std::string::npos);
+}
+
 TEST(Usage, BadCommandLinesExitWithTwo) {
     ScratchDir dir;
     const std::vector<std::vector<std::string>> bad = {
