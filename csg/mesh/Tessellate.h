@@ -56,8 +56,9 @@ struct TessellateOptions {
     // DualContour.h, flat to tol::kOctreeFlatFraction T): far fewer triangles on flat and gently
     // curved faces, fine cells at creases, thin gaps and curved patches. Off by default: blocks
     // next to folds are split in further rounds (no self-intersections on the samples and
-    // octree_test's random parts), which on csg_grid3 (T = 0.028) costs 1.4x the uniform
-    // export's time for 46 % fewer triangles, and its GLB there keeps one coplanar sliver pair.
+    // octree_test's random parts), which on csg_grid3 (T = 0.028) costs 1.3-1.5x the uniform
+    // export's time for 46 % fewer triangles (its GLB there: 0 self-intersections since the
+    // simplifier's and the unfolding's fixes, bench/README.md).
     bool adaptive = false;
     bool simplify = true;  // coarsen flat regions after the grid passes (Simplify.h)
     // Grid meshes larger than this are not simplified (0: no limit). Decimation (in slabs on
