@@ -89,27 +89,21 @@ void BoxGrid::grow() {
 }
 
 void BoxGrid::insert(uint32_t id, const Bounds3& box) {
-    const Range r = range(box);
     const Entry e = entry(id, box);
-    for (int32_t z = r.lo[2]; z <= r.hi[2]; ++z)
-        for (int32_t y = r.lo[1]; y <= r.hi[1]; ++y)
-            for (int32_t x = r.lo[0]; x <= r.hi[0]; ++x) listOf(key(x, y, z)).push_back(e);
+    forEachCellKey(box, [&](uint64_t cell) { listOf(cell).push_back(e); });
 }
 
 void BoxGrid::remove(uint32_t id, const Bounds3& box) {
-    const Range r = range(box);
-    for (int32_t z = r.lo[2]; z <= r.hi[2]; ++z)
-        for (int32_t y = r.lo[1]; y <= r.hi[1]; ++y)
-            for (int32_t x = r.lo[0]; x <= r.hi[0]; ++x) {
-                const uint32_t slot = find(key(x, y, z));
-                if (slot == kEmpty) continue;
-                std::vector<Entry>& list = lists_[slots_[slot].list];
-                const auto it = std::find_if(list.begin(), list.end(),
-                                             [id](const Entry& e) { return e.id == id; });
-                if (it == list.end()) continue;
-                *it = list.back();  // order within a cell does not matter
-                list.pop_back();
-            }
+    forEachCellKey(box, [&](uint64_t cell) {
+        const uint32_t slot = find(cell);
+        if (slot == kEmpty) return;
+        std::vector<Entry>& list = lists_[slots_[slot].list];
+        const auto it =
+            std::find_if(list.begin(), list.end(), [id](const Entry& e) { return e.id == id; });
+        if (it == list.end()) return;
+        *it = list.back();  // order within a cell does not matter
+        list.pop_back();
+    });
 }
 
 }  // namespace csg

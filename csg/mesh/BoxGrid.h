@@ -40,15 +40,12 @@ public:
     // cell: the caller removes duplicates).
     template <class Fn>
     void forEachNear(const Bounds3& box, Fn&& fn) const {
-        const Range r = range(box);
-        for (int32_t z = r.lo[2]; z <= r.hi[2]; ++z)
-            for (int32_t y = r.lo[1]; y <= r.hi[1]; ++y)
-                for (int32_t x = r.lo[0]; x <= r.hi[0]; ++x) {
-                    const uint32_t slot = find(key(x, y, z));
-                    if (slot == kEmpty) continue;
-                    for (const Entry& e : lists_[slots_[slot].list])
-                        if (e.overlaps(box)) fn(e);
-                }
+        forEachCellKey(box, [&](uint64_t cell) {
+            const uint32_t slot = find(cell);
+            if (slot == kEmpty) return;
+            for (const Entry& e : lists_[slots_[slot].list])
+                if (e.overlaps(box)) fn(e);
+        });
     }
 
 private:
@@ -63,6 +60,14 @@ private:
 
     static Entry entry(uint32_t id, const Bounds3& box);
     Range range(const Bounds3& box) const;
+    // Calls fn(key) for every cell box overlaps.
+    template <class Fn>
+    void forEachCellKey(const Bounds3& box, Fn&& fn) const {
+        const Range r = range(box);
+        for (int32_t z = r.lo[2]; z <= r.hi[2]; ++z)
+            for (int32_t y = r.lo[1]; y <= r.hi[1]; ++y)
+                for (int32_t x = r.lo[0]; x <= r.hi[0]; ++x) fn(key(x, y, z));
+    }
     static uint64_t key(int32_t x, int32_t y, int32_t z);
     // The slot holding key, or kEmpty.
     uint32_t find(uint64_t key) const;
