@@ -97,11 +97,11 @@ struct CompiledNode {
 // axis and slot, so that one clipToBoxes (Bounds4.h) tests all four. A node is 256 bytes
 // (221 of fields), four cache lines, aligned so that it never straddles a fifth.
 struct alignas(64) BvhNode {
-    Bounds4 boxes;             // slot k's box is lane k; unused lanes are never read (mask)
-    uint32_t slot[4] = {};     // leaf: index into Scene::children_ of its first child; else
-                               // the child node's index in Scene::bvh_
-    uint8_t leafCount[4] = {}; // children in a leaf slot (1..kBvhMaxLeafCount); 0: a node
-    uint8_t slots = 0;         // slots in use (1..4), the first ones
+    Bounds4 boxes;              // slot k's box is lane k; unused lanes are masked out
+    uint32_t slot[4] = {};      // leaf: index into Scene::children_ of its first child; else
+                                // the child node's index in Scene::bvh_
+    uint8_t leafCount[4] = {};  // children in a leaf slot (1..kBvhMaxLeafCount); 0: a node
+    uint8_t slots = 0;          // slots in use (1..4), the first ones
     // Per direction octant (bit a: d[a] < 0), the slots nearest first, two bits each: the
     // order the binary tree's splits give, so the walk needs no sort.
     uint8_t order[8] = {};

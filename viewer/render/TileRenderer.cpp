@@ -99,8 +99,7 @@ RenderResult renderImage(const csg::Scene& scene, const EffectsPlan& plan,
                     float* px = row + size_t(x - x0) * 3;
                     for (int c = 0; c < 3; ++c) px[c] = float(sum[c] * sampleWeight);
                 }
-                if (srgb)
-                    encodeSrgb(row, size_t(x1 - x0) * 3, result.srgb.row(y) + size_t(x0) * 3);
+                if (srgb) encodeSrgb(row, size_t(x1 - x0) * 3, result.srgb.row(y) + size_t(x0) * 3);
             }
             tilesDone.fetch_add(1, std::memory_order_relaxed);
         }
