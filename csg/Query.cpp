@@ -3,8 +3,6 @@
 // pushed; intermediate lists live on that stack, so a query allocates nothing once the stack
 // has grown to the deepest ray seen.
 #include <algorithm>
-#include <bit>
-#include <cstring>
 
 #include "csg/Bvh.h"
 #include "csg/Compiled.h"

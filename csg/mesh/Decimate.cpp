@@ -107,23 +107,17 @@ public:
         error_ = mergedError(v0, v1);
         errorOf_ = v0v1;
         if (error_ > maxSquared) return false;
-        // The edges v1-vl and vl-v0 (and v0-vr, vr-v1) must not both be boundary edges.
+        // The edges v1-vl and vl-v0 (and v0-vr, vr-v1) must not both be boundary edges. apex
+        // finds the third corner of h's triangle (none on a boundary) and checks its two edges.
+        const auto apex = [&](HalfedgeHandle h, VertexHandle& corner) {
+            if (is_boundary(h)) return true;
+            const HalfedgeHandle h1 = next_halfedge_handle(h), h2 = next_halfedge_handle(h1);
+            corner = to_vertex_handle(h1);
+            return !(is_boundary(opposite_halfedge_handle(h1)) &&
+                     is_boundary(opposite_halfedge_handle(h2)));
+        };
         VertexHandle vl, vr;
-        if (!is_boundary(v0v1)) {
-            const HalfedgeHandle h1 = next_halfedge_handle(v0v1), h2 = next_halfedge_handle(h1);
-            vl = to_vertex_handle(h1);
-            if (is_boundary(opposite_halfedge_handle(h1)) &&
-                is_boundary(opposite_halfedge_handle(h2)))
-                return false;
-        }
-        if (!is_boundary(v1v0)) {
-            const HalfedgeHandle h1 = next_halfedge_handle(v1v0), h2 = next_halfedge_handle(h1);
-            vr = to_vertex_handle(h1);
-            if (is_boundary(opposite_halfedge_handle(h1)) &&
-                is_boundary(opposite_halfedge_handle(h2)))
-                return false;
-        }
-        if (vl == vr) return false;
+        if (!apex(v0v1, vl) || !apex(v1v0, vr) || vl == vr) return false;
         // The link condition (the one-rings of v0 and v1 share only vl and vr) and the valence
         // cap (the kept vertex gets v0's and v1's neighbours, less v0, v1 themselves and the
         // two neighbours they share), in one walk around each vertex.

@@ -115,8 +115,8 @@ private:
     // or a quarter of a thinner cell (one through a thin gap, ThinFeatures.h: at least
     // kThinMinWidth h / 2 wide, so a quarter of it is still ~10 float steps of a coordinate
     // 1000 h from the origin).
-    double separation(double width) const {
-        return std::min(0.25 * width, tol::kMeshVertexSeparation * spec_.h);
+    double separation(double width, double fraction = tol::kMeshVertexSeparation) const {
+        return std::min(0.25 * width, fraction * spec_.h);
     }
 
     // missing counts the sign changes without a crossing (DualContourStats::missingCrossings).
@@ -697,8 +697,8 @@ private:
         uint32_t vertex = kNone;
         // A crease point (almost) on one of the crossings adds nothing but a sliver triangle
         // that can fold onto its neighbour (tol::kCreaseVertexSeparation): skip it.
-        const double width = std::min(hi[0] - lo[0], hi[1] - lo[1]);
-        const double apart = std::min(0.25 * width, tol::kCreaseVertexSeparation * spec_.h);
+        const double apart =
+            separation(std::min(hi[0] - lo[0], hi[1] - lo[1]), tol::kCreaseVertexSeparation);
         if (s0.measured && s1.measured &&
             creaseOnFace(s0.point, s0.normal, s1.point, s1.normal, u, v, lo, hi, crease) &&
             glm::length(crease - s0.point) > apart && glm::length(crease - s1.point) > apart &&

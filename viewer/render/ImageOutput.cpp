@@ -92,6 +92,17 @@ io::Rgb8Image encodeSrgb(const LinearImage& image) {
     return out;
 }
 
+PixelStore pixelStoreFor(ImageFormat format) {
+    return format == ImageFormat::Png ? PixelStore::Srgb8 : PixelStore::LinearFloat;
+}
+
+std::string writeImage(const std::filesystem::path& path, ImageFormat format,
+                       const RenderResult& render) {
+    if (!render.srgb.pixels.empty() && format == ImageFormat::Png)
+        return io::writePng(path, render.srgb);
+    return writeImage(path, format, render.image);
+}
+
 std::string writeImage(const std::filesystem::path& path, ImageFormat format,
                        const LinearImage& image) {
     if (format == ImageFormat::Pfm) return writePfm(path, image);

@@ -23,4 +23,10 @@ void encodeSrgb(const float* linear, size_t count, uint8_t* out);
 std::string writeImage(const std::filesystem::path& path, ImageFormat format,
                        const LinearImage& image);
 
+// What a render written in `format` needs kept of each pixel: PNG only its 8-bit encoding.
+PixelStore pixelStoreFor(ImageFormat format);
+// Writes a render made with pixelStoreFor(format): from its 8-bit pixels when it kept those.
+std::string writeImage(const std::filesystem::path& path, ImageFormat format,
+                       const RenderResult& render);
+
 }  // namespace viewer::render

@@ -212,7 +212,7 @@ int runRenderJob(const RenderJobOptions& o) {
     image.samplesPerAxis = o.samplesPerAxis;
     image.threads =
         o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    image.store = o.format == ImageFormat::Png ? PixelStore::Srgb8 : PixelStore::LinearFloat;
+    image.store = pixelStoreFor(o.format);
     start = Clock::now();
     ProgressMeter progress(ProgressMeter::styleFor(o.quiet));
     const RenderResult result = renderImage(
@@ -221,11 +221,8 @@ int runRenderJob(const RenderJobOptions& o) {
     if (result.interrupted || interrupted) return kExitInterrupted;
 
     start = Clock::now();
-    const std::string writeError = image.store == PixelStore::Srgb8
-                                       ? io::writePng(o.output, result.srgb)
-                                       : writeImage(o.output, o.format, result.image);
-    if (!writeError.empty()) {
-        report.error(o.output, writeError);
+    if (const std::string error = writeImage(o.output, o.format, result); !error.empty()) {
+        report.error(o.output, error);
         return kExitIo;
     }
     seconds.write = secondsSince(start);
