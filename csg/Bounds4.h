@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <cstring>
 
-#include "csg/Bounds.h"
+#include "primitives/base/Bounds.h"
 
 #if defined(__AVX__)
 #include <immintrin.h>

@@ -4,9 +4,9 @@
 #include <cstdint>
 #include <limits>
 
-#include "csg/Bounds.h"
 #include "csg/Bounds4.h"
 #include "csg/Tree.h"
+#include "primitives/base/Bounds.h"
 
 namespace csg {
 

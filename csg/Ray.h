@@ -1,7 +1,7 @@
 // A ray o + t d over the closed parameter range [tmin, tmax].
 #pragma once
 
-#include "csg/Math.h"
+#include "primitives/base/Math.h"
 
 namespace csg {
 

@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
-#include "csg/Bounds.h"
 #include "csg/Ray.h"
 #include "csg/Span.h"
 #include "csg/Tree.h"
+#include "primitives/base/Bounds.h"
 
 namespace csg {
 

@@ -20,7 +20,7 @@
 #include <cstddef>
 
 #include "csg/Span.h"
-#include "csg/Tolerances.h"
+#include "primitives/base/Tolerances.h"
 
 namespace csg {
 

@@ -7,8 +7,8 @@
 #include <memory>
 #include <vector>
 
-#include "csg/Math.h"
 #include "primitives/Primitives.h"
+#include "primitives/base/Math.h"
 
 namespace csg {
 

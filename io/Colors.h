@@ -4,7 +4,7 @@
 #include <optional>
 #include <string_view>
 
-#include "csg/Math.h"
+#include "primitives/base/Math.h"
 
 namespace io {
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <string_view>
 
-#include "csg/Tolerances.h"
 #include "io/MeshFile.h"
+#include "primitives/base/Tolerances.h"
 
 namespace io::detail {
 

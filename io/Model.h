@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "csg/Math.h"
 #include "csg/Tree.h"
 #include "io/PngWriter.h"
+#include "primitives/base/Math.h"
 
 namespace io {
 

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "csg/Fma.h"
+#include "primitives/base/Fma.h"
 #include "primitives/solvers/LinePoint.h"
 #include "primitives/solvers/Quadratic.h"
 

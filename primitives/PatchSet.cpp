@@ -18,7 +18,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "csg/Tolerances.h"
+#include "primitives/base/Tolerances.h"
 #include "primitives/patch/Intersect.h"
 #include "primitives/solvers/LinePoint.h"
 

@@ -13,9 +13,9 @@
 
 #include <concepts>
 
-#include "csg/Bounds.h"
-#include "csg/Math.h"
-#include "csg/Span.h"
+#include "primitives/LocalSpans.h"
+#include "primitives/base/Bounds.h"
+#include "primitives/base/Math.h"
 
 namespace csg {
 

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <limits>
 
-#include "csg/Fma.h"
+#include "primitives/base/Fma.h"
 #include "primitives/solvers/ErrorFree.h"
 #include "primitives/solvers/LinePoint.h"
 #include "primitives/solvers/Roots.h"

@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(
     build-essential cmake ninja-build pkg-config
-    libglm-dev            # vector/matrix math, through csg/Math.h only
+    libglm-dev            # vector/matrix math, through primitives/base/Math.h only
     libopenmesh-dev       # mesh structure and OBJ IO (mesh export)
     libtinygltf-dev nlohmann-json3-dev libstb-dev  # glTF/GLB writer and its JSON/image deps
     libpng-dev libdeflate-dev  # PNG: reading textures (libpng), writing images (libdeflate)

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "csg/Math.h"
+#include "primitives/base/Math.h"
 
 namespace csg {
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <random>
 
-#include "csg/Math.h"
+#include "primitives/base/Math.h"
 
 namespace csg::testing {
 

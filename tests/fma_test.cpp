@@ -1,5 +1,5 @@
-// Tests of fusedMultiplyAdd (csg/Fma.h): one rounding of a * b + c, whichever path it takes.
-// The references are exact values worked out by hand from dyadic inputs, and libm's fma on
+// Tests of fusedMultiplyAdd (primitives/base/Fma.h): one rounding of a * b + c, whichever path it
+// takes. The references are exact values worked out by hand from dyadic inputs, and libm's fma on
 // seeded random inputs (an independent implementation of the same exactly rounded operation).
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <limits>
 #include <random>
 
-#include "csg/Fma.h"
+#include "primitives/base/Fma.h"
 
 namespace csg {
 namespace {

@@ -8,7 +8,6 @@
 
 #include <unistd.h>
 
-#include "csg/Tolerances.h"
 #include "csg/Volume.h"
 #include "csg/mesh/CellTopology.h"
 #include "csg/mesh/CreaseNormals.h"
@@ -23,6 +22,7 @@
 #include "csg/mesh/TriangleBvh.h"
 #include "io/Evaluate.h"
 #include "io/MeshFile.h"
+#include "primitives/base/Tolerances.h"
 #include "tests/BoxPlanes.h"
 #include "tests/MeshTopologyText.h"
 #include "tests/SeededRng.h"

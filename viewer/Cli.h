@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "csg/Math.h"
+#include "primitives/base/Math.h"
 
 namespace viewer {
 

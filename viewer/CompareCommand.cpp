@@ -3,13 +3,13 @@
 #include <cmath>
 #include <cstdio>
 
-#include "csg/Tolerances.h"
 #include "csg/Volume.h"
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/MeshDistance.h"
 #include "csg/mesh/TriangleBvh.h"
 #include "io/Json.h"
 #include "io/MeshFile.h"
+#include "primitives/base/Tolerances.h"
 #include "viewer/Cli.h"
 #include "viewer/LoadPart.h"
 #include "viewer/MeshOptions.h"

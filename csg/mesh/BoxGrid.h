@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "csg/Bounds.h"
+#include "primitives/base/Bounds.h"
 
 namespace csg {
 

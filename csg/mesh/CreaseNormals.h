@@ -4,8 +4,8 @@
 // tools). Positions are copied bit for bit, so welding by position gives back the closed mesh.
 #pragma once
 
-#include "csg/Tolerances.h"
 #include "csg/mesh/TriangleMesh.h"
+#include "primitives/base/Tolerances.h"
 
 namespace csg {
 

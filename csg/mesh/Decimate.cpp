@@ -9,11 +9,11 @@
 #include <unordered_map>
 #include <vector>
 
-#include "csg/Bounds.h"
-#include "csg/Tolerances.h"
 #include "csg/mesh/BoxGrid.h"
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/TriangleBvh.h"
+#include "primitives/base/Bounds.h"
+#include "primitives/base/Tolerances.h"
 
 namespace csg {
 

@@ -7,12 +7,12 @@
 #include <utility>
 #include <vector>
 
-#include "csg/Tolerances.h"
 #include "csg/mesh/CellTopology.h"
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/ParallelFor.h"
 #include "csg/mesh/Qef.h"
 #include "csg/mesh/UnfoldVertices.h"
+#include "primitives/base/Tolerances.h"
 
 namespace csg {
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "csg/Tolerances.h"
 #include "csg/mesh/ParallelFor.h"
+#include "primitives/base/Tolerances.h"
 
 namespace csg {
 

@@ -6,9 +6,9 @@
 #include <map>
 #include <vector>
 
-#include "csg/Tolerances.h"
 #include "csg/mesh/ParallelFor.h"
 #include "csg/mesh/TriangleBvh.h"
+#include "primitives/base/Tolerances.h"
 
 namespace csg {
 

@@ -42,7 +42,7 @@ struct SelfIntersections {
 
 // Pairs of triangles that intersect other than where they share vertices (bit-identical
 // positions count as shared, so an unwelded soup works too), with a contact tolerance tol =
-// contactRel times the largest coordinate magnitude (csg/Tolerances.h,
+// contactRel times the largest coordinate magnitude (primitives/base/Tolerances.h,
 // kSelfIntersectionContactRel). Counted: crossings, where each triangle has corners more than
 // tol beyond the other's plane on both sides and their segments on the line where the planes
 // meet overlap by more than tol (also through a shared vertex); coplanar pairs (one triangle

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "csg/Tolerances.h"
 #include "csg/mesh/ParallelFor.h"
+#include "primitives/base/Tolerances.h"
 
 namespace csg {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "csg/Tolerances.h"
+#include "primitives/base/Tolerances.h"
 
 namespace csg {
 

@@ -2,8 +2,8 @@
 // planes (points p_i with unit normals n_i), minimizing sum (n_i . (x - p_i))^2.
 #pragma once
 
-#include "csg/Bounds.h"
-#include "csg/Math.h"
+#include "primitives/base/Bounds.h"
+#include "primitives/base/Math.h"
 
 namespace csg {
 

@@ -9,10 +9,10 @@
 #include <optional>
 #include <vector>
 
-#include "csg/Tolerances.h"
 #include "csg/mesh/Decimate.h"
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/ParallelFor.h"
+#include "primitives/base/Tolerances.h"
 
 namespace csg {
 

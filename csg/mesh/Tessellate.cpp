@@ -6,9 +6,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "csg/Tolerances.h"
 #include "csg/mesh/HermiteGrid.h"
 #include "csg/mesh/Simplify.h"
+#include "primitives/base/Tolerances.h"
 
 namespace csg {
 

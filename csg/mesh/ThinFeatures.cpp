@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "csg/Tolerances.h"
+#include "primitives/base/Tolerances.h"
 
 namespace csg {
 

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "csg/Bounds.h"
 #include "csg/mesh/TriangleMesh.h"
+#include "primitives/base/Bounds.h"
 
 namespace csg {
 

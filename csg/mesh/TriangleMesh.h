@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "csg/Math.h"
+#include "primitives/base/Math.h"
 
 namespace csg {
 

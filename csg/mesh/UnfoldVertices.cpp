@@ -4,10 +4,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "csg/Bounds.h"
-#include "csg/Tolerances.h"
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/ParallelFor.h"
+#include "primitives/base/Bounds.h"
+#include "primitives/base/Tolerances.h"
 
 namespace csg {
 

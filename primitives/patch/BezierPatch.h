@@ -7,8 +7,8 @@
 #include <array>
 #include <cstdint>
 
-#include "csg/Bounds.h"
-#include "csg/Math.h"
+#include "primitives/base/Bounds.h"
+#include "primitives/base/Math.h"
 
 namespace csg {
 

@@ -9,7 +9,7 @@
 #include <array>
 #include <cmath>
 
-#include "csg/Math.h"
+#include "primitives/base/Math.h"
 #include "primitives/patch/BezierPatch.h"
 
 namespace csg {

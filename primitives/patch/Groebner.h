@@ -25,7 +25,7 @@
 // the method breaks down (general bicubic patches: on every ray).
 #pragma once
 
-#include "csg/Tolerances.h"
+#include "primitives/base/Tolerances.h"
 #include "primitives/patch/PatchAlgebra.h"
 
 namespace csg {

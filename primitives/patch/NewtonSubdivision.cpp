@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "csg/Tolerances.h"
+#include "primitives/base/Tolerances.h"
 #include "primitives/patch/RayPlanes.h"
 
 namespace csg {

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "csg/Tolerances.h"
+#include "primitives/base/Tolerances.h"
 #include "primitives/patch/RayPlanes.h"
 #include "primitives/solvers/Solve.h"
 

@@ -6,7 +6,7 @@
 // t = d . (S(u, v) - o) / |d|^2.
 #pragma once
 
-#include "csg/Tolerances.h"
+#include "primitives/base/Tolerances.h"
 #include "primitives/patch/Bivariate.h"
 
 namespace csg {

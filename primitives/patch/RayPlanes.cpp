@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "csg/Tolerances.h"
+#include "primitives/base/Tolerances.h"
 
 namespace csg {
 

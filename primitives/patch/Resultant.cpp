@@ -7,7 +7,7 @@
 
 #include <algorithm>
 
-#include "csg/Tolerances.h"
+#include "primitives/base/Tolerances.h"
 #include "primitives/patch/PatchAlgebra.h"
 #include "primitives/solvers/Solve.h"
 

@@ -3,7 +3,7 @@
 // (ExactPolynomial.cpp).
 #pragma once
 
-#include "csg/Fma.h"
+#include "primitives/base/Fma.h"
 
 namespace csg {
 

@@ -20,7 +20,7 @@
 #include <optional>
 #include <vector>
 
-#include "csg/Math.h"
+#include "primitives/base/Math.h"
 #include "primitives/solvers/Trivariate.h"
 
 namespace csg {

@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "csg/Math.h"
-#include "csg/Tolerances.h"
+#include "primitives/base/Math.h"
+#include "primitives/base/Tolerances.h"
 #include "primitives/solvers/Polynomial.h"
 
 namespace csg {

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <initializer_list>
 
-#include "csg/Tolerances.h"
+#include "primitives/base/Tolerances.h"
 
 namespace csg {
 

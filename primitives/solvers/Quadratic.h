@@ -4,7 +4,7 @@
 #include <cmath>
 #include <utility>
 
-#include "csg/Fma.h"
+#include "primitives/base/Fma.h"
 
 namespace csg {
 
@@ -19,7 +19,7 @@ inline int solveQuadratic(double a, double b, double c, double& r0, double& r1) 
         return 1;
     }
     // The fmas keep b^2 - 4ac accurate when the two products nearly cancel (fusedMultiplyAdd:
-    // this runs per ray, see csg/Fma.h).
+    // this runs per ray, see primitives/base/Fma.h).
     const double fourAC = 4.0 * a * c;
     const double disc = fusedMultiplyAdd(b, b, -fourAC) + fusedMultiplyAdd(-4.0 * a, c, fourAC);
     if (disc < 0.0) return 0;

@@ -7,7 +7,7 @@
 // double precision (p at their midpoint has no provable sign) are one such root.
 #pragma once
 
-#include "csg/Math.h"
+#include "primitives/base/Math.h"
 #include "primitives/solvers/Polynomial.h"
 
 namespace csg {

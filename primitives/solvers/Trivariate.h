@@ -13,7 +13,7 @@
 #include <array>
 #include <cassert>
 
-#include "csg/Math.h"
+#include "primitives/base/Math.h"
 #include "primitives/solvers/Polynomial.h"
 
 namespace csg {

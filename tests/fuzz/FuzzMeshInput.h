@@ -8,10 +8,10 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "csg/Tolerances.h"
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/TriangleBvh.h"
 #include "io/MeshFile.h"
+#include "primitives/base/Tolerances.h"
 
 namespace fuzz {
 

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "csg/Math.h"
+#include "primitives/base/Math.h"
 
 namespace viewer::render {
 

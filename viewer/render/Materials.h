@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
-#include "csg/Math.h"
 #include "io/Model.h"
+#include "primitives/base/Math.h"
 
 namespace viewer::render {
 

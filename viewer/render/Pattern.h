@@ -10,8 +10,8 @@
 
 #include <vector>
 
-#include "csg/Math.h"
 #include "io/PngWriter.h"
+#include "primitives/base/Math.h"
 
 namespace viewer::render {
 

@@ -4,9 +4,9 @@
 // offset grows with |o| + |t d|, not with a fixed epsilon.
 #pragma once
 
-#include "csg/Math.h"
 #include "csg/Ray.h"
-#include "csg/Tolerances.h"
+#include "primitives/base/Math.h"
+#include "primitives/base/Tolerances.h"
 
 namespace viewer::render {
 

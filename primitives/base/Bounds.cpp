@@ -1,4 +1,4 @@
-#include "csg/Bounds.h"
+#include "primitives/base/Bounds.h"
 
 namespace csg {
 

@@ -3,8 +3,8 @@
 
 #include <algorithm>
 
-#include "csg/Math.h"
-#include "csg/Tolerances.h"
+#include "primitives/base/Math.h"
+#include "primitives/base/Tolerances.h"
 
 namespace csg {
 

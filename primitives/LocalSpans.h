@@ -1,0 +1,40 @@
+// What a primitive answers for a line o + t d: its spans along the whole line, before any
+// clipping (t is the same in the world and local frames; a span end's face is primitive-defined).
+#pragma once
+
+#include <array>
+#include <cassert>
+#include <cstdint>
+#include <limits>
+
+namespace csg {
+
+// The face of a span end that is the ray's own tmin/tmax (or an unbounded primitive's
+// infinite end), not a surface.
+inline constexpr uint16_t kClipFace = std::numeric_limits<uint16_t>::max();
+
+// One primitive's spans along the whole line t in (-inf, inf), ascending and disjoint,
+// before any clipping. Ends are finite except for unbounded primitives (half-spaces), whose
+// infinite ends carry kClipFace. The leaf index is filled in by the caller.
+struct LocalSpans {
+    // A convex primitive gives 1 span, a torus 2, a degree-16 algebraic surface cut by its
+    // box 9 (16 roots split the chord into 17 pieces, alternating, inside at both ends); a
+    // patch set one per crossing of a sheet or per pair of a solid's: the teapot's worst line
+    // crosses ~12 patches, 32 leaves room (further crossings of a line are dropped).
+    static constexpr int kCapacity = 32;
+    struct Entry {
+        double tIn, tOut;
+        uint16_t faceIn, faceOut;
+    };
+    std::array<Entry, kCapacity> entries;
+    int count = 0;
+    // Set by a sheet (PatchSet with solid=false): every entry is a crossing, tIn == tOut.
+    bool sheet = false;
+
+    void add(double tIn, uint16_t faceIn, double tOut, uint16_t faceOut) {
+        assert(count < kCapacity && "a primitive produced more spans than LocalSpans holds");
+        entries[count++] = {tIn, tOut, faceIn, faceOut};
+    }
+};
+
+}  // namespace csg
