@@ -9,9 +9,9 @@
 
 #include "csg/mesh/CellTopology.h"
 #include "csg/mesh/MeshCheck.h"
-#include "csg/mesh/ParallelFor.h"
 #include "csg/mesh/Qef.h"
 #include "csg/mesh/UnfoldVertices.h"
+#include "primitives/base/ParallelFor.h"
 #include "primitives/base/Tolerances.h"
 
 namespace csg {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "csg/mesh/ParallelFor.h"
+#include "primitives/base/ParallelFor.h"
 #include "primitives/base/Tolerances.h"
 
 namespace csg {

@@ -6,8 +6,8 @@
 #include <map>
 #include <vector>
 
-#include "csg/mesh/ParallelFor.h"
 #include "csg/mesh/TriangleBvh.h"
+#include "primitives/base/ParallelFor.h"
 #include "primitives/base/Tolerances.h"
 
 namespace csg {

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "csg/mesh/ParallelFor.h"
+#include "primitives/base/ParallelFor.h"
 #include "primitives/base/Tolerances.h"
 
 namespace csg {

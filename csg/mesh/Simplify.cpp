@@ -11,7 +11,7 @@
 
 #include "csg/mesh/Decimate.h"
 #include "csg/mesh/MeshCheck.h"
-#include "csg/mesh/ParallelFor.h"
+#include "primitives/base/ParallelFor.h"
 #include "primitives/base/Tolerances.h"
 
 namespace csg {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <thread>
 
-#include "csg/mesh/ParallelFor.h"
+#include "primitives/base/ParallelFor.h"
 
 namespace csg {
 

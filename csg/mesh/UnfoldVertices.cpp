@@ -5,8 +5,8 @@
 #include <numbers>
 
 #include "csg/mesh/MeshCheck.h"
-#include "csg/mesh/ParallelFor.h"
 #include "primitives/base/Bounds.h"
+#include "primitives/base/ParallelFor.h"
 #include "primitives/base/Tolerances.h"
 
 namespace csg {
