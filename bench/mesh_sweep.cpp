@@ -28,9 +28,9 @@
 #include <vector>
 
 #include "csg/mesh/Tessellate.h"
-#include "io/AtomicFile.h"
 #include "io/Diagnostic.h"
 #include "io/Evaluate.h"
+#include "primitives/base/AtomicFile.h"
 
 namespace {
 
@@ -233,7 +233,7 @@ int main(int argc, char** argv) {
     const std::pair<const char*, std::string> files[] = {
         {"mesh_sweep.csv", csv}, {"mesh_sweep.md", md}, {"mesh_sweep.svg", sweepSvg(series)}};
     for (const auto& [file, text] : files) {
-        if (const std::string error = io::writeFileAtomically(dir / file, text); !error.empty()) {
+        if (const std::string error = csg::writeFileAtomically(dir / file, text); !error.empty()) {
             std::fprintf(stderr, "mesh_sweep: %s\n", error.c_str());
             return 3;
         }

@@ -12,7 +12,7 @@
 
 #include "primitives/AlgebraicSurface.h"
 #include "primitives/Torus.h"
-#include "viewer/accuracy/ShellSurface.h"
+#include "primitives/solvers/reference/ShellSurface.h"
 
 namespace {
 

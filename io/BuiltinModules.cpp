@@ -10,8 +10,8 @@
 #include "io/Degrees.h"
 #include "io/Evaluator.h"
 #include "io/PatchModule.h"
-#include "io/PngReader.h"
 #include "io/SurfaceModule.h"
+#include "viewer/render/PngReader.h"
 
 namespace io {
 

@@ -1,7 +1,6 @@
 #include "io/Diagnostic.h"
 
-#include "io/Json.h"
-
+#include "primitives/base/Json.h"
 
 namespace io {
 
@@ -32,7 +31,7 @@ std::string formatDiagnostic(const Diagnostic& d) {
 
 std::string diagnosticsToJson(const std::vector<Diagnostic>& diagnostics) {
     std::string out;
-    JsonWriter json(out);
+    csg::JsonWriter json(out);
     json.beginArray();
     for (const Diagnostic& d : diagnostics) {
         json.beginObject();

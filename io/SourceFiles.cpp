@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "io/ReadFile.h"
+#include "primitives/base/ReadFile.h"
 
 namespace io {
 
@@ -18,16 +18,16 @@ std::optional<uint32_t> SourceFiles::load(const std::filesystem::path& path, std
         return std::nullopt;
     }
     std::string text;
-    switch (readWholeFile(path, text)) {
-        case ReadFailure::None:
+    switch (csg::readWholeFile(path, text)) {
+        case csg::ReadFailure::None:
             return add(path.string(), path, std::move(text));
-        case ReadFailure::IsDirectory:
+        case csg::ReadFailure::IsDirectory:
             error = "'" + path.string() + "' is a directory";
             return std::nullopt;
-        case ReadFailure::CannotOpen:
+        case csg::ReadFailure::CannotOpen:
             error = "cannot open '" + path.string() + "'";
             return std::nullopt;
-        case ReadFailure::CannotRead:
+        case csg::ReadFailure::CannotRead:
             break;
     }
     error = "cannot read '" + path.string() + "'";

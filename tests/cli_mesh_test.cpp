@@ -76,7 +76,7 @@ TEST(CliMesh, EverySampleExportsToAValidGlbWithinTolerance) {
                                        "--tolerance", tol, "--max-cells", "2000000"},
                                       dir.path());
         // A surface (a patch set with solid=false, e.g. teapot.scad) has no volume: export
-        // refuses it by design (viewer/LoadPart.h, requireSolids).
+        // refuses it by design (viewer/cli/LoadPart.h, requireSolids).
         if (e.exitCode == 1 && e.err.find("solid=false") != std::string::npos) continue;
         ASSERT_EQ(e.exitCode, 0) << e.err;
         const RunResult c = runCsgray({"compare", entry.path().string(), glb.string(), "--json",

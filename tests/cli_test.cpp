@@ -29,7 +29,7 @@ TEST(Help, TopLevelAndEverySubcommand) {
     }
 }
 
-// csgray's heap is jemalloc on transparent huge pages (viewer/HeapConfig.cpp): its statistics,
+// csgray's heap is jemalloc on transparent huge pages (viewer/cli/HeapConfig.cpp): its statistics,
 // printed at exit when asked through MALLOC_CONF (merged with the built-in configuration), show
 // the options in force. glibc's malloc would ignore the variable and print nothing.
 TEST(Heap, JemallocRunsWithTransparentHugePages) {

@@ -1,4 +1,4 @@
-// Reading mesh files for compare (io/MeshFile.h): OBJ and STL (binary and ASCII) into a welded
+// Reading mesh files for compare (io/mesh/MeshFile.h): OBJ and STL (binary and ASCII) into a welded
 // triangle soup, in time linear in the file whatever the valences, keeping non-manifold faces
 // for compare to report, errors with the line and column of the text formats, and malformed
 // glTF and unmeasurable coordinates refused with their reason.
@@ -12,7 +12,7 @@
 #include <string>
 
 #include "csg/mesh/MeshCheck.h"
-#include "io/MeshFile.h"
+#include "io/mesh/MeshFile.h"
 
 namespace {
 

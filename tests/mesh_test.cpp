@@ -21,7 +21,7 @@
 #include "csg/mesh/ThinFeatures.h"
 #include "csg/mesh/TriangleBvh.h"
 #include "io/Evaluate.h"
-#include "io/MeshFile.h"
+#include "io/mesh/MeshFile.h"
 #include "primitives/base/Tolerances.h"
 #include "tests/BoxPlanes.h"
 #include "tests/MeshTopologyText.h"
@@ -624,7 +624,7 @@ TEST(Tessellate, EverySampleMeshesWithinTolerance) {
         ASSERT_TRUE(loaded.ok());
         const Scene scene = Scene::compile(loaded.model->root);
         // A surface (a bezier patch set with solid=false, e.g. teapot.scad) has no inside to
-        // mesh; `csgray export` rejects it (viewer/LoadPart.h, requireSolids).
+        // mesh; `csgray export` rejects it (viewer/cli/LoadPart.h, requireSolids).
         bool surface = false;
         for (uint32_t leaf = 0; leaf < scene.leafCount(); ++leaf)
             surface |= isSheet(scene.leafPrimitive(leaf));

@@ -25,13 +25,13 @@
 #include <thread>
 
 #include "io/Evaluate.h"
-#include "io/PngWriter.h"
 #include "tests/SeededRng.h"
 #include "viewer/render/Color.h"
 #include "viewer/render/EffectsPlan.h"
 #include "viewer/render/ImageOutput.h"
 #include "viewer/render/Materials.h"
 #include "viewer/render/Pattern.h"
+#include "viewer/render/PngWriter.h"
 #include "viewer/render/RenderCamera.h"
 #include "viewer/render/SecondaryOrigin.h"
 #include "viewer/render/TileRenderer.h"
@@ -72,10 +72,10 @@ struct Rendered {
 
 Rendered render(const LoadedScene& s, int width, int height, PlanSettings settings = {},
                 int threads = 2, PixelStore store = PixelStore::LinearFloat, int aa = 1) {
-    const io::Camera camera =
+    const render::Camera camera =
         s.model.camera ? *s.model.camera : frameBounds(s.scene, double(width) / height);
     Rendered r;
-    r.plan = makeEffectsPlan(s.model, s.scene, camera, settings);
+    r.plan = makeEffectsPlan(s.model, s.model.root.get(), s.scene, camera, settings);
     ImageSettings image;
     image.width = width;
     image.height = height;
@@ -183,7 +183,7 @@ TEST(EffectsPlan, UnusedMaterialsDoNotTurnEffectsOn) {
     const Rendered r = render(s, 32, 24);
     EXPECT_FALSE(r.plan.refraction);
     EXPECT_FALSE(r.plan.reflection);
-    EXPECT_TRUE(r.plan.specular);  // io::Material's default has specular 0.2
+    EXPECT_TRUE(r.plan.specular);  // render::Material's default has specular 0.2
 }
 
 // ---- secondary-ray origins ----
@@ -251,7 +251,7 @@ std::string scaledScene(double scale) {
 
 TEST(ScaleInvariance, SameImageAt1eMinus4And1And1e4) {
     const int w = 96, h = 72;
-    std::vector<io::Rgb8Image> images;
+    std::vector<render::Rgb8Image> images;
     for (const double scale : {1e-4, 1.0, 1e4}) {
         const Rendered r = render(load(scaledScene(scale)), w, h);
         EXPECT_GT(r.result.rays.shadow, 0u);
@@ -284,7 +284,8 @@ const char* const kCutGlass = R"(
 
 TEST(Refraction, ARayInsideCutGlassLeavesThroughTheCutFace) {
     const LoadedScene s = load(kCutGlass);
-    const EffectsPlan plan = makeEffectsPlan(s.model, s.scene, io::Camera{}, {});
+    const EffectsPlan plan =
+        makeEffectsPlan(s.model, s.model.root.get(), s.scene, render::Camera{}, {});
     ASSERT_TRUE(plan.refraction);
     Tracer tracer(s.scene, plan);
     PathLog log;
@@ -308,7 +309,8 @@ TEST(Refraction, ARayInsideCutGlassLeavesThroughTheCutFace) {
 
 TEST(Refraction, ObliqueRayBendsBySnellsLawAtBothFacesOfTheCut) {
     const LoadedScene s = load(kCutGlass);
-    const EffectsPlan plan = makeEffectsPlan(s.model, s.scene, io::Camera{}, {});
+    const EffectsPlan plan =
+        makeEffectsPlan(s.model, s.model.root.get(), s.scene, render::Camera{}, {});
     Tracer tracer(s.scene, plan);
     PathLog log;
     tracer.log = &log;
@@ -341,7 +343,8 @@ TEST(Refraction, TotalInternalReflectionKeepsTheRayInside) {
     // and leaves there.
     const LoadedScene s = load(
         "material(ambient=0, diffuse=0, specular=0, transmit=1, ior=1.5) cube(2, center=true);");
-    const EffectsPlan plan = makeEffectsPlan(s.model, s.scene, io::Camera{}, {});
+    const EffectsPlan plan =
+        makeEffectsPlan(s.model, s.model.root.get(), s.scene, render::Camera{}, {});
     Tracer tracer(s.scene, plan);
     PathLog log;
     tracer.log = &log;
@@ -483,7 +486,7 @@ TEST(Output, FastSrgbEncodingAgreesWithTheTransferFunction) {
     while (v.size() % 3) v.push_back(0.5f);
     image.width = int(v.size() / 3);
     image.height = 1;
-    const io::Rgb8Image encoded = encodeSrgb(image);
+    const render::Rgb8Image encoded = encodeSrgb(image);
     for (size_t i = 0; i < v.size(); ++i)
         ASSERT_EQ(encoded.pixels[i], linearToSrgb8(v[i])) << "linear " << v[i];
 }
@@ -504,7 +507,7 @@ TEST(Materials, HighlightIsThePowerWithinItsErrorBound) {
     // relative, plus an absolute hair where the power underflows to subnormals.
     csg::testing::Rng rng(4);
     for (const double shininess : {1.0, 2.0, 3.0, 7.0, 50.0, 64.0, 200.0, 999.0, 1024.0}) {
-        const ShadingMaterial s = shadingMaterial(io::Material{.shininess = shininess});
+        const ShadingMaterial s = shadingMaterial(render::Material{.shininess = shininess});
         ASSERT_EQ(s.wholeShininess, uint32_t(shininess));
         for (int i = 0; i < 20000; ++i) {
             const double cos = i == 0 ? 1.0 : i == 1 ? 0.0 : 1.0 - std::pow(rng.uniform(), 3.0);
@@ -515,7 +518,7 @@ TEST(Materials, HighlightIsThePowerWithinItsErrorBound) {
     }
     // Other exponents are std::pow's.
     for (const double shininess : {0.5, 12.25, 1025.0, 0.0}) {
-        const ShadingMaterial s = shadingMaterial(io::Material{.shininess = shininess});
+        const ShadingMaterial s = shadingMaterial(render::Material{.shininess = shininess});
         EXPECT_EQ(s.wholeShininess, 0u);
         EXPECT_EQ(highlight(0.73, s), std::pow(0.73, shininess));
     }
@@ -555,7 +558,7 @@ TEST(Threads, TilesEncodedToSrgbAreTheFloatImageEncoded) {
         const Rendered linear = render(s, width, height, {}, 2, PixelStore::LinearFloat, 2);
         const Rendered srgb = render(s, width, height, {}, 3, PixelStore::Srgb8, 2);
         EXPECT_TRUE(srgb.result.image.rgb.empty());
-        const io::Rgb8Image want = encodeSrgb(linear.result.image);
+        const render::Rgb8Image want = encodeSrgb(linear.result.image);
         ASSERT_EQ(srgb.result.srgb.width, width);
         ASSERT_EQ(srgb.result.srgb.height, height);
         EXPECT_EQ(srgb.result.srgb.pixels, want.pixels) << width << "x" << height;
@@ -571,8 +574,8 @@ struct WarmFrame {
     csg::Vec3 sum;
 };
 WarmFrame traceTwice(const LoadedScene& s, int width, int height) {
-    const io::Camera camera = *s.model.camera;
-    const EffectsPlan plan = makeEffectsPlan(s.model, s.scene, camera, {});
+    const render::Camera camera = *s.model.camera;
+    const EffectsPlan plan = makeEffectsPlan(s.model, s.model.root.get(), s.scene, camera, {});
     const RenderCamera view(camera, width, height);
     Tracer tracer(s.scene, plan);
     csg::Vec3 sum(0.0);
@@ -675,10 +678,10 @@ TEST(Patterns, PngTextureIsSampledAtKnownPoints) {
     // white bottom-right. Texel centres are at u, v = 0.5 and 1.5 of each tile, v up, so the
     // top row (red, green) is at v = 1.5.
     TempDir dir("render_texture");
-    io::Rgb8Image image(2, 2);
+    render::Rgb8Image image(2, 2);
     const uint8_t texels[] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255};
     std::copy(std::begin(texels), std::end(texels), image.pixels.begin());
-    ASSERT_EQ(io::writePng(dir.path / "tex.png", image), "");
+    ASSERT_EQ(render::writePng(dir.path / "tex.png", image), "");
     // Read relative to the part file, not the working directory.
     const std::string source = topDownScene(
         "material(texture = \"tex.png\", scale = 2, ambient = 1, diffuse = 0, specular = 0)");
@@ -690,7 +693,7 @@ TEST(Patterns, PngTextureIsSampledAtKnownPoints) {
     s.model = std::move(*evaluated.model);
     s.scene = csg::Scene::compile(s.model.root);
     ASSERT_EQ(s.model.textures.size(), 1u);
-    EXPECT_EQ(s.model.materials.back().pattern, io::Pattern::Texture);
+    EXPECT_EQ(s.model.materials.back().pattern, render::Pattern::Texture);
 
     // 4 pixels over 4 units: centres at x, y = -1.5, -0.5, 0.5, 1.5, on texel centres.
     const Rendered r = render(s, 4, 4);

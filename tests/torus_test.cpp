@@ -17,8 +17,8 @@
 #include "csg/Scene.h"
 #include "primitives/Torus.h"
 #include "primitives/solvers/Quartic.h"
+#include "primitives/solvers/reference/RootReference.h"
 #include "tests/SeededRng.h"
-#include "viewer/accuracy/RootReference.h"
 
 namespace csg {
 namespace {

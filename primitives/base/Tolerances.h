@@ -356,7 +356,7 @@ inline constexpr double kPatchClipMargin = 1e-7;
 // rounding-noise partial gives ~1e-16, far below.
 inline constexpr double kPatchNormalDegenerateRel = 1e-10;
 
-// A mesh read for comparison (io/MeshFile.h) may not have a vertex coordinate larger in
+// A mesh read for comparison (io/mesh/MeshFile.h) may not have a vertex coordinate larger in
 // magnitude than this (unit: the file's own). Why: compare sums triple products of
 // coordinates for the volume and squares them for distances; at 1e30 a cube of a coordinate
 // is 1e90, so a billion triangles stay ~10^209 below double's overflow, where 1e300 gave

@@ -10,7 +10,7 @@
 
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/TriangleBvh.h"
-#include "io/MeshFile.h"
+#include "io/mesh/MeshFile.h"
 #include "primitives/base/Tolerances.h"
 
 namespace fuzz {

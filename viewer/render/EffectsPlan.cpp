@@ -25,7 +25,7 @@ bool positive(const csg::Vec3& c) {
 }
 
 // Over the viewer's left shoulder, a little behind the eye: the usual studio key light.
-csg::Vec3 defaultLightPosition(const io::Camera& camera) {
+csg::Vec3 defaultLightPosition(const Camera& camera) {
     const RenderCamera frame(camera, 1, 1);
     const double d = frame.focusDistance();
     return frame.eye() + d * (0.5 * frame.up() - 0.3 * frame.right() - 0.2 * frame.forward());
@@ -51,35 +51,35 @@ bool isConvexSolid(const csg::Node& node) {
     return false;
 }
 
-EffectsPlan makeEffectsPlan(const io::Model& model, const csg::Scene& scene,
-                            const io::Camera& camera, const PlanSettings& settings) {
+EffectsPlan makeEffectsPlan(const SceneLook& look, const csg::Node* root, const csg::Scene& scene,
+                            const Camera& camera, const PlanSettings& settings) {
     EffectsPlan plan;
     plan.settings = settings;
-    plan.background = srgbToLinear(model.background ? *model.background : kDefaultBackgroundSrgb);
-    plan.convexScene = scene.leafCount() == 0 || (model.root && isConvexSolid(*model.root));
+    plan.background = srgbToLinear(look.background ? *look.background : kDefaultBackgroundSrgb);
+    plan.convexScene = scene.leafCount() == 0 || (root && isConvexSolid(*root));
 
     // Materials: which are carried by a leaf, and which terms each one has.
-    plan.materials.resize(model.materials.empty() ? 1 : model.materials.size());
-    for (size_t i = 0; i < model.materials.size(); ++i)
-        plan.materials[i].shading = shadingMaterial(model.materials[i]);
+    plan.materials.resize(look.materials.empty() ? 1 : look.materials.size());
+    for (size_t i = 0; i < look.materials.size(); ++i)
+        plan.materials[i].shading = shadingMaterial(look.materials[i]);
     // Textures are decoded here, once, so the tracer only looks texels up.
-    plan.textures.reserve(model.textures.size());
-    for (const io::Model::Texture& t : model.textures)
+    plan.textures.reserve(look.textures.size());
+    for (const SceneLook::Texture& t : look.textures)
         plan.textures.push_back(LinearTexture::fromSrgb(t.image));
     for (PlannedMaterial& m : plan.materials)
         if (m.shading.texture >= int32_t(plan.textures.size()))
-            m.shading.pattern = io::Pattern::Solid;  // a stale index: never read past the table
+            m.shading.pattern = Pattern::Solid;  // a stale index: never read past the table
     for (uint32_t leaf = 0; leaf < scene.leafCount(); ++leaf) {
         const uint32_t tag = scene.leafTags(leaf).material;
         plan.materials[tag < plan.materials.size() ? tag : 0].used = true;
     }
 
     // Lights: the model's, or one default light; a light with no radiance lights nothing.
-    std::vector<io::Light> lights = model.lights;
+    std::vector<Light> lights = look.lights;
     const bool defaultLight = lights.empty();
-    if (defaultLight) lights.push_back(io::Light{defaultLightPosition(camera)});
+    if (defaultLight) lights.push_back(Light{defaultLightPosition(camera)});
     for (size_t i = 0; i < lights.size(); ++i) {
-        const io::Light& light = lights[i];
+        const Light& light = lights[i];
         PlannedLight p;
         p.position = light.position;
         p.radiance = light.color * light.intensity;
@@ -120,7 +120,7 @@ EffectsPlan makeEffectsPlan(const io::Model& model, const csg::Scene& scene,
     return plan;
 }
 
-void writeEffectsPlan(io::JsonWriter& json, const EffectsPlan& plan) {
+void writeEffectsPlan(csg::JsonWriter& json, const EffectsPlan& plan) {
     json.beginObject();
     json.key("shadowRays").value(plan.shadowRays);
     json.key("directLight").value(plan.direct);

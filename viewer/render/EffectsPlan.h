@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "csg/Scene.h"
-#include "io/Json.h"
-#include "io/Model.h"
+#include "primitives/base/Json.h"
+#include "viewer/render/Look.h"
 #include "viewer/render/Materials.h"
 #include "viewer/render/Pattern.h"
 
@@ -36,10 +36,10 @@ struct PlannedLight {
     csg::Vec3 radiance;  // linear RGB: colour x intensity
     bool shadowRays = false;
     std::string shadowReason;  // why shadow rays are (not) cast toward it
-    int modelIndex = -1;       // index in io::Model::lights; -1 for the default light
+    int modelIndex = -1;       // index in SceneLook::lights; -1 for the default light
 };
 
-// One entry per io::Model::materials entry, indexed by csg::Tags::material.
+// One entry per SceneLook::materials entry, indexed by csg::Tags::material.
 struct PlannedMaterial {
     ShadingMaterial shading;
     bool used = false;        // some leaf of the scene carries it
@@ -54,7 +54,7 @@ struct EffectsPlan {
     std::vector<PlannedLight> lights;  // lights that can light something (radiance > 0)
     int droppedLights = 0;             // lights of the model with zero radiance
     std::vector<PlannedMaterial> materials;
-    std::vector<LinearTexture> textures;  // io::Model::textures, decoded to linear RGB
+    std::vector<LinearTexture> textures;  // SceneLook::textures, decoded to linear RGB
     csg::Vec3 background{0.0};            // linear RGB
     csg::Vec3 ambientLight{1.0};
     bool convexScene = false;  // the whole solid is one convex set
@@ -62,7 +62,7 @@ struct EffectsPlan {
     bool shadowRays = false, direct = false, specular = false, reflection = false,
          refraction = false;
 
-    // The material of a leaf's tag (an out-of-range tag reads as entry 0, like io::Model).
+    // The material of a leaf's tag (an out-of-range tag reads as entry 0, like SceneLook).
     const PlannedMaterial& material(uint32_t tag) const {
         return materials[tag < materials.size() ? tag : 0];
     }
@@ -70,11 +70,11 @@ struct EffectsPlan {
 
 // Derives the plan. camera places the default light (one light over the viewer's left
 // shoulder) when the model has none.
-EffectsPlan makeEffectsPlan(const io::Model& model, const csg::Scene& scene,
-                            const io::Camera& camera, const PlanSettings& settings);
+EffectsPlan makeEffectsPlan(const SceneLook& look, const csg::Node* root, const csg::Scene& scene,
+                            const Camera& camera, const PlanSettings& settings);
 
 // The plan as one JSON object (for --stats and `csgray info`).
-void writeEffectsPlan(io::JsonWriter& json, const EffectsPlan& plan);
+void writeEffectsPlan(csg::JsonWriter& json, const EffectsPlan& plan);
 
 // True when the tree is certainly one convex set: convex primitives (sphere, box, cylinder
 // or cone, half-space) under affine maps and intersections. false means "not known convex".

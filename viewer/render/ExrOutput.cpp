@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "io/AtomicFile.h"
+#include "primitives/base/AtomicFile.h"
 
 namespace viewer::render {
 
@@ -45,7 +45,7 @@ std::string writeExr(const std::filesystem::path& path, const LinearImage& image
     if (image.width <= 0 || image.height <= 0 ||
         image.rgb.size() != size_t(image.width) * size_t(image.height) * 3)
         return "cannot write '" + path.string() + "': the image has no pixels";
-    io::AtomicFile file(path);
+    csg::AtomicFile file(path);
     if (!file.ok()) return file.error();
     try {
         Imf::Header header(image.width, image.height);

@@ -1,6 +1,6 @@
 // OpenEXR output of a render: 32-bit float linear RGB channels R, G, B with ZIP compression,
 // the HDR format compositing tools read (PFM is the simpler one). Written through
-// io/AtomicFile like the other formats: a failed or interrupted write leaves no file.
+// primitives/base/AtomicFile like the other formats: a failed or interrupted write leaves no file.
 #pragma once
 
 #include <filesystem>

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "io/AtomicFile.h"
+#include "primitives/base/AtomicFile.h"
 #include "viewer/render/Color.h"
 #include "viewer/render/ExrOutput.h"
 
@@ -16,7 +16,7 @@ namespace viewer::render {
 namespace {
 
 std::string writePfm(const std::filesystem::path& path, const LinearImage& image) {
-    io::AtomicFile file(path);
+    csg::AtomicFile file(path);
     if (!file.ok()) return file.error();
     // PFM: "PF" (colour), the size, then the scale whose sign gives the byte order (negative:
     // little-endian); rows run bottom to top.
@@ -86,8 +86,8 @@ void encodeSrgb(const float* linear, size_t count, uint8_t* out) {
     for (size_t i = 0; i < count; ++i) out[i] = encode(linear[i]);
 }
 
-io::Rgb8Image encodeSrgb(const LinearImage& image) {
-    io::Rgb8Image out(image.width, image.height);
+Rgb8Image encodeSrgb(const LinearImage& image) {
+    Rgb8Image out(image.width, image.height);
     encodeSrgb(image.rgb.data(), image.rgb.size(), out.pixels.data());
     return out;
 }
@@ -99,7 +99,7 @@ PixelStore pixelStoreFor(ImageFormat format) {
 std::string writeImage(const std::filesystem::path& path, ImageFormat format,
                        const RenderResult& render) {
     if (!render.srgb.pixels.empty() && format == ImageFormat::Png)
-        return io::writePng(path, render.srgb);
+        return writePng(path, render.srgb);
     return writeImage(path, format, render.image);
 }
 
@@ -107,7 +107,7 @@ std::string writeImage(const std::filesystem::path& path, ImageFormat format,
                        const LinearImage& image) {
     if (format == ImageFormat::Pfm) return writePfm(path, image);
     if (format == ImageFormat::Exr) return writeExr(path, image);
-    return io::writePng(path, encodeSrgb(image));
+    return writePng(path, encodeSrgb(image));
 }
 
 }  // namespace viewer::render

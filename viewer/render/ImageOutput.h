@@ -1,13 +1,13 @@
 // Writing a finished render: PNG (8-bit, sRGB-encoded from linear light, through
-// io/PngWriter), PFM (32-bit float linear RGB, the simplest HDR format, for comparisons) or
-// OpenEXR (the same floats, compressed; ExrOutput.h). All go through io/AtomicFile: a failed
-// or interrupted write leaves no file.
+// viewer/render/PngWriter), PFM (32-bit float linear RGB, the simplest HDR format, for comparisons)
+// or OpenEXR (the same floats, compressed; ExrOutput.h). All go through primitives/base/AtomicFile:
+// a failed or interrupted write leaves no file.
 #pragma once
 
 #include <filesystem>
 #include <string>
 
-#include "io/PngWriter.h"
+#include "viewer/render/PngWriter.h"
 #include "viewer/render/TileRenderer.h"
 
 namespace viewer::render {
@@ -15,7 +15,7 @@ namespace viewer::render {
 enum class ImageFormat { Png, Pfm, Exr };
 
 // Linear RGB to 8-bit sRGB (the transfer function, not a plain 2.2 power).
-io::Rgb8Image encodeSrgb(const LinearImage& image);
+Rgb8Image encodeSrgb(const LinearImage& image);
 // The same for `count` channel values, from linear to out.
 void encodeSrgb(const float* linear, size_t count, uint8_t* out);
 

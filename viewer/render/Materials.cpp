@@ -4,7 +4,7 @@
 
 namespace viewer::render {
 
-ShadingMaterial shadingMaterial(const io::Material& m) {
+ShadingMaterial shadingMaterial(const Material& m) {
     ShadingMaterial s;
     s.color = srgbToLinear(csg::Vec3(m.color));
     s.ambient = m.ambient;
@@ -21,20 +21,20 @@ ShadingMaterial shadingMaterial(const io::Material& m) {
     s.color2 = srgbToLinear(csg::Vec3(m.color2));
     s.inverseScale = m.scale > 0.0 ? 1.0 / m.scale : 1.0;  // the language rejects scale <= 0
     s.texture = m.texture;
-    if (s.pattern == io::Pattern::Texture && s.texture < 0) s.pattern = io::Pattern::Solid;
+    if (s.pattern == Pattern::Texture && s.texture < 0) s.pattern = Pattern::Solid;
     return s;
 }
 
-std::vector<ShadingMaterial> shadingMaterials(const io::Model& model) {
+std::vector<ShadingMaterial> shadingMaterials(const SceneLook& look) {
     std::vector<ShadingMaterial> table;
-    table.reserve(model.materials.size());
-    for (const io::Material& m : model.materials) table.push_back(shadingMaterial(m));
-    if (table.empty()) table.push_back(shadingMaterial(io::Material{}));
+    table.reserve(look.materials.size());
+    for (const Material& m : look.materials) table.push_back(shadingMaterial(m));
+    if (table.empty()) table.push_back(shadingMaterial(Material{}));
     return table;
 }
 
-io::Material materialPreset(MaterialClass kind) {
-    io::Material m;
+Material materialPreset(MaterialClass kind) {
+    Material m;
     m.ambient = m.diffuse = m.specular = m.reflect = m.transmit = 0.0;
     m.shininess = 1.0;
     m.ior = 1.0;

@@ -1,4 +1,4 @@
-// Shading materials: io::Material (sRGB colour, unitless coefficients) turned into what the
+// Shading materials: Material (sRGB colour, unitless coefficients) turned into what the
 // tracer reads per hit (linear colour), and the seed thesis' material classes as presets.
 #pragma once
 
@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
-#include "io/Model.h"
 #include "primitives/base/Math.h"
+#include "viewer/render/Look.h"
 
 namespace viewer::render {
 
@@ -25,13 +25,13 @@ struct ShadingMaterial {
     double transmit = 0.0;  // weight of the refracted ray
     double ior = 1.0;       // index of refraction against the surrounding air (1.0)
     // A pattern replaces color by one looked up at the hit (viewer/render/Pattern.h).
-    io::Pattern pattern = io::Pattern::Solid;
+    Pattern pattern = Pattern::Solid;
     csg::Vec3 color2{0.0};      // linear RGB: the checker's other colour
     double inverseScale = 1.0;  // 1 / the pattern's square size in world units
-    int32_t texture = -1;       // index in EffectsPlan::textures (io::Model::textures)
+    int32_t texture = -1;       // index in EffectsPlan::textures (SceneLook::textures)
 };
 
-ShadingMaterial shadingMaterial(const io::Material& m);
+ShadingMaterial shadingMaterial(const Material& m);
 
 // Exponents up to this are raised by squaring (at most 2 log2 of it multiplications).
 inline constexpr uint32_t kMaxSquaringExponent = 1024;
@@ -50,13 +50,13 @@ inline double highlight(double cos, const ShadingMaterial& s) {
     }
 }
 
-// The table the tracer indexes by csg::Tags::material (same order as io::Model::materials).
-std::vector<ShadingMaterial> shadingMaterials(const io::Model& model);
+// The table the tracer indexes by csg::Tags::material (same order as SceneLook::materials).
+std::vector<ShadingMaterial> shadingMaterials(const SceneLook& look);
 
 // The material classes of the seed thesis. The part language has no preset selector (its
 // material() takes the coefficients), so a part writes a class out with these values, e.g.
 // a mirror is material(ambient=0, diffuse=0, specular=0.5, shininess=200, reflect=0.9).
-// Colour is left at io::Material's default; only the coefficients define the class.
+// Colour is left at Material's default; only the coefficients define the class.
 enum class MaterialClass {
     BlackBody,    // absorbs everything: all coefficients 0 (renders black)
     Ambient,      // self-coloured, unlit: ambient 1, nothing else
@@ -67,7 +67,7 @@ enum class MaterialClass {
                   // reflect 0.05, transmit 0.9, ior 1.5
 };
 
-io::Material materialPreset(MaterialClass kind);
+Material materialPreset(MaterialClass kind);
 std::string_view materialClassName(MaterialClass kind);
 
 }  // namespace viewer::render

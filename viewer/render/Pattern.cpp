@@ -6,7 +6,7 @@
 
 namespace viewer::render {
 
-LinearTexture LinearTexture::fromSrgb(const io::Rgb8Image& image) {
+LinearTexture LinearTexture::fromSrgb(const Rgb8Image& image) {
     // A table: 256 decodes instead of one pow per channel of every texel.
     float table[256];
     for (int i = 0; i < 256; ++i) table[i] = float(srgbToLinear(i / 255.0));

@@ -10,8 +10,8 @@
 
 #include <vector>
 
-#include "io/PngWriter.h"
 #include "primitives/base/Math.h"
+#include "viewer/render/PngWriter.h"
 
 namespace viewer::render {
 
@@ -20,7 +20,7 @@ struct LinearTexture {
     int width = 0, height = 0;
     std::vector<float> rgb;  // row-major, top row first, 3 floats per texel
 
-    static LinearTexture fromSrgb(const io::Rgb8Image& image);
+    static LinearTexture fromSrgb(const Rgb8Image& image);
 };
 
 // (u, v) of point p on a surface with unit normal n (see the notation above).

@@ -26,7 +26,7 @@ csg::Vec3 rightOf(const csg::Vec3& forward, const csg::Vec3& up) {
 
 }  // namespace
 
-io::Camera frameBounds(const csg::Scene& scene, double aspect) {
+Camera frameBounds(const csg::Scene& scene, double aspect) {
     csg::Bounds3 box;
     for (uint32_t leaf = 0; leaf < scene.leafCount(); ++leaf) {
         const csg::Bounds3 local =
@@ -40,7 +40,7 @@ io::Camera frameBounds(const csg::Scene& scene, double aspect) {
         const csg::Bounds3 clipped = overlap(box, sceneBox);
         if (!clipped.empty()) box = clipped;
     }
-    io::Camera camera;
+    Camera camera;
     if (box.empty()) return camera;
 
     const double radius = std::max(0.5 * glm::length(box.extent()), 1e-300);
@@ -54,10 +54,10 @@ io::Camera frameBounds(const csg::Scene& scene, double aspect) {
     return camera;
 }
 
-RenderCamera::RenderCamera(const io::Camera& c, int width, int height)
+RenderCamera::RenderCamera(const Camera& c, int width, int height)
     : eye_(c.eye),
       aspect_(double(width) / double(height)),
-      orthographic_(c.projection == io::Projection::Orthographic),
+      orthographic_(c.projection == Projection::Orthographic),
       width_(width),
       height_(height) {
     const csg::Vec3 view = c.center - c.eye;

@@ -4,21 +4,21 @@
 
 #include "csg/Ray.h"
 #include "csg/Scene.h"
-#include "io/Model.h"
+#include "viewer/render/Look.h"
 
 namespace viewer::render {
 
 // A camera looking at the part's bounds (the leaves' finite bounds clipped by the scene's)
 // from OpenSCAD's default direction (front-right, above), far enough that the bounding sphere
 // fits an image of the given aspect (width / height) with a 5% margin. A scene with no
-// bounded leaf gets io::Camera{}.
-io::Camera frameBounds(const csg::Scene& scene, double aspect);
+// bounded leaf gets Camera{}.
+Camera frameBounds(const csg::Scene& scene, double aspect);
 
 class RenderCamera {
 public:
     // camera.fov is the vertical field of view; for an orthographic camera the view height
     // is the one the perspective camera would see at the centre's distance.
-    RenderCamera(const io::Camera& camera, int width, int height);
+    RenderCamera(const Camera& camera, int width, int height);
 
     // The primary ray through image point (x, y): pixel units, origin at the top-left corner,
     // y down, so pixel (i, j) covers [i, i+1] x [j, j+1]. d is unit length, t in world units.

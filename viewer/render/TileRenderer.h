@@ -8,8 +8,8 @@
 
 #include "csg/HugePages.h"
 #include "csg/Scene.h"
-#include "io/PngWriter.h"
 #include "viewer/render/EffectsPlan.h"
+#include "viewer/render/PngWriter.h"
 #include "viewer/render/Progress.h"
 #include "viewer/render/RayCounts.h"
 #include "viewer/render/RenderCamera.h"
@@ -37,7 +37,7 @@ struct LinearImage {
 
 struct RenderResult {
     LinearImage image;         // when settings.store is LinearFloat
-    io::Rgb8Image srgb;        // when it is Srgb8: encodeSrgb of the same pixels
+    Rgb8Image srgb;            // when it is Srgb8: encodeSrgb of the same pixels
     RayCounts rays;            // summed over threads
     csg::QueryStats queries;   // summed over threads
     bool interrupted = false;  // the image is incomplete and must not be written

@@ -33,7 +33,7 @@ csg::Vec3 Tracer::trace(const csg::Ray& ray, RayKind kind, int depth, double wei
     // is seen only through refraction, which carries its own light.
     if (entering || !m.refraction) {
         const csg::Vec3 albedo =
-            s.pattern == io::Pattern::Solid ? s.color : patternColor(s, surface, hit->leaf);
+            s.pattern == Pattern::Solid ? s.color : patternColor(s, surface, hit->leaf);
         color += s.ambient * albedo * plan_.ambientLight;
         if (m.direct) color += directLight(m, albedo, surface.point, error, n, -dir);
     }
@@ -74,7 +74,7 @@ csg::Vec3 Tracer::patternColor(const ShadingMaterial& s, const csg::SurfacePoint
         leaf == frameLeaf_
             ? csg::Vec2(glm::dot(surface.point, frame_.u), glm::dot(surface.point, frame_.v))
             : planarCoordinates(surface.point, surface.normal, false);
-    if (s.pattern == io::Pattern::Checker)
+    if (s.pattern == Pattern::Checker)
         return checkerParity(uv, s.inverseScale) ? s.color2 : s.color;
     return sampleTexture(plan_.textures[size_t(s.texture)], uv, s.inverseScale);
 }

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
-#include "viewer/Report.h"
+#include "viewer/cli/Report.h"
 
 namespace viewer::window {
 

@@ -14,8 +14,8 @@
 #include <thread>
 #include <vector>
 
-#include "viewer/Cli.h"
-#include "viewer/LoadPart.h"
+#include "viewer/cli/Cli.h"
+#include "viewer/cli/LoadPart.h"
 
 namespace viewer::window {
 

@@ -20,11 +20,12 @@ constexpr int kBlockSizes[] = {8, 4, 2, 1};
 
 }  // namespace
 
-render::EffectsPlan planFor(const LoadedPart& part, const io::Camera& camera,
+render::EffectsPlan planFor(const LoadedPart& part, const render::Camera& camera,
                             const EffectToggles& effects) {
     render::PlanSettings settings;
     settings.shadows = effects.shadows;
-    render::EffectsPlan plan = render::makeEffectsPlan(part.model, part.scene, camera, settings);
+    render::EffectsPlan plan =
+        render::makeEffectsPlan(part.model, part.model.root.get(), part.scene, camera, settings);
     // The tracer asks each material, so switching an effect off is clearing it there.
     for (render::PlannedMaterial& m : plan.materials) {
         m.reflection = m.reflection && effects.reflection;

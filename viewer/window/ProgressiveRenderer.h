@@ -17,9 +17,9 @@
 #include <string>
 #include <thread>
 
-#include "io/PngWriter.h"
-#include "viewer/LoadPart.h"
+#include "viewer/cli/LoadPart.h"
 #include "viewer/render/EffectsPlan.h"
+#include "viewer/render/PngWriter.h"
 #include "viewer/render/RayCounts.h"
 
 namespace viewer::window {
@@ -34,16 +34,16 @@ struct EffectToggles {
 
 struct RenderRequest {
     std::shared_ptr<const LoadedPart> part;  // never null
-    io::Camera camera;
+    render::Camera camera;
     int width = 0, height = 0;  // the full-resolution image, pixels
     EffectToggles effects;
 };
 
 // One finished refinement level.
 struct ProgressiveFrame {
-    uint64_t request = 0;  // which request (they count up from 1)
-    int blockSize = 8;     // pixels of the full image per ray along each axis: 8, 4, 2 or 1
-    io::Rgb8Image image;   // sRGB, ceil(width / blockSize) x ceil(height / blockSize)
+    uint64_t request = 0;     // which request (they count up from 1)
+    int blockSize = 8;        // pixels of the full image per ray along each axis: 8, 4, 2 or 1
+    render::Rgb8Image image;  // sRGB, ceil(width / blockSize) x ceil(height / blockSize)
     render::RayCounts rays;
     double renderSeconds = 0.0;  // this level alone
     double sinceRequest = 0.0;   // from the request to this level being ready
@@ -52,7 +52,7 @@ struct ProgressiveFrame {
 
 // The effects plan for the toggles: makeEffectsPlan, then reflection and refraction removed
 // from every material when switched off.
-render::EffectsPlan planFor(const LoadedPart& part, const io::Camera& camera,
+render::EffectsPlan planFor(const LoadedPart& part, const render::Camera& camera,
                             const EffectToggles& effects);
 // "shadows specular reflection" (what the plan casts or shades), or "ambient only".
 std::string describePlan(const render::EffectsPlan& plan);

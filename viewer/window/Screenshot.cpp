@@ -5,8 +5,8 @@
 
 namespace viewer::window {
 
-io::Rgb8Image upscaleNearest(const io::Rgb8Image& image, int width, int height) {
-    io::Rgb8Image out(width, height);
+render::Rgb8Image upscaleNearest(const render::Rgb8Image& image, int width, int height) {
+    render::Rgb8Image out(width, height);
     if (image.width <= 0 || image.height <= 0) return out;
     for (int y = 0; y < height; ++y) {
         const int sy = int(int64_t(y) * image.height / height);

@@ -17,7 +17,7 @@ csg::Vec3 rotate(const csg::Vec3& v, const csg::Vec3& axis, double angle) {
 }
 
 // World units per pixel at the centre's distance: what makes a pan follow the mouse.
-double worldPerPixel(const io::Camera& camera, int height) {
+double worldPerPixel(const render::Camera& camera, int height) {
     const double distance = glm::length(camera.center - camera.eye);
     const double halfHeight = std::tan(camera.fov * std::numbers::pi / 360.0) * distance;
     return 2.0 * halfHeight / std::max(height, 1);
@@ -58,19 +58,19 @@ void ViewCamera::zoom(double steps) {
 }
 
 void ViewCamera::toggleOrthographic() {
-    camera_.projection = camera_.projection == io::Projection::Perspective
-                             ? io::Projection::Orthographic
-                             : io::Projection::Perspective;
+    camera_.projection = camera_.projection == render::Projection::Perspective
+                             ? render::Projection::Orthographic
+                             : render::Projection::Perspective;
 }
 
 void ViewCamera::reset() {
-    const io::Projection projection = camera_.projection;
+    const render::Projection projection = camera_.projection;
     camera_ = initial_;
     camera_.projection = projection;
 }
 
 void ViewCamera::frame(const csg::Scene& scene, double aspect) {
-    const io::Camera fit = render::frameBounds(scene, aspect);
+    const render::Camera fit = render::frameBounds(scene, aspect);
     const double distance = glm::length(fit.eye - fit.center);
     const csg::Vec3 back = glm::normalize(camera_.eye - camera_.center);
     camera_.center = fit.center;

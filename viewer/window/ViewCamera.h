@@ -1,4 +1,4 @@
-// The interactive camera of `csgray view`: an io::Camera (so a view renders exactly like
+// The interactive camera of `csgray view`: an render::Camera (so a view renders exactly like
 // `csgray render` with that camera) plus the mouse gestures that move it. Orbit turns the eye
 // around the centre (yaw about the camera's up axis, pitch about its right axis, clamped short
 // of the poles so up stays defined); pan slides eye and centre together in the image plane;
@@ -13,9 +13,9 @@ namespace viewer::window {
 class ViewCamera {
 public:
     // initial is what R restores: the part's camera(...) or the framing camera.
-    explicit ViewCamera(const io::Camera& initial) : initial_(initial), camera_(initial) {}
+    explicit ViewCamera(const render::Camera& initial) : initial_(initial), camera_(initial) {}
 
-    const io::Camera& camera() const { return camera_; }
+    const render::Camera& camera() const { return camera_; }
 
     // dx, dy in pixels of a window of the given height; dragging right turns the part right.
     void orbit(double dx, double dy, int height);
@@ -29,11 +29,11 @@ public:
     // F: keeps the view direction and projection, centres the part's bounds and fits them.
     void frame(const csg::Scene& scene, double aspect);
     // A reload: the new part's initial camera becomes what R restores; the view stays.
-    void setInitial(const io::Camera& initial) { initial_ = initial; }
+    void setInitial(const render::Camera& initial) { initial_ = initial; }
 
 private:
-    io::Camera initial_;
-    io::Camera camera_;
+    render::Camera initial_;
+    render::Camera camera_;
 };
 
 }  // namespace viewer::window

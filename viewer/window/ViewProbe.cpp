@@ -4,7 +4,7 @@
 #include <fstream>
 #include <map>
 
-#include "viewer/ProbeJson.h"
+#include "viewer/cli/ProbeJson.h"
 #include "viewer/render/RenderCamera.h"
 
 namespace viewer::window {
@@ -61,7 +61,7 @@ void describeEnd(const LoadedPart& part, const csg::Hit& hit, const char* label,
 
 }  // namespace
 
-PixelProbe probePixel(const LoadedPart& part, const io::Camera& camera, int width, int height,
+PixelProbe probePixel(const LoadedPart& part, const render::Camera& camera, int width, int height,
                       int x, int y) {
     const csg::Ray ray = render::RenderCamera(camera, width, height).ray(x + 0.5, y + 0.5);
     PixelProbe probe;

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "io/Model.h"
-#include "viewer/LoadPart.h"
+#include "viewer/cli/LoadPart.h"
 
 namespace viewer::window {
 
@@ -19,7 +19,7 @@ struct PixelProbe {
 };
 
 // The primary ray through the centre of pixel (x, y) of a width x height view, probed.
-PixelProbe probePixel(const LoadedPart& part, const io::Camera& camera, int width, int height,
+PixelProbe probePixel(const LoadedPart& part, const render::Camera& camera, int width, int height,
                       int x, int y);
 
 }  // namespace viewer::window

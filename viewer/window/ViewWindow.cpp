@@ -101,7 +101,7 @@ ViewWindow::~ViewWindow() {
     if (videoStarted_) sdl().SDL_Quit();
 }
 
-void ViewWindow::setImage(const io::Rgb8Image& image) {
+void ViewWindow::setImage(const render::Rgb8Image& image) {
     if (!texture_ || textureWidth_ != image.width || textureHeight_ != image.height) {
         if (texture_) sdl().SDL_DestroyTexture(texture_);
         texture_ = sdl().SDL_CreateTexture(renderer_, SDL_PIXELFORMAT_RGB24,

@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "io/PngWriter.h"
+#include "viewer/render/PngWriter.h"
 #include "viewer/window/Panel.h"
 #include "viewer/window/PanelDrawing.h"
 
@@ -43,7 +43,7 @@ public:
     const StartupTimes& startupTimes() const { return startup_; }
 
     // Replaces the picture (any size; stretched to the window when drawn).
-    void setImage(const io::Rgb8Image& image);
+    void setImage(const render::Rgb8Image& image);
     void setTitle(const std::string& title);
     // A red frame around the picture: the part on screen is not what the file says.
     void setErrorBorder(bool on) { errorBorder_ = on; }

@@ -1,0 +1,146 @@
+#include "viewer/cli/Cli.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
+namespace viewer {
+
+const char* const kCommonOptionsHelp =
+    "  -D name=value          override the part's top-level variable name (value is an\n"
+    "                         expression, as with OpenSCAD's -D); may be repeated\n"
+    "  --diagnostics=FORMAT   text (default): file:line:col: error: message on stderr;\n"
+    "                         json: one JSON array of diagnostics on stderr\n"
+    "  -h, --help             show this help\n";
+
+std::optional<std::string> ArgCursor::option(std::string_view name) {
+    if (done()) return std::nullopt;
+    const std::string& arg = peek();
+    if (arg == name) {
+        if (index_ + 1 >= args_.size()) throw UsageError(std::string(name) + " needs a value");
+        index_ += 2;
+        return args_[index_ - 1];
+    }
+    if (arg.size() > name.size() && arg.starts_with(name) && arg[name.size()] == '=') {
+        ++index_;
+        return arg.substr(name.size() + 1);
+    }
+    return std::nullopt;
+}
+
+bool ArgCursor::flag(std::string_view name) {
+    if (done() || peek() != name) return false;
+    ++index_;
+    return true;
+}
+
+bool ArgCursor::common(CommonOptions& options) {
+    if (done()) return false;
+    if (flag("--help") || flag("-h")) {
+        options.help = true;
+        return true;
+    }
+    // -D takes its value attached (-Dx=1) or as the next argument (-D x=1), like OpenSCAD.
+    std::optional<std::string> define;
+    if (peek().starts_with("-D") && peek().size() > 2) {
+        define = take().substr(2);
+    } else if (auto d = option("-D")) {
+        define = std::move(d);
+    }
+    if (define) {
+        const size_t eq = define->find('=');
+        if (eq == 0 || eq == std::string::npos)
+            throw UsageError("-D expects name=value, got '" + *define + "'");
+        options.defines.emplace_back(define->substr(0, eq), define->substr(eq + 1));
+        return true;
+    }
+    if (auto format = option("--diagnostics")) {
+        if (*format == "json") {
+            options.jsonDiagnostics = true;
+        } else if (*format == "text") {
+            options.jsonDiagnostics = false;
+        } else {
+            throw UsageError("--diagnostics expects text or json, got '" + *format + "'");
+        }
+        return true;
+    }
+    // "-" alone is not an option, but a part cannot come from stdin either: leave it to the
+    // caller, which reports it.
+    if (!peek().starts_with("-")) {
+        if (!options.part.empty())
+            throw UsageError("more than one part given: '" + options.part + "' and '" + peek() +
+                             "'");
+        options.part = take();
+        return true;
+    }
+    return false;
+}
+
+namespace {
+
+double parseNumber(std::string_view text, std::string_view what) {
+    double value = 0.0;
+    const char* end = text.data() + text.size();
+    // from_chars rejects a leading '+', which people do write.
+    const char* begin = text.data();
+    if (begin != end && *begin == '+') ++begin;
+    const auto r = std::from_chars(begin, end, value);
+    if (r.ec != std::errc() || r.ptr != end || !std::isfinite(value))
+        throw UsageError(std::string(what) + ": '" + std::string(text) +
+                         "' is not a finite number");
+    return value;
+}
+
+}  // namespace
+
+csg::Vec3 parseVec3(std::string_view text, std::string_view what) {
+    csg::Vec3 v(0.0);
+    size_t start = 0;
+    for (int i = 0; i < 3; ++i) {
+        const size_t comma = i < 2 ? text.find(',', start) : text.size();
+        if (comma == std::string_view::npos || (i == 2 && text.find(',', start) != text.npos))
+            throw UsageError(std::string(what) + " expects X,Y,Z (three numbers), got '" +
+                             std::string(text) + "'");
+        v[i] = parseNumber(text.substr(start, comma - start), what);
+        start = comma + 1;
+    }
+    return v;
+}
+
+int parsePositiveInt(std::string_view text, std::string_view what, int maxValue) {
+    int value = 0;
+    const auto r = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (r.ec != std::errc() || r.ptr != text.data() + text.size() || value <= 0 || value > maxValue)
+        throw UsageError(std::string(what) + " expects an integer from 1 to " +
+                         std::to_string(maxValue) + ", got '" + std::string(text) + "'");
+    return value;
+}
+
+double parseNumberIn(std::string_view text, std::string_view what, double low, double high) {
+    const double value = parseNumber(text, what);
+    if (value < low || value > high) {
+        char range[64];
+        std::snprintf(range, sizeof range, "%g to %g", low, high);
+        throw UsageError(std::string(what) + " expects a number from " + range + ", got '" +
+                         std::string(text) + "'");
+    }
+    return value;
+}
+
+std::pair<int, int> parseSize(std::string_view text, std::string_view what) {
+    const size_t x = text.find_first_of("xX");
+    if (x == std::string_view::npos)
+        throw UsageError(std::string(what) + " expects WxH (e.g. 800x600), got '" +
+                         std::string(text) + "'");
+    constexpr int kMaxSide = 32768;
+    return {parsePositiveInt(text.substr(0, x), what, kMaxSide),
+            parsePositiveInt(text.substr(x + 1), what, kMaxSide)};
+}
+
+void requirePart(const CommonOptions& options, std::string_view command) {
+    if (options.part.empty())
+        throw UsageError(std::string(command) + " needs a part file (csgray " +
+                         std::string(command) + " PART ...)");
+}
+
+}  // namespace viewer
