@@ -1,971 +1,823 @@
+// Contourer's member functions (Contourer.h) and dualContour().
 #include "csg/mesh/DualContour.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <unordered_set>
 #include <utility>
 #include <vector>
 
 #include "csg/mesh/CellTopology.h"
+#include "csg/mesh/Contourer.h"
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/Qef.h"
 #include "csg/mesh/UnfoldVertices.h"
 #include "primitives/base/ParallelFor.h"
 #include "primitives/base/Tolerances.h"
 
-namespace csg {
+namespace csg::detail {
 
-namespace {
+TriangleMesh Contourer::run() {
+    collectActiveCells();
+    // With the octree, a round with a ring no fan fits at a merged block (chooseApex), a
+    // vertex whose triangles are not one disk (noteNonManifoldLeaves), a block vertex whose
+    // triangles cross or overlap (noteFoldedLeaves) or a cell that stays folded next to
+    // blocks (unfoldSheetVertices) forbids the blocks there and runs again. After
+    // kOctreeMaxRounds the uniform contour is used.
+    for (int round = 0;; ++round) {
+        startRound();
+        if (flatTolerance_ > 0.0) mergeFlatBlocks();
+        placeSheetVertices();
+        for (const uint64_t cell : active_) fansOfCell(cell);
+        unfoldSheetVertices();
+        if (!leaves_.empty()) {
+            noteNonManifoldLeaves();
+            noteFoldedLeaves();
+        }
+        if (foldedLeaves_.empty()) break;
+        if (round + 1 >= kOctreeMaxRounds) {
+            flatTolerance_ = 0.0;
+            stats_.octreeFallback = true;
+            continue;
+        }
+        // Forbid each such block and every block inside it (its cells keep their own
+        // vertices). Forbidding only the block let its children fold in turn: on csg_grid3
+        // (T = 0.028) 3556 blocks folded in the first round, then 701, 19, 4, 1, where this
+        // rule gives 3556, 60, 19, 5, 3 (the tail is neighbours that fold once a block next
+        // to them splits; each round costs about as much as the first).
+        for (const uint32_t leaf : foldedLeaves_) {
+            forbidden_.insert(leaves_[leaf].key);
+            dirtyTop_[leaves_[leaf].top] = 1;
+        }
+    }
+    if (!leaves_.empty()) dropUnusedVertices();
+    finishNormals();
+    return std::move(mesh_);
+}
 
-using Node3 = std::array<int, 3>;
+// Resets what one round of vertices and fans built (the active cells stay).
+void Contourer::startRound() {
+    mesh_ = {};
+    leafOfActive_.clear();
+    leaves_.clear();
+    vertexLeaf_.clear();
+    foldedLeaves_.clear();
+    touched_.clear();
+    faceLayers_ = {};
+    stats_.sheetVertices = stats_.faceVertices = stats_.missingCrossings = 0;
+    stats_.octreeLeaves = stats_.octreeCells = 0;
+    ++stats_.octreeRounds;
+}
 
-// The Hermite sample of one grid edge: the ray's crossing, or, when the ray saw none although
-// the corner signs differ (a node within rounding of a face), the midpoint with the edge's
-// own direction as normal.
-struct EdgeSample {
-    Vec3 point;
-    Vec3 normal;
-    uint32_t material = 0;
-    bool measured = true;
-};
+// missing counts the sign changes without a crossing (DualContourStats::missingCrossings).
+EdgeSample Contourer::sample(int axis, const Node3& node, uint64_t& missing) const {
+    Node3 next = node;
+    ++next[axis];
+    if (const Crossing* x = grid_.crossing(axis, node)) {
+        // A crossing within rounding of a node (the surface passes through it; among
+        // millions of nodes some do) would meet the crossings of that node's other edges
+        // at one float position in a GLB: keep it a separation inside its own edge.
+        const double lo = spec_.coords[size_t(axis)][size_t(node[axis])];
+        const double hi = spec_.coords[size_t(axis)][size_t(next[axis])];
+        const double apart = separation(hi - lo);
+        Vec3 p = x->point;
+        p[axis] = std::clamp(p[axis], lo + apart, hi - apart);
+        return {p, x->normal, x->material, true};
+    }
+    ++missing;
+    EdgeSample s;
+    s.point = 0.5 * (spec_.node(node[0], node[1], node[2]) + spec_.node(next[0], next[1], next[2]));
+    s.normal = Vec3(0.0);
+    s.normal[axis] = inside(node) ? 1.0 : -1.0;
+    s.measured = false;
+    return s;
+}
 
-class Contourer {
-public:
-    Contourer(const HermiteGrid& grid, DualContourStats& stats, const DualContourOptions& options)
-        : grid_(grid),
-          spec_(grid.spec()),
-          stats_(stats),
-          workers_(resolveThreads(options.threads)),
-          flatTolerance_(options.flatTolerance) {}
-
-    TriangleMesh run() {
-        collectActiveCells();
-        // With the octree, a round with a ring no fan fits at a merged block (chooseApex), a
-        // vertex whose triangles are not one disk (noteNonManifoldLeaves), a block vertex whose
-        // triangles cross or overlap (noteFoldedLeaves) or a cell that stays folded next to
-        // blocks (unfoldSheetVertices) forbids the blocks there and runs again. After
-        // kOctreeMaxRounds the uniform contour is used.
-        for (int round = 0;; ++round) {
-            startRound();
-            if (flatTolerance_ > 0.0) mergeFlatBlocks();
-            placeSheetVertices();
-            for (const uint64_t cell : active_) fansOfCell(cell);
-            unfoldSheetVertices();
-            if (!leaves_.empty()) {
-                noteNonManifoldLeaves();
-                noteFoldedLeaves();
+// Step 1: the cells with corners of both signs, in index order (deterministic output):
+// each layer of cells on a worker, the layers joined in order.
+void Contourer::collectActiveCells() {
+    const int layers = spec_.nodes[2] - 1;
+    std::vector<std::vector<uint64_t>> perLayer(size_t(std::max(layers, 0)));
+    parallelFor(uint64_t(std::max(layers, 0)), workers_, [&](int, uint64_t layer) {
+        const int k = int(layer);
+        for (int j = 0; j + 1 < spec_.nodes[1]; ++j)
+            for (int i = 0; i + 1 < spec_.nodes[0]; ++i) {
+                const uint8_t mask = cellMask({i, j, k});
+                if (mask != 0 && mask != 0xff) perLayer[layer].push_back(cellIndex({i, j, k}));
             }
-            if (foldedLeaves_.empty()) break;
-            if (round + 1 >= kOctreeMaxRounds) {
-                flatTolerance_ = 0.0;
-                stats_.octreeFallback = true;
-                continue;
-            }
-            // Forbid each such block and every block inside it (its cells keep their own
-            // vertices). Forbidding only the block let its children fold in turn: on csg_grid3
-            // (T = 0.028) 3556 blocks folded in the first round, then 701, 19, 4, 1, where this
-            // rule gives 3556, 60, 19, 5, 3 (the tail is neighbours that fold once a block next
-            // to them splits; each round costs about as much as the first).
-            for (const uint32_t leaf : foldedLeaves_) {
-                forbidden_.insert(leaves_[leaf].key);
-                dirtyTop_[leaves_[leaf].top] = 1;
-            }
-        }
-        if (!leaves_.empty()) dropUnusedVertices();
-        finishNormals();
-        return std::move(mesh_);
+    });
+    size_t total = 0;
+    for (const auto& layer : perLayer) total += layer.size();
+    active_.reserve(total);
+    for (auto& layer : perLayer) {
+        active_.insert(active_.end(), layer.begin(), layer.end());
+        layer = {};
     }
+    stats_.activeCells = active_.size();
+}
 
-private:
-    // Resets what one round of vertices and fans built (the active cells stay).
-    void startRound() {
-        mesh_ = {};
-        leafOfActive_.clear();
-        leaves_.clear();
-        vertexLeaf_.clear();
-        foldedLeaves_.clear();
-        touched_.clear();
-        faceLayers_ = {};
-        stats_.sheetVertices = stats_.faceVertices = stats_.missingCrossings = 0;
-        stats_.octreeLeaves = stats_.octreeCells = 0;
-        ++stats_.octreeRounds;
-    }
-
-    uint64_t cellIndex(const Node3& c) const {
-        return uint64_t(c[0]) + uint64_t(spec_.nodes[0]) *
-                                    (uint64_t(c[1]) + uint64_t(spec_.nodes[1]) * uint64_t(c[2]));
-    }
-    Node3 cellNode(uint64_t index) const {
-        const uint64_t nx = uint64_t(spec_.nodes[0]), ny = uint64_t(spec_.nodes[1]);
-        return {int(index % nx), int((index / nx) % ny), int(index / (nx * ny))};
-    }
-    uint8_t cellMask(const Node3& c) const {
-        uint8_t mask = 0;
-        for (int corner = 0; corner < 8; ++corner)
-            if (grid_.inside(c[0] + (corner & 1), c[1] + ((corner >> 1) & 1),
-                             c[2] + ((corner >> 2) & 1)))
-                mask = uint8_t(mask | (1u << corner));
-        return mask;
-    }
-    bool inside(const Node3& n) const { return grid_.inside(n[0], n[1], n[2]); }
-
-    // How far apart vertices are kept in a cell or face whose smallest edge is width: the
-    // grid spacing's tol::kMeshVertexSeparation, which stays clear of float rounding in a GLB,
-    // or a quarter of a thinner cell (one through a thin gap, ThinFeatures.h: at least
-    // kThinMinWidth h / 2 wide, so a quarter of it is still ~10 float steps of a coordinate
-    // 1000 h from the origin).
-    double separation(double width, double fraction = tol::kMeshVertexSeparation) const {
-        return std::min(0.25 * width, fraction * spec_.h);
-    }
-
-    // missing counts the sign changes without a crossing (DualContourStats::missingCrossings).
-    EdgeSample sample(int axis, const Node3& node, uint64_t& missing) const {
-        Node3 next = node;
-        ++next[axis];
-        if (const Crossing* x = grid_.crossing(axis, node)) {
-            // A crossing within rounding of a node (the surface passes through it; among
-            // millions of nodes some do) would meet the crossings of that node's other edges
-            // at one float position in a GLB: keep it a separation inside its own edge.
-            const double lo = spec_.coords[size_t(axis)][size_t(node[axis])];
-            const double hi = spec_.coords[size_t(axis)][size_t(next[axis])];
-            const double apart = separation(hi - lo);
-            Vec3 p = x->point;
-            p[axis] = std::clamp(p[axis], lo + apart, hi - apart);
-            return {p, x->normal, x->material, true};
+// Step 2: one QEF vertex per sheet of every active cell. The vertices' indices follow the
+// cells' order (counted first), so the cells are placed on all workers into their slots.
+void Contourer::placeSheetVertices() {
+    // Indexed by cell: only active cells' entries are ever written or read.
+    sheetBase_.resize(spec_.nodeCount());
+    uint32_t next = 0;
+    // A merged block's one vertex is numbered where its first cell comes.
+    std::vector<uint32_t> leafVertex(leaves_.size(), kNone);
+    for (size_t i = 0; i < active_.size(); ++i) {
+        const uint64_t index = active_[i];
+        const uint32_t leaf = leafOfActive_.empty() ? kNoLeaf : leafOfActive_[i];
+        if (leaf != kNoLeaf) {
+            if (leafVertex[leaf] == kNone) leafVertex[leaf] = next++;
+            sheetBase_[index] = leafVertex[leaf];
+            continue;
         }
-        ++missing;
-        EdgeSample s;
-        s.point =
-            0.5 * (spec_.node(node[0], node[1], node[2]) + spec_.node(next[0], next[1], next[2]));
-        s.normal = Vec3(0.0);
-        s.normal[axis] = inside(node) ? 1.0 : -1.0;
-        s.measured = false;
-        return s;
+        sheetBase_[index] = next;
+        next += uint32_t(cellCycles(cellMask(cellNode(index))).count);
     }
-
-    // Step 1: the cells with corners of both signs, in index order (deterministic output):
-    // each layer of cells on a worker, the layers joined in order.
-    void collectActiveCells() {
-        const int layers = spec_.nodes[2] - 1;
-        std::vector<std::vector<uint64_t>> perLayer(size_t(std::max(layers, 0)));
-        parallelFor(uint64_t(std::max(layers, 0)), workers_, [&](int, uint64_t layer) {
-            const int k = int(layer);
-            for (int j = 0; j + 1 < spec_.nodes[1]; ++j)
-                for (int i = 0; i + 1 < spec_.nodes[0]; ++i) {
-                    const uint8_t mask = cellMask({i, j, k});
-                    if (mask != 0 && mask != 0xff) perLayer[layer].push_back(cellIndex({i, j, k}));
-                }
-        });
-        size_t total = 0;
-        for (const auto& layer : perLayer) total += layer.size();
-        active_.reserve(total);
-        for (auto& layer : perLayer) {
-            active_.insert(active_.end(), layer.begin(), layer.end());
-            layer = {};
-        }
-        stats_.activeCells = active_.size();
+    mesh_.positions.resize(next);
+    mesh_.normals.assign(next, Vec3(0.0));
+    if (!leaves_.empty()) vertexLeaf_.assign(next, kNoLeaf);
+    for (size_t leaf = 0; leaf < leaves_.size(); ++leaf) {
+        mesh_.positions[leafVertex[leaf]] = leaves_[leaf].vertex;
+        vertexLeaf_[leafVertex[leaf]] = uint32_t(leaf);
     }
-
-    // Step 2: one QEF vertex per sheet of every active cell. The vertices' indices follow the
-    // cells' order (counted first), so the cells are placed on all workers into their slots.
-    void placeSheetVertices() {
-        // Indexed by cell: only active cells' entries are ever written or read.
-        sheetBase_.resize(spec_.nodeCount());
-        uint32_t next = 0;
-        // A merged block's one vertex is numbered where its first cell comes.
-        std::vector<uint32_t> leafVertex(leaves_.size(), kNone);
-        for (size_t i = 0; i < active_.size(); ++i) {
-            const uint64_t index = active_[i];
-            const uint32_t leaf = leafOfActive_.empty() ? kNoLeaf : leafOfActive_[i];
-            if (leaf != kNoLeaf) {
-                if (leafVertex[leaf] == kNone) leafVertex[leaf] = next++;
-                sheetBase_[index] = leafVertex[leaf];
-                continue;
-            }
-            sheetBase_[index] = next;
-            next += uint32_t(cellCycles(cellMask(cellNode(index))).count);
-        }
-        mesh_.positions.resize(next);
-        mesh_.normals.assign(next, Vec3(0.0));
-        if (!leaves_.empty()) vertexLeaf_.assign(next, kNoLeaf);
-        for (size_t leaf = 0; leaf < leaves_.size(); ++leaf) {
-            mesh_.positions[leafVertex[leaf]] = leaves_[leaf].vertex;
-            vertexLeaf_[leafVertex[leaf]] = uint32_t(leaf);
-        }
-        stats_.sheetVertices = next;
-        if (leafOfActive_.empty()) {
-            safe_.resize(next);
-            stats_.missingCrossings +=
-                placeAllSheetVertices(mesh_.positions.data(), safe_.data(),
-                                      [&](size_t i) { return sheetBase_[active_[i]]; });
-            return;
-        }
-        // With the octree, every cell's vertices are placed once (the first round) and copied
-        // in each round for the cells outside merged blocks.
-        if (fineStart_.empty()) {
-            fineStart_.resize(active_.size() + 1, 0);
-            for (size_t i = 0; i < active_.size(); ++i)
-                fineStart_[i + 1] =
-                    fineStart_[i] + uint32_t(cellCycles(cellMask(cellNode(active_[i]))).count);
-            finePlaced_.resize(fineStart_.back());
-            fineSafe_.resize(fineStart_.back());
-            fineMissing_ = placeAllSheetVertices(finePlaced_.data(), fineSafe_.data(),
-                                                 [&](size_t i) { return fineStart_[i]; });
-        }
-        stats_.missingCrossings += fineMissing_;
+    stats_.sheetVertices = next;
+    if (leafOfActive_.empty()) {
         safe_.resize(next);
+        stats_.missingCrossings += placeAllSheetVertices(
+            mesh_.positions.data(), safe_.data(), [&](size_t i) { return sheetBase_[active_[i]]; });
+        return;
+    }
+    // With the octree, every cell's vertices are placed once (the first round) and copied
+    // in each round for the cells outside merged blocks.
+    if (fineStart_.empty()) {
+        fineStart_.resize(active_.size() + 1, 0);
         for (size_t i = 0; i < active_.size(); ++i)
-            if (leafOfActive_[i] == kNoLeaf) {
-                std::copy(finePlaced_.begin() + fineStart_[i],
-                          finePlaced_.begin() + fineStart_[i + 1],
-                          mesh_.positions.begin() + sheetBase_[active_[i]]);
-                std::copy(fineSafe_.begin() + fineStart_[i], fineSafe_.begin() + fineStart_[i + 1],
-                          safe_.begin() + sheetBase_[active_[i]]);
-            }
+            fineStart_[i + 1] =
+                fineStart_[i] + uint32_t(cellCycles(cellMask(cellNode(active_[i]))).count);
+        finePlaced_.resize(fineStart_.back());
+        fineSafe_.resize(fineStart_.back());
+        fineMissing_ = placeAllSheetVertices(finePlaced_.data(), fineSafe_.data(),
+                                             [&](size_t i) { return fineStart_[i]; });
     }
-
-    // The sheet vertices of every active cell i into out[first(i) ..) (its sheet count of them)
-    // and their safe points into safe[first(i) ..), on all workers in chunks; returns the count
-    // of missing crossings.
-    template <class First>
-    uint64_t placeAllSheetVertices(Vec3* out, Vec3* safe, First first) const {
-        std::vector<uint64_t> missing(size_t(workers_), 0);
-        constexpr uint64_t kChunk = 1024;
-        parallelFor((active_.size() + kChunk - 1) / kChunk, workers_, [&](int w, uint64_t chunk) {
-            const size_t end = std::min<size_t>(active_.size(), (chunk + 1) * kChunk);
-            for (size_t i = chunk * kChunk; i < end; ++i)
-                placeSheetVerticesOf(active_[i], missing[size_t(w)], out + first(i),
-                                     safe + first(i));
-        });
-        uint64_t total = 0;
-        for (const uint64_t m : missing) total += m;
-        return total;
-    }
-
-    // The sheet vertices of active cell index into out[0 .. its sheet count), and into
-    // safe[..] the mass points of their crossings (unfoldSheetVertices moves a vertex toward it).
-    void placeSheetVerticesOf(uint64_t index, uint64_t& missing, Vec3* out, Vec3* safe) const {
-        const Node3 c = cellNode(index);
-        const CellCycles& cycles = cellCycles(cellMask(c));
-        // The cell inset a hair, so sheet vertices of neighbouring cells (say both clamped
-        // onto a crease lying in their shared face) stay distinct points, also as floats.
-        const double width = spec_.cellMinWidth(c[0], c[1], c[2]);
-        const Vec3 inset(separation(width));
-        const Bounds3 box{spec_.node(c[0], c[1], c[2]) + inset,
-                          spec_.node(c[0] + 1, c[1] + 1, c[2] + 1) - inset};
-        Vec3 placed[4], mass[4];  // a cell has at most 4 sheets
-        for (int q = 0; q < cycles.count; ++q) {
-            Qef3 qef;
-            for (int e = 0; e < 12; ++e) {
-                if (cycles.edgeCycle[size_t(e)] != q) continue;
-                const int a = e / 4;
-                Node3 n = c;
-                n[(a + 1) % 3] += e & 1;
-                n[(a + 2) % 3] += (e >> 1) & 1;
-                const EdgeSample s = sample(a, n, missing);
-                qef.add(s.point, s.normal);
-            }
-            placed[q] = glm::clamp(qef.solve(box), box.lo, box.hi);
-            mass[q] = qef.massPoint();
+    stats_.missingCrossings += fineMissing_;
+    safe_.resize(next);
+    for (size_t i = 0; i < active_.size(); ++i)
+        if (leafOfActive_[i] == kNoLeaf) {
+            std::copy(finePlaced_.begin() + fineStart_[i], finePlaced_.begin() + fineStart_[i + 1],
+                      mesh_.positions.begin() + sheetBase_[active_[i]]);
+            std::copy(fineSafe_.begin() + fineStart_[i], fineSafe_.begin() + fineStart_[i + 1],
+                      safe_.begin() + sheetBase_[active_[i]]);
         }
-        // Two sheets whose features meet at one point (solids touching along an edge, a
-        // non-manifold part) would share a position: pull each toward its own patch, so the
-        // mesh is a manifold in space too, not only in its indices.
-        const double apart = separation(width);
-        for (int q = 0; q < cycles.count; ++q) {
-            for (int o = 0; o < cycles.count; ++o) {
-                if (o == q || glm::length(placed[q] - placed[o]) > 2.0 * apart) continue;
-                const Vec3 toward = mass[q] - placed[q];
-                const double len = glm::length(toward);
-                if (len > 0.0) placed[q] += toward * (std::min(len, 4.0 * apart) / len);
-            }
-            out[q] = placed[q];
-            safe[q] = mass[q];
-        }
-    }
+}
 
-    // Step 5: the sheet vertices of each cell outside merged blocks, where triangles around
-    // them cross or overlap, moved toward the mass points of their crossings (UnfoldVertices.h).
-    void unfoldSheetVertices() {
-        std::vector<UnfoldGroup> groups;
-        groups.reserve(active_.size());
-        for (size_t i = 0; i < active_.size(); ++i) {
-            if (!leafOfActive_.empty() && leafOfActive_[i] != kNoLeaf) continue;
-            const uint64_t cell = active_[i];
-            groups.push_back(
-                {sheetBase_[cell], uint32_t(cellCycles(cellMask(cellNode(cell))).count)});
-        }
-        const double tol = selfIntersectionTolerance(mesh_, tol::kSelfIntersectionContactRel);
-        const UnfoldStats unfolded = unfoldVertices(mesh_, groups, safe_, tol, workers_);
-        stats_.unfoldedCells = unfolded.movedGroups;
-        stats_.unfoldFailures = unfolded.unresolvedGroups + unfolded.leftFoldedGroups;
-        if (leaves_.empty() || unfolded.unresolved.empty()) return;
-        // With the octree, a cell still folded at its mass points sits next to merged blocks
-        // whose fans leave it no clean position: the blocks at its triangles are noted
-        // (foldedLeaves_), so the next round does not merge them.
-        std::vector<uint8_t> stuck(mesh_.positions.size(), 0);
-        for (const uint32_t g : unfolded.unresolved)
-            for (uint32_t k = 0; k < groups[g].count; ++k) stuck[groups[g].first + k] = 1;
-        for (const auto& tri : mesh_.triangles) {
-            if (!stuck[tri[0]] && !stuck[tri[1]] && !stuck[tri[2]]) continue;
-            for (const uint32_t corner : tri)
-                if (leafOf(corner) != kNoLeaf) foldedLeaves_.push_back(leafOf(corner));
-        }
-    }
+// The sheet vertices of every active cell i into out[first(i) ..) (its sheet count of them)
+// and their safe points into safe[first(i) ..), on all workers in chunks; returns the count
+// of missing crossings.
+template <class First>
+uint64_t Contourer::placeAllSheetVertices(Vec3* out, Vec3* safe, First first) const {
+    std::vector<uint64_t> missing(size_t(workers_), 0);
+    constexpr uint64_t kChunk = 1024;
+    parallelFor((active_.size() + kChunk - 1) / kChunk, workers_, [&](int w, uint64_t chunk) {
+        const size_t end = std::min<size_t>(active_.size(), (chunk + 1) * kChunk);
+        for (size_t i = chunk * kChunk; i < end; ++i)
+            placeSheetVerticesOf(active_[i], missing[size_t(w)], out + first(i), safe + first(i));
+    });
+    uint64_t total = 0;
+    for (const uint64_t m : missing) total += m;
+    return total;
+}
 
-    // The merged blocks whose vertex's triangles cross or overlap (a sliver folded flat onto a
-    // neighbour where a ring next to the block was fanned), noted in foldedLeaves_: the next
-    // round does not merge them (their vertices may not move as a cell's do, unfoldSheetVertices:
-    // the block's other triangles would move too).
-    void noteFoldedLeaves() {
-        std::vector<UnfoldGroup> groups;
-        for (uint32_t v = 0; v < uint32_t(vertexLeaf_.size()); ++v)
-            if (vertexLeaf_[v] != kNoLeaf) groups.push_back({v, 1});
-        const double tol = selfIntersectionTolerance(mesh_, tol::kSelfIntersectionContactRel);
-        for (const uint32_t g : findFoldedGroups(mesh_, groups, tol, workers_))
-            foldedLeaves_.push_back(vertexLeaf_[groups[g].first]);
-    }
-
-    // ---- The octree: blocks of 2^k cells per axis merged into one vertex (DualContour.h) ----
-    static constexpr uint32_t kNoLeaf = UINT32_MAX;
-
-    struct BlockState {
-        bool mergeable = false;  // may be (part of) one leaf
-        bool surface = false;    // holds an active cell
-        Vec3 vertex{0.0};        // the merged vertex, when mergeable with surface (level >= 1)
-        Vec3 normal{0.0};        // the mean of its sample normals (unit), likewise
-    };
-    // A merged block (a leaf of the octree).
-    struct Leaf {
-        Vec3 vertex{0.0};  // its one vertex
-        Vec3 normal{0.0};  // the mean of its sample normals (unit)
-        uint64_t key = 0;  // its blockKey
-        uint32_t top = 0;  // its top block (mergeFlatBlocks)
-    };
-    // One top block's work on one worker: its leaves and a sample buffer.
-    struct TopBlockWork {
-        std::vector<Leaf> leaves;
-        std::vector<EdgeSample> samples;
-    };
-
-    // A node's sign, outside past the grid's last node: a block may reach past the grid (top
-    // blocks are aligned to multiples of their size), and the grid's boundary nodes are all
-    // outside, so the cells past it are empty.
-    bool insideOrPast(int i, int j, int k) const {
-        if (i >= spec_.nodes[0] || j >= spec_.nodes[1] || k >= spec_.nodes[2]) return false;
-        return grid_.inside(i, j, k);
-    }
-
-    // Ju's topology test on block [lo, lo + size] (nodes; size even): the corners give one sheet
-    // and no ambiguous face, and every mid-edge, mid-face and centre node agrees in sign with a
-    // corner of its edge, face or block. Applied at every level, each block edge then changes
-    // sign at most once along its nodes.
-    bool blockTopologyOk(const Node3& lo, int size) const {
-        const int half = size / 2;
-        auto at = [&](int x, int y, int z) {
-            return insideOrPast(lo[0] + x * half, lo[1] + y * half, lo[2] + z * half);
-        };
-        uint8_t mask = 0;
-        for (int corner = 0; corner < 8; ++corner)
-            if (at(2 * (corner & 1), 2 * ((corner >> 1) & 1), 2 * ((corner >> 2) & 1)))
-                mask = uint8_t(mask | (1u << corner));
-        const CellCycles& cycles = cellCycles(mask);
-        if (cycles.count != 1 || cycles.ambiguousFace) return false;
-        for (int z = 0; z < 3; ++z)
-            for (int y = 0; y < 3; ++y)
-                for (int x = 0; x < 3; ++x) {
-                    if (x != 1 && y != 1 && z != 1) continue;  // a corner
-                    const bool sign = at(x, y, z);
-                    bool agrees = false;
-                    // The corners of the smallest edge, face or block holding the node: each
-                    // middle coordinate runs over both ends.
-                    for (int corner = 0; corner < 8 && !agrees; ++corner) {
-                        const int cx = corner & 1, cy = (corner >> 1) & 1, cz = (corner >> 2) & 1;
-                        if ((x != 1 && cx) || (y != 1 && cy) || (z != 1 && cz)) continue;
-                        agrees = at(x == 1 ? 2 * cx : x, y == 1 ? 2 * cy : y,
-                                    z == 1 ? 2 * cz : z) == sign;
-                    }
-                    if (!agrees) return false;
-                }
-        return true;
-    }
-
-    // The samples of the crossed edges of the block's cells [lo, lo + size), each edge once (by
-    // the cell whose minimum corner is the edge's start, clamped into the block: every cell
-    // around a crossed edge is active). False when one was not measured (a midpoint fallback).
-    bool blockSamples(const Node3& lo, int size, const uint32_t* first, const uint32_t* last,
-                      std::vector<EdgeSample>& out) const {
-        out.clear();
-        uint64_t missing = 0;
-        for (const uint32_t* p = first; p != last; ++p) {
-            const Node3 cell = cellNode(active_[*p]);
-            const CellCycles& cycles = cellCycles(cellMask(cell));
-            for (int e = 0; e < 12; ++e) {
-                if (cycles.edgeCycle[size_t(e)] < 0) continue;
-                const int a = e / 4, b = (a + 1) % 3, c = (a + 2) % 3;
-                const int ob = e & 1, oc = (e >> 1) & 1;
-                if ((ob && cell[b] != lo[b] + size - 1) || (oc && cell[c] != lo[c] + size - 1))
-                    continue;
-                Node3 n = cell;
-                n[b] += ob;
-                n[c] += oc;
-                out.push_back(sample(a, n, missing));
-                if (!out.back().measured) return false;
-            }
-        }
-        return true;
-    }
-
-    // The block's one vertex (the QEF of all its samples, clamped to the block inset a hair, as
-    // a cell's), when the block is flat: every normal within tol::kOctreeConeAngle of their
-    // mean and every tangent plane within flatTolerance_ of the vertex.
-    bool flatVertex(const Node3& lo, int size, const std::vector<EdgeSample>& samples, Vec3& vertex,
-                    Vec3& normal) const {
+// The sheet vertices of active cell index into out[0 .. its sheet count), and into
+// safe[..] the mass points of their crossings (unfoldSheetVertices moves a vertex toward it).
+void Contourer::placeSheetVerticesOf(uint64_t index, uint64_t& missing, Vec3* out,
+                                     Vec3* safe) const {
+    const Node3 c = cellNode(index);
+    const CellCycles& cycles = cellCycles(cellMask(c));
+    // The cell inset a hair, so sheet vertices of neighbouring cells (say both clamped
+    // onto a crease lying in their shared face) stay distinct points, also as floats.
+    const double width = spec_.cellMinWidth(c[0], c[1], c[2]);
+    const Vec3 inset(separation(width));
+    const Bounds3 box{spec_.node(c[0], c[1], c[2]) + inset,
+                      spec_.node(c[0] + 1, c[1] + 1, c[2] + 1) - inset};
+    Vec3 placed[4], mass[4];  // a cell has at most 4 sheets
+    for (int q = 0; q < cycles.count; ++q) {
         Qef3 qef;
-        Vec3 sum(0.0);
-        for (const EdgeSample& s : samples) {
+        for (int e = 0; e < 12; ++e) {
+            if (cycles.edgeCycle[size_t(e)] != q) continue;
+            const int a = e / 4;
+            Node3 n = c;
+            n[(a + 1) % 3] += e & 1;
+            n[(a + 2) % 3] += (e >> 1) & 1;
+            const EdgeSample s = sample(a, n, missing);
             qef.add(s.point, s.normal);
-            sum += s.normal;
         }
-        const double length = glm::length(sum);
-        if (samples.empty() || !(length > 0.0)) return false;
-        const Vec3 mean = sum / length;
-        normal = mean;
-        const double cone = std::cos(tol::kOctreeConeAngle);
-        for (const EdgeSample& s : samples)
-            if (glm::dot(s.normal, mean) < cone) return false;
-        // The block's box, cut at the grid's last node (past it the block is empty).
-        const Node3 hi{std::min(lo[0] + size, spec_.nodes[0] - 1),
-                       std::min(lo[1] + size, spec_.nodes[1] - 1),
-                       std::min(lo[2] + size, spec_.nodes[2] - 1)};
-        const Vec3 lo3 = spec_.node(lo[0], lo[1], lo[2]), hi3 = spec_.node(hi[0], hi[1], hi[2]);
-        const Vec3 extent = hi3 - lo3;
-        const Vec3 inset(separation(std::min({extent.x, extent.y, extent.z})));
-        const Bounds3 box{lo3 + inset, hi3 - inset};
-        vertex = glm::clamp(qef.solve(box), box.lo, box.hi);
-        for (const EdgeSample& s : samples)
-            if (std::fabs(glm::dot(s.normal, vertex - s.point)) > flatTolerance_) return false;
-        return true;
+        placed[q] = glm::clamp(qef.solve(box), box.lo, box.hi);
+        mass[q] = qef.massPoint();
     }
-
-    // A block's name across rounds: its first cell and its level.
-    uint64_t blockKey(const Node3& lo, int level) const {
-        return cellIndex(lo) * (kOctreeMaxLevel + 1) + uint64_t(level);
-    }
-
-    void addLeaf(const BlockState& block, const Node3& lo, int level, const uint32_t* first,
-                 const uint32_t* last, TopBlockWork& work) {
-        for (const uint32_t* p = first; p != last; ++p)
-            localLeaf_[*p] = uint32_t(work.leaves.size());
-        work.leaves.push_back({block.vertex, block.normal, blockKey(lo, level)});
-    }
-
-    // Block of 2^level cells per axis at lo whose active cells (positions in active_) are
-    // [first, last): merges bottom-up; the mergeable children of a block that does not merge
-    // become leaves (fine cells, level 0, keep their own vertices). inForbiddenTree: this
-    // block or one around it is in forbidden_.
-    BlockState mergeBlock(const Node3& lo, int level, uint32_t* first, uint32_t* last,
-                          TopBlockWork& work, bool inForbiddenTree) {
-        if (level == 0) {
-            if (first == last) return {true, false, Vec3(0.0)};
-            const CellCycles& cycles = cellCycles(cellMask(cellNode(active_[*first])));
-            return {cycles.count == 1 && !cycles.ambiguousFace, true, Vec3(0.0)};
+    // Two sheets whose features meet at one point (solids touching along an edge, a
+    // non-manifold part) would share a position: pull each toward its own patch, so the
+    // mesh is a manifold in space too, not only in its indices.
+    const double apart = separation(width);
+    for (int q = 0; q < cycles.count; ++q) {
+        for (int o = 0; o < cycles.count; ++o) {
+            if (o == q || glm::length(placed[q] - placed[o]) > 2.0 * apart) continue;
+            const Vec3 toward = mass[q] - placed[q];
+            const double len = glm::length(toward);
+            if (len > 0.0) placed[q] += toward * (std::min(len, 4.0 * apart) / len);
         }
-        const int half = 1 << (level - 1), size = 2 * half;
-        inForbiddenTree =
-            inForbiddenTree || (!forbidden_.empty() && forbidden_.count(blockKey(lo, level)));
-        // Split the cells into the 8 children (octant bit a: the cell is in the upper half on
-        // axis a), in order z, y, x so each child's cells are contiguous: on axis a, each run
-        // [bounds[o], bounds[o + 2 step]) splits at bounds[o + step], step = 2^a.
-        uint32_t* bounds[9];
-        bounds[0] = first;
-        bounds[8] = last;
-        for (int a = 2; a >= 0; --a) {
-            const int step = 1 << a;
-            for (int o = 0; o < 8; o += 2 * step)
-                bounds[o + step] = std::partition(bounds[o], bounds[o + 2 * step], [&](uint32_t p) {
-                    return cellNode(active_[p])[a] < lo[a] + half;
-                });
-        }
-        BlockState child[8];
-        Node3 childLo[8];
-        bool all = true, surface = false;
-        for (int o = 0; o < 8; ++o) {
-            childLo[o] = {lo[0] + half * (o & 1), lo[1] + half * ((o >> 1) & 1),
-                          lo[2] + half * ((o >> 2) & 1)};
-            child[o] =
-                mergeBlock(childLo[o], level - 1, bounds[o], bounds[o + 1], work, inForbiddenTree);
-            all = all && child[o].mergeable;
-            surface = surface || child[o].surface;
-        }
-        BlockState self{all, surface, Vec3(0.0)};
-        if (inForbiddenTree) self.mergeable = false;
-        if (self.mergeable && surface)
-            self.mergeable = blockTopologyOk(lo, size) &&
-                             blockSamples(lo, size, first, last, work.samples) &&
-                             flatVertex(lo, size, work.samples, self.vertex, self.normal);
-        if (!self.mergeable && level > 1)
-            for (int o = 0; o < 8; ++o)
-                if (child[o].mergeable && child[o].surface)
-                    addLeaf(child[o], childLo[o], level - 1, bounds[o], bounds[o + 1], work);
-        return self;
+        out[q] = placed[q];
+        safe[q] = mass[q];
     }
+}
 
-    // Step 1b: the octree over top blocks of 2^kOctreeMaxLevel cells, each on one worker; the
-    // leaves are numbered in top-block order, so the result is the same for any thread count.
-    void mergeFlatBlocks() {
-        constexpr int kTop = 1 << kOctreeMaxLevel;
-        std::array<uint64_t, 3> tops;
-        for (int a = 0; a < 3; ++a)
-            tops[size_t(a)] = uint64_t(spec_.nodes[a] - 1 + kTop - 1) / kTop;
-        // The first round sorts the active cells into top blocks; later rounds merge again only
-        // the top blocks where a block was forbidden (dirtyTop_), the others keep their leaves.
-        if (topStarts_.empty()) {
-            std::vector<std::pair<uint64_t, uint32_t>> keyed(active_.size());
-            for (size_t i = 0; i < active_.size(); ++i) {
-                const Node3 c = cellNode(active_[i]);
-                keyed[i] = {uint64_t(c[0] / kTop) +
-                                tops[0] * (uint64_t(c[1] / kTop) + tops[1] * uint64_t(c[2] / kTop)),
-                            uint32_t(i)};
-            }
-            std::sort(keyed.begin(), keyed.end());
-            topOrder_.resize(keyed.size());
-            for (size_t i = 0; i < keyed.size(); ++i) {
-                if (i == 0 || keyed[i].first != keyed[i - 1].first) {
-                    topStarts_.push_back(i);
-                    topKeys_.push_back(keyed[i].first);
-                }
-                topOrder_[i] = keyed[i].second;
-            }
-            topStarts_.push_back(topOrder_.size());
-            topWork_.resize(topKeys_.size());
-            dirtyTop_.assign(topKeys_.size(), 1);
-            localLeaf_.assign(active_.size(), kNoLeaf);
-        }
-        const size_t blocks = topKeys_.size();
-        parallelFor(blocks, workers_, [&](int, uint64_t block) {
-            if (!dirtyTop_[block]) return;
-            uint32_t* first = topOrder_.data() + topStarts_[block];
-            uint32_t* last = topOrder_.data() + topStarts_[block + 1];
-            for (uint32_t* p = first; p != last; ++p) localLeaf_[*p] = kNoLeaf;
-            const uint64_t key = topKeys_[block];
-            const Node3 lo{int(key % tops[0]) * kTop, int((key / tops[0]) % tops[1]) * kTop,
-                           int(key / (tops[0] * tops[1])) * kTop};
-            TopBlockWork& w = topWork_[block];
-            w = {};
-            const BlockState top = mergeBlock(lo, kOctreeMaxLevel, first, last, w, false);
-            if (top.mergeable && top.surface) addLeaf(top, lo, kOctreeMaxLevel, first, last, w);
-            w.samples = {};
-            dirtyTop_[block] = 0;
-        });
-        // Number the leaves globally: top blocks in order.
-        leafOfActive_.assign(active_.size(), kNoLeaf);
-        uint32_t offset = 0;
-        for (size_t block = 0; block < blocks; ++block) {
-            for (size_t i = topStarts_[block]; i < topStarts_[block + 1]; ++i) {
-                const uint32_t p = topOrder_[i];
-                if (localLeaf_[p] != kNoLeaf) {
-                    leafOfActive_[p] = localLeaf_[p] + offset;
-                    ++stats_.octreeCells;
-                }
-            }
-            const TopBlockWork& w = topWork_[block];
-            offset += uint32_t(w.leaves.size());
-            for (Leaf leaf : w.leaves) {
-                leaf.top = uint32_t(block);
-                leaves_.push_back(leaf);
-            }
-        }
-        stats_.octreeLeaves = leaves_.size();
+// Step 5: the sheet vertices of each cell outside merged blocks, where triangles around
+// them cross or overlap, moved toward the mass points of their crossings (UnfoldVertices.h).
+void Contourer::unfoldSheetVertices() {
+    std::vector<UnfoldGroup> groups;
+    groups.reserve(active_.size());
+    for (size_t i = 0; i < active_.size(); ++i) {
+        if (!leafOfActive_.empty() && leafOfActive_[i] != kNoLeaf) continue;
+        const uint64_t cell = active_[i];
+        groups.push_back({sheetBase_[cell], uint32_t(cellCycles(cellMask(cellNode(cell))).count)});
     }
-
-    // The merged block whose vertex mesh vertex v is, or kNoLeaf (a cell's own vertex, a face
-    // or crossing vertex).
-    uint32_t leafOf(uint32_t v) const { return v < vertexLeaf_.size() ? vertexLeaf_[v] : kNoLeaf; }
-
-    uint32_t addVertex(const Vec3& p, const Vec3& n) {
-        mesh_.positions.push_back(p);
-        mesh_.normals.push_back(n);
-        return uint32_t(mesh_.positions.size() - 1);
+    const double tol = selfIntersectionTolerance(mesh_, tol::kSelfIntersectionContactRel);
+    const UnfoldStats unfolded = unfoldVertices(mesh_, groups, safe_, tol, workers_);
+    stats_.unfoldedCells = unfolded.movedGroups;
+    stats_.unfoldFailures = unfolded.unresolvedGroups + unfolded.leftFoldedGroups;
+    if (leaves_.empty() || unfolded.unresolved.empty()) return;
+    // With the octree, a cell still folded at its mass points sits next to merged blocks
+    // whose fans leave it no clean position: the blocks at its triangles are noted
+    // (foldedLeaves_), so the next round does not merge them.
+    std::vector<uint8_t> stuck(mesh_.positions.size(), 0);
+    for (const uint32_t g : unfolded.unresolved)
+        for (uint32_t k = 0; k < groups[g].count; ++k) stuck[groups[g].first + k] = 1;
+    for (const auto& tri : mesh_.triangles) {
+        if (!stuck[tri[0]] && !stuck[tri[1]] && !stuck[tri[2]]) continue;
+        for (const uint32_t corner : tri)
+            if (leafOf(corner) != kNoLeaf) foldedLeaves_.push_back(leafOf(corner));
     }
+}
 
-    uint32_t sheetVertex(const Node3& cell, int localEdge) {
-        const uint32_t base = sheetBase_[cellIndex(cell)];
-        return base + uint32_t(cellCycles(cellMask(cell)).edgeCycle[size_t(localEdge)]);
-    }
+// The merged blocks whose vertex's triangles cross or overlap (a sliver folded flat onto a
+// neighbour where a ring next to the block was fanned), noted in foldedLeaves_: the next
+// round does not merge them (their vertices may not move as a cell's do, unfoldSheetVertices:
+// the block's other triangles would move too).
+void Contourer::noteFoldedLeaves() {
+    std::vector<UnfoldGroup> groups;
+    for (uint32_t v = 0; v < uint32_t(vertexLeaf_.size()); ++v)
+        if (vertexLeaf_[v] != kNoLeaf) groups.push_back({v, 1});
+    const double tol = selfIntersectionTolerance(mesh_, tol::kSelfIntersectionContactRel);
+    for (const uint32_t g : findFoldedGroups(mesh_, groups, tol, workers_))
+        foldedLeaves_.push_back(vertexLeaf_[groups[g].first]);
+}
 
-    // The vertex on the face between two cells of edge (a, n0)'s ring, or kNone for a straight
-    // face curve. g is the axis the two cells differ on; h the other ring axis, dh its offset.
-    static constexpr uint32_t kNone = UINT32_MAX;
-    static constexpr uint32_t kUnknown = UINT32_MAX - 1;  // not decided yet
+// A node's sign, outside past the grid's last node: a block may reach past the grid (top
+// blocks are aligned to multiples of their size), and the grid's boundary nodes are all
+// outside, so the cells past it are empty.
+bool Contourer::insideOrPast(int i, int j, int k) const {
+    if (i >= spec_.nodes[0] || j >= spec_.nodes[1] || k >= spec_.nodes[2]) return false;
+    return grid_.inside(i, j, k);
+}
 
-    // The face vertex decided for segment of the face at faceMin perpendicular to g. The fans
-    // of a cell at layer k (node z index) only meet faces at layers k - 1 and k, and cells come
-    // in layer order, so two layers of slots suffice; a slot layer is reset when it is reused
-    // for a new layer (only its written slots).
-    uint32_t& faceSlot(const Node3& faceMin, int g, int segment) {
-        const int z = faceMin[2];
-        FaceLayer& layer = faceLayers_[size_t(z & 1)];
-        if (layer.z != z) {
-            if (layer.slots.empty())
-                layer.slots.assign(size_t(spec_.nodes[0]) * size_t(spec_.nodes[1]) * 6, kUnknown);
-            for (const uint32_t i : layer.written) layer.slots[i] = kUnknown;
-            layer.written.clear();
-            layer.z = z;
-        }
-        const uint32_t i =
-            uint32_t(((uint64_t(faceMin[0]) + uint64_t(spec_.nodes[0]) * uint64_t(faceMin[1])) * 3 +
-                      uint64_t(g)) *
-                         2 +
-                     uint64_t(segment));
-        if (layer.slots[i] == kUnknown) layer.written.push_back(i);
-        return layer.slots[i];
-    }
-    // Whether crease point x of the curve on an ambiguous face from crossing p0 (edge (a0, n0))
-    // to p1 (edge (a1, n1)) lies strictly inside the triangle of p0, p1 and the inside corner
-    // the curve goes around (the node the two edges share), in the face's axes u, v. The face's
-    // other curve stays in the triangle of the opposite corner, so two bent curves on one face
-    // cannot cross (a crease past the chord could reach over the other curve: the crossings
-    // of issue 7's random CSG where two sheets' fans met on an ambiguous face).
-    bool bendsTowardCorner(const Vec3& x, const Vec3& p0, const Vec3& p1, const Node3& n0, int a0,
-                           const Node3& n1, int a1, int u, int v) const {
-        Node3 corner = n0;
-        Node3 n0End = n0, n1End = n1;
-        ++n0End[a0];
-        ++n1End[a1];
-        if (n0End == n1 || n0End == n1End) corner = n0End;
-        const Vec3 c = spec_.node(corner[0], corner[1], corner[2]);
-        const Vec2 q(x[u], x[v]);
-        const Vec2 t[3] = {{c[u], c[v]}, {p0[u], p0[v]}, {p1[u], p1[v]}};
-        auto side = [&](const Vec2& from, const Vec2& to, const Vec2& at) {
-            const Vec2 e = to - from, d = at - from;
-            return e.x * d.y - e.y * d.x;
-        };
-        const double turn = side(t[0], t[1], t[2]);
-        for (int i = 0; i < 3; ++i)
-            if (!(side(t[i], t[(i + 1) % 3], q) * turn > 0.0)) return false;
-        return true;
-    }
-
-    uint32_t faceVertex(int a, const Node3& n0, int g, int h, int dh) {
-        // Step 1: the face, its corners' signs, and which of its edges is ours.
-        Node3 faceMin = n0;
-        faceMin[h] += dh;
-        const int u = (g + 1) % 3, v = (g + 2) % 3;
-        std::array<bool, 4> corner;
-        for (int dv = 0; dv < 2; ++dv)
-            for (int du = 0; du < 2; ++du) {
-                Node3 p = faceMin;
-                p[u] += du;
-                p[v] += dv;
-                corner[size_t(du + 2 * dv)] = inside(p);
-            }
-        const int edgeAxis = a == u ? 0 : 1;
-        const int segment = faceSegment(corner, edgeAxis, -dh);
-        uint32_t& known = faceSlot(faceMin, g, segment);
-        if (known != kUnknown) return known;
-
-        // Step 2: the partner edge of the same face curve.
-        int partnerAxis = -1, partnerOffset = -1;
-        for (int ax = 0; ax < 2; ++ax)
-            for (int o = 0; o < 2; ++o) {
-                if (ax == edgeAxis && o == -dh) continue;
-                const int c0 = ax == 0 ? 2 * o : o, c1 = ax == 0 ? 1 + 2 * o : o + 2;
-                if (corner[size_t(c0)] == corner[size_t(c1)]) continue;
-                if (faceSegment(corner, ax, o) == segment) {
-                    partnerAxis = ax;
-                    partnerOffset = o;
-                }
-            }
-        Node3 partnerNode = faceMin;
-        partnerNode[partnerAxis == 0 ? v : u] += partnerOffset;
-        const EdgeSample s0 = sample(a, n0, stats_.missingCrossings);
-        const EdgeSample s1 =
-            sample(partnerAxis == 0 ? u : v, partnerNode, stats_.missingCrossings);
-
-        // Step 3: bend the curve where the tangent lines meet; an ambiguous face always gets a
-        // vertex, so two curves on one face never join the same two sheet vertices twice.
-        const bool ambiguous = faceIsAmbiguous(corner);
-        const Vec3 lo3 = spec_.node(faceMin[0], faceMin[1], faceMin[2]);
-        Node3 faceMax = faceMin;
-        ++faceMax[u];
-        ++faceMax[v];
-        const Vec3 hi3 = spec_.node(faceMax[0], faceMax[1], faceMax[2]);
-        const Vec2 lo(lo3[u], lo3[v]), hi(hi3[u], hi3[v]);
-        Vec3 crease;
-        uint32_t vertex = kNone;
-        // A crease point (almost) on one of the crossings adds nothing but a sliver triangle
-        // that can fold onto its neighbour (tol::kCreaseVertexSeparation): skip it.
-        const double apart =
-            separation(std::min(hi[0] - lo[0], hi[1] - lo[1]), tol::kCreaseVertexSeparation);
-        if (s0.measured && s1.measured &&
-            creaseOnFace(s0.point, s0.normal, s1.point, s1.normal, u, v, lo, hi, crease) &&
-            glm::length(crease - s0.point) > apart && glm::length(crease - s1.point) > apart &&
-            (!ambiguous || bendsTowardCorner(crease, s0.point, s1.point, n0, a, partnerNode,
-                                             partnerAxis == 0 ? u : v, u, v))) {
-            crease[g] = lo3[g];
-            vertex = addVertex(crease, Vec3(0.0));
-        } else if (ambiguous) {
-            Vec3 mid = 0.5 * (s0.point + s1.point);
-            mid[g] = lo3[g];
-            vertex = addVertex(mid, Vec3(0.0));
-        }
-        if (vertex != kNone) ++stats_.faceVertices;
-        known = vertex;
-        return vertex;
-    }
-
-    // Step 3: the fan of each crossed edge that starts at this cell's minimum corner.
-    void fansOfCell(uint64_t index) {
-        const Node3 n0 = cellNode(index);
-        for (int a = 0; a < 3; ++a) {
-            Node3 n1 = n0;
-            ++n1[a];
-            const bool in0 = inside(n0);
-            if (in0 == inside(n1)) continue;
-            const int b = (a + 1) % 3, c = (a + 2) % 3;
-            const EdgeSample s = sample(a, n0, stats_.missingCrossings);
-            const uint32_t center = addVertex(s.point, s.normal);
-
-            // The ring: cells at (db, dc) counter-clockwise about +a, face vertices between.
-            // Cells of one merged block share its vertex: it enters the ring once, with no face
-            // vertex inside the block.
-            static constexpr int kRing[4][2] = {{-1, -1}, {0, -1}, {0, 0}, {-1, 0}};
-            uint32_t sheet[4];
-            for (int q = 0; q < 4; ++q) {
-                Node3 cell = n0;
-                cell[b] += kRing[q][0];
-                cell[c] += kRing[q][1];
-                sheet[q] = sheetVertex(cell, 4 * a + (kRing[q][0] < 0) + 2 * (kRing[q][1] < 0));
-            }
-            uint32_t ring[8];
-            int count = 0;
-            for (int q = 0; q < 4; ++q) {
-                if (count == 0 || ring[count - 1] != sheet[q]) ring[count++] = sheet[q];
-                if (sheet[(q + 1) % 4] == sheet[q]) continue;
-                const int* next = kRing[(q + 1) % 4];
-                const bool differOnB = next[0] != kRing[q][0];
-                const int g = differOnB ? b : c, h = differOnB ? c : b;
-                const int dh = differOnB ? kRing[q][1] : kRing[q][0];
-                const uint32_t f = faceVertex(a, n0, g, h, dh);
-                if (f != kNone) ring[count++] = f;
-            }
-            if (count > 1 && ring[count - 1] == ring[0]) --count;
-            // Two distinct vertices (an edge inside a block or a face between two blocks) would
-            // make two opposite triangles on the same corners: no fan. No face vertex was added
-            // then (one comes only between two distinct sheet vertices), so the crossing's
-            // vertex is the last one.
-            if (count <= 2) {
-                mesh_.positions.pop_back();
-                mesh_.normals.pop_back();
-                continue;
-            }
-
-            // Outward is +a when the edge leaves the solid going up the axis. A ring with a
-            // merged block's vertex may be fanned from one of its vertices instead (apex).
-            const int apex = vertexLeaf_.empty() ? -1 : chooseApex(s, in0, center, ring, count);
-            forEachFanTriangle(in0, center, ring, count, apex,
-                               [&](uint32_t p, uint32_t q, uint32_t r) {
-                                   mesh_.triangles.push_back({p, q, r});
-                                   mesh_.triangleMaterial.push_back(s.material);
-                                   return true;
-                               });
-        }
-    }
-
-    // The triangles, outward (ring order when in0, else reversed), of the ring fanned from
-    // center (apex < 0) or from ring[apex] (its two ring sides then left out), in ring order:
-    // f(p, q, r) for each, until it returns false. Returns whether none did.
-    template <class F>
-    static bool forEachFanTriangle(bool in0, uint32_t center, const uint32_t* ring, int count,
-                                   int apex, F&& f) {
-        const uint32_t from = apex >= 0 ? ring[apex] : center;
-        for (int t = 0; t < count; ++t) {
-            const int next = (t + 1) % count;
-            if (apex >= 0 && (t == apex || next == apex)) continue;
-            uint32_t p = ring[t], q = ring[next];
-            if (!in0) std::swap(p, q);
-            if (!f(from, p, q)) return false;
-        }
-        return true;
-    }
-
-    // Whether triangle (a, b, c), outward, fits the surface whose exact normal near it is n:
-    // it faces along n, and where a merged block's vertex is a corner and n lies on that
-    // block's own smooth patch (within twice its normal cone of the block's mean normal), it
-    // turns from n by less than tol::kOctreeFanTurnCos. (A triangle from a crossing across a
-    // crease, a box edge next to a merged face, legitimately turns further.)
-    bool fits(uint32_t a, uint32_t b, uint32_t c, const Vec3& n) const {
-        const Vec3& pa = mesh_.positions[a];
-        const Vec3 cross = glm::cross(mesh_.positions[b] - pa, mesh_.positions[c] - pa);
-        const double facing = glm::dot(cross, n);
-        if (!(facing > 0.0)) return false;
-        const double sameSheet = std::cos(2.0 * tol::kOctreeConeAngle);
-        for (const uint32_t v : {a, b, c}) {
-            const uint32_t leaf = leafOf(v);
-            if (leaf != kNoLeaf && glm::dot(n, leaves_[leaf].normal) >= sameSheet &&
-                facing < tol::kOctreeFanTurnCos * glm::length(cross))
-                return false;
-        }
-        return true;
-    }
-
-    // The vertex a ring with a merged block's vertex is fanned from: -1 for the crossing
-    // (center), as every other ring, when that fan fits the surface (fits); else the
-    // first ring vertex whose fan fits (the same boundary, so the mesh stays closed: a ring of
-    // three becomes Ju's one triangle). A block's vertex lies anywhere in its block, so seen
-    // from a crossing on the block's face it may lie past the ring's other vertices and the
-    // crossing's fan fold over. When no fan fits, the blocks of the ring are noted
-    // (foldedLeaves_: the next round does not merge them) and the crossing's fan is kept.
-    int chooseApex(const EdgeSample& s, bool in0, uint32_t center, const uint32_t* ring,
-                   int count) {
-        bool merged = false;
-        for (int t = 0; t < count; ++t) merged = merged || leafOf(ring[t]) != kNoLeaf;
-        if (!merged) return -1;
-        touched_.resize(mesh_.positions.size(), 0);
-        touched_[center] = 1;
-        for (int t = 0; t < count; ++t) touched_[ring[t]] = 1;
-        if (!s.measured) return -1;
-        for (int apex = -1; apex < count; ++apex)
-            if (forEachFanTriangle(
-                    in0, center, ring, count, apex,
-                    [&](uint32_t p, uint32_t q, uint32_t r) { return fits(p, q, r, s.normal); }))
-                return apex;
-        for (int t = 0; t < count; ++t)
-            if (leafOf(ring[t]) != kNoLeaf) foldedLeaves_.push_back(leafOf(ring[t]));
-        return -1;
-    }
-
-    // The merged blocks at vertices of the mesh whose triangles do not form one disk around
-    // them (an edge used other than once each way, or two fans meeting at the vertex): merging
-    // changed the rings around them in a way Ju's test does not rule out (a block wrapping
-    // around a neighbour's face). The blocks among such a vertex and its triangles' corners are
-    // noted in foldedLeaves_. The uniform contour is a manifold, so only merging causes these.
-    void noteNonManifoldLeaves() {
-        const size_t n = mesh_.positions.size();
-        std::vector<uint32_t> start(n + 1, 0);
-        for (const auto& tri : mesh_.triangles)
-            for (const uint32_t v : tri) ++start[v + 1];
-        for (size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-        std::vector<uint32_t> around(start[n]), fill(start.begin(), start.end() - 1);
-        for (size_t t = 0; t < mesh_.triangles.size(); ++t)
-            for (const uint32_t v : mesh_.triangles[t]) around[fill[v]++] = uint32_t(t);
-        auto noteAt = [&](uint32_t v) {
-            for (uint32_t i = start[v]; i < start[v + 1]; ++i)
-                for (const uint32_t corner : mesh_.triangles[around[i]])
-                    if (leafOf(corner) != kNoLeaf) foldedLeaves_.push_back(leafOf(corner));
-        };
-        // Around a manifold vertex the far edges of its triangles (a -> b for triangle v, a, b)
-        // form one cycle: every a starts one edge, and walking from any reaches all.
-        std::vector<std::pair<uint32_t, uint32_t>> link;
-        touched_.resize(n, 0);
-        for (size_t v = 0; v < n; ++v) {
-            if (!touched_[v]) continue;  // all its triangles are the uniform contour's
-            link.clear();
-            for (uint32_t i = start[v]; i < start[v + 1]; ++i) {
-                const auto& tri = mesh_.triangles[around[i]];
-                const int k = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
-                link.push_back({tri[size_t((k + 1) % 3)], tri[size_t((k + 2) % 3)]});
-            }
-            if (link.empty()) continue;
-            std::sort(link.begin(), link.end());
-            bool ok = true;
-            for (size_t i = 1; i < link.size() && ok; ++i) ok = link[i].first != link[i - 1].first;
-            size_t steps = 0;
-            for (uint32_t at = link[0].second; ok && steps < link.size(); ++steps) {
-                const auto next = std::lower_bound(link.begin(), link.end(),
-                                                   std::pair<uint32_t, uint32_t>{at, 0});
-                if (next == link.end() || next->first != at)
-                    ok = false;
-                else if (next == link.begin())
-                    break;  // back at the first edge
-                else
-                    at = next->second;
-            }
-            if (!ok || steps + 1 != link.size()) noteAt(uint32_t(v));
-        }
-    }
-
-    // With the octree, crossings whose ring was fanned from another vertex are left without a
-    // triangle: drop every vertex no triangle uses (the order of the rest is kept).
-    void dropUnusedVertices() {
-        std::vector<uint32_t> remap(mesh_.positions.size(), kNone);
-        for (const auto& tri : mesh_.triangles)
-            for (const uint32_t v : tri) remap[v] = 0;
-        uint32_t next = 0;
-        for (size_t v = 0; v < remap.size(); ++v) {
-            if (remap[v] == kNone) continue;
-            remap[v] = next;
-            mesh_.positions[next] = mesh_.positions[v];
-            mesh_.normals[next] = mesh_.normals[v];
-            ++next;
-        }
-        mesh_.positions.resize(next);
-        mesh_.normals.resize(next);
-        for (auto& tri : mesh_.triangles)
-            for (uint32_t& v : tri) v = remap[v];
-    }
-
-    // Step 4: normals of QEF and face vertices from their triangles (area-weighted); crossing
-    // vertices keep the exact normal.
-    void finishNormals() {
-        std::vector<Vec3> sum(mesh_.positions.size(), Vec3(0.0));
-        for (const auto& tri : mesh_.triangles) {
-            const Vec3 n = glm::cross(mesh_.positions[tri[1]] - mesh_.positions[tri[0]],
-                                      mesh_.positions[tri[2]] - mesh_.positions[tri[0]]);
-            for (const uint32_t corner : tri) sum[corner] += n;
-        }
-        for (size_t i = 0; i < sum.size(); ++i) {
-            if (mesh_.normals[i] != Vec3(0.0)) continue;
-            const double len = glm::length(sum[i]);
-            mesh_.normals[i] = len > 0.0 ? sum[i] / len : Vec3(0.0, 0.0, 1.0);
-        }
-    }
-
-    const HermiteGrid& grid_;
-    const GridSpec& spec_;
-    DualContourStats& stats_;
-    const int workers_;
-    double flatTolerance_;  // 0 after too many rounds: the uniform contour
-    TriangleMesh mesh_;
-    // The octree (mergeFlatBlocks): per entry of active_, its merged block or kNoLeaf (empty
-    // when the octree is off); the merged blocks.
-    std::vector<uint32_t> leafOfActive_;
-    std::vector<Leaf> leaves_;
-    std::vector<uint32_t> vertexLeaf_;    // per sheet vertex, its merged block or kNoLeaf
-    std::vector<uint32_t> foldedLeaves_;  // merged blocks of rings no fan fits
-    // The top blocks of mergeFlatBlocks, kept across rounds: the active cells (positions in
-    // active_) by top block, each top block's first entry and key, its leaves, whether it must
-    // be merged again, and per active cell its leaf within its top block.
-    std::vector<uint32_t> topOrder_;
-    std::vector<size_t> topStarts_;
-    std::vector<uint64_t> topKeys_;
-    std::vector<TopBlockWork> topWork_;
-    std::vector<uint8_t> dirtyTop_;
-    std::vector<uint32_t> localLeaf_;
-    // Every active cell's own sheet vertices (placeSheetVertices, octree rounds): the first of
-    // active cell i is finePlaced_[fineStart_[i]]; fineMissing_ counts their missing crossings.
-    std::vector<uint32_t> fineStart_;
-    std::vector<Vec3> finePlaced_;
-    std::vector<Vec3> fineSafe_;  // their safe points (the mass points of their crossings)
-    // Per sheet vertex, the mass point of its crossings (unfoldSheetVertices).
-    std::vector<Vec3> safe_;
-    uint64_t fineMissing_ = 0;
-    // blockKeys that may not merge, nor any block inside them.
-    std::unordered_set<uint64_t> forbidden_;
-    std::vector<uint8_t> touched_;  // per vertex: a corner of a ring with a merged block
-    std::vector<uint64_t> active_;
-    std::vector<uint32_t> sheetBase_;  // per cell index: its first sheet vertex
-    struct FaceLayer {
-        int z = -1;
-        std::vector<uint32_t> slots;    // per (i, j, axis, segment): see faceSlot
-        std::vector<uint32_t> written;  // slots set since the layer was last reset
+// Ju's topology test on block [lo, lo + size] (nodes; size even): the corners give one sheet
+// and no ambiguous face, and every mid-edge, mid-face and centre node agrees in sign with a
+// corner of its edge, face or block. Applied at every level, each block edge then changes
+// sign at most once along its nodes.
+bool Contourer::blockTopologyOk(const Node3& lo, int size) const {
+    const int half = size / 2;
+    auto at = [&](int x, int y, int z) {
+        return insideOrPast(lo[0] + x * half, lo[1] + y * half, lo[2] + z * half);
     };
-    std::array<FaceLayer, 2> faceLayers_;
-};
+    uint8_t mask = 0;
+    for (int corner = 0; corner < 8; ++corner)
+        if (at(2 * (corner & 1), 2 * ((corner >> 1) & 1), 2 * ((corner >> 2) & 1)))
+            mask = uint8_t(mask | (1u << corner));
+    const CellCycles& cycles = cellCycles(mask);
+    if (cycles.count != 1 || cycles.ambiguousFace) return false;
+    for (int z = 0; z < 3; ++z)
+        for (int y = 0; y < 3; ++y)
+            for (int x = 0; x < 3; ++x) {
+                if (x != 1 && y != 1 && z != 1) continue;  // a corner
+                const bool sign = at(x, y, z);
+                bool agrees = false;
+                // The corners of the smallest edge, face or block holding the node: each
+                // middle coordinate runs over both ends.
+                for (int corner = 0; corner < 8 && !agrees; ++corner) {
+                    const int cx = corner & 1, cy = (corner >> 1) & 1, cz = (corner >> 2) & 1;
+                    if ((x != 1 && cx) || (y != 1 && cy) || (z != 1 && cz)) continue;
+                    agrees =
+                        at(x == 1 ? 2 * cx : x, y == 1 ? 2 * cy : y, z == 1 ? 2 * cz : z) == sign;
+                }
+                if (!agrees) return false;
+            }
+    return true;
+}
 
-}  // namespace
+// The samples of the crossed edges of the block's cells [lo, lo + size), each edge once (by
+// the cell whose minimum corner is the edge's start, clamped into the block: every cell
+// around a crossed edge is active). False when one was not measured (a midpoint fallback).
+bool Contourer::blockSamples(const Node3& lo, int size, const uint32_t* first, const uint32_t* last,
+                             std::vector<EdgeSample>& out) const {
+    out.clear();
+    uint64_t missing = 0;
+    for (const uint32_t* p = first; p != last; ++p) {
+        const Node3 cell = cellNode(active_[*p]);
+        const CellCycles& cycles = cellCycles(cellMask(cell));
+        for (int e = 0; e < 12; ++e) {
+            if (cycles.edgeCycle[size_t(e)] < 0) continue;
+            const int a = e / 4, b = (a + 1) % 3, c = (a + 2) % 3;
+            const int ob = e & 1, oc = (e >> 1) & 1;
+            if ((ob && cell[b] != lo[b] + size - 1) || (oc && cell[c] != lo[c] + size - 1))
+                continue;
+            Node3 n = cell;
+            n[b] += ob;
+            n[c] += oc;
+            out.push_back(sample(a, n, missing));
+            if (!out.back().measured) return false;
+        }
+    }
+    return true;
+}
+
+// The block's one vertex (the QEF of all its samples, clamped to the block inset a hair, as
+// a cell's), when the block is flat: every normal within tol::kOctreeConeAngle of their
+// mean and every tangent plane within flatTolerance_ of the vertex.
+bool Contourer::flatVertex(const Node3& lo, int size, const std::vector<EdgeSample>& samples,
+                           Vec3& vertex, Vec3& normal) const {
+    Qef3 qef;
+    Vec3 sum(0.0);
+    for (const EdgeSample& s : samples) {
+        qef.add(s.point, s.normal);
+        sum += s.normal;
+    }
+    const double length = glm::length(sum);
+    if (samples.empty() || !(length > 0.0)) return false;
+    const Vec3 mean = sum / length;
+    normal = mean;
+    const double cone = std::cos(tol::kOctreeConeAngle);
+    for (const EdgeSample& s : samples)
+        if (glm::dot(s.normal, mean) < cone) return false;
+    // The block's box, cut at the grid's last node (past it the block is empty).
+    const Node3 hi{std::min(lo[0] + size, spec_.nodes[0] - 1),
+                   std::min(lo[1] + size, spec_.nodes[1] - 1),
+                   std::min(lo[2] + size, spec_.nodes[2] - 1)};
+    const Vec3 lo3 = spec_.node(lo[0], lo[1], lo[2]), hi3 = spec_.node(hi[0], hi[1], hi[2]);
+    const Vec3 extent = hi3 - lo3;
+    const Vec3 inset(separation(std::min({extent.x, extent.y, extent.z})));
+    const Bounds3 box{lo3 + inset, hi3 - inset};
+    vertex = glm::clamp(qef.solve(box), box.lo, box.hi);
+    for (const EdgeSample& s : samples)
+        if (std::fabs(glm::dot(s.normal, vertex - s.point)) > flatTolerance_) return false;
+    return true;
+}
+
+// A block's name across rounds: its first cell and its level.
+uint64_t Contourer::blockKey(const Node3& lo, int level) const {
+    return cellIndex(lo) * (kOctreeMaxLevel + 1) + uint64_t(level);
+}
+
+void Contourer::addLeaf(const BlockState& block, const Node3& lo, int level, const uint32_t* first,
+                        const uint32_t* last, TopBlockWork& work) {
+    for (const uint32_t* p = first; p != last; ++p) localLeaf_[*p] = uint32_t(work.leaves.size());
+    work.leaves.push_back({block.vertex, block.normal, blockKey(lo, level)});
+}
+
+// Block of 2^level cells per axis at lo whose active cells (positions in active_) are
+// [first, last): merges bottom-up; the mergeable children of a block that does not merge
+// become leaves (fine cells, level 0, keep their own vertices). inForbiddenTree: this
+// block or one around it is in forbidden_.
+Contourer::BlockState Contourer::mergeBlock(const Node3& lo, int level, uint32_t* first,
+                                            uint32_t* last, TopBlockWork& work,
+                                            bool inForbiddenTree) {
+    if (level == 0) {
+        if (first == last) return {true, false, Vec3(0.0)};
+        const CellCycles& cycles = cellCycles(cellMask(cellNode(active_[*first])));
+        return {cycles.count == 1 && !cycles.ambiguousFace, true, Vec3(0.0)};
+    }
+    const int half = 1 << (level - 1), size = 2 * half;
+    inForbiddenTree =
+        inForbiddenTree || (!forbidden_.empty() && forbidden_.count(blockKey(lo, level)));
+    // Split the cells into the 8 children (octant bit a: the cell is in the upper half on
+    // axis a), in order z, y, x so each child's cells are contiguous: on axis a, each run
+    // [bounds[o], bounds[o + 2 step]) splits at bounds[o + step], step = 2^a.
+    uint32_t* bounds[9];
+    bounds[0] = first;
+    bounds[8] = last;
+    for (int a = 2; a >= 0; --a) {
+        const int step = 1 << a;
+        for (int o = 0; o < 8; o += 2 * step)
+            bounds[o + step] = std::partition(bounds[o], bounds[o + 2 * step], [&](uint32_t p) {
+                return cellNode(active_[p])[a] < lo[a] + half;
+            });
+    }
+    BlockState child[8];
+    Node3 childLo[8];
+    bool all = true, surface = false;
+    for (int o = 0; o < 8; ++o) {
+        childLo[o] = {lo[0] + half * (o & 1), lo[1] + half * ((o >> 1) & 1),
+                      lo[2] + half * ((o >> 2) & 1)};
+        child[o] =
+            mergeBlock(childLo[o], level - 1, bounds[o], bounds[o + 1], work, inForbiddenTree);
+        all = all && child[o].mergeable;
+        surface = surface || child[o].surface;
+    }
+    BlockState self{all, surface, Vec3(0.0)};
+    if (inForbiddenTree) self.mergeable = false;
+    if (self.mergeable && surface)
+        self.mergeable = blockTopologyOk(lo, size) &&
+                         blockSamples(lo, size, first, last, work.samples) &&
+                         flatVertex(lo, size, work.samples, self.vertex, self.normal);
+    if (!self.mergeable && level > 1)
+        for (int o = 0; o < 8; ++o)
+            if (child[o].mergeable && child[o].surface)
+                addLeaf(child[o], childLo[o], level - 1, bounds[o], bounds[o + 1], work);
+    return self;
+}
+
+// Step 1b: the octree over top blocks of 2^kOctreeMaxLevel cells, each on one worker; the
+// leaves are numbered in top-block order, so the result is the same for any thread count.
+void Contourer::mergeFlatBlocks() {
+    constexpr int kTop = 1 << kOctreeMaxLevel;
+    std::array<uint64_t, 3> tops;
+    for (int a = 0; a < 3; ++a) tops[size_t(a)] = uint64_t(spec_.nodes[a] - 1 + kTop - 1) / kTop;
+    // The first round sorts the active cells into top blocks; later rounds merge again only
+    // the top blocks where a block was forbidden (dirtyTop_), the others keep their leaves.
+    if (topStarts_.empty()) {
+        std::vector<std::pair<uint64_t, uint32_t>> keyed(active_.size());
+        for (size_t i = 0; i < active_.size(); ++i) {
+            const Node3 c = cellNode(active_[i]);
+            keyed[i] = {uint64_t(c[0] / kTop) +
+                            tops[0] * (uint64_t(c[1] / kTop) + tops[1] * uint64_t(c[2] / kTop)),
+                        uint32_t(i)};
+        }
+        std::sort(keyed.begin(), keyed.end());
+        topOrder_.resize(keyed.size());
+        for (size_t i = 0; i < keyed.size(); ++i) {
+            if (i == 0 || keyed[i].first != keyed[i - 1].first) {
+                topStarts_.push_back(i);
+                topKeys_.push_back(keyed[i].first);
+            }
+            topOrder_[i] = keyed[i].second;
+        }
+        topStarts_.push_back(topOrder_.size());
+        topWork_.resize(topKeys_.size());
+        dirtyTop_.assign(topKeys_.size(), 1);
+        localLeaf_.assign(active_.size(), kNoLeaf);
+    }
+    const size_t blocks = topKeys_.size();
+    parallelFor(blocks, workers_, [&](int, uint64_t block) {
+        if (!dirtyTop_[block]) return;
+        uint32_t* first = topOrder_.data() + topStarts_[block];
+        uint32_t* last = topOrder_.data() + topStarts_[block + 1];
+        for (uint32_t* p = first; p != last; ++p) localLeaf_[*p] = kNoLeaf;
+        const uint64_t key = topKeys_[block];
+        const Node3 lo{int(key % tops[0]) * kTop, int((key / tops[0]) % tops[1]) * kTop,
+                       int(key / (tops[0] * tops[1])) * kTop};
+        TopBlockWork& w = topWork_[block];
+        w = {};
+        const BlockState top = mergeBlock(lo, kOctreeMaxLevel, first, last, w, false);
+        if (top.mergeable && top.surface) addLeaf(top, lo, kOctreeMaxLevel, first, last, w);
+        w.samples = {};
+        dirtyTop_[block] = 0;
+    });
+    // Number the leaves globally: top blocks in order.
+    leafOfActive_.assign(active_.size(), kNoLeaf);
+    uint32_t offset = 0;
+    for (size_t block = 0; block < blocks; ++block) {
+        for (size_t i = topStarts_[block]; i < topStarts_[block + 1]; ++i) {
+            const uint32_t p = topOrder_[i];
+            if (localLeaf_[p] != kNoLeaf) {
+                leafOfActive_[p] = localLeaf_[p] + offset;
+                ++stats_.octreeCells;
+            }
+        }
+        const TopBlockWork& w = topWork_[block];
+        offset += uint32_t(w.leaves.size());
+        for (Leaf leaf : w.leaves) {
+            leaf.top = uint32_t(block);
+            leaves_.push_back(leaf);
+        }
+    }
+    stats_.octreeLeaves = leaves_.size();
+}
+
+uint32_t Contourer::sheetVertex(const Node3& cell, int localEdge) {
+    const uint32_t base = sheetBase_[cellIndex(cell)];
+    return base + uint32_t(cellCycles(cellMask(cell)).edgeCycle[size_t(localEdge)]);
+}
+
+// The face vertex decided for segment of the face at faceMin perpendicular to g. The fans
+// of a cell at layer k (node z index) only meet faces at layers k - 1 and k, and cells come
+// in layer order, so two layers of slots suffice; a slot layer is reset when it is reused
+// for a new layer (only its written slots).
+uint32_t& Contourer::faceSlot(const Node3& faceMin, int g, int segment) {
+    const int z = faceMin[2];
+    FaceLayer& layer = faceLayers_[size_t(z & 1)];
+    if (layer.z != z) {
+        if (layer.slots.empty())
+            layer.slots.assign(size_t(spec_.nodes[0]) * size_t(spec_.nodes[1]) * 6, kUnknown);
+        for (const uint32_t i : layer.written) layer.slots[i] = kUnknown;
+        layer.written.clear();
+        layer.z = z;
+    }
+    const uint32_t i =
+        uint32_t(((uint64_t(faceMin[0]) + uint64_t(spec_.nodes[0]) * uint64_t(faceMin[1])) * 3 +
+                  uint64_t(g)) *
+                     2 +
+                 uint64_t(segment));
+    if (layer.slots[i] == kUnknown) layer.written.push_back(i);
+    return layer.slots[i];
+}
+
+// Whether crease point x of the curve on an ambiguous face from crossing p0 (edge (a0, n0))
+// to p1 (edge (a1, n1)) lies strictly inside the triangle of p0, p1 and the inside corner
+// the curve goes around (the node the two edges share), in the face's axes u, v. The face's
+// other curve stays in the triangle of the opposite corner, so two bent curves on one face
+// cannot cross (a crease past the chord could reach over the other curve: the crossings
+// of issue 7's random CSG where two sheets' fans met on an ambiguous face).
+bool Contourer::bendsTowardCorner(const Vec3& x, const Vec3& p0, const Vec3& p1, const Node3& n0,
+                                  int a0, const Node3& n1, int a1, int u, int v) const {
+    Node3 corner = n0;
+    Node3 n0End = n0, n1End = n1;
+    ++n0End[a0];
+    ++n1End[a1];
+    if (n0End == n1 || n0End == n1End) corner = n0End;
+    const Vec3 c = spec_.node(corner[0], corner[1], corner[2]);
+    const Vec2 q(x[u], x[v]);
+    const Vec2 t[3] = {{c[u], c[v]}, {p0[u], p0[v]}, {p1[u], p1[v]}};
+    auto side = [&](const Vec2& from, const Vec2& to, const Vec2& at) {
+        const Vec2 e = to - from, d = at - from;
+        return e.x * d.y - e.y * d.x;
+    };
+    const double turn = side(t[0], t[1], t[2]);
+    for (int i = 0; i < 3; ++i)
+        if (!(side(t[i], t[(i + 1) % 3], q) * turn > 0.0)) return false;
+    return true;
+}
+
+// The vertex on the face between two cells of edge (a, n0)'s ring, or kNone for a straight
+// face curve. g is the axis the two cells differ on; h the other ring axis, dh its offset.
+uint32_t Contourer::faceVertex(int a, const Node3& n0, int g, int h, int dh) {
+    // Step 1: the face, its corners' signs, and which of its edges is ours.
+    Node3 faceMin = n0;
+    faceMin[h] += dh;
+    const int u = (g + 1) % 3, v = (g + 2) % 3;
+    std::array<bool, 4> corner;
+    for (int dv = 0; dv < 2; ++dv)
+        for (int du = 0; du < 2; ++du) {
+            Node3 p = faceMin;
+            p[u] += du;
+            p[v] += dv;
+            corner[size_t(du + 2 * dv)] = inside(p);
+        }
+    const int edgeAxis = a == u ? 0 : 1;
+    const int segment = faceSegment(corner, edgeAxis, -dh);
+    uint32_t& known = faceSlot(faceMin, g, segment);
+    if (known != kUnknown) return known;
+
+    // Step 2: the partner edge of the same face curve.
+    int partnerAxis = -1, partnerOffset = -1;
+    for (int ax = 0; ax < 2; ++ax)
+        for (int o = 0; o < 2; ++o) {
+            if (ax == edgeAxis && o == -dh) continue;
+            const int c0 = ax == 0 ? 2 * o : o, c1 = ax == 0 ? 1 + 2 * o : o + 2;
+            if (corner[size_t(c0)] == corner[size_t(c1)]) continue;
+            if (faceSegment(corner, ax, o) == segment) {
+                partnerAxis = ax;
+                partnerOffset = o;
+            }
+        }
+    Node3 partnerNode = faceMin;
+    partnerNode[partnerAxis == 0 ? v : u] += partnerOffset;
+    const EdgeSample s0 = sample(a, n0, stats_.missingCrossings);
+    const EdgeSample s1 = sample(partnerAxis == 0 ? u : v, partnerNode, stats_.missingCrossings);
+
+    // Step 3: bend the curve where the tangent lines meet; an ambiguous face always gets a
+    // vertex, so two curves on one face never join the same two sheet vertices twice.
+    const bool ambiguous = faceIsAmbiguous(corner);
+    const Vec3 lo3 = spec_.node(faceMin[0], faceMin[1], faceMin[2]);
+    Node3 faceMax = faceMin;
+    ++faceMax[u];
+    ++faceMax[v];
+    const Vec3 hi3 = spec_.node(faceMax[0], faceMax[1], faceMax[2]);
+    const Vec2 lo(lo3[u], lo3[v]), hi(hi3[u], hi3[v]);
+    Vec3 crease;
+    uint32_t vertex = kNone;
+    // A crease point (almost) on one of the crossings adds nothing but a sliver triangle
+    // that can fold onto its neighbour (tol::kCreaseVertexSeparation): skip it.
+    const double apart =
+        separation(std::min(hi[0] - lo[0], hi[1] - lo[1]), tol::kCreaseVertexSeparation);
+    if (s0.measured && s1.measured &&
+        creaseOnFace(s0.point, s0.normal, s1.point, s1.normal, u, v, lo, hi, crease) &&
+        glm::length(crease - s0.point) > apart && glm::length(crease - s1.point) > apart &&
+        (!ambiguous || bendsTowardCorner(crease, s0.point, s1.point, n0, a, partnerNode,
+                                         partnerAxis == 0 ? u : v, u, v))) {
+        crease[g] = lo3[g];
+        vertex = addVertex(crease, Vec3(0.0));
+    } else if (ambiguous) {
+        Vec3 mid = 0.5 * (s0.point + s1.point);
+        mid[g] = lo3[g];
+        vertex = addVertex(mid, Vec3(0.0));
+    }
+    if (vertex != kNone) ++stats_.faceVertices;
+    known = vertex;
+    return vertex;
+}
+
+// Step 3: the fan of each crossed edge that starts at this cell's minimum corner.
+void Contourer::fansOfCell(uint64_t index) {
+    const Node3 n0 = cellNode(index);
+    for (int a = 0; a < 3; ++a) {
+        Node3 n1 = n0;
+        ++n1[a];
+        const bool in0 = inside(n0);
+        if (in0 == inside(n1)) continue;
+        const int b = (a + 1) % 3, c = (a + 2) % 3;
+        const EdgeSample s = sample(a, n0, stats_.missingCrossings);
+        const uint32_t center = addVertex(s.point, s.normal);
+
+        // The ring: cells at (db, dc) counter-clockwise about +a, face vertices between.
+        // Cells of one merged block share its vertex: it enters the ring once, with no face
+        // vertex inside the block.
+        static constexpr int kRing[4][2] = {{-1, -1}, {0, -1}, {0, 0}, {-1, 0}};
+        uint32_t sheet[4];
+        for (int q = 0; q < 4; ++q) {
+            Node3 cell = n0;
+            cell[b] += kRing[q][0];
+            cell[c] += kRing[q][1];
+            sheet[q] = sheetVertex(cell, 4 * a + (kRing[q][0] < 0) + 2 * (kRing[q][1] < 0));
+        }
+        uint32_t ring[8];
+        int count = 0;
+        for (int q = 0; q < 4; ++q) {
+            if (count == 0 || ring[count - 1] != sheet[q]) ring[count++] = sheet[q];
+            if (sheet[(q + 1) % 4] == sheet[q]) continue;
+            const int* next = kRing[(q + 1) % 4];
+            const bool differOnB = next[0] != kRing[q][0];
+            const int g = differOnB ? b : c, h = differOnB ? c : b;
+            const int dh = differOnB ? kRing[q][1] : kRing[q][0];
+            const uint32_t f = faceVertex(a, n0, g, h, dh);
+            if (f != kNone) ring[count++] = f;
+        }
+        if (count > 1 && ring[count - 1] == ring[0]) --count;
+        // Two distinct vertices (an edge inside a block or a face between two blocks) would
+        // make two opposite triangles on the same corners: no fan. No face vertex was added
+        // then (one comes only between two distinct sheet vertices), so the crossing's
+        // vertex is the last one.
+        if (count <= 2) {
+            mesh_.positions.pop_back();
+            mesh_.normals.pop_back();
+            continue;
+        }
+
+        // Outward is +a when the edge leaves the solid going up the axis. A ring with a
+        // merged block's vertex may be fanned from one of its vertices instead (apex).
+        const int apex = vertexLeaf_.empty() ? -1 : chooseApex(s, in0, center, ring, count);
+        forEachFanTriangle(in0, center, ring, count, apex, [&](uint32_t p, uint32_t q, uint32_t r) {
+            mesh_.triangles.push_back({p, q, r});
+            mesh_.triangleMaterial.push_back(s.material);
+            return true;
+        });
+    }
+}
+
+// Whether triangle (a, b, c), outward, fits the surface whose exact normal near it is n:
+// it faces along n, and where a merged block's vertex is a corner and n lies on that
+// block's own smooth patch (within twice its normal cone of the block's mean normal), it
+// turns from n by less than tol::kOctreeFanTurnCos. (A triangle from a crossing across a
+// crease, a box edge next to a merged face, legitimately turns further.)
+bool Contourer::fits(uint32_t a, uint32_t b, uint32_t c, const Vec3& n) const {
+    const Vec3& pa = mesh_.positions[a];
+    const Vec3 cross = glm::cross(mesh_.positions[b] - pa, mesh_.positions[c] - pa);
+    const double facing = glm::dot(cross, n);
+    if (!(facing > 0.0)) return false;
+    const double sameSheet = std::cos(2.0 * tol::kOctreeConeAngle);
+    for (const uint32_t v : {a, b, c}) {
+        const uint32_t leaf = leafOf(v);
+        if (leaf != kNoLeaf && glm::dot(n, leaves_[leaf].normal) >= sameSheet &&
+            facing < tol::kOctreeFanTurnCos * glm::length(cross))
+            return false;
+    }
+    return true;
+}
+
+// The vertex a ring with a merged block's vertex is fanned from: -1 for the crossing
+// (center), as every other ring, when that fan fits the surface (fits); else the
+// first ring vertex whose fan fits (the same boundary, so the mesh stays closed: a ring of
+// three becomes Ju's one triangle). A block's vertex lies anywhere in its block, so seen
+// from a crossing on the block's face it may lie past the ring's other vertices and the
+// crossing's fan fold over. When no fan fits, the blocks of the ring are noted
+// (foldedLeaves_: the next round does not merge them) and the crossing's fan is kept.
+int Contourer::chooseApex(const EdgeSample& s, bool in0, uint32_t center, const uint32_t* ring,
+                          int count) {
+    bool merged = false;
+    for (int t = 0; t < count; ++t) merged = merged || leafOf(ring[t]) != kNoLeaf;
+    if (!merged) return -1;
+    touched_.resize(mesh_.positions.size(), 0);
+    touched_[center] = 1;
+    for (int t = 0; t < count; ++t) touched_[ring[t]] = 1;
+    if (!s.measured) return -1;
+    for (int apex = -1; apex < count; ++apex)
+        if (forEachFanTriangle(
+                in0, center, ring, count, apex,
+                [&](uint32_t p, uint32_t q, uint32_t r) { return fits(p, q, r, s.normal); }))
+            return apex;
+    for (int t = 0; t < count; ++t)
+        if (leafOf(ring[t]) != kNoLeaf) foldedLeaves_.push_back(leafOf(ring[t]));
+    return -1;
+}
+
+// The merged blocks at vertices of the mesh whose triangles do not form one disk around
+// them (an edge used other than once each way, or two fans meeting at the vertex): merging
+// changed the rings around them in a way Ju's test does not rule out (a block wrapping
+// around a neighbour's face). The blocks among such a vertex and its triangles' corners are
+// noted in foldedLeaves_. The uniform contour is a manifold, so only merging causes these.
+void Contourer::noteNonManifoldLeaves() {
+    const size_t n = mesh_.positions.size();
+    std::vector<uint32_t> start(n + 1, 0);
+    for (const auto& tri : mesh_.triangles)
+        for (const uint32_t v : tri) ++start[v + 1];
+    for (size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+    std::vector<uint32_t> around(start[n]), fill(start.begin(), start.end() - 1);
+    for (size_t t = 0; t < mesh_.triangles.size(); ++t)
+        for (const uint32_t v : mesh_.triangles[t]) around[fill[v]++] = uint32_t(t);
+    auto noteAt = [&](uint32_t v) {
+        for (uint32_t i = start[v]; i < start[v + 1]; ++i)
+            for (const uint32_t corner : mesh_.triangles[around[i]])
+                if (leafOf(corner) != kNoLeaf) foldedLeaves_.push_back(leafOf(corner));
+    };
+    // Around a manifold vertex the far edges of its triangles (a -> b for triangle v, a, b)
+    // form one cycle: every a starts one edge, and walking from any reaches all.
+    std::vector<std::pair<uint32_t, uint32_t>> link;
+    touched_.resize(n, 0);
+    for (size_t v = 0; v < n; ++v) {
+        if (!touched_[v]) continue;  // all its triangles are the uniform contour's
+        link.clear();
+        for (uint32_t i = start[v]; i < start[v + 1]; ++i) {
+            const auto& tri = mesh_.triangles[around[i]];
+            const int k = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
+            link.push_back({tri[size_t((k + 1) % 3)], tri[size_t((k + 2) % 3)]});
+        }
+        if (link.empty()) continue;
+        std::sort(link.begin(), link.end());
+        bool ok = true;
+        for (size_t i = 1; i < link.size() && ok; ++i) ok = link[i].first != link[i - 1].first;
+        size_t steps = 0;
+        for (uint32_t at = link[0].second; ok && steps < link.size(); ++steps) {
+            const auto next =
+                std::lower_bound(link.begin(), link.end(), std::pair<uint32_t, uint32_t>{at, 0});
+            if (next == link.end() || next->first != at)
+                ok = false;
+            else if (next == link.begin())
+                break;  // back at the first edge
+            else
+                at = next->second;
+        }
+        if (!ok || steps + 1 != link.size()) noteAt(uint32_t(v));
+    }
+}
+
+// With the octree, crossings whose ring was fanned from another vertex are left without a
+// triangle: drop every vertex no triangle uses (the order of the rest is kept).
+void Contourer::dropUnusedVertices() {
+    std::vector<uint32_t> remap(mesh_.positions.size(), kNone);
+    for (const auto& tri : mesh_.triangles)
+        for (const uint32_t v : tri) remap[v] = 0;
+    uint32_t next = 0;
+    for (size_t v = 0; v < remap.size(); ++v) {
+        if (remap[v] == kNone) continue;
+        remap[v] = next;
+        mesh_.positions[next] = mesh_.positions[v];
+        mesh_.normals[next] = mesh_.normals[v];
+        ++next;
+    }
+    mesh_.positions.resize(next);
+    mesh_.normals.resize(next);
+    for (auto& tri : mesh_.triangles)
+        for (uint32_t& v : tri) v = remap[v];
+}
+
+// Step 4: normals of QEF and face vertices from their triangles (area-weighted); crossing
+// vertices keep the exact normal.
+void Contourer::finishNormals() {
+    std::vector<Vec3> sum(mesh_.positions.size(), Vec3(0.0));
+    for (const auto& tri : mesh_.triangles) {
+        const Vec3 n = glm::cross(mesh_.positions[tri[1]] - mesh_.positions[tri[0]],
+                                  mesh_.positions[tri[2]] - mesh_.positions[tri[0]]);
+        for (const uint32_t corner : tri) sum[corner] += n;
+    }
+    for (size_t i = 0; i < sum.size(); ++i) {
+        if (mesh_.normals[i] != Vec3(0.0)) continue;
+        const double len = glm::length(sum[i]);
+        mesh_.normals[i] = len > 0.0 ? sum[i] / len : Vec3(0.0, 0.0, 1.0);
+    }
+}
+
+}  // namespace csg::detail
+
+namespace csg {
 
 TriangleMesh dualContour(const HermiteGrid& grid, DualContourStats* stats, int threads) {
     DualContourOptions options;
@@ -982,7 +834,7 @@ TriangleMesh dualContour(const HermiteGrid& grid, const DualContourOptions& opti
         s.cells = grid.spec().cellCount();
         s.thinEdges = grid.thinEdges();
         s.thinAt = grid.thinAt();
-        return Contourer(grid, s, o).run();
+        return detail::Contourer(grid, s, o).run();
     };
     TriangleMesh mesh = contour(options);
     // The safety net of the octree (DualContour.h): a merged mesh that is not a closed manifold
