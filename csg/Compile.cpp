@@ -181,9 +181,9 @@ struct Compiler {
         scene.nodes_[operand].ball = kNoNode;
     }
 
-    // A sphere leaf's bounding ball, when worldFromLocal is a similarity: the columns of its
-    // linear part are orthogonal and of one length (to tol::kSimilarityRel).
-    uint32_t sphereBall(const Sphere& sphere, const Mat4& worldFromLocal) {
+    // A leaf's world bounding ball from its local one, when worldFromLocal is a similarity: the
+    // columns of its linear part are orthogonal and of one length (to tol::kSimilarityRel).
+    uint32_t worldBall(const LocalBall& ball, const Mat4& worldFromLocal) {
         const Vec3 c0(worldFromLocal[0]), c1(worldFromLocal[1]), c2(worldFromLocal[2]);
         const double l0 = glm::length(c0), l1 = glm::length(c1), l2 = glm::length(c2);
         const double scale = std::max({l0, l1, l2});
@@ -193,8 +193,8 @@ struct Compiler {
             std::abs(glm::dot(c0, c2)) > tol::kSimilarityRel * square ||
             std::abs(glm::dot(c1, c2)) > tol::kSimilarityRel * square)
             return kNoNode;
-        const Vec3 center(worldFromLocal[3]);
-        const double radius = sphere.radius * scale;
+        const Vec3 center = transformPoint(worldFromLocal, ball.center);
+        const double radius = ball.radius * scale;
         if (!isFinite(worldFromLocal) || !std::isfinite(radius)) return kNoNode;
         scene.balls_.push_back({center, radius, glm::length(center) + radius});
         return static_cast<uint32_t>(scene.balls_.size() - 1);
@@ -255,8 +255,8 @@ struct Compiler {
         scene.frames_.push_back({Affine(localFromWorld), worldFromLocal,
                                  glm::transpose(Mat3(localFromWorld)), node.tags});
         const uint32_t added = addNode({NodeKind::Leaf, false, box, index});
-        if (const Sphere* sphere = std::get_if<Sphere>(&node.primitive))
-            scene.nodes_[added].ball = sphereBall(*sphere, worldFromLocal);
+        if (const std::optional<LocalBall> ball = boundingBall(node.primitive))
+            scene.nodes_[added].ball = worldBall(*ball, worldFromLocal);
         return added;
     }
 

@@ -44,7 +44,8 @@ struct LeafFrame {
 
 enum class NodeKind : uint8_t { Leaf, Union, Intersection, Difference };
 
-// A ball (world frame) that contains a node's solid: a sphere leaf placed by a similarity
+// A ball (world frame) that contains a node's solid: the ball of a leaf that has one (a sphere,
+// primitives/Primitive.h HasBoundingBall) placed by a similarity
 // (rotation, mirror, uniform scale, shift), which bounds every intersection and difference
 // it is the left operand of. A line is tested against it with a dot product and no division,
 // before any leaf's frame is entered: a cheaper exact reject than the leaves' own tests, and

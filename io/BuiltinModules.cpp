@@ -468,9 +468,17 @@ Instance background(Evaluator& e, const InstantiationStmt& s, const ContextPtr& 
 
 Instance unsupported(Evaluator& e, const InstantiationStmt& s, const ContextPtr&,
                      const GeomState&) {
-    e.fail(s.loc, "'" + s.name +
-                      "' is not supported by csgray (only 3-D CSG of sphere, cube, "
-                      "cylinder, halfspace and torus is)");
+    // The primitives' names, from the primitive set: "sphere, cube, ... and bezier_patches".
+    static const std::string kPrimitiveList = [] {
+        std::string list;
+        for (size_t i = 0; i < csg::kPrimitiveNames.size(); ++i) {
+            if (i > 0) list += i + 1 < csg::kPrimitiveNames.size() ? ", " : " and ";
+            list += csg::kPrimitiveNames[i];
+        }
+        return list;
+    }();
+    e.fail(s.loc, "'" + s.name + "' is not supported by csgray (only 3-D CSG of " + kPrimitiveList +
+                      " is)");
 }
 
 const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {

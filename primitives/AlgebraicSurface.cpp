@@ -58,6 +58,13 @@ const char* AlgebraicSurface::invalidReason() const {
     return data->invalid;
 }
 
+void AlgebraicSurface::describe(JsonWriter& json) const {
+    if (!data) return;
+    json.key("degree").value(data->g.degree());
+    json.key("bbox").beginArray().vec(data->box.lo, 3).vec(data->box.hi, 3).endArray();
+    json.key("solver").value(solverName(solver));
+}
+
 Bounds3 AlgebraicSurface::bounds() const {
     return data ? data->box : Bounds3{Vec3(0.0), Vec3(0.0)};
 }

@@ -26,6 +26,7 @@ namespace csg {
 struct AlgebraicData;
 
 struct AlgebraicSurface {
+    static constexpr const char* kName = "surface";
     static constexpr uint16_t kSurfaceFace = 6;
 
     std::shared_ptr<const AlgebraicData> data;  // null: not built (invalid)
@@ -53,6 +54,8 @@ struct AlgebraicSurface {
     // 0, e.g. the apex of a cone x^2 + y^2 - z^2) the direction from the box centre, or +z at
     // the centre itself: defined, never NaN.
     Vec3 normal(const Vec3& p, uint16_t face) const;
+    // The polynomial's degree, its box and the solver.
+    void describe(JsonWriter& json) const;
 
     // F(o + t d) on the chord of the line through the box, as the solvers see it: the
     // polynomial in u with t = tMid + u * scale, u in [uLo, uHi] within [-1, 1]. False when

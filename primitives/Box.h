@@ -6,6 +6,9 @@
 namespace csg {
 
 struct Box {
+    static constexpr const char* kName = "cube";
+    static constexpr bool kConvex = true;
+
     Vec3 lo{0.0};
     Vec3 hi{1.0};
 
@@ -21,6 +24,7 @@ struct Box {
     void spans(const Vec3& o, const Vec3& d, LocalSpans& out) const;
     bool inside(const Vec3& p) const;
     Vec3 normal(const Vec3& p, uint16_t face) const;
+    void describe(JsonWriter& json) const { json.key("min").vec(lo, 3).key("max").vec(hi, 3); }
 };
 
 }  // namespace csg

@@ -7,6 +7,9 @@
 namespace csg {
 
 struct Cylinder {
+    static constexpr const char* kName = "cylinder";
+    static constexpr bool kConvex = true;
+
     double height = 1.0;
     double r1 = 1.0;  // radius at z = 0, >= 0
     double r2 = 1.0;  // radius at z = height, >= 0 (not both 0)
@@ -27,6 +30,9 @@ struct Cylinder {
     // At the apex of a cone the lateral normal is undefined; the axis direction pointing away
     // from the base is returned there.
     Vec3 normal(const Vec3& p, uint16_t face) const;
+    void describe(JsonWriter& json) const {
+        json.key("h").value(height).key("r1").value(r1).key("r2").value(r2);
+    }
 };
 
 }  // namespace csg

@@ -7,6 +7,10 @@
 namespace csg {
 
 struct HalfSpace {
+    static constexpr const char* kName = "halfspace";
+    static constexpr bool kConvex = true;
+    static constexpr bool kPlanar = true;
+
     Vec3 planeNormal{0.0, 0.0, 1.0};
     double offset = 0.0;
 
@@ -23,6 +27,9 @@ struct HalfSpace {
     void spans(const Vec3& o, const Vec3& d, LocalSpans& out) const;
     bool inside(const Vec3& p) const { return glm::dot(planeNormal, p) <= offset; }
     Vec3 normal(const Vec3& p, uint16_t face) const;
+    void describe(JsonWriter& json) const {
+        json.key("normal").vec(planeNormal, 3).key("offset").value(offset);
+    }
 };
 
 }  // namespace csg

@@ -122,6 +122,12 @@ const char* PatchSet::invalidReason() const {
     return data ? data->invalid : "patch set was not built";
 }
 
+void PatchSet::describe(JsonWriter& json) const {
+    json.key("patches").value(uint64_t(data ? data->patches.size() : 0));
+    json.key("method").value(patchMethodName(method));
+    json.key("solid").value(solid);
+}
+
 Bounds3 PatchSet::bounds() const {
     return data && !data->invalid ? data->box : Bounds3{Vec3(0.0), Vec3(0.0)};
 }

@@ -26,6 +26,9 @@ namespace csg {
 struct PatchSetData;
 
 struct PatchSet {
+    // bezier_patch() makes a set of one patch.
+    static constexpr const char* kName = "bezier_patches";
+
     std::shared_ptr<const PatchSetData> data;  // shared, immutable
     PatchMethod method = PatchMethod::Clip;
     bool solid = false;
@@ -44,6 +47,8 @@ struct PatchSet {
     // sheet's side is chosen by the scene, toward the ray's origin). Where the partials are
     // collinear or zero (a pole), the limit from inside the patch; never NaN.
     Vec3 normal(const Vec3& p, uint16_t face) const;
+    // The number of patches, the method and whether the set is solid.
+    void describe(JsonWriter& json) const;
 
     // One crossing of the whole set, for tests.
     struct Crossing {

@@ -6,6 +6,8 @@
 namespace csg {
 
 struct Sphere {
+    static constexpr const char* kName = "sphere";
+    static constexpr bool kConvex = true;
     double radius = 1.0;
 
     const char* invalidReason() const {
@@ -19,6 +21,8 @@ struct Sphere {
     void spans(const Vec3& o, const Vec3& d, LocalSpans& out) const;
     bool inside(const Vec3& p) const { return glm::dot(p, p) <= radius * radius; }
     Vec3 normal(const Vec3& p, uint16_t face) const;
+    void describe(JsonWriter& json) const { json.key("r").value(radius); }
+    LocalBall boundingBall() const { return {Vec3(0.0), radius}; }
 };
 
 }  // namespace csg

@@ -10,6 +10,8 @@
 namespace csg {
 
 struct Torus {
+    static constexpr const char* kName = "torus";
+
     double majorRadius = 1.0;   // R: from the z axis to the tube's centre circle
     double minorRadius = 0.25;  // r: the tube's radius
     // Auto: the tube form (rho - R)^2 + z^2 - r^2 on its monotone pieces (Torus.cpp); any
@@ -33,6 +35,9 @@ struct Torus {
     // (p - c) / |p - c| with c the nearest point of the centre circle (the gradient of the
     // distance to the tube); on the axis or the centre circle itself, +z.
     Vec3 normal(const Vec3& p, uint16_t face) const;
+    void describe(JsonWriter& json) const {
+        json.key("R").value(majorRadius).key("r").value(minorRadius);
+    }
 
     // The torus quartic along o + s u, |u| = 1, solved as is (no origin shift, no bounding
     // test): exposed so tests can show what moving the origin is worth.

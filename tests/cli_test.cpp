@@ -4,6 +4,8 @@
 // back with libpng.
 #include <png.h>
 
+#include <map>
+
 #include "CliRunner.h"
 
 namespace cli {
@@ -304,6 +306,55 @@ TEST(Info, CountsBoundsAndTreeOfTheEmblem) {
     }
     EXPECT_EQ(json["tree"]["op"], "difference");
     EXPECT_NE(json["tree"]["source"].get<std::string>().find("emblem.scad:"), std::string::npos);
+}
+
+// Every leaf is named as the language names it, in info's tree and counts and in probe's
+// objects: a surface() leaf is "surface", not a generic "primitive" (each primitive owns its
+// name; a table written beside the primitive set had missed the newer kinds).
+TEST(Info, EveryLeafKindIsNamedAndDescribed) {
+    ScratchDir dir;
+    const fs::path part = dir.path() / "kinds.scad";
+    writeFile(part,
+              "cube(1); sphere(1); cylinder(h = 1, r = 1); halfspace([1, 0, 0], -20);\n"
+              "torus(R = 2, r = 0.5);\n"
+              "surface(f = \"x^2 + y^2 + z^2 - 9\", bbox = [[-4, -4, -4], [4, 4, 4]]);\n");
+    const RunResult r = runCsgray({"info", part.string()}, dir.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto json = nlohmann::json::parse(r.out);
+    const auto& leaves = json["counts"]["leaves"];
+    for (const char* kind : {"cube", "sphere", "cylinder", "halfspace", "torus", "surface"})
+        EXPECT_EQ(leaves[kind], 1) << kind;
+    EXPECT_EQ(leaves["bezier_patches"], 0);  // every kind is listed, used or not
+    EXPECT_FALSE(leaves.contains("primitive"));
+    std::map<std::string, nlohmann::json> byOp;  // the leaves of the binary union tree
+    std::vector<nlohmann::json> stack{json["tree"]};
+    while (!stack.empty()) {
+        const nlohmann::json node = stack.back();
+        stack.pop_back();
+        if (node.contains("children"))
+            for (const auto& child : node["children"]) stack.push_back(child);
+        else
+            byOp[node["op"]] = node;
+    }
+    ASSERT_EQ(byOp.size(), 6u) << json["tree"];
+    EXPECT_EQ(byOp["sphere"]["r"], 1);
+    EXPECT_EQ(byOp["cylinder"]["h"], 1);
+    EXPECT_EQ(byOp["halfspace"]["offset"], -20);
+    EXPECT_EQ(byOp["torus"]["R"], 2);
+    EXPECT_EQ(byOp["surface"]["degree"], 2);
+    EXPECT_EQ(byOp["surface"]["bbox"], nlohmann::json::parse("[[-4,-4,-4],[4,4,4]]"));
+
+    // Up the z axis from z = -10, the ball of radius 3 of surface() holds every other leaf
+    // the ray meets: one span, from t = 7 to 13, both ends on the surface.
+    const RunResult p =
+        runCsgray({"probe", part.string(), "--origin", "0,0,-10", "--dir", "0,0,1"}, dir.path());
+    ASSERT_EQ(p.exitCode, 0) << p.err;
+    const auto spans = nlohmann::json::parse(p.out)["spans"];
+    ASSERT_EQ(spans.size(), 1u) << p.out;
+    EXPECT_NEAR(spans[0]["in"]["t"].get<double>(), 7.0, 1e-12);
+    EXPECT_NEAR(spans[0]["out"]["t"].get<double>(), 13.0, 1e-12);
+    EXPECT_EQ(spans[0]["in"]["object"]["primitive"], "surface") << p.out;
+    EXPECT_EQ(spans[0]["out"]["object"]["primitive"], "surface") << p.out;
 }
 
 // ---- render ----

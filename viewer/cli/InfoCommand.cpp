@@ -70,7 +70,7 @@ public:
         if (node.parentFromNode != csg::Mat4(1.0)) c.transformed = 1;
         switch (node.op) {
             case csg::Op::Leaf:
-                c.leaves[primitiveName(node.primitive)] = 1;
+                c.leaves[csg::primitiveName(node.primitive)] = 1;
                 break;
             case csg::Op::Union:
                 c.unions = 1;
@@ -139,23 +139,8 @@ public:
 
 private:
     static void writePrimitive(csg::JsonWriter& json, const csg::Primitive& primitive) {
-        json.key("op").value(primitiveName(primitive));
-        std::visit(
-            [&](const auto& p) {
-                using P = std::decay_t<decltype(p)>;
-                if constexpr (std::is_same_v<P, csg::Sphere>) {
-                    json.key("r").value(p.radius);
-                } else if constexpr (std::is_same_v<P, csg::Box>) {
-                    json.key("min").vec(p.lo, 3).key("max").vec(p.hi, 3);
-                } else if constexpr (std::is_same_v<P, csg::Cylinder>) {
-                    json.key("h").value(p.height).key("r1").value(p.r1).key("r2").value(p.r2);
-                } else if constexpr (std::is_same_v<P, csg::HalfSpace>) {
-                    json.key("normal").vec(p.planeNormal, 3).key("offset").value(p.offset);
-                } else if constexpr (std::is_same_v<P, csg::Torus>) {
-                    json.key("R").value(p.majorRadius).key("r").value(p.minorRadius);
-                }
-            },
-            primitive);
+        json.key("op").value(csg::primitiveName(primitive));
+        csg::describePrimitive(json, primitive);
     }
 
     const io::Model& model_;
@@ -169,7 +154,7 @@ void writeCounts(csg::JsonWriter& json, const NodeCounts& c) {
     json.key("nodes").value(c.total());
     // Every kind the language has appears, with 0 when unused, so readers need no defaults.
     std::map<std::string, uint64_t> leaves = c.leaves;
-    for (const char* kind : {"cube", "sphere", "cylinder", "halfspace", "torus"}) leaves[kind];
+    for (const char* kind : csg::kPrimitiveNames) leaves[kind];
     json.key("leaves").beginObject().key("total").value(c.leafTotal());
     for (const auto& [name, n] : leaves) json.key(name).value(n);
     json.endObject();

@@ -7,25 +7,6 @@
 
 namespace viewer {
 
-namespace {
-
-struct PrimitiveName {
-    const char* operator()(const csg::Sphere&) const { return "sphere"; }
-    const char* operator()(const csg::Box&) const { return "cube"; }
-    const char* operator()(const csg::Cylinder&) const { return "cylinder"; }
-    const char* operator()(const csg::HalfSpace&) const { return "halfspace"; }
-    const char* operator()(const csg::Torus&) const { return "torus"; }
-    const char* operator()(const csg::PatchSet&) const { return "bezier_patches"; }
-    // A primitive registered since this list was written still gets a name.
-    const char* operator()(const auto&) const { return "primitive"; }
-};
-
-}  // namespace
-
-const char* primitiveName(const csg::Primitive& primitive) {
-    return std::visit(PrimitiveName{}, primitive);
-}
-
 ProbeJson::ProbeJson(const io::Model& model, const csg::Scene& scene) : scene_(scene) {
     leafObjects_.reserve(scene.leafCount());
     for (uint32_t leaf = 0; leaf < scene.leafCount(); ++leaf) {
@@ -36,7 +17,7 @@ ProbeJson::ProbeJson(const io::Model& model, const csg::Scene& scene) : scene_(s
             .key("leaf")
             .value(leaf)
             .key("primitive")
-            .value(primitiveName(scene.leafPrimitive(leaf)))
+            .value(csg::primitiveName(scene.leafPrimitive(leaf)))
             .key("module")
             .value(model.modulePath(source))
             .key("source")

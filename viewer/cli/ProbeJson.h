@@ -35,8 +35,4 @@ private:
     std::vector<std::string> leafObjects_;  // indexed by leaf
 };
 
-// The name of a primitive kind as the language spells it: cube, sphere, cylinder, halfspace,
-// torus.
-const char* primitiveName(const csg::Primitive& primitive);
-
 }  // namespace viewer

@@ -1,24 +1,11 @@
 #include "viewer/render/EffectsPlan.h"
 
-#include <type_traits>
-#include <variant>
-
 #include "viewer/render/Color.h"
 #include "viewer/render/RenderCamera.h"
 
 namespace viewer::render {
 
 namespace {
-
-bool isConvexPrimitive(const csg::Primitive& primitive) {
-    return std::visit(
-        [](const auto& p) {
-            using P = std::decay_t<decltype(p)>;
-            return std::is_same_v<P, csg::Sphere> || std::is_same_v<P, csg::Box> ||
-                   std::is_same_v<P, csg::Cylinder> || std::is_same_v<P, csg::HalfSpace>;
-        },
-        primitive);
-}
 
 bool positive(const csg::Vec3& c) {
     return c.r > 0.0 || c.g > 0.0 || c.b > 0.0;
@@ -36,7 +23,7 @@ csg::Vec3 defaultLightPosition(const Camera& camera) {
 bool isConvexSolid(const csg::Node& node) {
     switch (node.op) {
         case csg::Op::Leaf:
-            return isConvexPrimitive(node.primitive);
+            return csg::isConvex(node.primitive);
         case csg::Op::Intersection:
             return node.left && node.right && isConvexSolid(*node.left) &&
                    isConvexSolid(*node.right);

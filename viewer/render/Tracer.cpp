@@ -66,7 +66,7 @@ csg::Vec3 Tracer::trace(const csg::Ray& ray, RayKind kind, int depth, double wei
 
 csg::Vec3 Tracer::patternColor(const ShadingMaterial& s, const csg::SurfacePoint& surface,
                                uint32_t leaf) {
-    if (leaf != frameLeaf_ && std::holds_alternative<csg::HalfSpace>(scene_.leafPrimitive(leaf))) {
+    if (leaf != frameLeaf_ && csg::isPlanar(scene_.leafPrimitive(leaf))) {
         frameLeaf_ = leaf;
         frame_ = planeFrame(surface.normal);
     }

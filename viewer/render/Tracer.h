@@ -64,8 +64,8 @@ private:
     const csg::Scene& scene_;
     const EffectsPlan& plan_;
     std::vector<csg::ObjectCache> occluders_;  // per light: what last shadowed this thread
-    // The half-space leaf whose pattern was looked up last, and its plane frame: a half-space's
-    // normal, so its frame, is the same at every hit (a checkered floor is one leaf).
+    // The planar leaf (a half-space) whose pattern was looked up last, and its plane frame: a
+    // plane's normal, so its frame, is the same at every hit (a checkered floor is one leaf).
     uint32_t frameLeaf_ = UINT32_MAX;
     PlaneFrame frame_{};
 };

@@ -49,7 +49,7 @@ void describeEnd(const LoadedPart& part, const csg::Hit& hit, const char* label,
     }
     const uint32_t source = part.scene.leafTags(hit.leaf).source;
     std::string text = std::string("  ") + label + "  " +
-                       primitiveName(part.scene.leafPrimitive(hit.leaf)) + "  " +
+                       csg::primitiveName(part.scene.leafPrimitive(hit.leaf)) + "  " +
                        part.model.describeSource(source);
     const std::string& path = part.model.modulePath(source);
     if (!path.empty()) text += "  " + path;
@@ -84,8 +84,9 @@ PixelProbe probePixel(const LoadedPart& part, const render::Camera& camera, int 
                     ", first hit t=" + std::to_string(first.t).substr(0, 8);
     if (first.isSurface()) {
         const uint32_t source = part.scene.leafTags(first.leaf).source;
-        probe.summary += std::string(" ") + primitiveName(part.scene.leafPrimitive(first.leaf)) +
-                         " at " + part.model.describeSource(source);
+        probe.summary += std::string(" ") +
+                         csg::primitiveName(part.scene.leafPrimitive(first.leaf)) + " at " +
+                         part.model.describeSource(source);
     }
 
     probe.lines.push_back(where + ": " + std::to_string(spans.size()) +
