@@ -149,7 +149,7 @@ struct Compiler {
                 const Bounds3 box = overlap(scene.nodes_[a].bounds, scene.nodes_[b].bounds);
                 if (box.empty()) return kNoNode;
                 markImpliedOperands(a, b);
-                const uint32_t added = addNode({NodeKind::Intersection, false, box, a, b});
+                const uint32_t added = addNode({Op::Intersection, false, box, a, b});
                 takeBall(added, ballRadius(b) < ballRadius(a) ? b : a);  // the smaller ball
                 return added;
             }
@@ -161,7 +161,7 @@ struct Compiler {
                 const Bounds3& box = scene.nodes_[a].bounds;
                 if (b == kNoNode || overlap(box, scene.nodes_[b].bounds).empty()) return a;
                 markImpliedOperands(a, b);
-                const uint32_t added = addNode({NodeKind::Difference, false, box, a, b});
+                const uint32_t added = addNode({Op::Difference, false, box, a, b});
                 takeBall(added, a);
                 return added;
             }
@@ -254,7 +254,7 @@ struct Compiler {
         scene.leaves_.push_back(geometry);
         scene.frames_.push_back({Affine(localFromWorld), worldFromLocal,
                                  glm::transpose(Mat3(localFromWorld)), node.tags});
-        const uint32_t added = addNode({NodeKind::Leaf, false, box, index});
+        const uint32_t added = addNode({Op::Leaf, false, box, index});
         if (const std::optional<LocalBall> ball = boundingBall(node.primitive))
             scene.nodes_[added].ball = worldBall(*ball, worldFromLocal);
         return added;
@@ -343,7 +343,7 @@ Scene Scene::compile(const NodePtr& root) {
         }
     }
     const uint32_t rootUnion = compiler.buildUnion(top);
-    if (rootUnion != kNoNode && scene.nodes_[rootUnion].kind == NodeKind::Union) {
+    if (rootUnion != kNoNode && scene.nodes_[rootUnion].kind == Op::Union) {
         scene.root_ = rootUnion;
     } else {
         // Zero or one top-level object: wrap it in a union of its own.

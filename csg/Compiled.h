@@ -42,8 +42,6 @@ struct LeafFrame {
     Tags tags;
 };
 
-enum class NodeKind : uint8_t { Leaf, Union, Intersection, Difference };
-
 // A ball (world frame) that contains a node's solid: the ball of a leaf that has one (a sphere,
 // primitives/Primitive.h HasBoundingBall) placed by a similarity
 // (rotation, mirror, uniform scale, shift), which bounds every intersection and difference
@@ -63,7 +61,7 @@ struct BoundingBall {
 //               of them are ordered by the union's BVH (rooted at bvhRoot, or kNoNode for
 //               a short union scanned linearly); the rest have unbounded bounds.
 struct CompiledNode {
-    NodeKind kind = NodeKind::Union;
+    Op kind = Op::Union;
     // The ray loop does not test this node's bounds, because a test that has just passed
     // implies this one:
     // - the left operand of an intersection or difference: the parent's bounds (the overlap,

@@ -12,7 +12,9 @@
 
 namespace csg {
 
-struct Evaluator {
+// One query of one ray over the compiled tree: the span lists of its nodes, merged bottom-up
+// (spans), or the first crossing (closest), or any solid (any), with every shortcut below.
+struct SpanWalk {
     const Scene& scene;
     QueryContext& ctx;
     const Ray& ray;
@@ -22,7 +24,7 @@ struct Evaluator {
     double invDD;
     unsigned octant;  // bit a: d[a] < 0 (BvhNode::order)
 
-    Evaluator(const Scene& s, QueryContext& c, const Ray& r)
+    SpanWalk(const Scene& s, QueryContext& c, const Ray& r)
         : scene(s),
           ctx(c),
           ray(r),
@@ -71,12 +73,12 @@ struct Evaluator {
         const CompiledNode& node = scene.nodes_[index];
         if (!mayMeet(node, t0, t1)) return 0;
         switch (node.kind) {
-            case NodeKind::Leaf:
+            case Op::Leaf:
                 return evalLeaf(scene.leaves_[node.first], node.first, t0, t1);
-            case NodeKind::Union:
+            case Op::Union:
                 return evalUnion(node, t0, t1);
-            case NodeKind::Intersection:
-            case NodeKind::Difference:
+            case Op::Intersection:
+            case Op::Difference:
                 return evalCut(node, t0, t1);
         }
         return 0;
@@ -197,7 +199,7 @@ struct Evaluator {
         // The right operand matters only where the left one is: narrow its range to that hull.
         const double lo = stack()[base].in.t, hi = stack()[base + na - 1].out.t;
         const size_t nb = eval(node.second, lo, hi);
-        if (node.kind == NodeKind::Difference) {
+        if (node.kind == Op::Difference) {
             return nb == 0 ? na : mergeInPlace(SetOp::Difference, base, na, nb);
         }
         if (nb == 0) {
@@ -218,7 +220,7 @@ struct Evaluator {
     bool reach(uint32_t index, double t0, double t1, Reach& r) {
         const CompiledNode& node = scene.nodes_[index];
         r = {t0, t1};
-        if (node.kind != NodeKind::Leaf) return clipToBox(slab, node.bounds, r.t0, r.t1);
+        if (node.kind != Op::Leaf) return clipToBox(slab, node.bounds, r.t0, r.t1);
         const LeafGeometry& leaf = scene.leaves_[node.first];
         const LocalRay local = toLeafFrame(leaf);
         return clipToBox(SlabRay(local.o, local.invD, SlabRay::Reciprocal{}), leaf.localBounds,
@@ -238,7 +240,7 @@ struct Evaluator {
         // the right operand itself as one box.
         const CompiledNode& b = scene.nodes_[right];
         const bool byOperand =
-            b.kind == NodeKind::Union && b.bvhRoot == kNoNode && b.count <= kMaxReaches;
+            b.kind == Op::Union && b.bvhRoot == kNoNode && b.count <= kMaxReaches;
         const uint32_t operands = byOperand ? b.count : 1;
         const auto operand = [&](uint32_t k) {
             return byOperand ? scene.children_[b.first + k] : right;
@@ -289,7 +291,7 @@ struct Evaluator {
     // node's does. What any() (atStart false) and closest() need.
     size_t evalShortcut(uint32_t index, double t0, double t1, bool atStart) {
         const CompiledNode& node = scene.nodes_[index];
-        if (node.kind != NodeKind::Difference) return eval(index, t0, t1);
+        if (node.kind != Op::Difference) return eval(index, t0, t1);
         if (!mayMeet(node, t0, t1)) return 0;
         const size_t base = top;
         const size_t na = eval(node.first, t0, t1);
@@ -369,7 +371,7 @@ struct Evaluator {
     // Is any span of positive length inside [t0, t1]? A union is non-empty when any child is.
     bool any(uint32_t index, double t0, double t1) {
         const CompiledNode& node = scene.nodes_[index];
-        if (node.kind == NodeKind::Union) {
+        if (node.kind == Op::Union) {
             if (!node.boundsImplied && !touches(node.bounds, t0, t1)) return false;
             bool found = false;
             forEachChild(node, t0, t1,
@@ -388,7 +390,7 @@ struct Evaluator {
         const CompiledNode& root = scene.nodes_[scene.root_];
         const double t0 = ray.tmin;
         double t1 = ray.tmax;
-        if (root.kind != NodeKind::Union) return any(scene.root_, t0, t1);
+        if (root.kind != Op::Union) return any(scene.root_, t0, t1);
         // (The cached object is not reached through the BVH here, so its own bounds are tested
         // even where the BVH leaf's test implies them.)
         if (cache.node != kNoNode && touches(scene.nodes_[cache.node].bounds, t0, t1) &&
@@ -445,24 +447,24 @@ struct Evaluator {
 
 std::span<const Span> Scene::spans(const Ray& ray, QueryContext& ctx) const {
     ++ctx.stats.rays;
-    Evaluator e(*this, ctx, ray);
+    SpanWalk e(*this, ctx, ray);
     const size_t n = e.eval(root_, ray.tmin, ray.tmax);
     return {ctx.stack_.data(), n};
 }
 
 std::optional<Hit> Scene::closest(const Ray& ray, QueryContext& ctx) const {
     ++ctx.stats.rays;
-    return Evaluator(*this, ctx, ray).closest();
+    return SpanWalk(*this, ctx, ray).closest();
 }
 
 bool Scene::occluded(const Ray& ray, QueryContext& ctx) const {
     ++ctx.stats.rays;
-    return Evaluator(*this, ctx, ray).any(root_, ray.tmin, ray.tmax);
+    return SpanWalk(*this, ctx, ray).any(root_, ray.tmin, ray.tmax);
 }
 
 bool Scene::occluded(const Ray& ray, QueryContext& ctx, ObjectCache& cache) const {
     ++ctx.stats.rays;
-    return Evaluator(*this, ctx, ray).anyCached(cache);
+    return SpanWalk(*this, ctx, ray).anyCached(cache);
 }
 
 }  // namespace csg

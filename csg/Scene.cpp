@@ -35,18 +35,18 @@ bool insideNode(const std::vector<CompiledNode>& nodes, const std::vector<LeafGe
     if (!node.bounds.contains(p)) return false;
     auto inside = [&](uint32_t i) { return insideNode(nodes, leaves, frames, children, i, p); };
     switch (node.kind) {
-        case NodeKind::Leaf: {
+        case Op::Leaf: {
             const Vec3 local = transformPoint(frames[node.first].localFromWorld, p);
             return std::visit([&](const auto& shape) { return shape.inside(local); },
                               leaves[node.first].shape);
         }
-        case NodeKind::Union:
+        case Op::Union:
             for (uint32_t i = 0; i < node.count; ++i)
                 if (inside(children[node.first + i])) return true;
             return false;
-        case NodeKind::Intersection:
+        case Op::Intersection:
             return inside(node.first) && inside(node.second);
-        case NodeKind::Difference:
+        case Op::Difference:
             return inside(node.first) && !inside(node.second);
     }
     return false;

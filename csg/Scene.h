@@ -57,7 +57,7 @@ public:
 
 private:
     friend class Scene;
-    friend struct Evaluator;
+    friend struct SpanWalk;
     std::vector<Span> stack_;
 };
 
@@ -105,7 +105,7 @@ public:
     const Mat4& leafWorldFromLocal(uint32_t leaf) const;
 
 private:
-    friend struct Evaluator;
+    friend struct SpanWalk;
     friend struct Compiler;
     std::vector<LeafGeometry> leaves_;    // indexed by Hit::leaf; read by the ray loop
     std::vector<LeafFrame> frames_;       // same index; read on request
