@@ -235,7 +235,6 @@ private:
     uint64_t steps_ = 0;
     const char* stackTop_ = nullptr;
     size_t stackBytes_ = 0;
-    std::unordered_map<std::string, uint32_t> pathIndex_;
     // childPath's answers by (parent path index, child name), looked up without a string.
     struct ChildPathKey {
         uint32_t parent;

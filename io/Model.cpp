@@ -12,10 +12,22 @@ const std::string& Model::sourceFile(uint32_t tag) const {
     return tag != 0 && file < files.size() ? files[file] : unknown;
 }
 
-const std::string& Model::modulePath(uint32_t tag) const {
-    static const std::string unknown;
-    const uint32_t path = source(tag).modulePathIndex;
-    return path < modulePaths.size() ? modulePaths[path] : unknown;
+std::string Model::modulePath(uint32_t tag) const {
+    return modulePathText(source(tag).modulePathIndex);
+}
+
+std::string Model::modulePathText(uint32_t path) const {
+    if (path >= modulePaths.size()) return {};
+    // Step 1: the steps from the top down (a path's parent always has a smaller index).
+    std::vector<uint32_t> steps;
+    for (uint32_t p = path; p != 0; p = modulePaths[p].parent) steps.push_back(p);
+    // Step 2: their names joined.
+    std::string text;
+    for (auto it = steps.rbegin(); it != steps.rend(); ++it) {
+        if (!text.empty()) text += " > ";
+        text += modulePaths[*it].name;
+    }
+    return text;
 }
 
 std::string Model::describeSource(uint32_t tag) const {

@@ -51,12 +51,21 @@ struct Model : viewer::render::SceneLook {
     std::vector<SourceInfo> sources{SourceInfo{}};
     // Every file that was read (the main file first), and the interned module paths.
     std::vector<std::string> files;
-    std::vector<std::string> modulePaths{std::string()};
+    // Module paths as a tree, one step each: path i is modulePath(parent) > name. Entry 0 is
+    // the top level (""). Kept as steps, not strings, so a chain of n nested calls takes O(n)
+    // memory, not O(n^2).
+    struct ModulePathStep {
+        uint32_t parent = 0;
+        std::string name;
+    };
+    std::vector<ModulePathStep> modulePaths{ModulePathStep{}};
 
     // Convenience lookups for a Tags::source value; an out-of-range tag reads as entry 0.
     const SourceInfo& source(uint32_t tag) const;
     const std::string& sourceFile(uint32_t tag) const;
-    const std::string& modulePath(uint32_t tag) const;
+    std::string modulePath(uint32_t tag) const;
+    // The text of module path `path` ("part() > difference > cylinder"; "" for 0).
+    std::string modulePathText(uint32_t path) const;
     // "file:line:col" of a tag (just "file" or "" when positions are unknown).
     std::string describeSource(uint32_t tag) const;
 };

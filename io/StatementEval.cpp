@@ -19,7 +19,6 @@ Evaluator::Evaluator(SourceFiles& sources, Model& model, std::vector<Diagnostic>
     root_->set("$vpt", Value(ValueList{0.0, 0.0, 0.0}));
     root_->set("$vpd", Value(140.0));
     root_->set("$vpf", Value(22.5));
-    pathIndex_[""] = 0;
 }
 
 Evaluator::~Evaluator() {
@@ -105,18 +104,16 @@ uint32_t Evaluator::sourceTag(Loc loc, uint32_t modulePath) {
 }
 
 uint32_t Evaluator::childPath(const GeomState& state, std::string_view name) {
-    // Every node asks for its path; building "parent > name" and hashing it each time was a
-    // tenth of the evaluation. A path's index never changes once given, so remembering it
-    // per (parent, name) gives the same answer without the string.
+    // A path is one step below its parent, stored once per distinct (parent, name) in first-use
+    // order; its text is built only when a client asks (Model::modulePathText), so neither
+    // time nor memory grows with the square of the nesting depth.
     if (auto known = childPaths_.find(ChildPathKeyView{state.modulePath, name});
         known != childPaths_.end())
         return known->second;
-    const std::string& parent = model_.modulePaths[state.modulePath];
-    std::string path = parent.empty() ? std::string(name) : parent + " > " + std::string(name);
-    auto [it, inserted] = pathIndex_.try_emplace(std::move(path), model_.modulePaths.size());
-    if (inserted) model_.modulePaths.push_back(it->first);
-    childPaths_.emplace(ChildPathKey{state.modulePath, std::string(name)}, it->second);
-    return it->second;
+    const auto index = static_cast<uint32_t>(model_.modulePaths.size());
+    model_.modulePaths.push_back({state.modulePath, std::string(name)});
+    childPaths_.emplace(ChildPathKey{state.modulePath, std::string(name)}, index);
+    return index;
 }
 
 uint32_t Evaluator::internMaterial(const Material& m) {

@@ -3,6 +3,7 @@
 // carrying only the requested output, info's counts and bounds, and the rendered PNG decoded
 // back with libpng.
 #include <png.h>
+#include <sys/resource.h>
 
 #include <map>
 
@@ -355,6 +356,25 @@ TEST(Info, EveryLeafKindIsNamedAndDescribed) {
     EXPECT_NEAR(spans[0]["out"]["t"].get<double>(), 13.0, 1e-12);
     EXPECT_EQ(spans[0]["in"]["object"]["primitive"], "surface") << p.out;
     EXPECT_EQ(spans[0]["out"]["object"]["primitive"], "surface") << p.out;
+}
+
+// A chain of n nested module calls takes memory linear in n: each node's module path is one
+// step below its parent's, not a string of the whole chain (at n = 8000 that string form took
+// 4.5 GB; this run takes tens of MB). Peak memory is read from the children's rusage, which
+// in a test process of its own (gtest_discover_tests) is this csgray run's.
+TEST(Resources, DeepModuleRecursionTakesLinearMemory) {
+    ScratchDir dir;
+    const fs::path part = dir.path() / "deep.scad";
+    writeFile(part, "module r(n) { if (n > 0) union() { cube(1); r(n - 1); } }\nr(8000);\n");
+    const RunResult r =
+        runCsgray({"probe", part.string(), "--origin", "0.5,0.5,-5", "--dir", "0,0,1"}, dir.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto spans = nlohmann::json::parse(r.out)["spans"];
+    ASSERT_EQ(spans.size(), 1u);  // 8000 coincident unit cubes are one cube
+    EXPECT_EQ(spans[0]["out"]["object"]["module"], "r() > union > cube");
+    rusage usage{};
+    ASSERT_EQ(getrusage(RUSAGE_CHILDREN, &usage), 0);
+    EXPECT_LT(usage.ru_maxrss, 400 * 1024) << "peak resident KiB of the csgray run";
 }
 
 // ---- render ----

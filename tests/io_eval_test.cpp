@@ -632,7 +632,10 @@ TEST(Eval, ModulePathsAreDistinctAndInFirstUseOrder) {
                                                "translate > b()",
                                                "translate > b() > a()",
                                                "translate > b() > a() > cube"};
-    EXPECT_EQ(r.result.model->modulePaths, expected);
+    const Model& m = *r.result.model;
+    std::vector<std::string> paths;
+    for (uint32_t p = 0; p < m.modulePaths.size(); ++p) paths.push_back(m.modulePathText(p));
+    EXPECT_EQ(paths, expected);
 }
 
 // Blocks that define nothing share their parent's scope; ones that do get their own. Either

@@ -7,24 +7,28 @@
 
 namespace viewer {
 
-ProbeJson::ProbeJson(const io::Model& model, const csg::Scene& scene) : scene_(scene) {
-    leafObjects_.reserve(scene.leafCount());
-    for (uint32_t leaf = 0; leaf < scene.leafCount(); ++leaf) {
-        const uint32_t source = scene.leafTags(leaf).source;
-        std::string text;
-        csg::JsonWriter json(text);
+ProbeJson::ProbeJson(const io::Model& model, const csg::Scene& scene)
+    : model_(model),
+      scene_(scene),
+      formatted_(std::make_unique<std::once_flag[]>(scene.leafCount())),
+      leafObjects_(scene.leafCount()) {}
+
+const std::string& ProbeJson::leafObject(uint32_t leaf) const {
+    std::call_once(formatted_[leaf], [&] {
+        const uint32_t source = scene_.leafTags(leaf).source;
+        csg::JsonWriter json(leafObjects_[leaf]);
         json.beginObject()
             .key("leaf")
             .value(leaf)
             .key("primitive")
-            .value(csg::primitiveName(scene.leafPrimitive(leaf)))
+            .value(csg::primitiveName(scene_.leafPrimitive(leaf)))
             .key("module")
-            .value(model.modulePath(source))
+            .value(model_.modulePath(source))
             .key("source")
-            .value(model.describeSource(source))
+            .value(model_.describeSource(source))
             .endObject();
-        leafObjects_.push_back(std::move(text));
-    }
+    });
+    return leafObjects_[leaf];
 }
 
 void ProbeJson::append(std::string& out, const csg::Vec3& origin, const csg::Vec3& d,
@@ -53,7 +57,7 @@ void ProbeJson::append(std::string& out, const csg::Vec3& origin, const csg::Vec
         }
         json.key("object");
         if (hit.leaf < leafObjects_.size()) {
-            json.raw(leafObjects_[hit.leaf]);
+            json.raw(leafObject(hit.leaf));
         } else {
             json.null();
         }
