@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <cstring>
 #include <optional>
-#include <thread>
 
+#include "primitives/base/ParallelFor.h"
 #include "viewer/cli/Cli.h"
 #include "viewer/cli/LoadPart.h"
 #include "viewer/cli/ProbeJson.h"
@@ -78,8 +78,7 @@ int probeRaysFromFile(const ProbeOptions& o, const ProbeJson& probe, Report& rep
         report.error(*o.rays, std::string("cannot open the rays file: ") + std::strerror(errno));
         return kExitIo;
     }
-    const int threads =
-        o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    const int threads = csg::resolveThreads(o.threads);
     const RayBatchResult result =
         probeRayBatch(input, fromStdin ? "<stdin>" : *o.rays, probe, threads, report);
     if (!fromStdin) std::fclose(input);

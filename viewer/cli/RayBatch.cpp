@@ -5,9 +5,9 @@
 #include <cmath>
 #include <cstring>
 #include <string_view>
-#include <thread>
 #include <vector>
 
+#include "primitives/base/ParallelFor.h"
 #include "viewer/cli/Cli.h"
 
 namespace viewer {
@@ -54,26 +54,23 @@ const char* parseRayLine(std::string_view line, RayInput& ray) {
 class BlockRunner {
 public:
     BlockRunner(const ProbeJson& probe, int threads)
-        : probe_(probe), contexts_(size_t(threads)), outputs_(size_t(threads)) {}
+        : threads_(threads), probe_(probe), contexts_(size_t(threads)), outputs_(size_t(threads)) {}
 
     // Probes rays and writes their lines to stdout in order; false when stdout fails.
     bool run(const std::vector<RayInput>& rays) {
-        const size_t parts = std::min(contexts_.size(), std::max<size_t>(1, rays.size() / 256));
+        // One contiguous part per thread at most, each printed to its own buffer.
+        const size_t parts = std::min(outputs_.size(), std::max<size_t>(1, rays.size() / 256));
         const size_t per = (rays.size() + parts - 1) / parts;
-        auto work = [&](size_t part) {
+        csg::parallelFor(parts, threads_, [&](int worker, uint64_t part) {
+            csg::QueryContext& ctx = contexts_[size_t(worker)].value;
             std::string& out = outputs_[part];
             out.clear();
-            const size_t end = std::min(rays.size(), (part + 1) * per);
-            for (size_t i = part * per; i < end; ++i) {
-                probe_.append(out, rays[i].origin, rays[i].dir, contexts_[part]);
+            const size_t end = std::min(rays.size(), size_t(part + 1) * per);
+            for (size_t i = size_t(part) * per; i < end; ++i) {
+                probe_.append(out, rays[i].origin, rays[i].dir, ctx);
                 out += '\n';
             }
-        };
-        std::vector<std::jthread> helpers;
-        helpers.reserve(parts);
-        for (size_t part = 1; part < parts; ++part) helpers.emplace_back(work, part);
-        work(0);
-        helpers.clear();  // joins
+        });
         for (size_t part = 0; part < parts; ++part)
             if (std::fwrite(outputs_[part].data(), 1, outputs_[part].size(), stdout) !=
                 outputs_[part].size())
@@ -82,9 +79,10 @@ public:
     }
 
 private:
+    int threads_;
     const ProbeJson& probe_;
-    std::vector<csg::QueryContext> contexts_;
-    std::vector<std::string> outputs_;
+    std::vector<csg::WorkerSlot<csg::QueryContext>> contexts_;  // by worker
+    std::vector<std::string> outputs_;                          // by part
 };
 
 }  // namespace

@@ -2,9 +2,10 @@
 // "ox oy oz dx dy dz" (spaces, tabs or commas between numbers; blank lines and lines starting
 // with '#' are skipped); output is one ProbeJson line per ray on stdout, in input order.
 //
-// Rays are read in blocks; each block is split over the threads, each thread with its own
-// QueryContext and output buffer, reused from block to block: no allocation per ray once the
-// buffers have grown. A bad line stops the run after the rays before it have been printed.
+// Rays are read in blocks; each block is split into at most one contiguous part per thread
+// (csg::parallelFor), each part with its own output buffer and each thread its own
+// QueryContext, reused from block to block: no allocation per ray once the buffers have grown. A
+// bad line stops the run after the rays before it have been printed.
 #pragma once
 
 #include <cstdint>

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <thread>
 #include <vector>
 
+#include "primitives/base/ParallelFor.h"
 #include "viewer/cli/Cli.h"
 #include "viewer/cli/LoadPart.h"
 #include "viewer/cli/RenderJob.h"
@@ -21,8 +21,7 @@ int previewCommand(const render::RenderJobOptions& o) {
     Report report(o.common.jsonDiagnostics);
     LoadedPart part;
     if (const int code = loadPart(o.common, report, part); code != kExitOk) return code;
-    const int threads =
-        o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    const int threads = csg::resolveThreads(o.threads);
     const render::Rgb8Image image =
         render::renderPreview(part.model, part.scene, o.width, o.height, threads);
     if (const std::string error = render::writePng(o.output, image); !error.empty()) {

@@ -6,10 +6,10 @@
 #include <cstdio>
 #include <optional>
 #include <string_view>
-#include <thread>
 
 #include "primitives/base/AtomicFile.h"
 #include "primitives/base/Json.h"
+#include "primitives/base/ParallelFor.h"
 #include "viewer/cli/LoadPart.h"
 #include "viewer/cli/Report.h"
 #include "viewer/render/Interrupt.h"
@@ -211,8 +211,7 @@ int runRenderJob(const RenderJobOptions& o) {
     image.width = o.width;
     image.height = o.height;
     image.samplesPerAxis = o.samplesPerAxis;
-    image.threads =
-        o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    image.threads = csg::resolveThreads(o.threads);
     image.store = pixelStoreFor(o.format);
     start = Clock::now();
     ProgressMeter progress(ProgressMeter::styleFor(o.quiet));

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "primitives/base/AtomicFile.h"
+#include "primitives/base/ParallelFor.h"
 #include "viewer/cli/Cli.h"
 #include "viewer/render/RenderCamera.h"
 #include "viewer/window/PartWatcher.h"
@@ -101,7 +102,7 @@ public:
           width_(options.width),
           height_(options.height),
           wakeEvent_(sdl().SDL_RegisterEvents(1)),
-          renderer_(threadCount(options), [this] { wake(); }),
+          renderer_(csg::resolveThreads(options.threads), [this] { wake(); }),
           watcher_(options.common, [this] { wake(); }) {
         if (const char* dump = std::getenv("CSGRAY_VIEW_DUMP")) dumpFile_ = dump;
     }
@@ -156,10 +157,6 @@ public:
     }
 
 private:
-    static int threadCount(const ViewOptions& o) {
-        return o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    }
-
     // Wakes SDL_WaitEventTimeout from another thread (SDL_PushEvent is thread-safe). Before
     // run() there is no event loop to wake (and SDL may still be starting): run() looks first.
     void wake() {

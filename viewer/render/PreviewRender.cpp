@@ -1,11 +1,10 @@
 #include "viewer/render/PreviewRender.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <thread>
 #include <vector>
 
+#include "primitives/base/ParallelFor.h"
 #include "viewer/render/Color.h"
 #include "viewer/render/RenderCamera.h"
 
@@ -26,35 +25,30 @@ Rgb8Image renderPreview(const SceneLook& look, const csg::Scene& scene, int widt
     for (const Material& m : look.materials)
         linearColors.push_back(render::srgbToLinear(csg::Vec3(m.color)));
 
-    std::atomic<int> nextRow{0};
-    auto work = [&]() {
-        csg::QueryContext ctx;
-        for (int y; (y = nextRow.fetch_add(1)) < height;) {
-            uint8_t* row = image.row(y);
-            for (int x = 0; x < width; ++x) {
-                uint8_t* px = row + 3 * x;
-                const csg::Ray ray = rays.ray(x + 0.5, y + 0.5);
-                const std::optional<csg::Hit> hit = scene.closest(ray, ctx);
-                if (!hit || !hit->isSurface()) {
-                    std::copy(backgroundPixel, backgroundPixel + 3, px);
-                    continue;
-                }
-                const csg::SurfacePoint sp = scene.surface(ray, *hit);
-                const uint32_t material = scene.leafTags(hit->leaf).material;
-                const csg::Vec3& color =
-                    linearColors[material < linearColors.size() ? material : 0];
-                // Headlight: the light sits at the eye, so the cosine is with the view ray.
-                // abs() lights a back face seen from inside the solid rather than blacking it.
-                const double lambert = std::abs(glm::dot(sp.normal, ray.d));
-                const double shade = 0.15 + 0.85 * lambert;
-                for (int i = 0; i < 3; ++i) px[i] = render::linearToSrgb8(color[i] * shade);
+    // One query context per worker; every row is written before the image is handed back.
+    std::vector<csg::WorkerSlot<csg::QueryContext>> contexts(static_cast<size_t>(threads));
+    csg::parallelFor(uint64_t(height), threads, [&](int worker, uint64_t rowIndex) {
+        csg::QueryContext& ctx = contexts[size_t(worker)].value;
+        const int y = int(rowIndex);
+        uint8_t* row = image.row(y);
+        for (int x = 0; x < width; ++x) {
+            uint8_t* px = row + 3 * x;
+            const csg::Ray ray = rays.ray(x + 0.5, y + 0.5);
+            const std::optional<csg::Hit> hit = scene.closest(ray, ctx);
+            if (!hit || !hit->isSurface()) {
+                std::copy(backgroundPixel, backgroundPixel + 3, px);
+                continue;
             }
+            const csg::SurfacePoint sp = scene.surface(ray, *hit);
+            const uint32_t material = scene.leafTags(hit->leaf).material;
+            const csg::Vec3& color = linearColors[material < linearColors.size() ? material : 0];
+            // Headlight: the light sits at the eye, so the cosine is with the view ray.
+            // abs() lights a back face seen from inside the solid rather than blacking it.
+            const double lambert = std::abs(glm::dot(sp.normal, ray.d));
+            const double shade = 0.15 + 0.85 * lambert;
+            for (int i = 0; i < 3; ++i) px[i] = render::linearToSrgb8(color[i] * shade);
         }
-    };
-    std::vector<std::jthread> helpers;
-    for (int t = 1; t < threads; ++t) helpers.emplace_back(work);
-    work();
-    helpers.clear();  // joins: every row is written before the image is handed back
+    });
     return image;
 }
 

@@ -1,6 +1,6 @@
 // Render progress on stderr: a bar with an ETA, redrawn in place, when stderr is a terminal; a
 // plain line every few seconds otherwise (logs, CI); nothing when quiet. Only the thread that
-// owns the meter calls it (the render's waiting thread), so it needs no locking.
+// owns the meter calls it (the render's calling thread), so it needs no locking.
 #pragma once
 
 #include <chrono>

@@ -1,10 +1,6 @@
 #include "viewer/render/TileRenderer.h"
 
-#include <chrono>
-#include <condition_variable>
-#include <mutex>
-#include <thread>
-
+#include "primitives/base/ParallelFor.h"
 #include "viewer/render/ImageOutput.h"
 #include "viewer/render/Tracer.h"
 
@@ -23,6 +19,14 @@ uint64_t mix(uint64_t z) {
 double unitFromBits(uint64_t bits) {
     return double(bits >> 11) * 0x1.0p-53;  // [0, 1) with every value a multiple of 2^-53
 }
+
+// What one worker thread owns: its Tracer and, for an Srgb8 render, its tile's floats.
+struct Worker {
+    Worker(const csg::Scene& scene, const EffectsPlan& plan, size_t tileChannels)
+        : tracer(scene, plan), tileFloats(tileChannels) {}
+    Tracer tracer;
+    std::vector<float> tileFloats;  // rows of `tile` pixels
+};
 
 }  // namespace
 
@@ -64,28 +68,20 @@ RenderResult renderImage(const csg::Scene& scene, const EffectsPlan& plan,
     const int n = settings.samplesPerAxis;
     const double sampleWeight = 1.0 / double(n * n);
 
-    std::atomic<int> nextTile{0};
+    std::vector<csg::WorkerSlot<Worker>> workers;
+    workers.reserve(size_t(settings.threads));
+    for (int t = 0; t < settings.threads; ++t)
+        workers.emplace_back(scene, plan, srgb ? size_t(tile) * size_t(tile) * 3 : 0);
     std::atomic<int> tilesDone{0};
-    std::atomic<bool> stopped{false};
-    int workersRunning = settings.threads;
-    std::mutex mutex;
-    std::condition_variable workerFinished;
-    std::vector<RayCounts> rays(settings.threads);
-    std::vector<csg::QueryStats> queries(settings.threads);
 
-    auto work = [&](int worker) {
-        Tracer tracer(scene, plan);
-        // An Srgb8 render's floats, one tile at a time (rows of `tile` pixels).
-        std::vector<float> tileFloats(srgb ? size_t(tile) * size_t(tile) * 3 : 0);
-        for (int index; (index = nextTile.fetch_add(1)) < tileCount;) {
-            if (cancel && cancel->load(std::memory_order_relaxed)) {
-                stopped = true;
-                break;
-            }
-            const int x0 = (index % tilesX) * tile, y0 = (index / tilesX) * tile;
+    csg::parallelFor(
+        uint64_t(tileCount), settings.threads,
+        [&](int worker, uint64_t index) {
+            Worker& own = workers[size_t(worker)].value;
+            const int x0 = int(index % tilesX) * tile, y0 = int(index / tilesX) * tile;
             const int x1 = std::min(x0 + tile, width), y1 = std::min(y0 + tile, height);
             for (int y = y0; y < y1; ++y) {
-                float* row = srgb ? &tileFloats[size_t(y - y0) * size_t(tile) * 3]
+                float* row = srgb ? &own.tileFloats[size_t(y - y0) * size_t(tile) * 3]
                                   : &result.image.rgb[(size_t(y) * size_t(width) + x0) * 3];
                 for (int x = x0; x < x1; ++x) {
                     csg::Vec3 sum(0.0);
@@ -93,7 +89,7 @@ RenderResult renderImage(const csg::Scene& scene, const EffectsPlan& plan,
                         for (int sx = 0; sx < n; ++sx) {
                             double u, v;
                             samplePosition(x, y, sx, sy, n, u, v);
-                            sum += tracer.tracePrimary(camera.ray(x + u, y + v));
+                            sum += own.tracer.tracePrimary(camera.ray(x + u, y + v));
                         }
                     }
                     float* px = row + size_t(x - x0) * 3;
@@ -101,32 +97,21 @@ RenderResult renderImage(const csg::Scene& scene, const EffectsPlan& plan,
                 }
                 if (srgb) encodeSrgb(row, size_t(x1 - x0) * 3, result.srgb.row(y) + size_t(x0) * 3);
             }
-            tilesDone.fetch_add(1, std::memory_order_relaxed);
-        }
-        rays[worker] = tracer.rays;
-        queries[worker] = tracer.context.stats;
-        std::lock_guard lock(mutex);
-        --workersRunning;
-        workerFinished.notify_one();
-    };
+            const int done = tilesDone.fetch_add(1, std::memory_order_relaxed) + 1;
+            // Worker 0 is the calling thread, the only one that may touch the meter.
+            if (progress && worker == 0) progress->update(uint64_t(done), uint64_t(tileCount));
+        },
+        cancel);
 
-    {
-        std::vector<std::jthread> workers;
-        for (int t = 0; t < settings.threads; ++t) workers.emplace_back(work, t);
-        std::unique_lock lock(mutex);
-        while (workersRunning > 0) {
-            workerFinished.wait_for(lock, std::chrono::milliseconds(50));
-            if (progress) progress->update(uint64_t(tilesDone.load()), uint64_t(tileCount));
-        }
-    }  // joins
-
-    for (int t = 0; t < settings.threads; ++t) {
-        result.rays += rays[t];
-        result.queries.rays += queries[t].rays;
-        result.queries.nodeVisits += queries[t].nodeVisits;
-        result.queries.primitiveTests += queries[t].primitiveTests;
+    for (const csg::WorkerSlot<Worker>& w : workers) {
+        const Tracer& tracer = w.value.tracer;
+        result.rays += tracer.rays;
+        result.queries.rays += tracer.context.stats.rays;
+        result.queries.nodeVisits += tracer.context.stats.nodeVisits;
+        result.queries.primitiveTests += tracer.context.stats.primitiveTests;
     }
-    result.interrupted = stopped.load() || tilesDone.load() < tileCount;
+    // A cancelled run leaves tiles undone (parallelFor starts none after it sees the flag).
+    result.interrupted = tilesDone.load() < tileCount;
     if (progress)
         progress->finish(uint64_t(tilesDone.load()), uint64_t(tileCount), result.interrupted);
     return result;

@@ -1,6 +1,6 @@
-// The image loop: square tiles handed out dynamically by an atomic counter to worker threads,
-// each with its own Tracer (QueryContext, ray counters). The calling thread only waits,
-// reports progress and watches for cancellation; workers check the flag between tiles.
+// The image loop: square tiles handed out dynamically by csg::parallelFor to worker threads,
+// each with its own Tracer (QueryContext, ray counters). The calling thread renders tiles too
+// and reports progress after each of its own; no tile starts once cancellation is asked for.
 #pragma once
 
 #include <atomic>
