@@ -1,7 +1,9 @@
-// csgray: the command line. Dispatches to one subcommand per file (Probe, Info,
-// RenderCommand); each parses its own options and returns the exit code of DESIGN.md.
+// csgray: the command line. kCommands names every subcommand (one per file, XCommand.cpp) and
+// dispatches to it; each parses its own options and returns the exit code of DESIGN.md.
+#include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -17,24 +19,52 @@
 
 namespace {
 
-const char* const kTopHelp =
-    "usage: csgray COMMAND [ARGS]\n"
-    "\n"
-    "A CSG solid modeler that answers everything by casting rays. Parts are written in\n"
-    "OpenSCAD's language (.scad; OpenSCAD's own .csg export loads too).\n"
-    "\n"
-    "commands:\n"
-    "  probe    the spans of one ray or many rays through a part, as JSON\n"
-    "  info     node counts, bounds and the evaluated CSG tree of a part, as JSON\n"
-    "  render   a part to a PNG image\n"
-    "  export   a part to a mesh (GLB, glTF, OBJ) within a distance tolerance\n"
-    "  compare  a mesh against the part's exact surface: distances, volume, topology\n"
-    "  view     an interactive window: progressive ray tracing, hot reload, click to probe\n"
-    "  bench    accuracy: the root solvers' accuracy-versus-time report\n"
-    "\n"
-    "Run 'csgray COMMAND --help' for a command's options. stdout carries only the\n"
-    "requested output; diagnostics go to stderr. Exit codes: 0 ok, 1 bad model or input,\n"
-    "2 bad usage, 3 I/O error.\n";
+// Every command, in the order `csgray --help` lists them: the help and the dispatch both come
+// from this table, so a command cannot be listed without being run, or the reverse.
+struct Command {
+    std::string_view name;
+    std::string_view summary;                       // one line of `csgray --help`
+    int (*run)(std::span<const std::string> args);  // args after the name; returns the exit code
+};
+
+constexpr Command kCommands[] = {
+    {"probe", "the spans of one ray or many rays through a part, as JSON", viewer::probeCommand},
+    {"info", "node counts, bounds and the evaluated CSG tree of a part, as JSON",
+     viewer::infoCommand},
+    {"render", "a part to a PNG image", viewer::renderCommand},
+    {"export", "a part to a mesh (GLB, glTF, OBJ) within a distance tolerance",
+     viewer::exportCommand},
+    {"compare", "a mesh against the part's exact surface: distances, volume, topology",
+     viewer::compareCommand},
+    {"view", "an interactive window: progressive ray tracing, hot reload, click to probe",
+     viewer::window::viewCommand},
+    {"bench", "accuracy: the root solvers' accuracy-versus-time report", viewer::benchCommand},
+};
+
+std::string topHelp() {
+    std::string help =
+        "usage: csgray COMMAND [ARGS]\n"
+        "\n"
+        "A CSG solid modeler that answers everything by casting rays. Parts are written in\n"
+        "OpenSCAD's language (.scad; OpenSCAD's own .csg export loads too).\n"
+        "\n"
+        "commands:\n";
+    size_t width = 0;
+    for (const Command& c : kCommands) width = std::max(width, c.name.size());
+    for (const Command& c : kCommands) {
+        help += "  ";
+        help += c.name;
+        help.append(width - c.name.size() + 2, ' ');
+        help += c.summary;
+        help += '\n';
+    }
+    help +=
+        "\n"
+        "Run 'csgray COMMAND --help' for a command's options. stdout carries only the\n"
+        "requested output; diagnostics go to stderr. Exit codes: 0 ok, 1 bad model or input,\n"
+        "2 bad usage, 3 I/O error.\n";
+    return help;
+}
 
 int usageError(const std::string& message, std::string_view command) {
     std::fprintf(stderr, "csgray: error: %s\n", message.c_str());
@@ -48,23 +78,18 @@ int usageError(const std::string& message, std::string_view command) {
 int main(int argc, char** argv) {
     const std::vector<std::string> args(argv + 1, argv + argc);
     if (args.empty()) {
-        std::fputs(kTopHelp, stderr);
+        std::fputs(topHelp().c_str(), stderr);
         return viewer::kExitUsage;
     }
     const std::string& command = args[0];
     if (command == "--help" || command == "-h" || command == "help") {
-        std::fputs(kTopHelp, stdout);
+        std::fputs(topHelp().c_str(), stdout);
         return viewer::kExitOk;
     }
     const std::span<const std::string> rest(args.begin() + 1, args.end());
     try {
-        if (command == "probe") return viewer::probeCommand(rest);
-        if (command == "info") return viewer::infoCommand(rest);
-        if (command == "render") return viewer::renderCommand(rest);
-        if (command == "export") return viewer::exportCommand(rest);
-        if (command == "compare") return viewer::compareCommand(rest);
-        if (command == "view") return viewer::window::viewCommand(rest);
-        if (command == "bench") return viewer::benchCommand(rest);
+        for (const Command& c : kCommands)
+            if (c.name == command) return c.run(rest);
         return usageError("unknown command '" + command + "'", "");
     } catch (const viewer::UsageError& e) {
         return usageError(e.what(), command);
