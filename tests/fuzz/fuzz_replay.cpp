@@ -30,6 +30,12 @@ int main(int argc, char** argv) {
             return 2;
         }
     }
+    // A replay of nothing would pass whatever the code does: a corpus that went missing (a
+    // moved folder, a CMake path) must fail the test, not silently shrink it to zero inputs.
+    if (files.empty()) {
+        std::fprintf(stderr, "fuzz_replay: no inputs found in the corpus folders given\n");
+        return 1;
+    }
     std::sort(files.begin(), files.end());
     const auto start = std::chrono::steady_clock::now();
     for (const auto& file : files) {
