@@ -75,6 +75,19 @@ std::optional<csg::Vec4> colorArg(Evaluator& e, const BoundArgs& b, size_t i) {
     b.bad(e, i, "a color name, \"#rrggbb\" or [r, g, b] / [r, g, b, a]");
 }
 
+// A vector of up to 3 numbers as OpenSCAD's transforms read it (missing entries are `fill`), or
+// nothing when the value is not one: OpenSCAD then warns and uses the identity.
+std::optional<Vec3> transformVector(const Value& v, double fill, bool allowScalar) {
+    if (allowScalar && v.isNumber() && std::isfinite(v.number())) return Vec3(v.number());
+    if (!v.isVector() || v.list().size() < 2 || v.list().size() > 3) return std::nullopt;
+    Vec3 out(fill);
+    for (size_t k = 0; k < v.list().size(); ++k) {
+        if (!v.list()[k].isNumber() || !std::isfinite(v.list()[k].number())) return std::nullopt;
+        out[static_cast<int>(k)] = v.list()[k].number();
+    }
+    return out;
+}
+
 Instance childrenGroup(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
                        const GeomState& state, uint32_t* tagOut = nullptr) {
     GeomState inner = state;
@@ -95,7 +108,15 @@ uint32_t leafTag(Evaluator& e, const InstantiationStmt& s, const GeomState& stat
 Instance cube(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
               const GeomState& state) {
     BoundArgs b = bindArgs(e, s, ctx, {"size", "center"}, "cube(size, center)");
-    const Vec3 size = vecArg(e, b, 0, Vec3(1.0), 0.0, true, false);
+    Vec3 size(1.0);
+    if (b.given(0)) {
+        const std::optional<Vec3> read = transformVector(b[0], 0.0, true);
+        if (read && (b[0].isNumber() || b[0].list().size() == 3))
+            size = *read;
+        else  // OpenSCAD warns and builds the default unit cube
+            e.warn(b.loc(0), "Unable to convert cube(size=" + b[0].brief() +
+                                 ", ...) parameter to a number or a vec3 of numbers");
+    }
     const bool center = boolArg(e, b, 1, false);
     if (size.x <= 0 || size.y <= 0 || size.z <= 0) {
         e.warn(s.loc, "cube() with a size that is not positive in every axis is empty");
@@ -230,10 +251,28 @@ Instance applyTransform(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
     return csg::transformed(m, *children);
 }
 
+// A transform that flattens space (a zero scale factor, a singular matrix) leaves its children
+// no volume: OpenSCAD 2021 drops them and goes on, and so does csgray, with a warning that says
+// so. The children are still evaluated, for their echo()s and errors, as OpenSCAD does.
+Instance dropFlattenedChildren(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
+                               const GeomState& state, const std::string& why) {
+    e.warn(b.call.loc, why + ": its children have no volume and are dropped, as in OpenSCAD");
+    childrenGroup(e, b, ctx, state);
+    return csg::NodePtr();
+}
+
 Instance translate(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                    const GeomState& state) {
     BoundArgs b = bindArgs(e, s, ctx, {"v"}, "translate(v)");
-    const Vec3 v = vecArg(e, b, 0, Vec3(0.0), 0.0, false);
+    Vec3 v(0.0);
+    if (b.given(0)) {
+        if (const std::optional<Vec3> read = transformVector(b[0], 0.0, false))
+            v = *read;
+        else
+            e.warn(b.loc(0), "Unable to convert translate(" + b[0].brief() +
+                                 ") parameter to a vec3 or vec2 of numbers; translate() ignored, "
+                                 "as in OpenSCAD");
+    }
     return applyTransform(e, b, ctx, state, glm::translate(Mat4(1.0), v));
 }
 
@@ -259,8 +298,20 @@ Instance rotate(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
     BoundArgs b = bindArgs(e, s, ctx, {"a", "v"}, "rotate(a) or rotate([x, y, z]) or rotate(a, v)");
     Mat4 m(1.0);
     if (b.given(0) && b[0].isVector()) {
-        // rotate([x, y, z]) = Rz * Ry * Rx: about x first.
-        const Vec3 angles = vecArg(e, b, 0, Vec3(0.0), 0.0, false);
+        // rotate([x, y, z]) = Rz * Ry * Rx: about x first. A shorter vector fills from x with
+        // zeros; what OpenSCAD cannot read (entries past the third, non-numbers) it warns about
+        // and reads as 0.
+        const ValueList& l = b[0].list();
+        Vec3 angles(0.0);
+        bool readAll = l.size() <= 3;
+        for (size_t k = 0; k < std::min<size_t>(l.size(), 3); ++k) {
+            if (l[k].isNumber() && std::isfinite(l[k].number()))
+                angles[static_cast<int>(k)] = l[k].number();
+            else
+                readAll = false;
+        }
+        if (!readAll)
+            e.warn(b.loc(0), "Problem converting rotate(a=" + b[0].brief() + ") parameter");
         m = rotationAbout(Vec3(0, 0, 1), angles.z) * rotationAbout(Vec3(0, 1, 0), angles.y) *
             rotationAbout(Vec3(1, 0, 0), angles.x);
     } else if (b.given(0)) {
@@ -276,11 +327,18 @@ Instance rotate(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
 Instance scale(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                const GeomState& state) {
     BoundArgs b = bindArgs(e, s, ctx, {"v"}, "scale(v)");
-    const Vec3 v = vecArg(e, b, 0, Vec3(1.0), 1.0, true);
+    Vec3 v(1.0);
+    if (b.given(0)) {
+        if (const std::optional<Vec3> read = transformVector(b[0], 1.0, true))
+            v = *read;
+        else
+            e.warn(b.loc(0), "Unable to convert scale(" + b[0].brief() +
+                                 ") parameter to a number, a vec3 or vec2 of numbers; scale() "
+                                 "ignored, as in OpenSCAD");
+    }
     if (v.x == 0 || v.y == 0 || v.z == 0)
-        e.fail(b.loc(0), "scale(" + b[0].brief() +
-                             ") is singular (a zero factor flattens the solid); expected scale(v) "
-                             "with non-zero factors");
+        return dropFlattenedChildren(e, b, ctx, state,
+                                     "scale(" + b[0].brief() + ") has a zero factor");
     return applyTransform(e, b, ctx, state, glm::scale(Mat4(1.0), v));
 }
 
@@ -302,27 +360,38 @@ Instance multmatrix(Evaluator& e, const InstantiationStmt& s, const ContextPtr& 
                     const GeomState& state) {
     BoundArgs b = bindArgs(e, s, ctx, {"m"}, "multmatrix(m) with m a 4x4 or 3x4 matrix of rows");
     Mat4 m(1.0);
-    if (b.given(0)) {
-        const Value& v = b[0];
-        const char* what = "a 4x4 or 3x4 matrix (a vector of rows of 4 numbers)";
-        if (!v.isVector() || v.list().size() < 3 || v.list().size() > 4) b.bad(e, 0, what);
-        for (size_t row = 0; row < v.list().size(); ++row) {
-            const Value& r = v.list()[row];
-            if (!r.isVector() || r.list().size() != 4) b.bad(e, 0, what);
-            for (size_t col = 0; col < 4; ++col) {
-                if (!r.list()[col].isNumber() || !std::isfinite(r.list()[col].number()))
-                    b.bad(e, 0, what);
-                m[static_cast<int>(col)][static_cast<int>(row)] = r.list()[col].number();
-            }
+    if (b.given(0) && b[0].isVector()) {
+        // As OpenSCAD 2021 reads it: up to 4 rows of up to 4 numbers, every entry not given
+        // (or not a number) taken from the identity; a last row [a, b, c, w] with w != 1
+        // divides the whole matrix by w and is otherwise ignored (the map stays affine).
+        const ValueList& rows = b[0].list();
+        for (size_t row = 0; row < std::min<size_t>(rows.size(), 4); ++row) {
+            if (!rows[row].isVector()) continue;
+            const ValueList& r = rows[row].list();
+            for (size_t col = 0; col < std::min<size_t>(r.size(), 4); ++col)
+                if (r[col].isNumber())
+                    m[static_cast<int>(col)][static_cast<int>(row)] = r[col].number();
         }
-        if (v.list().size() == 4 && (m[0][3] != 0 || m[1][3] != 0 || m[2][3] != 0 || m[3][3] != 1))
-            e.fail(b.loc(0), "multmatrix(): the last row must be [0, 0, 0, 1] (an affine map)");
+        const double w = m[3][3];
+        m[0][3] = m[1][3] = m[2][3] = 0.0;
+        m[3][3] = 1.0;
+        if (w != 1.0)
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 3; ++r) m[c][r] /= w;
+        if (!csg::isFinite(m)) {
+            e.warn(b.loc(0),
+                   "Transformation matrix contains Not-a-Number and/or Infinity - removing "
+                   "object.");
+            return csg::NodePtr();
+        }
         // Singular: the linear part flattens space (relative to its own size).
         const csg::Mat3 linear(m);
         double size = 0.0;
         for (int c = 0; c < 3; ++c) size = std::max(size, glm::length(linear[c]));
-        if (std::fabs(glm::determinant(linear)) <= 1e-12 * size * size * size)
-            e.fail(b.loc(0), "multmatrix(): the matrix is singular (it flattens the solid)");
+        if (std::fabs(glm::determinant(linear)) <= csg::tol::kSingularDetRel * size * size * size)
+            return dropFlattenedChildren(e, b, ctx, state, "multmatrix(): the matrix is singular");
+    } else if (b.given(0)) {
+        e.warn(b.loc(0), "multmatrix(" + b[0].brief() + "): not a matrix; multmatrix() ignored");
     }
     return applyTransform(e, b, ctx, state, m);
 }

@@ -97,9 +97,10 @@ TEST(BadModel, SyntaxErrorIsReportedAtItsLine) {
 
 TEST(BadModel, CompileErrorNamesTheOffendingStatement) {
     ScratchDir dir;
-    // A zero scale is accepted by the evaluator or by compile; either way it is the line 2.
-    writeFile(dir / "flat.scad",
-              "cube(1);\nmultmatrix([[1,0,0,0],[0,0,0,0],[0,0,1,0]]) cube(1);\n");
+    // Each scale is fine alone (the evaluator drops only a transform that is itself singular,
+    // as OpenSCAD does); their product underflows to a singular matrix, which compile finds
+    // and names by the statement on line 2.
+    writeFile(dir / "flat.scad", "cube(1);\nscale(1e-200) scale(1e-200) cube(1);\n");
     const RunResult r = runCsgray(
         {"probe", (dir / "flat.scad").string(), "--origin", "0,0,0", "--dir", "1,0,0"}, dir.path());
     EXPECT_EQ(r.exitCode, 1) << r.err;

@@ -496,6 +496,23 @@ TEST(IoEval, ScaleMirrorMultmatrix) {
     expectNear(csg::transformPoint(l[0].second, {1, 1, 1}), {2, 2, 2});
 }
 
+// Short vectors and matrices as OpenSCAD 2021 reads them (each checked with `openscad -o x.off`
+// on the same part): rotate's angles fill from x with zeros; multmatrix takes missing entries
+// from the identity, divides by a last-row w != 1 and ignores the rest of the last row.
+TEST(IoEval, ShortRotateAndMultmatrixArgumentsFillAsOpenScadDoes) {
+    auto l = leaves(root("rotate(a = [90]) cube();"));  // about x only
+    ASSERT_EQ(l.size(), 1u);
+    expectNear(csg::transformVector(l[0].second, {0, 1, 0}), {0, 0, 1});
+    expectNear(csg::transformVector(l[0].second, {1, 0, 0}), {1, 0, 0});
+    l = leaves(root("rotate([90, 90]) cube();"));  // Ry(90) Rx(90)
+    expectNear(csg::transformVector(l[0].second, {0, 1, 0}), {1, 0, 0});
+    l = leaves(root("multmatrix(m = [[1, 0, 0, 5], [0, 1, 0, 0]]) cube();"));
+    expectNear(csg::transformPoint(l[0].second, {1, 1, 1}), {6, 1, 1});
+    l = leaves(
+        root("multmatrix([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [7, 0, 0, 2]]) cube();"));
+    expectNear(csg::transformPoint(l[0].second, {1, 1, 1}), {0.5, 0.5, 0.5});
+}
+
 TEST(IoEval, BooleansBuildTheirOperators) {
     auto n = root("difference() { cube(10); sphere(1); cylinder(); }");
     ASSERT_TRUE(n);
