@@ -482,9 +482,24 @@ Instance material(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ct
 
 // ---- scene ----
 
+// OpenSCAD's warning for children given to a module that takes none (often a missing
+// semicolon: `cube(1) sphere(1);`); the children are ignored.
+void warnIfChildren(Evaluator& e, const InstantiationStmt& s) {
+    if (!s.children.empty())
+        e.warn(s.loc, "module " + s.name + "() does not support child modules");
+}
+
 Instance noChildren(Evaluator& e, const InstantiationStmt& s) {
-    if (!s.children.empty()) e.warn(s.loc, s.name + "() takes no children; they are ignored");
+    warnIfChildren(e, s);
     return std::nullopt;
+}
+
+// A module that makes a solid of its own and takes no children.
+template <Evaluator::BuiltinModule module>
+Instance childless(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+                   const GeomState& state) {
+    warnIfChildren(e, s);
+    return module(e, s, ctx, state);
 }
 
 Instance camera(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
@@ -552,14 +567,14 @@ Instance unsupported(Evaluator& e, const InstantiationStmt& s, const ContextPtr&
 
 const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {
     static const std::unordered_map<std::string, Evaluator::BuiltinModule> modules = {
-        {"cube", cube},
-        {"sphere", sphere},
-        {"cylinder", cylinder},
-        {"halfspace", halfspace},
-        {"torus", torus},
-        {"surface", surfaceModule},
-        {"bezier_patch", bezierPatchModule},
-        {"bezier_patches", bezierPatchesModule},
+        {"cube", childless<cube>},
+        {"sphere", childless<sphere>},
+        {"cylinder", childless<cylinder>},
+        {"halfspace", childless<halfspace>},
+        {"torus", childless<torus>},
+        {"surface", childless<surfaceModule>},
+        {"bezier_patch", childless<bezierPatchModule>},
+        {"bezier_patches", childless<bezierPatchesModule>},
         {"union", unionModule},
         {"group", unionModule},
         {"render", unionModule},

@@ -146,6 +146,25 @@ TEST(IoDiagnostics, UnreadableTransformAndSizeArgumentsWarnAndUseTheDefault) {
     }
 }
 
+// Children given to a module that takes none (often a missing semicolon) are ignored with
+// OpenSCAD's warning, at the module's statement (2021: "WARNING: module cube() does not support
+// child modules in file x.scad, line 1").
+TEST(IoDiagnostics, ChildrenOfAChildlessModuleAreIgnoredWithOpenScadsWarning) {
+    EvaluateResult r = evaluate("cube(1) sphere(1);");
+    ASSERT_TRUE(r.ok());
+    ASSERT_EQ(r.diagnostics.size(), 1u);
+    EXPECT_EQ(r.diagnostics[0].severity, Severity::Warning);
+    EXPECT_EQ(r.diagnostics[0].line, 1u);
+    EXPECT_EQ(r.diagnostics[0].col, 1u);
+    EXPECT_EQ(r.diagnostics[0].message, "module cube() does not support child modules");
+    ASSERT_TRUE(r.model->root);
+    EXPECT_TRUE(std::holds_alternative<csg::Box>(r.model->root->primitive));
+    r = evaluate("sphere(1) { cube(1); cube(2); }");
+    ASSERT_EQ(r.diagnostics.size(), 1u);
+    EXPECT_EQ(r.diagnostics[0].message, "module sphere() does not support child modules");
+    EXPECT_TRUE(evaluate("cube(1); sphere(1);").diagnostics.empty());
+}
+
 TEST(IoDiagnostics, InfiniteRecursionIsALimitNotACrash) {
     EXPECT_TRUE(
         contains(firstError("module m(n) m(n + 1);\nm(0);"), "recursion too deep calling 'm'"));
