@@ -66,7 +66,6 @@ bool solidArg(Evaluator& e, const BoundArgs& b, size_t i) {
 Instance finish(Evaluator& e, const InstantiationStmt& s, const GeomState& state,
                 const BoundArgs& b, std::vector<csg::BezierPatch> patches, csg::PatchMethod method,
                 bool solid) {
-    if (!s.children.empty()) e.warn(s.loc, s.name + "() takes no children; they are ignored");
     const csg::PatchSet set = csg::PatchSet::make(std::move(patches), method, solid);
     if (const char* why = set.invalidReason())
         e.fail(s.loc, s.name + "(): " + why + "; expected " + std::string(b.form));
