@@ -261,18 +261,22 @@ Instance dropFlattenedChildren(Evaluator& e, const BoundArgs& b, const ContextPt
     return csg::NodePtr();
 }
 
+// The vector argument of translate or scale (identity: the default, which also fills a vec2's
+// z). One OpenSCAD cannot read gives its warning and the identity.
+Vec3 transformArg(Evaluator& e, const BoundArgs& b, Vec3 identity, bool allowScalar,
+                  const char* what) {
+    if (!b.given(0)) return identity;
+    if (const std::optional<Vec3> read = transformVector(b[0], identity.z, allowScalar))
+        return *read;
+    e.warn(b.loc(0), "Unable to convert " + b.call.name + "(" + b[0].brief() + ") parameter to " +
+                         what + "; " + b.call.name + "() ignored, as in OpenSCAD");
+    return identity;
+}
+
 Instance translate(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                    const GeomState& state) {
     BoundArgs b = bindArgs(e, s, ctx, {"v"}, "translate(v)");
-    Vec3 v(0.0);
-    if (b.given(0)) {
-        if (const std::optional<Vec3> read = transformVector(b[0], 0.0, false))
-            v = *read;
-        else
-            e.warn(b.loc(0), "Unable to convert translate(" + b[0].brief() +
-                                 ") parameter to a vec3 or vec2 of numbers; translate() ignored, "
-                                 "as in OpenSCAD");
-    }
+    const Vec3 v = transformArg(e, b, Vec3(0.0), false, "a vec3 or vec2 of numbers");
     return applyTransform(e, b, ctx, state, glm::translate(Mat4(1.0), v));
 }
 
@@ -327,15 +331,7 @@ Instance rotate(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
 Instance scale(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                const GeomState& state) {
     BoundArgs b = bindArgs(e, s, ctx, {"v"}, "scale(v)");
-    Vec3 v(1.0);
-    if (b.given(0)) {
-        if (const std::optional<Vec3> read = transformVector(b[0], 1.0, true))
-            v = *read;
-        else
-            e.warn(b.loc(0), "Unable to convert scale(" + b[0].brief() +
-                                 ") parameter to a number, a vec3 or vec2 of numbers; scale() "
-                                 "ignored, as in OpenSCAD");
-    }
+    const Vec3 v = transformArg(e, b, Vec3(1.0), true, "a number, a vec3 or vec2 of numbers");
     if (v.x == 0 || v.y == 0 || v.z == 0)
         return dropFlattenedChildren(e, b, ctx, state,
                                      "scale(" + b[0].brief() + ") has a zero factor");
