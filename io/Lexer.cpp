@@ -193,9 +193,11 @@ Token Lexer::next() {
     const Loc start = here();
     if (pos_ >= text_.size()) return {Tok::End, start, {}, 0.0};
     const char c = peek();
-    if (std::isdigit(static_cast<unsigned char>(c)) ||
-        (c == '.' && std::isdigit(static_cast<unsigned char>(peek(1)))))
-        return lexNumber();
+    // OpenSCAD's lexer takes the longest match, a number on a tie: "8bit" is an identifier
+    // (example023's 8bit_polyfont), "8e3" and "12" are numbers.
+    if (std::isdigit(static_cast<unsigned char>(c)))
+        return wordLength() > numberLength() ? lexIdentifierOrKeyword() : lexNumber();
+    if (c == '.' && std::isdigit(static_cast<unsigned char>(peek(1)))) return lexNumber();
     if (c == '"') return lexString();
     if (std::isalpha(static_cast<unsigned char>(c)) || c == '_' || c == '$')
         return lexIdentifierOrKeyword();
@@ -282,21 +284,34 @@ Token Lexer::next() {
     return {Tok::Error, start, "unexpected character '" + shown + "'", 0.0};
 }
 
+// The length of the number at the cursor: digits, an optional fraction, an optional exponent.
+size_t Lexer::numberLength() const {
+    auto digit = [&](size_t i) { return std::isdigit(static_cast<unsigned char>(peek(i))) != 0; };
+    size_t n = 0;
+    while (digit(n)) ++n;
+    if (peek(n) == '.') {
+        ++n;
+        while (digit(n)) ++n;
+    }
+    if ((peek(n) == 'e' || peek(n) == 'E') &&
+        (digit(n + 1) || ((peek(n + 1) == '+' || peek(n + 1) == '-') && digit(n + 2)))) {
+        n += peek(n + 1) == '+' || peek(n + 1) == '-' ? 2 : 1;
+        while (digit(n)) ++n;
+    }
+    return n;
+}
+
+// The length of the run of identifier characters (letters, digits, '_') at the cursor.
+size_t Lexer::wordLength() const {
+    size_t n = 0;
+    while (std::isalnum(static_cast<unsigned char>(peek(n))) || peek(n) == '_') ++n;
+    return n;
+}
+
 Token Lexer::lexNumber() {
     const Loc start = here();
     const size_t begin = pos_;
-    while (std::isdigit(static_cast<unsigned char>(peek()))) advance();
-    if (peek() == '.') {
-        advance();
-        while (std::isdigit(static_cast<unsigned char>(peek()))) advance();
-    }
-    if ((peek() == 'e' || peek() == 'E') && (std::isdigit(static_cast<unsigned char>(peek(1))) ||
-                                             ((peek(1) == '+' || peek(1) == '-') &&
-                                              std::isdigit(static_cast<unsigned char>(peek(2)))))) {
-        advance();
-        if (peek() == '+' || peek() == '-') advance();
-        while (std::isdigit(static_cast<unsigned char>(peek()))) advance();
-    }
+    for (size_t n = numberLength(); n > 0; --n) advance();
     // strtod needs a terminated string; numbers are short, so a copy is cheap.
     const std::string digits(text_.substr(begin, pos_ - begin));
     return {Tok::Number, start, {}, std::strtod(digits.c_str(), nullptr)};

@@ -99,6 +99,8 @@ private:
     Token lexNumber();
     Token lexString();
     Token lexIdentifierOrKeyword();
+    size_t numberLength() const;
+    size_t wordLength() const;
     Token lexAnglePath(Tok kind, Loc start);
     Loc here() const { return {file_, line_, col_}; }
     char peek(size_t ahead = 0) const {

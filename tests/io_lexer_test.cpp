@@ -41,10 +41,37 @@ TEST(IoLexer, Numbers) {
     EXPECT_EQ(t[3].number, 0.25);
     EXPECT_EQ(t[4].number, 1000.0);
     EXPECT_EQ(t[5].number, 0.025);
-    // "7e" is the number 7 followed by the identifier e (no exponent digits).
-    EXPECT_EQ(t[6].number, 7.0);
-    EXPECT_EQ(t[7].kind, Tok::Identifier);
-    EXPECT_EQ(t[7].text, "e");
+    // "7e" is one identifier: OpenSCAD's lexer takes the longest match, and [A-Za-z0-9_]+
+    // matches two characters where a number matches one (2021: `7e = 3; echo(7e);` echoes 3).
+    EXPECT_EQ(t[6].kind, Tok::Identifier);
+    EXPECT_EQ(t[6].text, "7e");
+}
+
+// Identifiers may begin with a digit where the identifier match is longer than the number
+// match (example023's `8bit_polyfont`); on a tie the number wins. Each case checked with
+// OpenSCAD 2021: `8bit = 4; echo(8bit);` echoes 4, `echo(8e3)` 8000, `echo(12abc)` warns of the
+// unknown variable 12abc, `echo(1.5e)` is a syntax error (1.5 then e).
+TEST(IoLexer, LongestMatchDecidesBetweenNumbersAndDigitLedIdentifiers) {
+    const auto t = lexAll("8bit_polyfont 8e3 12abc 1.5e 1_ 2.5 3e+2x");
+    ASSERT_EQ(t.size(), 10u);
+    EXPECT_EQ(t[0].kind, Tok::Identifier);
+    EXPECT_EQ(t[0].text, "8bit_polyfont");
+    EXPECT_EQ(t[1].kind, Tok::Number);
+    EXPECT_EQ(t[1].number, 8000.0);
+    EXPECT_EQ(t[2].kind, Tok::Identifier);
+    EXPECT_EQ(t[2].text, "12abc");
+    EXPECT_EQ(t[3].kind, Tok::Number);
+    EXPECT_EQ(t[3].number, 1.5);
+    EXPECT_EQ(t[4].kind, Tok::Identifier);
+    EXPECT_EQ(t[4].text, "e");
+    EXPECT_EQ(t[5].kind, Tok::Identifier);
+    EXPECT_EQ(t[5].text, "1_");
+    EXPECT_EQ(t[6].number, 2.5);
+    // "3e+2x": the number 3e+2 (4 characters) beats the word "3e" (2), then x.
+    EXPECT_EQ(t[7].kind, Tok::Number);
+    EXPECT_EQ(t[7].number, 300.0);
+    EXPECT_EQ(t[8].kind, Tok::Identifier);
+    EXPECT_EQ(t[8].text, "x");
 }
 
 TEST(IoLexer, KeywordsIdentifiersAndDollarNames) {
