@@ -18,6 +18,7 @@ packages=(
     libbenchmark-dev      # bench/
     libboost-dev          # Boost.Multiprecision: 50-digit references (tests, csgray bench accuracy)
     openscad              # CLI tests: samples load in OpenSCAD and round-trip through its .csg
+    openscad-mcad         # MCAD, the library OpenSCAD's examples and users include (use <MCAD/...>)
 )
 
 # cli_mesh_test runs the Khronos glTF validator (npm gltf-validator) under Node. Any Node with

@@ -378,6 +378,18 @@ TEST(Resources, DeepModuleRecursionTakesLinearMemory) {
     EXPECT_LT(usage.ru_maxrss, 400 * 1024) << "peak resident KiB of the csgray run";
 }
 
+// Debian's MCAD (package openscad-mcad, brought by scripts/install-deps.sh) is found in the
+// installation's library folder, as OpenSCAD finds it: units.scad defines inch = 25.4 mm.
+TEST(Info, IncludeFindsMcadInTheLibraryFolder) {
+    ScratchDir dir;
+    const fs::path part = dir.path() / "units.scad";
+    writeFile(part, "include <MCAD/units.scad>\ncube(inch);\n");
+    const RunResult r = runCsgray({"info", part.string()}, dir.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto json = nlohmann::json::parse(r.out);
+    EXPECT_NEAR(json["bounds"]["max"][0].get<double>(), 25.4, 1e-12);
+}
+
 // ---- render ----
 
 struct DecodedPng {
