@@ -11,6 +11,7 @@
 #include "io/Evaluator.h"
 #include "io/PatchModule.h"
 #include "io/SurfaceModule.h"
+#include "primitives/base/Tolerances.h"
 #include "viewer/render/PngReader.h"
 
 namespace io {

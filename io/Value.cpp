@@ -5,12 +5,14 @@
 #include <cstdio>
 #include <cstring>
 
+#include "primitives/base/Tolerances.h"
+
 namespace io {
 
 double Range::count() const {
     if (step == 0.0 || std::isnan(begin) || std::isnan(step) || std::isnan(end)) return 0.0;
     // A little slack so [0:0.1:0.3] reaches 0.3 despite rounding, as in OpenSCAD.
-    const double n = std::floor((end - begin) / step + 1e-9);
+    const double n = std::floor((end - begin) / step + csg::tol::kRangeStepSlack);
     return n < 0.0 ? 0.0 : n + 1.0;
 }
 

@@ -79,7 +79,8 @@ double bestOfDirections(const Vec3& first, double goodEnough, Measure&& measure)
     // convex corner sees most lines only touch the solid there (a zero-length span, dropped):
     // measure again from a point a hair away in a direction of no symmetry, and add the hair.
     if (best > goodEnough) {
-        const Vec3 shift = glm::normalize(Vec3(0.5377, 0.8117, 0.2283)) * goodEnough * 1e-3;
+        const Vec3 shift =
+            glm::normalize(Vec3(0.5377, 0.8117, 0.2283)) * goodEnough * tol::kDistanceShiftFraction;
         for (const Vec3& d : kExtra)
             best = std::min(best, glm::length(shift) + measure(glm::normalize(d), shift));
     }

@@ -13,7 +13,7 @@ void symmetricEigen(const Mat3& m, Vec3& w, Mat3& r) {
     for (int sweep = 0; sweep < 32; ++sweep) {
         const double off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
         const double diag = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
-        if (off <= 1e-30 * diag || off == 0.0) break;
+        if (off <= tol::kJacobiOffDiagonalRel * diag || off == 0.0) break;
         for (int p = 0; p < 2; ++p) {
             for (int q = p + 1; q < 3; ++q) {
                 if (a[p][q] == 0.0) continue;

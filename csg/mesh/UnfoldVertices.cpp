@@ -14,10 +14,6 @@ namespace csg {
 namespace {
 
 constexpr uint32_t kNoGroup = UINT32_MAX;
-// How far from a full turn (radians) the angles around a vertex may add up, by rounding, for its
-// star to count as embedded; a star that winds twice is 2 pi off, one that folds is at least
-// twice its folded angle off.
-constexpr double kFullTurnSlack = 1e-9;
 
 class Unfolder {
 public:
@@ -154,7 +150,7 @@ private:
             if (!(sine > 0.0)) return false;
             turn += std::atan2(sine, glm::dot(b, c) - glm::dot(b, d) * glm::dot(c, d));
         }
-        if (!(std::abs(turn - 2.0 * std::numbers::pi) < kFullTurnSlack)) return false;
+        if (!(std::abs(turn - 2.0 * std::numbers::pi) < tol::kFullTurnSlack)) return false;
         // Neighbour j of i follows it around v: it shares the edge from v to i's last corner.
         for (uint32_t i = 0; i < count; ++i)
             for (uint32_t j = 0; j < count; ++j)

@@ -58,8 +58,17 @@ inline constexpr double kSlabWiden = 2 * gamma(3);
 
 // A transform whose linear part has |det| below this fraction of the cube of its largest
 // column length is singular for our purposes (unit: relative). Inverting it would amplify
-// rounding by more than 1e12, so localFromWorld would be garbage: compile rejects it.
+// rounding by more than 1e12, so localFromWorld would be garbage: compile rejects it, and so
+// does multmatrix() when the part is read (io/BuiltinModules.cpp), where the error can point
+// at the matrix.
 inline constexpr double kSingularDetRel = 1e-12;
+
+// A range [begin : step : end] of the language has floor((end - begin) / step + this) + 1
+// elements (unit: steps; io/Value.cpp, Range::count). Why: a decimal step is not a double, so
+// the quotient of [0 : 0.1 : 0.3] comes out a few ulps below 3 and would drop the last
+// element OpenSCAD gives. A few ulps of the count is ~1e-10 up to a million elements, far
+// below 1e-9; no range written on purpose ends within 1e-9 of a step short of an element.
+inline constexpr double kRangeStepSlack = 1e-9;
 
 // A polynomial value within this many times its running rounding-error bound (Horner,
 // Polynomial::eval) is zero for the root solvers (unit: multiples of the bound). Such a value
@@ -88,6 +97,12 @@ inline constexpr double kRootBoundMargin = 1e-9;
 // many times in a row (unit: halvings). 2^-80 of the range is below double resolution of any
 // root at least 2^-27 of the range from 0; deeper clusters are decided by clusterRoots().
 inline constexpr int kMaxSubdivisionDepth = 80;
+
+// The 50-digit reference root finder (solvers/reference/RootReference.h) stops when its Newton
+// step or its bracket is at most this fraction of 1 + |t| (unit: relative). Why: 1e-45 is five
+// digits above the 50-digit working precision, so the loop ends instead of chasing rounding,
+// and still ~30 digits below double's, so the reference is exact for measuring double errors.
+inline constexpr double kReferenceRootStepRel = 1e-45;
 
 // The computed hit point o + t d of a closest() answer is within gamma(kHitPointErrorOps) *
 // (|o| + |t d|) of the true surface point, per component (unit: operation counts of gamma).
@@ -128,6 +143,13 @@ inline constexpr double kTubeGrazingCos = 0.125;
 // do not locate a feature along their common direction (a smooth patch gives the mass point,
 // not a far-off intersection of nearly parallel tangent planes).
 inline constexpr double kQefEigenRel = 1e-2;
+
+// The QEF's Jacobi eigen-decomposition (csg/mesh/Qef.cpp, symmetricEigen) stops when the sum of
+// squares off the diagonal is at most this fraction of the sum of squares on it (unit:
+// relative, of squares). Why: that is off-diagonal entries ~1e-15 of the diagonal's, a few
+// ulps: a further rotation would only turn rounding, and the eigenvalues it leaves err by far
+// less than the kQefEigenRel cut can notice.
+inline constexpr double kJacobiOffDiagonalRel = 1e-30;
 
 // Two tangent lines on a cell face that meet at less than this angle (unit: radians, 20 deg)
 // are one smooth curve: no crease vertex on the face. A crease of a part (box edge, a cut's
@@ -180,6 +202,15 @@ inline constexpr double kMeshMeasureMargin = 0.8;
 // bounds above the 0.8T margin kept refining. Samples past a quarter of T are ~0.2% of all.
 inline constexpr double kDistanceFirstLineFraction = 0.25;
 
+// A distance sample that no line resolves within T (a point on an edge where two solids only
+// touch, or on a convex corner, where lines see fused or zero-length spans) is measured again
+// from a point shifted by this fraction of T in a direction of no symmetry, and the shift is
+// added to the answer (unit: relative to T; MeshDistance.cpp). Why: the shift must be far above
+// coordinate rounding (~1e-16 of the part) for lines from there to see the solids apart, and
+// what it adds to the distance must be negligible against the margin of kMeshMeasureMargin
+// (0.2 T): 1e-3 T is both.
+inline constexpr double kDistanceShiftFraction = 1e-3;
+
 // How far apart dual contouring keeps vertices that must stay distinct points once written as
 // float to a GLB (unit: multiples of the cell size h; a cell thinner than 4x this, one through a
 // thin gap, uses a quarter of its width instead): a crossing is kept this far inside its grid
@@ -217,6 +248,15 @@ inline constexpr double kSelfIntersectionContactRel = 1e-6;
 // csg_grid3 (T = 0.05) a sliver folded onto its neighbour, tilted from its plane by just over
 // the tolerance (a contact in double), came back from the GLB within it, a coplanar overlap.
 inline constexpr double kUnfoldCheckMargin = 2.0;
+
+// The unfolding's winding certificate (csg/mesh/UnfoldVertices.cpp): the angles of a vertex's
+// triangles, seen along their mean normal, must add up to 2 pi within this (unit: radians) for
+// its star to count as embedded without testing its pairs. A star that winds twice is 2 pi
+// off, one that folds at least twice its folded angle. Why 1e-9: the sum of up to 32 atan2
+// terms rounds by ~1e-14, far below it; a fold below it tilts a triangle out of its
+// neighbours' plane by under 1e-9 of its size, inside the check's coplanarity tolerance
+// (kSelfIntersectionContactRel), so the pairwise test would not report it either.
+inline constexpr double kFullTurnSlack = 1e-9;
 
 // Two crossings of one grid edge whose normals are further apart than this (unit: cosine,
 // about 105 degrees) bound a wall or gap thinner than the cell, and meshing adds a grid plane
@@ -312,6 +352,15 @@ inline constexpr double kPatchParamSlack = 1e-9;
 // express; t then carries only the rounding of evaluating S (a few ulps of the patch size).
 inline constexpr double kPatchNewtonStep = 1e-13;
 
+// Where 2-D Newton meets a singular Jacobian (the ray tangent to the patch, or a degenerate
+// point), (u, v) is a root only if the residual, the point's distances from the ray's two
+// planes, is at most this many ulps of the patch size (unit: kUlp times the patch's box
+// diagonal; primitives/patch/RayPlanes.cpp). Why: at an exact root the residual is rounding
+// alone, about ten ulps of the points' magnitude from de Casteljau's evaluation and the
+// projection; 64 covers that with margin for a patch whose size is of the order of its
+// distance from the frame's origin, and a point ~1e-14 of the patch off the ray is no root.
+inline constexpr double kPatchSingularResidualUlps = 64.0;
+
 // Crossings of one patch set whose points on the ray are closer than this fraction of the
 // set's bounds diagonal are one crossing (unit: relative to the set's size). Why: a ray
 // through the shared edge of two patches (or a pole shared by four) is found by each of them,
@@ -340,6 +389,16 @@ inline constexpr double kPatchClipWidth = 1e-6;
 // degrees, and Newton from the centre of such a patch stays inside its basin; 1e-3 reaches
 // it in ~5 halvings per direction on the teapot.
 inline constexpr double kPatchFlatRel = 1e-3;
+
+// Subdivision + Newton keeps a root found from a flat piece's centre when it lies inside the
+// piece, or outside it by at most this fraction of the piece's width (unit: relative to the
+// piece's u and v widths), plus kPatchParamSlack (primitives/patch/NewtonSubdivision.cpp). Why:
+// a root on the edge two pieces share is found by both, each a few ulps to either side of the
+// edge, and must not be rejected by both; 1e-6 of the piece keeps that root (the duplicate is
+// merged, kPatchDedupeRel) while a root farther out is left to the piece it lies in, which
+// finds it itself. The absolute slack covers the smallest pieces, where 1e-6 of the width is
+// below Newton's last step (kPatchNewtonStep).
+inline constexpr double kPatchOwnMargin = 1e-6;
 
 // Bezier clipping widens each clipped parameter range by this fraction of the region on both
 // sides (unit: relative to the region being clipped). Why: the hull's crossing with the ray is

@@ -16,9 +16,6 @@ namespace {
 // small is flat within 1e-3 unless the patch is degenerate there, e.g. at a pole, where Newton
 // from its centre still converges); it bounds the stack (one entry per level, plus one).
 constexpr int kMaxDepth = 48;
-// A root found from a piece counts when it lies within this fraction of the piece's size
-// outside it: the pieces sharing an edge both see a root on it, and dedupe keeps one.
-constexpr double kOwnMargin = 1e-6;
 
 struct Piece {
     BezierPatch net;
@@ -94,8 +91,8 @@ int intersectByNewton(const BezierPatch& patch, const Vec3& o, const Vec3& d, Pa
         // Step 3: Newton from the centre; keep a root that lies in this piece.
         double u = 0.5 * (p.u0 + p.u1), v = 0.5 * (p.v0 + p.v1);
         if (!newtonOnRay(patch, planes, u, v)) continue;
-        const double mu = kOwnMargin * (p.u1 - p.u0) + tol::kPatchParamSlack,
-                     mv = kOwnMargin * (p.v1 - p.v0) + tol::kPatchParamSlack;
+        const double mu = tol::kPatchOwnMargin * (p.u1 - p.u0) + tol::kPatchParamSlack,
+                     mv = tol::kPatchOwnMargin * (p.v1 - p.v0) + tol::kPatchParamSlack;
         if (u < p.u0 - mu || u > p.u1 + mu || v < p.v0 - mv || v > p.v1 + mv) continue;
         addCrossing(out, n, {planes.rayParameter(patch.eval(u, v)), u, v}, gap);
     }

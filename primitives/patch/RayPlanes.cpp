@@ -37,7 +37,8 @@ bool newtonOnRay(const BezierPatch& patch, const RayPlanes& planes, double& u, d
         const double det = a * e - b * c;
         // Step 2: a singular Jacobian: converged only if the residual is rounding noise.
         if (!(std::abs(det) > 0.0) || !std::isfinite(det)) {
-            const bool atRoot = std::abs(f.x) + std::abs(f.y) <= 64 * tol::kUlp * scale;
+            const bool atRoot = std::abs(f.x) + std::abs(f.y) <=
+                                tol::kPatchSingularResidualUlps * tol::kUlp * scale;
             return atRoot && u >= -tol::kPatchParamSlack && u <= 1 + tol::kPatchParamSlack &&
                    v >= -tol::kPatchParamSlack && v <= 1 + tol::kPatchParamSlack;
         }

@@ -10,6 +10,8 @@
 #include <boost/multiprecision/cpp_bin_float.hpp>
 #include <vector>
 
+#include "primitives/base/Tolerances.h"
+
 namespace csg::rootref {
 
 using Big = boost::multiprecision::cpp_bin_float_50;
@@ -39,7 +41,8 @@ inline Big monotoneRoot(const std::vector<Big>& c, const std::vector<Big>& dc, B
         const Big d = evaluate(dc, t);
         Big next = d != 0 ? t - f / d : (a + b) / 2;
         if (!(next > a && next < b)) next = (a + b) / 2;
-        if (abs(next - t) <= 1e-45 * (1 + abs(t)) || b - a <= 1e-45 * (1 + abs(t))) return next;
+        const Big step = tol::kReferenceRootStepRel * (1 + abs(t));
+        if (abs(next - t) <= step || b - a <= step) return next;
         t = next;
     }
     return t;
