@@ -9,7 +9,7 @@ namespace {
 constexpr int kBins = 16;
 // One child per leaf (more only where no split pays): the leaf's box is then the child's own,
 // so the ray loop does not test the child's bounds again (CompiledNode::boundsImplied); two
-// per leaf cost 1.8 % more instructions on bench/scenes/csg_grid.
+// per leaf cost more instructions on csg_grid (bench/README.md, one child per BVH leaf).
 constexpr uint32_t kMaxLeafItems = 1;
 // SAH cost of testing one child's bounds relative to evaluating one child.
 constexpr double kTraversalCost = 0.5;

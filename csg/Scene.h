@@ -43,8 +43,8 @@ struct QueryStats {
 // next: neighbouring pixels are mostly shadowed by the same object. A union's answer is the OR
 // of its children's, so the cache changes how soon the answer is found, never the answer.
 // (Tried for closest() on primary rays too: the front-to-back BVH walk already finds the
-// first hit early, and a cached object that is missed costs a whole evaluation; it was 1%
-// slower on bench/scenes/csg_grid.)
+// first hit early, and a cached object that is missed costs a whole evaluation: csg_grid got
+// slower, bench/README.md at 68b03c3.)
 struct ObjectCache {
     uint32_t node = std::numeric_limits<uint32_t>::max();  // none yet
 };

@@ -28,7 +28,8 @@ struct EvaluateOptions {
     // Evaluation steps beyond this are an error at the place the budget ran out, so no part can
     // hang the evaluator or take all memory. A step is about one expression node, loop
     // iteration, or list element or character produced or walked (a statement counts 64, a
-    // function call 8); 10^8 steps take 2 to 15 seconds and at most about 500 MB.
+    // function call 8). The budget bounds a run's time and memory to what an ordinary
+    // machine affords (bench/README.md, the evaluator's work budget).
     uint64_t maxSteps = 500'000'000;
     // False: include <f> and use <f> are errors, for evaluating untrusted text (the fuzzer).
     bool allowFiles = true;

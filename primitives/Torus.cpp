@@ -18,9 +18,10 @@
 namespace csg {
 namespace {
 
-// Distance from the z axis. Not std::hypot, whose careful scaling costs ~10x more: the points
-// solved here lie within a few torus sizes of the centre, and a point so far away that
-// x^2 + y^2 overflows gets rho = inf, which still classifies it as outside.
+// Distance from the z axis. Not std::hypot, whose careful scaling showed in a torus render's
+// instructions (bench/README.md, torus section): the points solved here lie within a few torus
+// sizes of the centre, and a point so far away that x^2 + y^2 overflows gets rho = inf, which
+// still classifies it as outside.
 double radial(double x, double y) {
     return std::sqrt(x * x + y * y);
 }

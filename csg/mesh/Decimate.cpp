@@ -46,12 +46,12 @@ constexpr double kGridCellEdges = 4.0;
 // The mesh type the decimation runs on. It asks this type whether a collapse keeps the mesh a
 // 2-manifold (is_collapse_ok), for every candidate halfedge of every re-rated vertex, then
 // asks for a priority. OpenMesh 9.0's TriConnectivity::is_collapse_ok allocates and looks a
-// property up by name on each call (on csg_grid3's grid mesh that was over half of
-// decimation); this one makes the same tests with a mark per vertex that a counter clears, and
-// first the cheap bounds that reject most candidates (the quadric at the kept vertex, the
-// valence cap), so the link condition and the fan run only for the rest. valence and
-// find_halfedge shadow OpenMesh's out-of-line versions. Walks around a vertex step from one
-// outgoing halfedge to the next by OpenMesh's inline cw_rotated_halfedge_handle (the next
+// property up by name on each call (on csg_grid3's grid mesh that dominated decimation:
+// bench/README.md, where simplification's time went); this one makes the same tests with a mark per
+// vertex that a counter clears, and first the cheap bounds that reject most candidates (the quadric
+// at the kept vertex, the valence cap), so the link condition and the fan run only for the rest.
+// valence and find_halfedge shadow OpenMesh's out-of-line versions. Walks around a vertex step from
+// one outgoing halfedge to the next by OpenMesh's inline cw_rotated_halfedge_handle (the next
 // halfedge of the opposite one).
 class OmMesh : public OpenMesh::TriMesh_ArrayKernelT<SimplifyTraits> {
 public:
@@ -432,8 +432,9 @@ private:
         };
         std::sort(candidates_.begin(), candidates_.end(), byId);
         std::sort(fan_.begin(), fan_.end());
-        // Their triangles are scattered in memory: ask for all of them before testing any (5 %
-        // less CPU time on csg_grid's mesh at T = 0.2).
+        // Their triangles are scattered in memory and their cache misses dominate the check:
+        // ask for all of them before testing any (bench/README.md, self-intersections in
+        // simplification).
         for (const BoxGrid::Entry& e : candidates_) __builtin_prefetch(&faceTriangles_[e.id].n);
         uint32_t last = UINT32_MAX;
         for (const BoxGrid::Entry& e : candidates_) {

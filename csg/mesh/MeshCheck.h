@@ -54,7 +54,8 @@ struct SelfIntersections {
 SelfIntersections findSelfIntersections(const TriangleMesh& mesh, double contactRel,
                                         int threads = 0);
 SelfIntersections findSelfIntersections(const TriangleMesh& mesh);
-// The same, reusing a BVH over mesh (its build is ~15 % of the work on a million triangles).
+// The same, reusing a BVH over mesh: its build is a fair share of the check on big meshes, and
+// compare needs the same BVH for surface->mesh (bench/README.md, 4a2606e).
 SelfIntersections findSelfIntersections(const TriangleMesh& mesh, const TriangleBvh& bvh,
                                         double contactRel, int threads = 0);
 

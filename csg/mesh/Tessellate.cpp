@@ -52,9 +52,11 @@ void simplifyWithinBudget(const Scene& scene, TessellateResult& result,
     const double worst = worstMeasured(result);
     // A grid mesh over the margin leaves only the flat-only pass. When refinement gave up on
     // the margin (the cell cap, or a stall at thin gaps), that mesh is the largest the part
-    // gets and on csg_grid3 the pass took 2.7x the whole export for 25% fewer triangles: it
-    // cannot pay there, and the grid's mesh is kept. Otherwise (maxPasses ran out, typically at
-    // a coarse tolerance) it can: bracket's flat faces drop 16x.
+    // gets and on csg_grid3 the pass cost more than the whole export for a modest cut in
+    // triangles: it cannot pay there, and the grid's mesh is kept. Otherwise (maxPasses ran
+    // out, typically at a coarse tolerance) it can: bracket's flat faces collapse to a small
+    // fraction of its grid triangles (bench/README.md, mesh export vs OpenSCAD and the
+    // tolerance sweeps).
     if (worst > target && (result.capped || result.stalled)) return;
     // Each try: its budget, and the bound its measurements are held to (the flat-only pass
     // leaves the surface where it was, so it is held to T, not to the margin).

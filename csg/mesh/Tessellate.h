@@ -56,16 +56,17 @@ struct TessellateOptions {
     // DualContour.h, flat to tol::kOctreeFlatFraction T): far fewer triangles on flat and gently
     // curved faces, fine cells at creases, thin gaps and curved patches. Off by default: blocks
     // next to folds are split in further rounds (no self-intersections on the samples and
-    // octree_test's random parts), which on csg_grid3 (T = 0.028) costs 1.3-1.5x the uniform
-    // export's time for 46 % fewer triangles (its GLB there: 0 self-intersections since the
-    // simplifier's and the unfolding's fixes, bench/README.md).
+    // octree_test's random parts), and on csg_grid3 those rounds cost clearly more export time
+    // than the uniform contour's for its fewer triangles (bench/README.md, the adaptive octree
+    // and the unfolding step; its GLB there: 0 self-intersections since the simplifier's and
+    // the unfolding's fixes).
     bool adaptive = false;
     bool simplify = true;  // coarsen flat regions after the grid passes (Simplify.h)
     // Grid meshes larger than this are not simplified (0: no limit). Decimation (in slabs on
     // all workers, then once over the whole) and its re-measurement both ways cost more than
-    // the grid passes on big meshes: csg_grid3 at T = 0.028 (1.8 M grid triangles, quiet
-    // two-core machine) exports in 4.0 s as the grid made it and in 10.9 s simplified to 114k
-    // triangles (before the octree; with it the grid mesh has 1.02 M triangles, still over).
+    // the grid passes on big meshes: csg_grid3 at T = 0.028, over the limit with or without the
+    // octree, exports simplified in several times the grid mesh's time (bench/README.md,
+    // csg_grid3 against OpenSCAD at OpenSCAD's own faceting error).
     // `csgray export --simplify` lifts the limit.
     uint64_t simplifyMaxTriangles = 1'000'000;
     int threads = 0;  // 0: all cores

@@ -198,7 +198,8 @@ static int quarticRoots(const Polynomial& input, double* roots, bool* verified, 
             // the sign of the other factor there (the pair's own factor is positive at x0); a
             // provably opposite sign means lost real roots. Comparing with the leading
             // coefficient alone would reject every pair whose real part lies between the other
-            // factor's real roots (a quarter of the torus rays of bench/scenes/torus_mirror).
+            // factor's real roots (every line through a torus's hole: many of torus_mirror's
+            // rays, bench/README.md at 68b03c3).
             const double x0 = -0.5 * fa;
             const double other = (x0 + f[2 - 2 * k]) * x0 + f[3 - 2 * k];
             double bound;

@@ -4,8 +4,8 @@
 // thp:always: jemalloc advises all its memory onto transparent huge pages (MADV_HUGEPAGE, which
 // the kernel honours in its "madvise" and "always" modes), so first touching fresh memory costs
 // a page fault per 2 MiB instead of per 4 KiB. Mesh export fills and grows arrays of hundreds of
-// megabytes: ../shared/peers/csg_grid3.scad at T = 0.028 took 245,919 faults with glibc's malloc
-// (1.7 s of kernel time on a KVM guest), 6,060 with this, and 7.48 -> 5.52 s (bench/README.md).
+// megabytes, and a fault is costly on a virtual machine: on csg_grid3 this cut the export's
+// faults and its time markedly (bench/README.md, csgray's heap on huge pages).
 // glibc's malloc can do the same only when told by the GLIBC_TUNABLES environment variable.
 // metadata_thp:auto: jemalloc's own metadata too, once it grows large.
 extern "C" {

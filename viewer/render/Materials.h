@@ -37,9 +37,9 @@ ShadingMaterial shadingMaterial(const Material& m);
 inline constexpr uint32_t kMaxSquaringExponent = 1024;
 
 // The Blinn-Phong highlight cos^shininess for cos in [0, 1]. A whole exponent (the usual
-// case) is raised by squaring, a few multiplications instead of std::pow's ~2 % of
-// bench/scenes/csg_grid's render; each squaring doubles the relative error, so it stays below
-// shininess * 2^-53 (1e-13 at the largest), far below a float pixel's 2^-24.
+// case) is raised by squaring, a few multiplications instead of a std::pow call, which showed
+// in csg_grid's profile (bench/README.md at dabd601); each squaring doubles the relative error, so
+// it stays below shininess * 2^-53 (1e-13 at the largest), far below a float pixel's 2^-24.
 inline double highlight(double cos, const ShadingMaterial& s) {
     uint32_t e = s.wholeShininess;
     if (e == 0) return std::pow(cos, s.shininess);

@@ -13,15 +13,10 @@ namespace viewer::render {
 
 namespace {
 
-// libdeflate's level 2, the fastest in time here. csg_grid at 1600x1600 (7.68 MB of filtered
-// rows), compressing alone: instructions (callgrind), thread CPU time (median of 31 interleaved
-// runs on this project's 2-core AMD EPYC machine, 2026-11-22) and size:
-//   zlib level 1 (libpng's before): 246 M, 19.0 ms, 566 kB
-//   libdeflate 1: 126 M, 21.3 ms, 497 kB      libdeflate 2: 238 M, 15.2 ms, 481 kB
-//   libdeflate 3: 243 M, 16.4 ms, 475 kB      libdeflate 4: 248 M, 17.3 ms, 471 kB
-//   libdeflate 5: 272 M, 19.6 ms, 452 kB      libdeflate 6: 300 M, 24.5 ms, 444 kB
-// Level 1 runs half the instructions of level 2 yet takes longer (not investigated); CPU time
-// is what render is judged by, so it decided.
+// libdeflate's level 2: of zlib's level 1 and libdeflate's levels 1-6 it compressed csg_grid's
+// 1600x1600 rows in the least CPU time, with a smaller file than zlib's. Level 1 runs fewer
+// instructions yet takes longer (not investigated); CPU time is what render is judged by, so
+// it decided (bench/README.md, the image output path after 9546402, has every level's figures).
 constexpr int kDeflateLevel = 2;
 
 // The compressed stream is cut into IDAT chunks of at most this many bytes. Any size up to
@@ -56,8 +51,8 @@ bool writeChunk(std::FILE* stream, const char (&type)[5], const uint8_t* data, s
 }
 
 // out[i] = current[i] - above[i] (mod 256). The fixed-size blocks through a local array let
-// the compiler vectorize at -O2 without an overlap check (out is a third buffer), 32 bytes in
-// ~14 instructions instead of ~7 per byte.
+// the compiler vectorize at -O2 without an overlap check (out is a third buffer): a block
+// takes a few vector instructions instead of several per byte (bench/README.md).
 void upFilterRow(uint8_t* out, const uint8_t* current, const uint8_t* above, size_t size) {
     constexpr size_t kBlock = 32;
     size_t i = 0;

@@ -1,6 +1,7 @@
 // SDL2 for `csgray view`, loaded when the window is wanted rather than when csgray starts:
-// linking it made every command (render, probe, export, ...) load SDL's ~45 libraries (X11,
-// Wayland, PulseAudio, D-Bus, codecs), ~6 ms of CPU per process that only the viewer uses.
+// linking it made every command (render, probe, export, ...) load SDL's dozens of libraries
+// (X11, Wayland, PulseAudio, D-Bus, codecs), start-up CPU that only the viewer needs
+// (bench/README.md, csgray view).
 // SDL's headers still give the types and constants; its functions are called through the
 // table, with SDL's own signatures.
 #pragma once

@@ -30,7 +30,8 @@ double threadCpuMilliseconds() {
 
 void ViewWindow::prepareProcess() {
     // SDL opens an X input method for text input, and Xlib then parses the locale's whole
-    // Compose table (en_US.UTF-8: thousands of lines): 11 of SDL_Init's 15 ms of CPU here.
+    // Compose table (en_US.UTF-8: thousands of lines), most of SDL_Init's CPU (bench/README.md,
+    // csgray view).
     // The window reads keys, never composed text, so an empty table loses nothing. A
     // compose file the user chose is kept.
     setenv("XCOMPOSEFILE", "/dev/null", 0);
@@ -38,11 +39,12 @@ void ViewWindow::prepareProcess() {
 
 ViewWindow::ViewWindow() {
     // What the window draws is one texture stretched by nearest neighbour and a few hundred
-    // rectangles: SDL's software renderer presents that in about a millisecond at 800x600 and
-    // is ready in under one, where its OpenGL renderer took 120-200 ms to create under Xvfb
-    // (Mesa's llvmpipe) and compiled shaders on the first present. So: software, straight to
-    // the X11 framebuffer (no GL window texture behind it). SDL_RENDER_DRIVER and
-    // SDL_FRAMEBUFFER_ACCELERATION in the environment still win over these hints.
+    // rectangles: SDL's software renderer presents that quickly and is ready at once, where its
+    // OpenGL renderer took longer to create under Xvfb (Mesa's llvmpipe) than the rest of the
+    // start-up and compiled shaders on the first present (bench/README.md, csgray view). So:
+    // software, straight to the X11 framebuffer (no GL window texture behind it).
+    // SDL_RENDER_DRIVER and SDL_FRAMEBUFFER_ACCELERATION in the environment still win over
+    // these hints.
     sdl().SDL_SetHint(SDL_HINT_RENDER_DRIVER, "software");
     sdl().SDL_SetHint(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0");
     // A preview window has no reason to keep the screen awake (OpenSCAD's does not either);
