@@ -23,6 +23,7 @@
 #include <random>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "io/Evaluate.h"
 #include "tests/SeededRng.h"
@@ -450,7 +451,7 @@ TEST(Output, ExrHoldsTheLinearFloatsAndWritesAtomically) {
     const Imath::Box2i window = in.header().dataWindow();
     ASSERT_EQ(window.max.x - window.min.x + 1, 40);
     ASSERT_EQ(window.max.y - window.min.y + 1, 30);
-    csg::HugePageVector<float> rgb(size_t(40) * 30 * 3, -1.0f);
+    std::vector<float> rgb(size_t(40) * 30 * 3, -1.0f);
     Imf::FrameBuffer frame;
     const char* names[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c)
@@ -469,7 +470,7 @@ TEST(Output, ExrHoldsTheLinearFloatsAndWritesAtomically) {
 TEST(Output, FastSrgbEncodingAgreesWithTheTransferFunction) {
     // Every float near each code boundary, a sweep of [0, 1], and out-of-range values.
     LinearImage image;
-    csg::HugePageVector<float>& v = image.rgb;
+    std::vector<float>& v = image.rgb;
     for (int k = 0; k < 256; ++k) {
         float f = float(srgbToLinear((k + 0.5) / 255.0));
         for (int i = 0; i < 8; ++i) f = std::nextafter(f, 0.0f);

@@ -69,9 +69,9 @@ void upFilterRow(uint8_t* out, const uint8_t* current, const uint8_t* above, siz
 // all-zero row above it would give the same bytes). Up alone instead of an adaptive choice
 // among the five filters per row: libpng's adaptive choice cost more than the compression on
 // csg_grid at 1600x1600 and gave a slightly larger file.
-csg::HugePageVector<uint8_t> filterRows(const Rgb8Image& image) {
+std::vector<uint8_t> filterRows(const Rgb8Image& image) {
     const size_t stride = size_t(image.width) * 3;
-    csg::HugePageVector<uint8_t> rows;
+    std::vector<uint8_t> rows;
     rows.resize(size_t(image.height) * (stride + 1));  // every byte is written below
     for (int y = 0; y < image.height; ++y) {
         uint8_t* out = rows.data() + size_t(y) * (stride + 1);
@@ -96,13 +96,13 @@ std::string writePng(const std::filesystem::path& path, const Rgb8Image& image) 
         return prefix + "the image has no pixels";
 
     // Compress before creating the file, so that running out of memory leaves nothing behind.
-    const csg::HugePageVector<uint8_t> filtered = filterRows(image);
+    const std::vector<uint8_t> filtered = filterRows(image);
     const std::unique_ptr<libdeflate_compressor, CompressorDeleter> compressor(
         libdeflate_alloc_compressor(kDeflateLevel));
     if (!compressor) return prefix + "out of memory";
     const size_t bound = libdeflate_zlib_compress_bound(compressor.get(), filtered.size());
-    csg::HugePageVector<uint8_t> compressed;
-    compressed.resize(bound);  // unset: deflate writes only what it needs of its bound
+    std::vector<uint8_t> compressed;
+    compressed.resize(bound);  // deflate writes only what it needs of its bound
     const size_t compressedSize = libdeflate_zlib_compress(
         compressor.get(), filtered.data(), filtered.size(), compressed.data(), bound);
     if (compressedSize == 0) return prefix + "compression failed";  // not within its own bound

@@ -6,8 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
-
-#include "csg/HugePages.h"
+#include <vector>
 
 namespace viewer::render {
 
@@ -15,7 +14,7 @@ namespace viewer::render {
 struct Rgb8Image {
     int width = 0;
     int height = 0;
-    csg::HugePageVector<uint8_t> pixels;  // size width * height * 3
+    std::vector<uint8_t> pixels;  // size width * height * 3
 
     Rgb8Image() = default;
     Rgb8Image(int w, int h) : width(w), height(h), pixels(size_t(w) * size_t(h) * 3, 0) {}

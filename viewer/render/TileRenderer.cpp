@@ -48,8 +48,9 @@ RenderResult renderImage(const csg::Scene& scene, const EffectsPlan& plan,
     RenderResult result;
     const int width = settings.width, height = settings.height;
     const bool srgb = settings.store == PixelStore::Srgb8;
-    // Left unset: every pixel is written before the image is used (an interrupted render's
-    // image is not).
+    // Every pixel is written before the image is used (an interrupted render's image is not);
+    // resize's zero fill of fresh memory costs nothing measurable next to the render
+    // (bench/README.md, image buffers on plain vectors).
     const size_t channels = size_t(width) * size_t(height) * 3;
     if (srgb) {
         result.srgb.width = width;

@@ -6,7 +6,6 @@
 #include <atomic>
 #include <vector>
 
-#include "csg/HugePages.h"
 #include "csg/Scene.h"
 #include "viewer/render/EffectsPlan.h"
 #include "viewer/render/PngWriter.h"
@@ -29,10 +28,10 @@ struct ImageSettings {
     PixelStore store = PixelStore::LinearFloat;
 };
 
-// Linear RGB, row-major, top row first, 3 floats per pixel (on huge pages: csg/HugePages.h).
+// Linear RGB, row-major, top row first, 3 floats per pixel.
 struct LinearImage {
     int width = 0, height = 0;
-    csg::HugePageVector<float> rgb;
+    std::vector<float> rgb;
 };
 
 struct RenderResult {
