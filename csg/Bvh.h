@@ -1,6 +1,5 @@
-// Bounding volume hierarchy over a set of boxes (a union's children): built as a binary tree by
-// the binned surface area heuristic, then collapsed into a 4-wide tree (BvhNode) whose four
-// slot boxes are tested in one go.
+// The BVH over a union's bounded children: primitives/base/WideBvh.h's builder with csg's leaf
+// size and costs, in the scene's children array.
 #pragma once
 
 #include <span>
@@ -9,12 +8,6 @@
 #include "csg/Compiled.h"
 
 namespace csg {
-
-// No BVH is deeper than this (2^48 leaves would be needed to reach it by median splits); the
-// wide tree is no deeper than the binary one it is collapsed from.
-inline constexpr int kBvhMaxDepth = 64;
-// A leaf slot holds at most this many children (more only where their centres coincide).
-inline constexpr uint32_t kBvhMaxLeafCount = 4;
 
 // Builds a BVH over items (indices into itemNodes, whose bounds are finite and non-empty; at
 // least two), appending its nodes to `nodes`, and reorders `items` so every leaf slot covers a

@@ -4,9 +4,9 @@
 #include <cstdint>
 #include <limits>
 
-#include "csg/Bounds4.h"
 #include "csg/Tree.h"
 #include "primitives/base/Bounds.h"
+#include "primitives/base/WideBvh.h"
 
 namespace csg {
 
@@ -91,21 +91,8 @@ struct CompiledNode {
     uint32_t ball = kNoNode;
 };
 
-// A node of the 4-wide BVH over a union's bounded children: up to four slots, each a child
-// node of this BVH or a leaf, a run of the union's children. The slots' boxes are stored by
-// axis and slot, so that one clipToBoxes (Bounds4.h) tests all four. A node is 256 bytes
-// (221 of fields), four cache lines, aligned so that it never straddles a fifth.
-struct alignas(64) BvhNode {
-    Bounds4 boxes;              // slot k's box is lane k; unused lanes are masked out
-    uint32_t slot[4] = {};      // leaf: index into Scene::children_ of its first child; else
-                                // the child node's index in Scene::bvh_
-    uint8_t leafCount[4] = {};  // children in a leaf slot (1..kBvhMaxLeafCount); 0: a node
-    uint8_t slots = 0;          // slots in use (1..4), the first ones
-    // Per direction octant (bit a: d[a] < 0), the slots nearest first, two bits each: the
-    // order the binary tree's splits give, so the walk needs no sort.
-    uint8_t order[8] = {};
-
-    unsigned usedMask() const { return (1u << slots) - 1u; }
-};
+// The 4-wide BVH over a union's bounded children is made of BvhNode
+// (primitives/base/WideBvh.h): a leaf slot is a run of Scene::children_, a node slot an index
+// into Scene::bvh_.
 
 }  // namespace csg

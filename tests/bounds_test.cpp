@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "csg/Bounds4.h"
+#include "primitives/base/Bounds4.h"
 #include "tests/SeededRng.h"
 
 namespace csg {

@@ -11,6 +11,7 @@
 
 #include "csg/mesh/TriangleMesh.h"
 #include "primitives/base/Bounds.h"
+#include "primitives/base/TrianglePoint.h"  // closestPointOnTriangle, for its users
 
 namespace csg {
 
@@ -70,8 +71,5 @@ private:
     // (count, nodeCount(count)) of every subtree size, ascending; only while building.
     std::vector<std::pair<uint32_t, uint32_t>> nodeCounts_;
 };
-
-// The point of triangle (a, b, c) nearest p (of a triangle of zero area: of its edges).
-Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
 }  // namespace csg

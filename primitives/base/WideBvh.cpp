@@ -1,0 +1,220 @@
+// The binned-SAH build and the BVH2 -> BVH4 collapse of primitives/base/WideBvh.h.
+#include "primitives/base/WideBvh.h"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+
+namespace csg {
+namespace {
+
+constexpr int kBins = 16;
+// Below this depth splits fall back to the median, so a walk's fixed stack (kBvhMaxDepth) can
+// never overflow whatever the SAH would choose.
+constexpr int kSahMaxDepth = kBvhMaxDepth - kBvhMedianLevels;
+
+// The binary tree the SAH builds. Interior: the left child follows at index + 1, the right
+// child is at firstOrRight; count == 0. Leaf: items [firstOrRight, firstOrRight + count).
+struct BinaryNode {
+    Bounds3 box;
+    uint32_t firstOrRight = 0;
+    uint32_t count = 0;
+    int axis = 0;  // an interior node's split axis: its left child lies toward -axis
+};
+
+struct Builder {
+    std::span<uint32_t> items;  // indices into boxes, reordered as the tree is built
+    std::span<const Bounds3> boxes;
+    uint32_t maxLeafItems;
+    double traversalCost;
+    std::vector<BinaryNode> nodes;
+
+    uint32_t build(uint32_t lo, uint32_t hi, int depth) {
+        const uint32_t index = static_cast<uint32_t>(nodes.size());
+        nodes.emplace_back();
+        Bounds3 box, centroids;
+        for (uint32_t i = lo; i < hi; ++i) {
+            box.extend(boxes[items[i]]);
+            centroids.extend(boxes[items[i]].center());
+        }
+        nodes[index].box = box;
+        const uint32_t n = hi - lo;
+        if (n <= maxLeafItems) return makeLeaf(index, lo, n);
+
+        // Pick the split plane of least SAH cost over binned centroids on all three axes.
+        int bestAxis = -1, bestBin = 0;
+        double bestCost = static_cast<double>(n);  // cost of a leaf, relative to box area
+        for (int axis = 0; axis < 3 && depth < kSahMaxDepth; ++axis) {
+            const double lo0 = centroids.lo[axis], width = centroids.hi[axis] - lo0;
+            if (!(width > 0.0)) continue;
+            std::array<Bounds3, kBins> binBox;
+            std::array<uint32_t, kBins> binCount{};
+            for (uint32_t i = lo; i < hi; ++i) {
+                const Bounds3& b = boxes[items[i]];
+                const int bin = binOf(b.center()[axis], lo0, width);
+                binBox[bin].extend(b);
+                ++binCount[bin];
+            }
+            // Sweep from the right to get each suffix's area and count, then from the left.
+            std::array<double, kBins> rightArea{};
+            std::array<uint32_t, kBins> rightCount{};
+            Bounds3 acc;
+            uint32_t cnt = 0;
+            for (int b = kBins - 1; b > 0; --b) {
+                acc.extend(binBox[b]);
+                cnt += binCount[b];
+                rightArea[b] = acc.halfArea();
+                rightCount[b] = cnt;
+            }
+            acc = Bounds3{};
+            cnt = 0;
+            const double invArea = 1.0 / std::max(box.halfArea(), 1e-300);
+            for (int b = 0; b < kBins - 1; ++b) {
+                acc.extend(binBox[b]);
+                cnt += binCount[b];
+                if (cnt == 0 || rightCount[b + 1] == 0) continue;
+                const double cost =
+                    traversalCost +
+                    (acc.halfArea() * cnt + rightArea[b + 1] * rightCount[b + 1]) * invArea;
+                if (cost < bestCost) {
+                    bestCost = cost;
+                    bestAxis = axis;
+                    bestBin = b;
+                }
+            }
+        }
+
+        uint32_t mid;
+        if (bestAxis >= 0) {
+            const double lo0 = centroids.lo[bestAxis];
+            const double width = centroids.hi[bestAxis] - lo0;
+            const auto split =
+                std::partition(items.begin() + lo, items.begin() + hi, [&](uint32_t it) {
+                    return binOf(boxes[it].center()[bestAxis], lo0, width) <= bestBin;
+                });
+            mid = static_cast<uint32_t>(split - items.begin());
+        } else if (n <= 4 * maxLeafItems) {
+            return makeLeaf(index, lo, n);  // splitting would not pay
+        } else {
+            // All centroids coincide (or no split pays): halve so depth stays logarithmic.
+            mid = lo + n / 2;
+        }
+        if (mid == lo || mid == hi) mid = lo + n / 2;
+
+        build(lo, mid, depth + 1);
+        const uint32_t right = build(mid, hi, depth + 1);
+        nodes[index].firstOrRight = right;
+        nodes[index].count = 0;
+        nodes[index].axis = bestAxis >= 0 ? bestAxis : 0;
+        return index;
+    }
+
+    static int binOf(double c, double lo0, double width) {
+        const int bin = static_cast<int>(kBins * ((c - lo0) / width));
+        return std::clamp(bin, 0, kBins - 1);
+    }
+
+    uint32_t makeLeaf(uint32_t index, uint32_t lo, uint32_t n) {
+        nodes[index].firstOrRight = lo;
+        nodes[index].count = n;
+        return index;
+    }
+};
+
+// Slot k of a wide node: its box, and the node or the leaf's first child it leads to.
+void setSlot(BvhNode& node, int k, const Bounds3& box, uint32_t target, uint32_t leafCount) {
+    for (int a = 0; a < 3; ++a) {
+        node.boxes.lo[a][k] = box.lo[a];
+        node.boxes.hi[a][k] = box.hi[a];
+    }
+    node.slot[k] = target;
+    node.leafCount[k] = static_cast<uint8_t>(leafCount);
+}
+
+// Collapses the binary tree into 4-wide nodes: a wide node takes a binary node's two children
+// and keeps opening the interior one of largest area among its slots (its two children take
+// its place) until it has four, so the slots a ray is most likely to enter are the ones the
+// wide node resolves at once (the usual BVH2 -> BVH4 collapse, as in Embree).
+struct Collapser {
+    const std::vector<BinaryNode>& binary;
+    uint32_t itemsOffset;
+    std::vector<BvhNode>& wide;
+
+    uint32_t collapse(uint32_t interior) {
+        uint32_t slots[4] = {interior + 1, binary[interior].firstOrRight, 0, 0};
+        int count = 2;
+        while (count < 4) {
+            int open = -1;
+            double openArea = -1.0;
+            for (int k = 0; k < count; ++k) {
+                const BinaryNode& b = binary[slots[k]];
+                if (b.count == 0 && b.box.halfArea() > openArea) {
+                    open = k;
+                    openArea = b.box.halfArea();
+                }
+            }
+            if (open < 0) break;  // only leaves left
+            const uint32_t opened = slots[open];
+            slots[open] = opened + 1;
+            slots[count++] = binary[opened].firstOrRight;
+        }
+
+        const uint32_t index = static_cast<uint32_t>(wide.size());
+        wide.emplace_back();
+        for (unsigned octant = 0; octant < 8; ++octant) {
+            unsigned order = 0;
+            int placed = 0;
+            appendOrder(interior, octant, slots, count, order, placed);
+            wide[index].order[octant] = static_cast<uint8_t>(order);
+        }
+        for (int k = 0; k < count; ++k) {
+            const BinaryNode& b = binary[slots[k]];
+            const uint32_t target = b.count > 0 ? itemsOffset + b.firstOrRight : collapse(slots[k]);
+            setSlot(wide[index], k, b.box, target, b.count);  // after collapse() grew `wide`
+        }
+        wide[index].slots = static_cast<uint8_t>(count);
+        return index;
+    }
+
+    // Appends the slots under binary node b to `order` (two bits each), nearer first for a ray
+    // of the given direction octant (bit a set: d[a] < 0): at each split the side toward which
+    // the ray runs comes second, as the binary walk would visit them.
+    void appendOrder(uint32_t b, unsigned octant, const uint32_t (&slots)[4], int count,
+                     unsigned& order, int& placed) const {
+        for (int k = 0; k < count; ++k) {
+            if (slots[k] == b) {
+                order |= unsigned(k) << (2 * placed++);
+                return;
+            }
+        }
+        const uint32_t left = b + 1, right = binary[b].firstOrRight;
+        const bool leftFirst = (octant >> binary[b].axis & 1u) == 0;
+        appendOrder(leftFirst ? left : right, octant, slots, count, order, placed);
+        appendOrder(leftFirst ? right : left, octant, slots, count, order, placed);
+    }
+};
+
+}  // namespace
+
+uint32_t buildWideBvh(std::span<const Bounds3> boxes, std::vector<uint32_t>& order,
+                      uint32_t itemsOffset, const BvhBuildOptions& options,
+                      std::vector<BvhNode>& nodes) {
+    assert(!boxes.empty() && options.maxLeafItems >= 1 && 4 * options.maxLeafItems <= 255);
+    order.resize(boxes.size());
+    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    Builder builder{order, boxes, options.maxLeafItems, options.traversalCost, {}};
+    builder.nodes.reserve(2 * boxes.size());
+    builder.build(0, static_cast<uint32_t>(boxes.size()), 0);
+    // A root that is a leaf (items too few or all at one centre) is wrapped in one wide node.
+    if (builder.nodes[0].count > 0) {
+        const uint32_t index = static_cast<uint32_t>(nodes.size());
+        BvhNode& node = nodes.emplace_back();
+        setSlot(node, 0, builder.nodes[0].box, itemsOffset, builder.nodes[0].count);
+        node.slots = 1;
+        return index;
+    }
+    Collapser collapser{builder.nodes, itemsOffset, nodes};
+    return collapser.collapse(0);
+}
+
+}  // namespace csg
