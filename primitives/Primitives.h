@@ -14,12 +14,14 @@
 #include "primitives/Cylinder.h"
 #include "primitives/HalfSpace.h"
 #include "primitives/PatchSet.h"
+#include "primitives/Polyhedron.h"
 #include "primitives/Sphere.h"
 #include "primitives/Torus.h"
 
 namespace csg {
 
-using Primitive = std::variant<Sphere, Box, Cylinder, HalfSpace, Torus, AlgebraicSurface, PatchSet>;
+using Primitive =
+    std::variant<Sphere, Box, Cylinder, HalfSpace, Torus, AlgebraicSurface, PatchSet, Polyhedron>;
 
 namespace detail {
 template <class Variant>

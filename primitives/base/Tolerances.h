@@ -422,4 +422,22 @@ inline constexpr double kPatchNormalDegenerateRel = 1e-10;
 // inf - inf = NaN. No part in any unit comes near it (the observable universe is ~1e27 m).
 inline constexpr double kMeshCoordinateMax = 1e30;
 
+// A mesh primitive's edge side, fl(fl(a) - fl(b)) for the exact a - b (primitives/
+// Polyhedron.cpp), has the exact sign when its magnitude exceeds this fraction of |a| + |b|
+// (unit: relative). Why gamma(4): the two products and the difference round once each, an
+// error of at most (2u + u^2)(|a| + |b|) with u = kUlp / 2, and gamma(4) ~ 4u covers it twice;
+// below it the sign is computed exactly (error-free products), so the value only decides how
+// often that slower path runs, never an answer.
+inline constexpr double kEdgeSignFilter = gamma(4);
+
+// A mesh primitive's BVH boxes are each triangle's box widened by this fraction of the mesh's
+// box diagonal on every side (unit: relative). Why: the crossing test decides on the vertices
+// projected into the ray's frame, each coordinate a few roundings (about 8 ulps) of the
+// distance from the ray's origin, which lies on the mesh's box, to the vertex: at most the
+// diagonal. A triangle the test counts as crossed is therefore within ~16 ulps of the diagonal
+// of the exact line, and a box that misses the line by less must not cull it, or the line would
+// lose one crossing of a pair. 1e-12 (~4500 ulps) covers that with a wide margin and is still
+// ~10^9 below any feature a part resolves; it only lets a few more boxes be opened.
+inline constexpr double kMeshBoxMarginRel = 1e-12;
+
 }  // namespace csg::tol

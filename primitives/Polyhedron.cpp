@@ -1,0 +1,633 @@
+// Notation: see primitives/Polyhedron.h. In the sheared ray frame (Woop, Benthin and Wald) a
+// vertex v becomes (x, y, z) with the ray at x = y = 0 and z the ray parameter t at v's depth;
+// an edge's side is E(P, Q) = Q.x P.y - Q.y P.x, positive when the ray passes left of P -> Q.
+#include "primitives/Polyhedron.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "primitives/base/Fma.h"
+#include "primitives/base/Tolerances.h"
+#include "primitives/base/TrianglePoint.h"
+#include "primitives/solvers/LinePoint.h"
+
+namespace csg {
+
+namespace {
+
+// ---- the crossing test ----
+
+// The ray in its sheared frame: axis kz is the largest component of d, kx and ky the others in
+// an order that keeps the frame right-handed (swapped when d[kz] < 0, so a triangle's winding
+// reads the same).
+struct ShearedRay {
+    Vec3 o;
+    int kx, ky, kz;
+    double sx, sy, sz;
+
+    ShearedRay(const Vec3& origin, const Vec3& d) : o(origin) {
+        const Vec3 a = glm::abs(d);
+        kz = a.x >= a.y ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2);
+        kx = (kz + 1) % 3;
+        ky = (kx + 1) % 3;
+        if (d[kz] < 0.0) std::swap(kx, ky);
+        sx = d[kx] / d[kz];
+        sy = d[ky] / d[kz];
+        sz = 1.0 / d[kz];
+    }
+};
+
+struct Projected {
+    double x, y, z;
+};
+
+// v in the ray's frame. The same operations for every triangle that shares v, so an edge's two
+// triangles see the same endpoints, bit for bit.
+inline Projected project(const ShearedRay& r, const Vec3& v) {
+    const double ax = v[r.kx] - r.o[r.kx], ay = v[r.ky] - r.o[r.ky], az = v[r.kz] - r.o[r.kz];
+    return {ax - r.sx * az, ay - r.sy * az, r.sz * az};
+}
+
+// The sign of an exact sum of four doubles: Shewchuk's grow-expansion (with zero elimination)
+// turns them into a non-overlapping expansion whose largest component carries the sign.
+int signOfExactSum(const double (&terms)[4]) {
+    double e[4];
+    int n = 0;
+    for (const double b : terms) {
+        double q = b;
+        int m = 0;
+        for (int i = 0; i < n; ++i) {
+            const double s = e[i] + q;  // Knuth's two-sum: s + err == e[i] + q exactly
+            const double bv = s - e[i];
+            const double err = (e[i] - (s - bv)) + (q - bv);
+            if (err != 0.0) e[m++] = err;
+            q = s;
+        }
+        if (q != 0.0) e[m++] = q;
+        n = m;
+    }
+    return n == 0 ? 0 : (e[n - 1] > 0.0 ? 1 : -1);
+}
+
+// The side of edge P -> Q where the filter could not tell: the exact determinant from
+// error-free products, and where it is zero the simulation of simplicity's answer for the ray
+// moved by (eps, eps^2): E = E0 + eps (Q.y - P.y) + eps^2 (P.x - Q.x). Antisymmetric in
+// (P, Q), so the edge's two triangles always see opposite sides. 0 only for an edge whose
+// ends project to one point (its triangles then have no projected area: never crossed).
+[[gnu::noinline]] int exactEdgeSign(const Projected& p, const Projected& q) {
+    const double a = q.x * p.y, b = q.y * p.x;
+    const double errA = fusedMultiplyAdd(q.x, p.y, -a), errB = fusedMultiplyAdd(q.y, p.x, -b);
+    if (const int s = signOfExactSum({a, -b, errA, -errB}); s != 0) return s;
+    if (q.y != p.y) return q.y > p.y ? 1 : -1;
+    if (p.x != q.x) return p.x > q.x ? 1 : -1;
+    return 0;
+}
+
+// The side of edge P -> Q when the rounded determinant is certainly of the true sign, else 0
+// ("ask exactEdgeSign"): e = fl(fl(a) - fl(b)) is within tol::kEdgeSignFilter (|a| + |b|) of
+// the exact a - b.
+inline int filteredSign(double a, double b, double e) {
+    if (std::abs(e) > tol::kEdgeSignFilter * (std::abs(a) + std::abs(b))) return e > 0.0 ? 1 : -1;
+    return 0;
+}
+
+// Whether the line crosses triangle (A, B, C) by the rule of Polyhedron.h, and where (t).
+inline bool crosses(const Projected& A, const Projected& B, const Projected& C, double& t) {
+    // Step 1: the three edge functions, U of B -> C, V of C -> A, W of A -> B.
+    const double ua = C.x * B.y, ub = C.y * B.x, U = ua - ub;
+    const double va = A.x * C.y, vb = A.y * C.x, V = va - vb;
+    const double wa = B.x * A.y, wb = B.y * A.x, W = wa - wb;
+    int su = filteredSign(ua, ub, U), sv = filteredSign(va, vb, V), sw = filteredSign(wa, wb, W);
+    // Step 2: two certain signs that differ: the ray passes outside (the common case).
+    const bool anyPositive = su > 0 || sv > 0 || sw > 0, anyNegative = su < 0 || sv < 0 || sw < 0;
+    if (anyPositive && anyNegative) return false;
+    // Step 3: the uncertain ones exactly, with the tie-break.
+    if (su == 0) su = exactEdgeSign(B, C);
+    if (sv == 0) sv = exactEdgeSign(C, A);
+    if (sw == 0) sw = exactEdgeSign(A, B);
+    if (su == 0 || su != sv || sv != sw) return false;
+    // Step 4: t from the barycentric weights; where they lost all their digits (a ray at a
+    // vertex of a sliver), the mean depth. Clamped to the corners' depths, which bound it.
+    const double det = U + V + W;
+    t = (U * A.z + V * B.z + W * C.z) / det;
+    if (!std::isfinite(t) || (det > 0.0) != (su > 0)) t = (A.z + B.z + C.z) / 3.0;
+    t = std::clamp(t, std::min({A.z, B.z, C.z}), std::max({A.z, B.z, C.z}));
+    return true;
+}
+
+// ---- building ----
+
+// The direction inside() and the orientation test cast along: no symmetry of a test part lines
+// up with it, so a ray along it rarely runs through an edge (and the rule handles it if it
+// does).
+const Vec3 kInsideDirection = glm::normalize(Vec3(0.5711, 0.6289, 0.5277));
+
+// Mesh BVH: up to two triangles per leaf slot, a box test costing as much as a triangle test
+// (bench/README.md, polyhedron table: the best of 1, 2 and 4 per leaf at 10^4..10^6 triangles).
+constexpr BvhBuildOptions kMeshBvhOptions{.maxLeafItems = 2, .traversalCost = 1.0};
+
+// Faces of more corners than this that are not convex in their projection are cut into a fan
+// rather than ear-clipped (ear clipping is quadratic in the corners); under crossing parity a
+// fan covers a planar polygon exactly (its folded triangles cancel in pairs).
+constexpr size_t kMaxEarClipCorners = 4096;
+
+// Welds points of equal position (-0 == +0): returns each point's welded index and leaves the
+// distinct positions in `points`, in order of first appearance.
+std::vector<uint32_t> weld(std::vector<Vec3>& points) {
+    for (Vec3& p : points) p += Vec3(0.0);  // -0 + 0 = +0: one key per position
+    std::vector<uint32_t> byPosition(points.size());
+    std::iota(byPosition.begin(), byPosition.end(), 0u);
+    auto less = [&](uint32_t a, uint32_t b) {
+        const Vec3 &p = points[a], &q = points[b];
+        if (p.x != q.x) return p.x < q.x;
+        if (p.y != q.y) return p.y < q.y;
+        if (p.z != q.z) return p.z < q.z;
+        return a < b;
+    };
+    std::sort(byPosition.begin(), byPosition.end(), less);
+    // Each run of equal positions maps to its first point (lowest index).
+    std::vector<uint32_t> firstOf(points.size());
+    for (size_t i = 0; i < byPosition.size(); ++i) {
+        const bool same = i > 0 && points[byPosition[i]] == points[byPosition[i - 1]];
+        firstOf[byPosition[i]] = same ? firstOf[byPosition[i - 1]] : byPosition[i];
+    }
+    std::vector<uint32_t> welded(points.size());
+    std::vector<Vec3> distinct;
+    for (size_t i = 0; i < points.size(); ++i) {
+        if (firstOf[i] == i) {
+            welded[i] = static_cast<uint32_t>(distinct.size());
+            distinct.push_back(points[i]);
+        } else {
+            welded[i] = welded[firstOf[i]];
+        }
+    }
+    points = std::move(distinct);
+    return welded;
+}
+
+using Triangle = std::array<uint32_t, 3>;
+
+// The polygon's corners in 2-D: the two axes other than the Newell normal's largest, in cyclic
+// order, so the polygon's turn there has the sign of that normal component.
+struct PlanarPolygon {
+    std::vector<Vec2> at;
+    double orientation = 1.0;  // sign of the projected area
+};
+
+PlanarPolygon projectFace(const std::vector<Vec3>& points, const std::vector<uint32_t>& face) {
+    Vec3 n(0.0);
+    for (size_t i = 0; i < face.size(); ++i) {
+        const Vec3 &p = points[face[i]], &q = points[face[(i + 1) % face.size()]];
+        n += Vec3((p.y - q.y) * (p.z + q.z), (p.z - q.z) * (p.x + q.x), (p.x - q.x) * (p.y + q.y));
+    }
+    const Vec3 a = glm::abs(n);
+    const int drop = a.x >= a.y ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2);
+    const int u = (drop + 1) % 3, v = (drop + 2) % 3;
+    PlanarPolygon poly;
+    poly.orientation = n[drop] < 0.0 ? -1.0 : 1.0;
+    for (const uint32_t c : face) poly.at.emplace_back(points[c][u], points[c][v]);
+    return poly;
+}
+
+double cross2(const Vec2& a, const Vec2& b, const Vec2& c) {
+    return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+// Convex (no turn against the orientation) and winding once: the polygon's edge directions
+// sweep 360 degrees, so its x coordinate changes direction at most twice.
+bool isConvex(const PlanarPolygon& poly) {
+    const size_t k = poly.at.size();
+    int flips = 0;
+    double lastDx = 0.0;
+    for (size_t i = 0; i < k; ++i) {
+        const Vec2 &a = poly.at[(i + k - 1) % k], &b = poly.at[i], &c = poly.at[(i + 1) % k];
+        if (cross2(a, b, c) * poly.orientation < 0.0) return false;
+        const double dx = c.x - b.x;
+        if (dx != 0.0) {
+            if (lastDx != 0.0 && (dx > 0.0) != (lastDx > 0.0)) ++flips;
+            lastDx = dx;
+        }
+    }
+    return flips <= 2;
+}
+
+// Ear clipping in the projection: cut a corner that turns with the polygon and holds no other
+// corner; where rounding leaves none, the first convex corner (else the first corner) is cut,
+// so it always ends.
+void earClip(const std::vector<uint32_t>& face, const PlanarPolygon& poly,
+             std::vector<Triangle>& out) {
+    const size_t k = face.size();
+    std::vector<uint32_t> next(k), prev(k);
+    for (size_t i = 0; i < k; ++i)
+        next[i] = uint32_t((i + 1) % k), prev[i] = uint32_t((i + k - 1) % k);
+    const double s = poly.orientation;
+    auto isEar = [&](uint32_t i) {
+        const Vec2 &a = poly.at[prev[i]], &b = poly.at[i], &c = poly.at[next[i]];
+        if (!(cross2(a, b, c) * s > 0.0)) return false;
+        for (uint32_t j = next[next[i]]; j != prev[i]; j = next[j]) {
+            const Vec2& p = poly.at[j];
+            if (p == a || p == b || p == c) continue;
+            if (cross2(a, b, p) * s >= 0.0 && cross2(b, c, p) * s >= 0.0 &&
+                cross2(c, a, p) * s >= 0.0)
+                return false;
+        }
+        return true;
+    };
+    uint32_t at = 0;
+    for (size_t left = k; left > 3; --left) {
+        uint32_t cut = at, convex = UINT32_MAX;
+        bool found = false;
+        for (size_t tries = 0; tries < left; ++tries, cut = next[cut]) {
+            if (isEar(cut)) {
+                found = true;
+                break;
+            }
+            const Vec2 &a = poly.at[prev[cut]], &b = poly.at[cut], &c = poly.at[next[cut]];
+            if (convex == UINT32_MAX && cross2(a, b, c) * s > 0.0) convex = cut;
+        }
+        if (!found) cut = convex != UINT32_MAX ? convex : at;
+        out.push_back({face[prev[cut]], face[cut], face[next[cut]]});
+        next[prev[cut]] = next[cut];
+        prev[next[cut]] = prev[cut];
+        at = next[cut];
+    }
+    out.push_back({face[prev[at]], face[at], face[next[at]]});
+}
+
+// Triangles of the faces, in welded indices; faces of fewer than 3 distinct corners dropped.
+std::vector<Triangle> triangulate(const std::vector<Vec3>& points,
+                                  const std::vector<uint32_t>& welded, const PolygonFaces& faces,
+                                  uint64_t& dropped) {
+    std::vector<Triangle> out;
+    out.reserve(faces.corners.size() >= 2 * faces.size() ? faces.corners.size() - 2 * faces.size()
+                                                         : faces.size());
+    std::vector<uint32_t> face;
+    for (size_t f = 0; f < faces.size(); ++f) {
+        // Step 1: welded corners, repeats in a row (and around) removed.
+        face.clear();
+        for (uint32_t i = faces.faceStart[f]; i < faces.faceStart[f + 1]; ++i) {
+            const uint32_t c = welded[faces.corners[i]];
+            if (face.empty() || face.back() != c) face.push_back(c);
+        }
+        while (face.size() > 1 && face.back() == face.front()) face.pop_back();
+        if (face.size() < 3) {
+            ++dropped;
+            continue;
+        }
+        if (face.size() == 3) {
+            out.push_back({face[0], face[1], face[2]});
+            continue;
+        }
+        // Step 2: a fan where the projection is convex, else ear clipping.
+        const PlanarPolygon poly = projectFace(points, face);
+        if (isConvex(poly) || face.size() > kMaxEarClipCorners) {
+            for (size_t i = 1; i + 1 < face.size(); ++i)
+                out.push_back({face[0], face[i], face[i + 1]});
+        } else {
+            earClip(face, poly, out);
+        }
+    }
+    // A triangle with a repeated corner has no area and cancels out of every edge count.
+    const auto repeated = [](const Triangle& t) {
+        return t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+    };
+    dropped += static_cast<uint64_t>(std::count_if(out.begin(), out.end(), repeated));
+    out.erase(std::remove_if(out.begin(), out.end(), repeated), out.end());
+    return out;
+}
+
+// Edge statistics, and the sheets: triangles joined across edges of exactly two triangles,
+// each turned (flip) so that the pair runs the edge in opposite directions. Returns each
+// triangle's sheet; flip[i] says whether triangle i was turned relative to its sheet's first.
+std::vector<uint32_t> findSheets(const std::vector<Triangle>& triangles, MeshEdges& stats,
+                                 std::vector<uint8_t>& flip, uint32_t& sheetCount) {
+    const size_t n = triangles.size();
+    // Step 1: every triangle's three edges, as (low, high) keys, sorted.
+    struct EdgeUse {
+        uint64_t key;
+        uint32_t triangle;
+        bool forward;  // runs low -> high
+    };
+    std::vector<EdgeUse> uses;
+    uses.reserve(3 * n);
+    for (uint32_t i = 0; i < n; ++i)
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t a = triangles[i][k], b = triangles[i][(k + 1) % 3];
+            uses.push_back({uint64_t(std::min(a, b)) << 32 | std::max(a, b), i, a < b});
+        }
+    std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
+        return x.key < y.key || (x.key == y.key && x.triangle < y.triangle);
+    });
+    // Step 2: count, and link the triangles of two-triangle edges.
+    struct Link {
+        uint32_t other;
+        bool sameWay;  // both run the edge the same way: one of them must turn
+    };
+    std::vector<uint32_t> linkStart(n + 1, 0);
+    std::vector<std::pair<uint32_t, Link>> links;
+    for (size_t i = 0; i < uses.size();) {
+        size_t j = i;
+        while (j < uses.size() && uses[j].key == uses[i].key) ++j;
+        const size_t count = j - i;
+        ++stats.edges;
+        if (count % 2 == 1) ++stats.openEdges;
+        if (count > 2) ++stats.manyFaces;
+        if (count == 2) {
+            const bool sameWay = uses[i].forward == uses[i + 1].forward;
+            if (sameWay) ++stats.misoriented;
+            links.push_back({uses[i].triangle, {uses[i + 1].triangle, sameWay}});
+            links.push_back({uses[i + 1].triangle, {uses[i].triangle, sameWay}});
+        }
+        i = j;
+    }
+    uses = {};
+    std::sort(links.begin(), links.end(),
+              [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (const auto& l : links) ++linkStart[l.first + 1];
+    for (size_t i = 0; i < n; ++i) linkStart[i + 1] += linkStart[i];
+    // Step 3: breadth first over the links, each sheet from its lowest triangle.
+    constexpr uint32_t kNone = UINT32_MAX;
+    std::vector<uint32_t> sheet(n, kNone);
+    flip.assign(n, 0);
+    sheetCount = 0;
+    std::vector<uint32_t> queue;
+    for (uint32_t seed = 0; seed < n; ++seed) {
+        if (sheet[seed] != kNone) continue;
+        sheet[seed] = sheetCount;
+        queue.assign(1, seed);
+        for (size_t q = 0; q < queue.size(); ++q) {
+            const uint32_t t = queue[q];
+            for (uint32_t l = linkStart[t]; l < linkStart[t + 1]; ++l) {
+                const Link& link = links[l].second;
+                if (sheet[link.other] != kNone) continue;  // a conflict (a Klein bottle) stays
+                sheet[link.other] = sheetCount;
+                flip[link.other] = flip[t] ^ uint8_t(link.sameWay);
+                queue.push_back(link.other);
+            }
+        }
+        ++sheetCount;
+    }
+    return sheet;
+}
+
+}  // namespace
+
+Polyhedron Polyhedron::make(std::vector<Vec3> points, const PolygonFaces& faces) {
+    auto data = std::make_shared<PolyhedronData>();
+    Polyhedron mesh{nullptr};
+    for (const Vec3& p : points)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            data->invalid = "mesh points must be finite";
+    if (data->invalid) return mesh.data = data, mesh;
+
+    // Step 1: weld, triangulate, drop what has no area.
+    const std::vector<uint32_t> welded = weld(points);
+    std::vector<Triangle> triangles = triangulate(points, welded, faces, data->droppedFaces);
+    if (triangles.empty()) data->invalid = kNoFaces;
+    if (triangles.size() > kMaxTriangles) data->invalid = "a mesh holds at most 2^24 triangles";
+    if (data->invalid) return mesh.data = data, mesh;
+
+    // Step 2: edges and sheets, each sheet wound one way.
+    std::vector<uint8_t> flip;
+    uint32_t sheetCount = 0;
+    std::vector<uint32_t> sheet = findSheets(triangles, data->edges, flip, sheetCount);
+    for (size_t i = 0; i < triangles.size(); ++i)
+        if (flip[i]) std::swap(triangles[i][1], triangles[i][2]);
+
+    // Step 3: the BVH over triangle boxes widened by the margin of the crossing test.
+    for (const Vec3& p : points) data->box.extend(p);
+    const double margin = tol::kMeshBoxMarginRel * glm::length(data->box.extent());
+    std::vector<Bounds3> boxes(triangles.size());
+    for (size_t i = 0; i < triangles.size(); ++i) {
+        for (const uint32_t v : triangles[i]) boxes[i].extend(points[v]);
+        boxes[i].lo -= Vec3(margin);
+        boxes[i].hi += Vec3(margin);
+    }
+    std::vector<uint32_t> order;
+    data->root = buildWideBvh(boxes, order, 0, kMeshBvhOptions, data->nodes);
+    boxes = {};
+
+    // Step 4: triangles in leaf order, vertices in order of first use (a leaf's corners sit
+    // together in memory).
+    std::vector<uint32_t> renumber(points.size(), UINT32_MAX);
+    data->triangles.resize(triangles.size());
+    std::vector<uint32_t> sheetOf(triangles.size());
+    for (size_t i = 0; i < order.size(); ++i) {
+        Triangle t = triangles[order[i]];
+        for (uint32_t& v : t) {
+            if (renumber[v] == UINT32_MAX) {
+                renumber[v] = static_cast<uint32_t>(data->vertices.size());
+                data->vertices.push_back(points[v]);
+            }
+            v = renumber[v];
+        }
+        data->triangles[i] = t;
+        sheetOf[i] = sheet[order[i]];
+    }
+    triangles = {};
+    sheet = {};
+
+    // Step 5: turn each sheet whose normals point into the solid: from the centroid of its
+    // largest triangle, along that triangle's normal, an odd count of crossings ahead.
+    mesh.data = data;
+    std::vector<uint32_t> largest(sheetCount, UINT32_MAX);
+    std::vector<double> largestArea(sheetCount, -1.0);
+    const auto normalOf = [&](uint32_t i) {
+        const Triangle& t = data->triangles[i];
+        const Vec3 &a = data->vertices[t[0]], &b = data->vertices[t[1]], &c = data->vertices[t[2]];
+        return glm::cross(b - a, c - a);
+    };
+    for (uint32_t i = 0; i < data->triangles.size(); ++i) {
+        const double area = glm::length(normalOf(i));
+        if (area > largestArea[sheetOf[i]]) largestArea[sheetOf[i]] = area, largest[sheetOf[i]] = i;
+    }
+    std::vector<uint8_t> turnSheet(sheetCount, 0);
+    std::vector<Crossing> found;
+    for (uint32_t s = 0; s < sheetCount; ++s) {
+        const uint32_t i = largest[s];
+        const Vec3 n = normalOf(i);
+        if (!(largestArea[s] > 0.0)) continue;  // a sheet of no area: no side to choose
+        const Triangle& t = data->triangles[i];
+        const Vec3 centroid =
+            (data->vertices[t[0]] + data->vertices[t[1]] + data->vertices[t[2]]) / 3.0;
+        mesh.crossings(centroid, n, found);
+        int ahead = 0;
+        for (const Crossing& c : found) ahead += c.t > 0.0 && c.triangle != i;
+        turnSheet[s] = ahead % 2 == 1;
+    }
+    for (uint32_t i = 0; i < data->triangles.size(); ++i)
+        if (turnSheet[sheetOf[i]]) std::swap(data->triangles[i][1], data->triangles[i][2]);
+    return mesh;
+}
+
+const char* Polyhedron::invalidReason() const {
+    return data ? data->invalid : "mesh was not built";
+}
+
+Bounds3 Polyhedron::bounds() const {
+    return data && !data->invalid ? data->box : Bounds3{Vec3(0.0), Vec3(0.0)};
+}
+
+const MeshEdges& Polyhedron::edges() const {
+    return data->edges;
+}
+
+size_t Polyhedron::triangleCount() const {
+    return data ? data->triangles.size() : 0;
+}
+
+void Polyhedron::describe(JsonWriter& json) const {
+    json.key("triangles").value(uint64_t(data ? data->triangles.size() : 0));
+    json.key("vertices").value(uint64_t(data ? data->vertices.size() : 0));
+    json.key("closed").value(data && data->edges.closed());
+}
+
+namespace {
+
+// Every crossing of the line with the mesh's triangles, unsorted, appended to out; the line's
+// origin must lie near the mesh's box (the BVH margin assumes it: see Polyhedron.h).
+void collectCrossings(const PolyhedronData& mesh, const Vec3& o, const Vec3& d,
+                      std::vector<Polyhedron::Crossing>& out) {
+    if (!(d.x != 0.0 || d.y != 0.0 || d.z != 0.0)) return;
+    const ShearedRay ray(o, d);
+    const SlabRay slab(o, d);
+    uint32_t todo[3 * kBvhMaxDepth + 4];
+    int pending = 0;
+    const BvhNode* node = &mesh.nodes[mesh.root];
+    for (;;) {
+        alignas(32) double near[4];
+        const unsigned hits =
+            clipToBoxes(slab, node->boxes, -kInfinity, kInfinity, near) & node->usedMask();
+        for (int k = 0; k < node->slots; ++k) {
+            if (!(hits >> k & 1u)) continue;
+            if (node->leafCount[k] == 0) {
+                todo[pending++] = node->slot[k];
+                continue;
+            }
+            const uint32_t first = node->slot[k], last = first + node->leafCount[k];
+            for (uint32_t i = first; i < last; ++i) {
+                const std::array<uint32_t, 3>& t = mesh.triangles[i];
+                double at;
+                if (crosses(project(ray, mesh.vertices[t[0]]), project(ray, mesh.vertices[t[1]]),
+                            project(ray, mesh.vertices[t[2]]), at))
+                    out.push_back({at, i});
+            }
+        }
+        if (pending == 0) return;
+        node = &mesh.nodes[todo[--pending]];
+    }
+}
+
+bool crossingBefore(const Polyhedron::Crossing& a, const Polyhedron::Crossing& b) {
+    return a.t < b.t || (a.t == b.t && a.triangle < b.triangle);
+}
+
+void sortCrossings(std::vector<Polyhedron::Crossing>& c) {
+    if (c.size() == 2) {
+        if (crossingBefore(c[1], c[0])) std::swap(c[0], c[1]);
+        return;
+    }
+    std::sort(c.begin(), c.end(), crossingBefore);
+}
+
+// Per thread, grown to the most crossings a line has had: no allocation per ray after that.
+thread_local std::vector<Polyhedron::Crossing> lineCrossings;
+thread_local std::vector<double> lineGaps;
+
+uint16_t faceOf(uint32_t triangle) {
+    return static_cast<uint16_t>(triangle % Polyhedron::kFaceIds);
+}
+
+}  // namespace
+
+void Polyhedron::crossings(const Vec3& o, const Vec3& d, std::vector<Crossing>& out) const {
+    out.clear();
+    if (!data || data->invalid) return;
+    // Start the line at its entry into the box (widened), as csg/ does for spans().
+    double t0 = -kInfinity, t1 = kInfinity;
+    if (!clipToBox(SlabRay(o, d), data->box, t0, t1)) return;
+    const double shift = std::isfinite(t0) ? t0 : 0.0;
+    collectCrossings(*data, pointOnLine(o, d, shift), d, out);
+    for (Crossing& c : out) c.t += shift;
+    sortCrossings(out);
+}
+
+void Polyhedron::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
+    if (!data || data->invalid) return;
+    std::vector<Crossing>& c = lineCrossings;
+    c.clear();
+    collectCrossings(*data, o, d, c);
+    if (c.size() < 2) return;
+    sortCrossings(c);
+    // Step 1: pairs; an odd count (an open mesh) loses its last crossing; touches (a ray
+    // grazing an edge, coincident faces) are not spans.
+    size_t pairs = 0;
+    for (size_t i = 0; i + 1 < c.size(); i += 2)
+        if (c[i].t < c[i + 1].t) c[2 * pairs] = c[i], c[2 * pairs + 1] = c[i + 1], ++pairs;
+    // Step 2: more spans than LocalSpans holds: close the narrowest gaps (see Polyhedron.h).
+    std::vector<double>& gaps = lineGaps;
+    gaps.clear();
+    double threshold = -kInfinity;
+    size_t toClose = 0, atThreshold = 0;
+    if (pairs > size_t(LocalSpans::kCapacity)) {
+        toClose = pairs - LocalSpans::kCapacity;
+        for (size_t i = 0; i + 1 < pairs; ++i) gaps.push_back(c[2 * i + 2].t - c[2 * i + 1].t);
+        std::vector<double> sorted = gaps;  // rare: lines of over 64 crossings
+        std::nth_element(sorted.begin(), sorted.begin() + long(toClose - 1), sorted.end());
+        threshold = sorted[toClose - 1];
+        const size_t below = size_t(
+            std::count_if(gaps.begin(), gaps.end(), [&](double g) { return g < threshold; }));
+        atThreshold = toClose - below;  // ties at the threshold closed first in t
+    }
+    size_t i = 0;
+    while (i < pairs) {
+        const size_t first = i;
+        while (i + 1 < pairs && toClose > 0 &&
+               (gaps[i] < threshold || (gaps[i] == threshold && atThreshold > 0))) {
+            if (!(gaps[i] < threshold)) --atThreshold;
+            --toClose;
+            ++i;
+        }
+        out.add(c[2 * first].t, faceOf(c[2 * first].triangle), c[2 * i + 1].t,
+                faceOf(c[2 * i + 1].triangle));
+        ++i;
+    }
+}
+
+bool Polyhedron::inside(const Vec3& p) const {
+    if (!data || data->invalid || !data->box.contains(p)) return false;
+    std::vector<Crossing>& c = lineCrossings;
+    c.clear();
+    collectCrossings(*data, p, kInsideDirection, c);
+    size_t ahead = 0;
+    for (const Crossing& x : c) ahead += x.t > 0.0;
+    return ahead % 2 == 1;
+}
+
+Vec3 Polyhedron::normal(const Vec3& p, uint16_t face) const {
+    if (!data || data->invalid || face >= data->triangles.size()) return Vec3(0.0, 0.0, 1.0);
+    const auto corners = [&](uint32_t i) {
+        const std::array<uint32_t, 3>& t = data->triangles[i];
+        return std::array<Vec3, 3>{data->vertices[t[0]], data->vertices[t[1]],
+                                   data->vertices[t[2]]};
+    };
+    // Step 1: the triangle of that residue nearest p (the only one below 65536 triangles).
+    uint32_t best = face;
+    if (data->triangles.size() > kFaceIds) {
+        double bestDistance = kInfinity;
+        for (size_t i = face; i < data->triangles.size(); i += kFaceIds) {
+            const auto v = corners(uint32_t(i));
+            const Vec3 gap = closestPointOnTriangle(p, v[0], v[1], v[2]) - p;
+            const double distance = glm::dot(gap, gap);
+            if (distance < bestDistance) bestDistance = distance, best = uint32_t(i);
+        }
+    }
+    // Step 2: its plane's unit normal (triangles are wound outward).
+    const auto v = corners(best);
+    const Vec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
+    const double length = glm::length(n);
+    return length > 0.0 && std::isfinite(length) ? n / length : Vec3(0.0, 0.0, 1.0);
+}
+
+}  // namespace csg

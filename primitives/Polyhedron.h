@@ -1,0 +1,138 @@
+// A polygon mesh bounding a solid: polyhedron() and import() in the language.
+//
+// Notation: the mesh's line is o + t d in its local frame; a crossing is (t, triangle). The
+// solid is the set of points from which a ray crosses the triangles an odd number of times
+// (crossing parity): the winding of the faces plays no part, as for OpenSCAD 2021's closed
+// meshes, so a mesh given clockwise, counter-clockwise or with some faces turned is the same
+// solid.
+//
+// Crossings: the watertight test of Woop, Benthin and Wald (JCGT 2013): the ray becomes the
+// z axis of a sheared frame, each vertex is projected there once per ray (the same bits in
+// every triangle that shares it), and a triangle is crossed when the ray's point lies on the
+// same side of its three edges. The side of an edge (P, Q) is the sign of the 2x2 determinant
+// Q.x P.y - Q.y P.x, computed EXACTLY (a filter, then error-free products where the filter
+// cannot tell). Where it is exactly zero (the ray meets the edge or a vertex), the sign is
+// that of the ray moved by (eps, eps^2) in the sheared frame, eps -> 0 (simulation of
+// simplicity): Q.y - P.y, else P.x - Q.x. Why this keeps span pairing: every edge's side is
+// decided once, by an antisymmetric rule, for one actual (perturbed) line that passes through
+// no projected vertex and no projected edge, so the triangles crossed are exactly those whose
+// projection holds that line's point. The projection of a closed mesh (every edge shared by an
+// even number of triangles) covers a point that lies on no projected edge an even number of
+// times, whatever the rounded vertex positions, so the crossings of every line pair up: a ray
+// through a vertex or along an edge counts each surface crossing once, as a nudged ray does,
+// and a ray grazing an edge or lying in a face's plane counts 0 or 2 there (a zero-length
+// span, dropped by the caller). The BVH boxes are widened by tol::kMeshBoxMarginRel so that no
+// triangle this test crosses is culled by its box.
+//
+// Faces: a span end's face is the crossed triangle's index modulo kFaceIds (65535; kClipFace is
+// the 65536th value), so meshes of up to 65535 triangles name the triangle itself; in larger
+// ones normal() takes, among the triangles of that residue, the one nearest the point (the
+// point lies on the crossed one up to rounding): n / 65535 candidates, paid only when a normal
+// is asked for (shading, probe, export), never by a ray.
+//
+// Capacity: a line with more than LocalSpans::kCapacity (32) spans keeps its first entry and
+// last exit and loses its narrowest gaps: the gaps between consecutive spans are closed,
+// narrowest first (the first in t on a tie), until 32 spans remain. So nothing solid is ever
+// dropped, the first and last surfaces along the line are exact, and the solid grows only by
+// the thinnest voids along that one line. (The capacity stays 32: LocalSpans lives on the
+// stack of the recursive CSG walk, one per level.)
+//
+// Open meshes (some edge used by an odd number of triangles): the line's crossings are paired
+// as above and, when their count is odd, the last one is dropped; the io layer warns at the
+// call with the edge counts. Normals point out of the parity solid: each connected sheet of
+// consistently wound triangles is turned, as a whole, so that a ray from its largest
+// triangle's centroid along the normal leaves the solid (an even count of crossings ahead).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "primitives/Primitive.h"
+#include "primitives/base/WideBvh.h"
+
+namespace csg {
+
+struct PolyhedronData;
+
+// Faces as lists of corners: face f is corners[faceStart[f]] .. corners[faceStart[f + 1] - 1],
+// indices into the points; faceStart has one entry more than there are faces.
+struct PolygonFaces {
+    std::vector<uint32_t> corners;
+    std::vector<uint32_t> faceStart{0};
+
+    size_t size() const { return faceStart.size() - 1; }
+    void add(std::initializer_list<uint32_t> face) {
+        corners.insert(corners.end(), face);
+        faceStart.push_back(static_cast<uint32_t>(corners.size()));
+    }
+    void closeFace() { faceStart.push_back(static_cast<uint32_t>(corners.size())); }
+};
+
+// How the triangles meet along their edges (vertices welded by exact position).
+struct MeshEdges {
+    uint64_t edges = 0;        // distinct edges
+    uint64_t openEdges = 0;    // used by an odd number of triangles (1: a boundary)
+    uint64_t manyFaces = 0;    // used by more than two triangles
+    uint64_t misoriented = 0;  // used by two triangles that run it the same way
+    bool closed() const { return openEdges == 0; }
+    bool manifold() const { return openEdges == 0 && manyFaces == 0; }
+};
+
+struct Polyhedron {
+    static constexpr const char* kName = "polyhedron";
+    // Face ids in a span end: the triangle index modulo this (see the head of this file).
+    static constexpr uint32_t kFaceIds = 65535;
+    // Most triangles a mesh may have: the BVH's depth bound (primitives/base/WideBvh.h).
+    static constexpr uint64_t kMaxTriangles = uint64_t(1) << 24;
+    // invalidReason() of a mesh with no face of positive area (the empty solid to a caller).
+    static constexpr const char* kNoFaces = "the mesh has no faces of positive area";
+
+    std::shared_ptr<const PolyhedronData> data;  // shared, immutable
+
+    // Builds the mesh from points (finite) and faces of at least 3 corners (indices below
+    // points.size(); checked by the caller). Corners at equal positions are welded; faces of
+    // more than 3 corners are triangulated in their projection along their Newell normal,
+    // dropping its largest axis: a fan from the first corner when the polygon is convex there,
+    // else ear clipping (a non-planar face's surface is that triangulation's); faces of no
+    // area (fewer than 3 distinct corners) are dropped. Never throws; bad input shows in
+    // invalidReason().
+    static Polyhedron make(std::vector<Vec3> points, const PolygonFaces& faces);
+
+    const char* invalidReason() const;
+    Bounds3 bounds() const;
+    // The spans of the line by crossing parity (see the head of this file); at most
+    // LocalSpans::kCapacity, gaps closed beyond that.
+    void spans(const Vec3& o, const Vec3& d, LocalSpans& out) const;
+    // Parity of the crossings ahead of p along a fixed direction.
+    bool inside(const Vec3& p) const;
+    // The plane normal of triangle `face` (flat shading), pointing out of the solid; +z for a
+    // triangle of no area.
+    Vec3 normal(const Vec3& p, uint16_t face) const;
+    // Triangles, vertices, whether closed.
+    void describe(JsonWriter& json) const;
+
+    // One crossing, for tests and spans().
+    struct Crossing {
+        double t;
+        uint32_t triangle;
+    };
+    // Every crossing of the line o + t d, ascending in t (then triangle), into `out` (cleared).
+    void crossings(const Vec3& o, const Vec3& d, std::vector<Crossing>& out) const;
+    // Edge statistics of the welded triangles.
+    const MeshEdges& edges() const;
+    size_t triangleCount() const;
+};
+
+struct PolyhedronData {
+    std::vector<Vec3> vertices;                      // welded, numbered in BVH order of first use
+    std::vector<std::array<uint32_t, 3>> triangles;  // BVH leaf order, wound outward
+    std::vector<BvhNode> nodes;                      // over widened triangle boxes
+    uint32_t root = 0;
+    Bounds3 box;
+    MeshEdges edges;
+    uint64_t droppedFaces = 0;  // faces of no area
+    const char* invalid = nullptr;
+};
+
+}  // namespace csg

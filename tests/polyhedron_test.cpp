@@ -1,0 +1,442 @@
+// The mesh primitive (primitives/Polyhedron.h) against spans worked out by hand (a cube in both
+// windings, a tetrahedron, an L-shaped prism whose caps are non-convex faces), and the edge
+// rule's promises on a faceted sphere: a ray through a vertex or an edge gives the spans of the
+// same ray nudged by one ulp, a ray grazing an edge or a face never breaks the pairing, and the
+// crossing count of every line is even. Also: the capacity rule, an open mesh's answer, and
+// face ids beyond 65535 triangles.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "primitives/Polyhedron.h"
+#include "primitives/solvers/LinePoint.h"
+
+using namespace csg;
+
+namespace {
+
+struct MeshInput {
+    std::vector<Vec3> points;
+    PolygonFaces faces;
+};
+
+// The unit cube [0, 1]^3 with quad faces, wound as OpenSCAD wants them (clockwise from outside)
+// or the other way.
+MeshInput cube(bool openscadWinding) {
+    MeshInput m;
+    m.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+    // OpenSCAD's documentation cube: clockwise seen from outside.
+    std::vector<std::vector<uint32_t>> quads = {{0, 1, 2, 3}, {4, 5, 1, 0}, {7, 6, 5, 4},
+                                                {5, 6, 2, 1}, {6, 7, 3, 2}, {7, 4, 0, 3}};
+    for (auto& q : quads) {
+        if (!openscadWinding) std::reverse(q.begin(), q.end());
+        m.faces.corners.insert(m.faces.corners.end(), q.begin(), q.end());
+        m.faces.closeFace();
+    }
+    return m;
+}
+
+// A UV sphere of radius r: `rings` rings between two poles, `sectors` vertices per ring, each
+// coordinate rounded to a multiple of 2^-quantBits (so edge midpoints are exact and rays along
+// the axes can pass exactly through vertices and edges); triangles only.
+MeshInput sphere(int sectors, int rings, double r, int quantBits = 20) {
+    MeshInput m;
+    const double q = std::ldexp(1.0, quantBits);
+    auto quantize = [&](Vec3 p) { return glm::round(p * q) / q; };
+    m.points.push_back(quantize(Vec3(0, 0, r)));
+    for (int i = 1; i < rings; ++i) {
+        const double polar = M_PI * i / rings;
+        for (int k = 0; k < sectors; ++k) {
+            const double az = 2 * M_PI * k / sectors;
+            m.points.push_back(quantize(r * Vec3(std::sin(polar) * std::cos(az),
+                                                 std::sin(polar) * std::sin(az), std::cos(polar))));
+        }
+    }
+    m.points.push_back(quantize(Vec3(0, 0, -r)));
+    const uint32_t south = uint32_t(m.points.size() - 1);
+    auto ring = [&](int i, int k) { return uint32_t(1 + (i - 1) * sectors + (k % sectors)); };
+    for (int k = 0; k < sectors; ++k) m.faces.add({0, ring(1, k + 1), ring(1, k)});
+    for (int i = 1; i + 1 < rings; ++i)
+        for (int k = 0; k < sectors; ++k) {
+            m.faces.add({ring(i, k), ring(i, k + 1), ring(i + 1, k + 1)});
+            m.faces.add({ring(i, k), ring(i + 1, k + 1), ring(i + 1, k)});
+        }
+    for (int k = 0; k < sectors; ++k)
+        m.faces.add({south, ring(rings - 1, k), ring(rings - 1, k + 1)});
+    return m;
+}
+
+Polyhedron build(const MeshInput& m) {
+    Polyhedron p = Polyhedron::make(m.points, m.faces);
+    EXPECT_EQ(p.invalidReason(), nullptr) << p.invalidReason();
+    return p;
+}
+
+struct SpanEnds {
+    double in, out;
+    uint16_t faceIn, faceOut;
+};
+
+// spans() as csg/ calls it: the line restarted at its entry into the box, t shifted back.
+std::vector<SpanEnds> spansOf(const Polyhedron& p, const Vec3& o, const Vec3& d) {
+    double t0 = -kInfinity, t1 = kInfinity;
+    if (!clipToBox(SlabRay(o, d), p.bounds(), t0, t1)) return {};
+    const double shift = std::isfinite(t0) ? t0 : 0.0;
+    LocalSpans local;
+    p.spans(pointOnLine(o, d, shift), d, local);
+    std::vector<SpanEnds> out;
+    for (int i = 0; i < local.count; ++i) {
+        const auto& e = local.entries[i];
+        out.push_back({e.tIn + shift, e.tOut + shift, e.faceIn, e.faceOut});
+    }
+    return out;
+}
+
+// The spans of a line, of positive length (the caller drops touches), as [in, out] pairs.
+std::vector<std::pair<double, double>> solidSpans(const Polyhedron& p, const Vec3& o, const Vec3& d,
+                                                  double minLength) {
+    std::vector<std::pair<double, double>> out;
+    for (const SpanEnds& s : spansOf(p, o, d))
+        if (s.out - s.in > minLength) out.push_back({s.in, s.out});
+    return out;
+}
+
+std::string str(const Vec3& v) {
+    return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) +
+           ")";
+}
+
+bool sameSpans(const std::vector<std::pair<double, double>>& a,
+               const std::vector<std::pair<double, double>>& b, double tolerance) {
+    if (a.size() != b.size()) return false;
+    for (size_t i = 0; i < a.size(); ++i)
+        if (std::abs(a[i].first - b[i].first) > tolerance ||
+            std::abs(a[i].second - b[i].second) > tolerance)
+            return false;
+    return true;
+}
+
+// The origin moved by one ulp along each axis perpendicular to d, both ways.
+std::vector<Vec3> nudges(const Vec3& o, const Vec3& d) {
+    std::vector<Vec3> out;
+    for (int a = 0; a < 3; ++a) {
+        if (std::abs(d[a]) == std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)})) continue;
+        for (double toward : {kInfinity, -kInfinity}) {
+            Vec3 q = o;
+            q[a] = std::nextafter(q[a], toward);
+            out.push_back(q);
+        }
+    }
+    return out;
+}
+
+TEST(Polyhedron, CubeSpansByHandInBothWindings) {
+    for (bool openscadWinding : {true, false}) {
+        SCOPED_TRACE(openscadWinding ? "clockwise" : "counter-clockwise");
+        const Polyhedron p = build(cube(openscadWinding));
+        EXPECT_EQ(p.triangleCount(), 12u);
+        EXPECT_TRUE(p.edges().manifold());
+        EXPECT_EQ(p.edges().misoriented, 0u);
+        EXPECT_EQ(p.bounds().lo, Vec3(0.0));
+        EXPECT_EQ(p.bounds().hi, Vec3(1.0));
+        // Straight through along z: enters z = 0 at t = 1, leaves z = 1 at t = 2.
+        auto s = spansOf(p, Vec3(0.25, 0.5, -1), Vec3(0, 0, 1));
+        ASSERT_EQ(s.size(), 1u);
+        EXPECT_DOUBLE_EQ(s[0].in, 1.0);
+        EXPECT_DOUBLE_EQ(s[0].out, 2.0);
+        // The normals there point out of the cube, whichever way the faces were wound.
+        EXPECT_EQ(p.normal(Vec3(0.25, 0.5, 0), s[0].faceIn), Vec3(0, 0, -1));
+        EXPECT_EQ(p.normal(Vec3(0.25, 0.5, 1), s[0].faceOut), Vec3(0, 0, 1));
+        // A slanted ray, d not unit: x = -1 + 2t enters at t = 0.5 and leaves at t = 1 through
+        // x = 1 (y = 0.2 + 0.3t and z = 0.9 - 0.6t stay inside there).
+        s = spansOf(p, Vec3(-1, 0.2, 0.9), Vec3(2, 0.3, -0.6));
+        ASSERT_EQ(s.size(), 1u);
+        EXPECT_NEAR(s[0].in, 0.5, 1e-15);
+        EXPECT_NEAR(s[0].out, 1.0, 1e-15);
+        EXPECT_EQ(p.normal(Vec3(0, 0.35, 0.6), s[0].faceIn), Vec3(-1, 0, 0));
+        // A ray through a corner only touches; one along the diagonal runs corner to corner.
+        EXPECT_TRUE(solidSpans(p, Vec3(-1, 1, 1), Vec3(1, -1, -1), 0.0).empty());
+        s = spansOf(p, Vec3(-1, -1, -1), Vec3(1, 1, 1));
+        ASSERT_EQ(s.size(), 1u);
+        EXPECT_DOUBLE_EQ(s[0].in, 1.0);
+        EXPECT_DOUBLE_EQ(s[0].out, 2.0);
+        // Misses, and points inside and out.
+        EXPECT_TRUE(spansOf(p, Vec3(1.5, 0.5, -1), Vec3(0, 0, 1)).empty());
+        EXPECT_TRUE(p.inside(Vec3(0.3, 0.6, 0.2)));
+        EXPECT_FALSE(p.inside(Vec3(1.3, 0.6, 0.2)));
+        EXPECT_FALSE(p.inside(Vec3(0.3, -0.01, 0.2)));
+    }
+}
+
+TEST(Polyhedron, SomeFacesTurnedIsTheSameSolid) {
+    MeshInput m = cube(true);
+    // Turn two faces: parity does not see winding; the warning counts the edges.
+    std::reverse(m.faces.corners.begin(), m.faces.corners.begin() + 4);
+    std::reverse(m.faces.corners.begin() + 8, m.faces.corners.begin() + 12);
+    const Polyhedron p = build(m);
+    EXPECT_TRUE(p.edges().closed());
+    EXPECT_GT(p.edges().misoriented, 0u);
+    const auto s = spansOf(p, Vec3(0.5, 0.5, 3), Vec3(0, 0, -1));
+    ASSERT_EQ(s.size(), 1u);
+    EXPECT_DOUBLE_EQ(s[0].in, 2.0);
+    EXPECT_DOUBLE_EQ(s[0].out, 3.0);
+    EXPECT_EQ(p.normal(Vec3(0.5, 0.5, 1), s[0].faceIn), Vec3(0, 0, 1));
+    EXPECT_EQ(p.normal(Vec3(0.5, 0.5, 0), s[0].faceOut), Vec3(0, 0, -1));
+}
+
+TEST(Polyhedron, TetrahedronByHand) {
+    // Corners at the origin and the unit points: the solid x, y, z >= 0, x + y + z <= 1.
+    MeshInput m;
+    m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    m.faces.add({0, 1, 2});
+    m.faces.add({0, 3, 1});
+    m.faces.add({0, 2, 3});
+    m.faces.add({1, 3, 2});
+    const Polyhedron p = build(m);
+    // Along z at (0.2, 0.3): from z = 0 to z = 1 - 0.5 = 0.5.
+    auto s = spansOf(p, Vec3(0.2, 0.3, -2), Vec3(0, 0, 1));
+    ASSERT_EQ(s.size(), 1u);
+    EXPECT_DOUBLE_EQ(s[0].in, 2.0);
+    EXPECT_NEAR(s[0].out, 2.5, 1e-15);
+    const Vec3 slanted = p.normal(Vec3(0.2, 0.3, 0.5), s[0].faceOut);
+    EXPECT_NEAR(glm::dot(slanted, glm::normalize(Vec3(1, 1, 1))), 1.0, 1e-15);
+    // Along (1, 1, 1) from the origin's far side: in at the origin, out on x + y + z = 1.
+    s = spansOf(p, Vec3(-1, -1, -1), Vec3(1, 1, 1));
+    ASSERT_EQ(s.size(), 1u);
+    EXPECT_DOUBLE_EQ(s[0].in, 1.0);
+    EXPECT_NEAR(s[0].out, 1.0 + 1.0 / 3.0, 1e-15);
+    EXPECT_TRUE(p.inside(Vec3(0.1, 0.1, 0.1)));
+    EXPECT_FALSE(p.inside(Vec3(0.4, 0.4, 0.4)));
+}
+
+TEST(Polyhedron, NonConvexFacesAreEarClipped) {
+    // An L-shaped prism, its two caps one 6-corner face each: [0,2]x[0,1] u [0,1]x[1,2], z in
+    // [0, 1]. The notch [1,2]x[1,2] is empty.
+    MeshInput m;
+    const Vec2 outline[6] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+    for (double z : {0.0, 1.0})
+        for (const Vec2& p : outline) m.points.emplace_back(p.x, p.y, z);
+    m.faces.add({5, 4, 3, 2, 1, 0});
+    m.faces.add({6, 7, 8, 9, 10, 11});
+    for (uint32_t i = 0; i < 6; ++i) {
+        const uint32_t j = (i + 1) % 6;
+        m.faces.add({i, j, j + 6, i + 6});
+    }
+    const Polyhedron p = build(m);
+    EXPECT_TRUE(p.edges().manifold());
+    // Down through the notch: nothing; through each arm: z from 1 to 0.
+    EXPECT_TRUE(spansOf(p, Vec3(1.5, 1.5, 3), Vec3(0, 0, -1)).empty());
+    for (const Vec2& at : {Vec2(1.5, 0.5), Vec2(0.5, 1.5), Vec2(0.5, 0.5)}) {
+        const auto s = spansOf(p, Vec3(at, 3), Vec3(0, 0, -1));
+        ASSERT_EQ(s.size(), 1u);
+        EXPECT_DOUBLE_EQ(s[0].in, 2.0);
+        EXPECT_DOUBLE_EQ(s[0].out, 3.0);
+        EXPECT_EQ(p.normal(Vec3(at, 1), s[0].faceIn), Vec3(0, 0, 1));
+    }
+    // Along x at y = 1.5: only the arm x in [0, 1].
+    const auto s = spansOf(p, Vec3(-1, 1.5, 0.5), Vec3(1, 0, 0));
+    ASSERT_EQ(s.size(), 1u);
+    EXPECT_DOUBLE_EQ(s[0].in, 1.0);
+    EXPECT_DOUBLE_EQ(s[0].out, 2.0);
+}
+
+// Every line through a vertex, through an edge (axis-aligned rays of a quantized sphere pass
+// exactly through them) gives the spans of the same line nudged by one ulp; the crossing count
+// is always even.
+TEST(Polyhedron, VertexAndEdgeRaysMatchNudgedRays) {
+    const MeshInput m = sphere(24, 12, 1.0);
+    const Polyhedron p = build(m);
+    ASSERT_TRUE(p.edges().manifold());
+    std::vector<Vec3> targets = m.points;
+    for (size_t f = 0; f < m.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 a = m.points[m.faces.corners[3 * f + k]];
+            const Vec3 b = m.points[m.faces.corners[3 * f + (k + 1) % 3]];
+            targets.push_back(0.5 * (a + b));  // exact: the coordinates are multiples of 2^-20
+        }
+    std::vector<Polyhedron::Crossing> crossings;
+    int transversal = 0, grazing = 0;
+    for (const Vec3& target : targets)
+        for (int axis = 0; axis < 3; ++axis) {
+            Vec3 d(0.0);
+            d[axis] = axis == 1 ? -1.0 : 1.0;
+            Vec3 o = target;
+            o[axis] = -4.0 * d[axis];
+            p.crossings(o, d, crossings);
+            ASSERT_EQ(crossings.size() % 2, 0u) << "target " << str(target);
+            const auto exact = solidSpans(p, o, d, 1e-12);
+            // Grazing where the target lies near the sphere's silhouette seen along the axis:
+            // the nudges there may go in or out, and the exact line must match one of them.
+            Vec3 across = target;
+            across[axis] = 0.0;
+            const bool nearSilhouette = glm::length(across) > 0.9;
+            int matches = 0, tried = 0;
+            for (const Vec3& q : nudges(o, d)) {
+                ++tried;
+                matches += sameSpans(exact, solidSpans(p, q, d, 1e-12), 1e-9);
+            }
+            if (nearSilhouette) {
+                ++grazing;
+                EXPECT_GE(matches, 1) << "grazing target " << str(target);
+            } else {
+                ++transversal;
+                EXPECT_EQ(matches, tried) << "target " << str(target) << " axis " << axis;
+                EXPECT_EQ(exact.size(), 1u);
+            }
+        }
+    EXPECT_GT(transversal, 1000);
+    EXPECT_GT(grazing, 50);
+}
+
+// A line that contains an edge of the sphere lies in the planes of the edge's two triangles:
+// it touches the surface along the edge, or runs just inside, and where along the edge a
+// crossing of those triangles sits is arbitrary (the rounded projection makes them slivers
+// around the line). Never an odd count, and off the edge [4, 5] the answer of a nudged line.
+TEST(Polyhedron, RaysAlongEdgesKeepPairs) {
+    const MeshInput m = sphere(16, 8, 1.0, 12);
+    const Polyhedron p = build(m);
+    std::vector<Polyhedron::Crossing> crossings;
+    // The spans with [4, 5] cut out (pieces of rounding length left there dropped).
+    const auto offEdge = [](std::vector<std::pair<double, double>> spans) {
+        std::vector<std::pair<double, double>> out;
+        for (const auto& [in, outT] : spans) {
+            if (std::min(outT, 4.0) - in > 1e-6) out.push_back({in, std::min(outT, 4.0)});
+            if (outT - std::max(in, 5.0) > 1e-6) out.push_back({std::max(in, 5.0), outT});
+        }
+        return out;
+    };
+    for (size_t f = 0; f < m.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 a = m.points[m.faces.corners[3 * f + k]];
+            const Vec3 b = m.points[m.faces.corners[3 * f + (k + 1) % 3]];
+            const Vec3 d = b - a;        // exact (12-bit coordinates)
+            const Vec3 o = a - 4.0 * d;  // exact: o + 4 d = a, o + 5 d = b
+            p.crossings(o, d, crossings);
+            ASSERT_EQ(crossings.size() % 2, 0u);
+            const auto exact = offEdge(solidSpans(p, o, d, 1e-12));
+            int matches = 0;
+            for (const Vec3& q : nudges(o, d))
+                matches += sameSpans(exact, offEdge(solidSpans(p, q, d, 1e-12)), 1e-6);
+            EXPECT_GE(matches, 1) << "edge " << str(a) << " " << str(b);
+        }
+}
+
+// Lines in the plane of a face (the cube's top) and along its edges: 0 or 2 crossings there.
+TEST(Polyhedron, GrazingFacesAndEdgesKeepPairs) {
+    const Polyhedron p = build(cube(true));
+    std::vector<Polyhedron::Crossing> crossings;
+    const Vec3 origins[] = {{-1, 0.5, 1}, {-1, 0, 1}, {-1, 1, 0}, {0.5, -1, 0}, {-1, 0.3, 0}};
+    for (const Vec3& o : origins)
+        for (const Vec3& d : {Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(1, 0.5, 0)}) {
+            p.crossings(o, d, crossings);
+            EXPECT_EQ(crossings.size() % 2, 0u) << str(o) << str(d);
+            const auto exact = solidSpans(p, o, d, 1e-12);
+            int matches = 0;
+            for (const Vec3& q : nudges(o, d))
+                matches += sameSpans(exact, solidSpans(p, q, d, 1e-12), 1e-12);
+            EXPECT_GE(matches, 1) << str(o) << str(d);
+        }
+}
+
+// Seeded random lines through random vertices of a bumpy closed mesh: always an even count.
+TEST(Polyhedron, RandomLinesThroughVerticesPair) {
+    MeshInput m = sphere(40, 20, 1.0);
+    std::mt19937_64 rng(18);
+    std::uniform_real_distribution<double> bump(0.7, 1.0), u(-1.0, 1.0);
+    for (Vec3& q : m.points) q *= bump(rng);
+    const Polyhedron p = build(m);
+    std::vector<Polyhedron::Crossing> crossings;
+    for (int i = 0; i < 5000; ++i) {
+        const Vec3 v = m.points[rng() % m.points.size()];
+        const Vec3 d(u(rng), u(rng), u(rng));
+        p.crossings(v - 3.0 * d, d, crossings);
+        ASSERT_EQ(crossings.size() % 2, 0u) << i;
+    }
+}
+
+// 40 slabs along x: more spans than LocalSpans holds. The 8 narrowest gaps close; the first
+// entry and the last exit stay.
+TEST(Polyhedron, MoreSpansThanCapacityCloseTheNarrowestGaps) {
+    MeshInput m;
+    const int slabs = 40;
+    double x = 0.0;
+    std::vector<double> gapAfter;
+    for (int i = 0; i < slabs; ++i) {
+        const double x1 = x + 1.0;
+        const MeshInput c = cube(false);
+        const uint32_t base = uint32_t(m.points.size());
+        for (const Vec3& q : c.points) m.points.emplace_back(x + (x1 - x) * q.x, q.y, q.z);
+        for (uint32_t f = 0; f < c.faces.size(); ++f) {
+            for (uint32_t k = c.faces.faceStart[f]; k < c.faces.faceStart[f + 1]; ++k)
+                m.faces.corners.push_back(base + c.faces.corners[k]);
+            m.faces.closeFace();
+        }
+        // Gaps 0.5, except every fifth is 0.25 (those close first): 7 of them, plus the first
+        // of the 0.5 gaps.
+        const double gap = i % 5 == 4 ? 0.25 : 0.5;
+        gapAfter.push_back(gap);
+        x = x1 + gap;
+    }
+    const Polyhedron p = build(m);
+    const auto s = spansOf(p, Vec3(-1, 0.5, 0.5), Vec3(1, 0, 0));
+    ASSERT_EQ(s.size(), size_t(LocalSpans::kCapacity));
+    EXPECT_DOUBLE_EQ(s.front().in, 1.0);
+    EXPECT_DOUBLE_EQ(s.back().out, 1.0 + x - gapAfter.back());
+    // The first span runs over slab 0, the first 0.5 gap, and slab 1.
+    EXPECT_DOUBLE_EQ(s[0].out, 1.0 + 2.5);
+    for (size_t i = 1; i < s.size(); ++i) EXPECT_GE(s[i].in - s[i - 1].out, 0.5 - 1e-12);
+}
+
+TEST(Polyhedron, OpenMeshDropsTheLastCrossingOfAnOddLine) {
+    MeshInput m = cube(true);
+    m.faces.corners.resize(m.faces.faceStart[5]);  // no face at x = 0
+    m.faces.faceStart.resize(6);
+    const Polyhedron p = build(m);
+    EXPECT_FALSE(p.edges().closed());
+    EXPECT_EQ(p.edges().openEdges, 4u);
+    // Along x through the hole: one crossing (x = 1), dropped.
+    EXPECT_TRUE(spansOf(p, Vec3(-1, 0.5, 0.5), Vec3(1, 0, 0)).empty());
+    // Along y: both walls are there.
+    EXPECT_EQ(spansOf(p, Vec3(0.5, -1, 0.5), Vec3(0, 1, 0)).size(), 1u);
+}
+
+// Beyond 65535 triangles a face id names a residue; normal() finds the crossed triangle.
+TEST(Polyhedron, FaceIdsOfLargeMeshes) {
+    const MeshInput m = sphere(400, 200, 2.0);
+    const Polyhedron p = build(m);
+    ASSERT_GT(p.triangleCount(), 2 * size_t(Polyhedron::kFaceIds));
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::vector<Polyhedron::Crossing> crossings;
+    for (int i = 0; i < 300; ++i) {
+        const Vec3 o = 6.0 * glm::normalize(Vec3(u(rng), u(rng), u(rng)));
+        const Vec3 d = Vec3(u(rng), u(rng), u(rng)) - o;
+        p.crossings(o, d, crossings);
+        for (const auto& c : crossings) {
+            const auto& t = p.data->triangles[c.triangle];
+            const Vec3 &a = p.data->vertices[t[0]], &b = p.data->vertices[t[1]],
+                       &e = p.data->vertices[t[2]];
+            const Vec3 expected = glm::normalize(glm::cross(b - a, e - a));
+            const Vec3 n = p.normal(pointOnLine(o, d, c.t), uint16_t(c.triangle % 65535));
+            EXPECT_NEAR(glm::dot(n, expected), 1.0, 1e-12);
+            // Outward: away from the sphere's centre.
+            EXPECT_GT(glm::dot(n, a), 0.0);
+        }
+    }
+}
+
+TEST(Polyhedron, DegenerateInput) {
+    // Faces with repeated or too few distinct corners have no area: dropped. None left: the
+    // empty solid's reason.
+    MeshInput m;
+    m.points = {{0, 0, 0}, {1, 0, 0}, {0, 0, 0}};
+    m.faces.add({0, 1, 2});  // corners 0 and 2 weld
+    m.faces.add({1, 1, 0});
+    EXPECT_EQ(Polyhedron::make(m.points, m.faces).invalidReason(), Polyhedron::kNoFaces);
+    m.points[0].x = std::nan("");
+    EXPECT_NE(Polyhedron::make(m.points, m.faces).invalidReason(), nullptr);
+}
+
+}  // namespace
