@@ -9,6 +9,7 @@
 #include "io/Colors.h"
 #include "io/Degrees.h"
 #include "io/Evaluator.h"
+#include "io/MeshModules.h"
 #include "io/PatchModule.h"
 #include "io/SurfaceModule.h"
 #include "primitives/base/Tolerances.h"
@@ -572,6 +573,8 @@ const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {
         {"surface", childless<surfaceModule>},
         {"bezier_patch", childless<bezierPatchModule>},
         {"bezier_patches", childless<bezierPatchesModule>},
+        {"polyhedron", childless<polyhedronModule>},
+        {"import", childless<importModule>},
         {"union", unionModule},
         {"group", unionModule},
         {"render", unionModule},
@@ -590,8 +593,6 @@ const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {
         // OpenSCAD modules with no exact ray-cast counterpart yet: an error, never a skip.
         {"linear_extrude", unsupported},
         {"rotate_extrude", unsupported},
-        {"import", unsupported},
-        {"polyhedron", unsupported},
         {"square", unsupported},
         {"circle", unsupported},
         {"polygon", unsupported},

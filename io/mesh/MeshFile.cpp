@@ -16,6 +16,7 @@ MeshFormat meshFormatOf(const std::filesystem::path& file) {
                    [](unsigned char c) { return char(std::tolower(c)); });
     if (ext == ".obj") return MeshFormat::Obj;
     if (ext == ".stl") return MeshFormat::Stl;
+    if (ext == ".off") return MeshFormat::Off;
     if (ext == ".glb") return MeshFormat::Glb;
     if (ext == ".gltf") return MeshFormat::Gltf;
     return MeshFormat::Unknown;
@@ -45,6 +46,7 @@ std::optional<std::string> writeMesh(const std::filesystem::path& file,
         case MeshFormat::Gltf:
             return detail::writeGltf(file, mesh, materials, false);
         case MeshFormat::Stl:
+        case MeshFormat::Off:
         case MeshFormat::Unknown:
             break;
     }
@@ -53,7 +55,43 @@ std::optional<std::string> writeMesh(const std::filesystem::path& file,
 
 namespace {
 
-const char* const kUnknownMeshFormat = "unknown mesh format (expected .obj, .stl, .glb or .gltf)";
+const char* const kUnknownMeshFormat =
+    "unknown mesh format (expected .obj, .stl, .off, .glb or .gltf)";
+const char* const kNotPolygonFormat = "unknown mesh format (expected .stl, .off or .obj)";
+
+// The file's bytes, or the failure as a result of type R.
+template <class R>
+std::optional<R> readBytes(const std::filesystem::path& file, std::string& bytes) {
+    if (const csg::ReadFailure failure = csg::readWholeFile(file, bytes);
+        failure != csg::ReadFailure::None) {
+        R result;
+        result.error = failure == csg::ReadFailure::CannotRead ? "cannot read the mesh"
+                                                               : "cannot open the mesh";
+        result.unreadable = true;
+        return result;
+    }
+    return std::nullopt;
+}
+
+// Polygons cut into a fan from their first corner (compare's triangles).
+MeshReadResult fanned(PolygonMeshReadResult polygons) {
+    MeshReadResult result;
+    result.error = std::move(polygons.error);
+    result.unreadable = polygons.unreadable;
+    result.line = polygons.line;
+    result.column = polygons.column;
+    if (!polygons.mesh) return result;
+    csg::TriangleMesh mesh;
+    mesh.positions = std::move(polygons.mesh->positions);
+    const csg::PolygonFaces& faces = polygons.mesh->faces;
+    for (size_t f = 0; f < faces.size(); ++f) {
+        const uint32_t* c = faces.corners.data() + faces.faceStart[f];
+        const uint32_t k = faces.faceStart[f + 1] - faces.faceStart[f];
+        for (uint32_t i = 1; i + 1 < k; ++i) mesh.triangles.push_back({c[0], c[i], c[i + 1]});
+    }
+    result.mesh = std::move(mesh);
+    return result;
+}
 
 }  // namespace
 
@@ -65,14 +103,7 @@ MeshReadResult readMesh(const std::filesystem::path& file) {
         return result;
     }
     std::string bytes;
-    if (const csg::ReadFailure failure = csg::readWholeFile(file, bytes);
-        failure != csg::ReadFailure::None) {
-        MeshReadResult result;
-        result.error = failure == csg::ReadFailure::CannotRead ? "cannot read the mesh"
-                                                               : "cannot open the mesh";
-        result.unreadable = true;
-        return result;
-    }
+    if (auto failed = readBytes<MeshReadResult>(file, bytes)) return std::move(*failed);
     return parseMesh(bytes, format, file.parent_path());
 }
 
@@ -81,10 +112,9 @@ MeshReadResult parseMesh(std::string_view bytes, MeshFormat format,
     MeshReadResult result;
     switch (format) {
         case MeshFormat::Obj:
-            result = detail::parseObj(bytes);
-            break;
         case MeshFormat::Stl:
-            result = detail::parseStl(bytes);
+        case MeshFormat::Off:
+            result = fanned(parsePolygonMesh(bytes, format));
             break;
         case MeshFormat::Glb:
             result = detail::parseGltf(bytes, true, baseDir);
@@ -97,6 +127,34 @@ MeshReadResult parseMesh(std::string_view bytes, MeshFormat format,
             return result;
     }
     if (result.mesh) result.mesh = csg::weldExactDuplicates(*result.mesh);
+    return result;
+}
+
+PolygonMeshReadResult readPolygonMesh(const std::filesystem::path& file) {
+    const MeshFormat format = meshFormatOf(file);
+    if (format != MeshFormat::Obj && format != MeshFormat::Stl && format != MeshFormat::Off) {
+        PolygonMeshReadResult result;
+        result.error = kNotPolygonFormat;
+        return result;
+    }
+    std::string bytes;
+    if (auto failed = readBytes<PolygonMeshReadResult>(file, bytes)) return std::move(*failed);
+    return parsePolygonMesh(bytes, format);
+}
+
+PolygonMeshReadResult parsePolygonMesh(std::string_view bytes, MeshFormat format) {
+    switch (format) {
+        case MeshFormat::Obj:
+            return detail::parseObj(bytes);
+        case MeshFormat::Stl:
+            return detail::parseStl(bytes);
+        case MeshFormat::Off:
+            return detail::parseOff(bytes);
+        default:
+            break;
+    }
+    PolygonMeshReadResult result;
+    result.error = kNotPolygonFormat;
     return result;
 }
 

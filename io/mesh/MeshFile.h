@@ -1,8 +1,8 @@
 // Mesh files: OBJ (normals split at creases), GLB and glTF (tinygltf)
-// written atomically, and OBJ, STL (our own readers: a triangle soup, no half-edge structure,
-// so non-manifold input is kept for compare to report), GLB and glTF (tinygltf) read back for
-// comparison. Lengths are written as they are in the part (OpenSCAD's unit, usually mm);
-// nothing is rescaled.
+// written atomically, and OBJ, STL, OFF (our own readers: a polygon soup, no half-edge
+// structure, so non-manifold input is kept for compare to report and import() to warn about),
+// GLB and glTF (tinygltf) read back for comparison. Lengths are written as they are in the part
+// (OpenSCAD's unit, usually mm); nothing is rescaled.
 #pragma once
 
 #include <filesystem>
@@ -13,10 +13,11 @@
 
 #include "csg/mesh/TriangleMesh.h"
 #include "io/Model.h"
+#include "primitives/Polyhedron.h"
 
 namespace io {
 
-enum class MeshFormat { Unknown, Obj, Stl, Glb, Gltf };
+enum class MeshFormat { Unknown, Obj, Stl, Off, Glb, Gltf };
 
 // By extension, case-insensitively.
 MeshFormat meshFormatOf(const std::filesystem::path& file);
@@ -38,7 +39,7 @@ struct MeshReadResult {
     uint32_t line = 0, column = 0;          // where in a text file the error is; 0: nowhere
 };
 
-// Reads an OBJ, STL, GLB or glTF file, in time linear in its size (n log n to weld) whatever
+// Reads an OBJ, STL, OFF, GLB or glTF file, in time linear in its size (n log n to weld) whatever
 // the vertex valences. glTF node transforms are applied, so a csgray GLB comes back in its
 // Z-up part frame (the root rotation undone). Vertices with bit-identical positions are merged
 // (STL soups, per-material primitives), so topology can be checked. An error in an OBJ or
@@ -49,5 +50,24 @@ MeshReadResult readMesh(const std::filesystem::path& file);
 // readMesh on bytes already read: baseDir is where a glTF's external buffers are looked up.
 MeshReadResult parseMesh(std::string_view bytes, MeshFormat format,
                          const std::filesystem::path& baseDir);
+
+// A mesh file's faces as written: positions (not welded; STL repeats each corner) and polygons
+// (OBJ and OFF faces and ASCII STL facets of any corner count, each corner an index into
+// positions). What import() builds its solid from.
+struct PolygonMesh {
+    std::vector<csg::Vec3> positions;
+    csg::PolygonFaces faces;
+};
+struct PolygonMeshReadResult {
+    std::optional<PolygonMesh> mesh;
+    std::string error;              // when mesh is empty
+    bool unreadable = false;        // the file could not be opened (an I/O failure)
+    uint32_t line = 0, column = 0;  // where in a text file the error is; 0: nowhere
+};
+
+// Reads an STL (binary when its size is 84 + 50 n for the n at byte 80, as OpenSCAD decides;
+// else ASCII), OBJ or OFF file as polygons, with readMesh's limits and error positions.
+PolygonMeshReadResult readPolygonMesh(const std::filesystem::path& file);
+PolygonMeshReadResult parsePolygonMesh(std::string_view bytes, MeshFormat format);
 
 }  // namespace io

@@ -17,9 +17,10 @@ std::optional<std::string> writeGltf(const std::filesystem::path& file,
                                      const std::vector<Material>& materials, bool binary);
 
 // The parsers of a file's bytes return positions as written (not welded: parseMesh welds) and
-// triangles, every position measurable (below).
-MeshReadResult parseObj(std::string_view text);
-MeshReadResult parseStl(std::string_view bytes);
+// polygons (glTF: triangles), every position measurable (below).
+PolygonMeshReadResult parseObj(std::string_view text);
+PolygonMeshReadResult parseStl(std::string_view bytes);
+PolygonMeshReadResult parseOff(std::string_view text);
 MeshReadResult parseGltf(std::string_view bytes, bool binary, const std::filesystem::path& baseDir);
 
 // Whether a coordinate read can be measured: finite and within ±tol::kMeshCoordinateMax (NaN

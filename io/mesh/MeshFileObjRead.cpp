@@ -1,9 +1,8 @@
-// Reading OBJ for comparison: `v` positions and `f` faces (polygons cut into a fan from their
-// first corner, as OpenMesh did), straight into a triangle soup; a backslash ending a line
-// continues its statement on the next. Nothing else of the format matters to compare
-// (texture coordinates, normals, groups, materials are skipped), and no half-edge structure
-// is built: compare checks topology itself (csg::checkTopology), so a non-manifold face is
-// kept and reported rather than dropped, and loading stays linear in the size of the file
+// Reading OBJ: `v` positions and `f` faces (polygons, as written), straight into a polygon soup; a
+// backslash ending a line continues its statement on the next. Nothing else of the format matters
+// to compare (texture coordinates, normals, groups, materials are skipped), and no half-edge
+// structure is built: compare checks topology itself (csg::checkTopology), so a non-manifold face
+// is kept and reported rather than dropped, and loading stays linear in the size of the file
 // whatever the vertex valences.
 #include <cstdint>
 
@@ -12,10 +11,10 @@
 
 namespace io::detail {
 
-MeshReadResult parseObj(std::string_view text) {
-    MeshReadResult result;
+PolygonMeshReadResult parseObj(std::string_view text) {
+    PolygonMeshReadResult result;
     MeshTextScanner in(text, /*lineContinuations=*/true);
-    csg::TriangleMesh mesh;
+    PolygonMesh mesh;
     auto fail = [&](uint32_t line, uint32_t column, std::string message) {
         result.error = std::move(message);
         result.line = line;
@@ -59,8 +58,8 @@ MeshReadResult parseObj(std::string_view text) {
                     return fail(in.line(), in.column(), "expected a vertex index (f v1 v2 v3 ...)");
             }
             if (corners.size() < 3) return fail(line, 1, "a face needs at least 3 vertices");
-            for (size_t i = 1; i + 1 < corners.size(); ++i)
-                mesh.triangles.push_back({corners[0], corners[i], corners[i + 1]});
+            mesh.faces.corners.insert(mesh.faces.corners.end(), corners.begin(), corners.end());
+            mesh.faces.closeFace();
         }
         // Every other statement (vt, vn, g, o, s, usemtl, mtllib, l, p, comments) is skipped.
         in.skipLine();

@@ -1,5 +1,5 @@
-// Reading STL for comparison, binary or ASCII, straight into a triangle soup (three corners
-// per facet; readMesh welds equal positions). No half-edge structure is built: OpenMesh's
+// Reading STL, binary or ASCII, straight into a polygon soup (the corners of each facet; readMesh
+// and import() weld equal positions). No half-edge structure is built: OpenMesh's
 // reader spent time quadratic in a vertex's valence adding faces around it (a 200,000-segment
 // cone's apex), and dropped faces its structure could not hold, which compare should report.
 // The facet normals are not read: the corners' order gives the orientation compare checks.
@@ -32,12 +32,13 @@ float floatAt(std::string_view bytes, size_t offset) {
 }
 
 // Binary STL: little-endian float corners, each facet's three in order.
-MeshReadResult readBinary(std::string_view bytes) {
-    MeshReadResult result;
+PolygonMeshReadResult readBinary(std::string_view bytes) {
+    PolygonMeshReadResult result;
     const size_t facets = facetCount(bytes);
-    csg::TriangleMesh mesh;
+    PolygonMesh mesh;
     mesh.positions.reserve(3 * facets);
-    mesh.triangles.reserve(facets);
+    mesh.faces.corners.reserve(3 * facets);
+    mesh.faces.faceStart.reserve(facets + 1);
     for (size_t f = 0; f < facets; ++f) {
         const size_t corners = kHeaderBytes + f * kFacetBytes + 12;
         const uint32_t first = uint32_t(mesh.positions.size());
@@ -51,18 +52,18 @@ MeshReadResult readBinary(std::string_view bytes) {
             }
             mesh.positions.push_back(p);
         }
-        mesh.triangles.push_back({first, first + 1, first + 2});
+        mesh.faces.add({first, first + 1, first + 2});
     }
     result.mesh = std::move(mesh);
     return result;
 }
 
 // ASCII STL: solid NAME, then per facet "facet normal n n n / outer loop / vertex x y z (3 or
-// more, cut into a fan) / endloop / endfacet", then endsolid NAME; more solids may follow.
-MeshReadResult readAscii(std::string_view text) {
-    MeshReadResult result;
+// more: one polygon) / endloop / endfacet", then endsolid NAME; more solids may follow.
+PolygonMeshReadResult readAscii(std::string_view text) {
+    PolygonMeshReadResult result;
     MeshTextScanner in(text);
-    csg::TriangleMesh mesh;
+    PolygonMesh mesh;
     uint32_t line = 0, column = 0;
     auto fail = [&](std::string message) {
         result.error = std::move(message);
@@ -90,7 +91,7 @@ MeshReadResult readAscii(std::string_view text) {
         return nullptr;
     };
 
-    std::vector<uint32_t> corners;
+    size_t corners = 0;
     for (std::string_view word = next(); !word.empty(); word = next()) {
         if (!sameWord(word, "solid")) return fail("expected 'solid'");
         in.skipLine();  // the solid's name
@@ -108,19 +109,19 @@ MeshReadResult readAscii(std::string_view text) {
             }
             if (!expect("outer")) return fail("expected 'outer loop'");
             if (!expect("loop")) return fail("expected 'outer loop'");
-            corners.clear();
+            corners = 0;
             for (word = next(); sameWord(word, "vertex"); word = next()) {
                 csg::Vec3 p;
                 if (const char* error = corner(p)) return fail(error);
-                corners.push_back(uint32_t(mesh.positions.size()));
+                mesh.faces.corners.push_back(uint32_t(mesh.positions.size()));
                 mesh.positions.push_back(p);
+                ++corners;
             }
             if (!sameWord(word, "endloop"))
-                return fail(corners.size() < 3 ? "expected 'vertex'" : "expected 'endloop'");
-            if (corners.size() < 3) return fail("a facet needs at least 3 vertices");
+                return fail(corners < 3 ? "expected 'vertex'" : "expected 'endloop'");
+            if (corners < 3) return fail("a facet needs at least 3 vertices");
             if (!expect("endfacet")) return fail("expected 'endfacet'");
-            for (size_t i = 1; i + 1 < corners.size(); ++i)
-                mesh.triangles.push_back({corners[0], corners[i], corners[i + 1]});
+            mesh.faces.closeFace();
         }
         in.skipLine();  // endsolid's name
     }
@@ -136,8 +137,8 @@ bool startsWithSolid(std::string_view bytes) {
 
 }  // namespace
 
-MeshReadResult parseStl(std::string_view bytes) {
-    MeshReadResult result;
+PolygonMeshReadResult parseStl(std::string_view bytes) {
+    PolygonMeshReadResult result;
     // A binary file's size is fixed by its facet count; its free header may start with
     // "solid" too (several exporters write that), so the size decides first.
     if (bytes.size() >= kHeaderBytes &&

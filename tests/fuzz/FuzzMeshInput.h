@@ -1,7 +1,8 @@
 // What the mesh fuzzer (fuzz_mesh.cpp) and the mesh corpus replay (fuzz_replay mesh) do with
 // one input: parse it as every mesh format compare reads, check the readers' promises, and run
-// compare's mesh checks on any mesh that comes out. Any crash, hang, sanitizer report or
-// abort() here is a bug.
+// compare's mesh checks on any mesh that comes out; parse it as every format import() reads,
+// build the mesh primitive from it and check that lines through its vertices cross a closed
+// mesh an even number of times. Any crash, hang, sanitizer report or abort() here is a bug.
 #pragma once
 
 #include <cmath>
@@ -11,6 +12,7 @@
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/TriangleBvh.h"
 #include "io/mesh/MeshFile.h"
+#include "primitives/Polyhedron.h"
 #include "primitives/base/Tolerances.h"
 
 namespace fuzz {
@@ -18,7 +20,7 @@ namespace fuzz {
 inline void readMeshInput(std::string_view bytes) {
     using io::MeshFormat;
     for (const MeshFormat format :
-         {MeshFormat::Obj, MeshFormat::Stl, MeshFormat::Glb, MeshFormat::Gltf}) {
+         {MeshFormat::Obj, MeshFormat::Stl, MeshFormat::Off, MeshFormat::Glb, MeshFormat::Gltf}) {
         // A directory that does not exist: a glTF's external buffers are not read from disk.
         const io::MeshReadResult r = io::parseMesh(bytes, format, "/nonexistent/csgray-fuzz");
         // A mesh exactly when there is no error; a column only with a line.
@@ -41,6 +43,26 @@ inline void readMeshInput(std::string_view bytes) {
             std::isnan(bvh.distance(mesh.positions.front() + csg::Vec3(0.5, 0.25, 0.125),
                                     csg::tol::kMeshCoordinateMax)))
             std::abort();
+    }
+    for (const MeshFormat format : {MeshFormat::Obj, MeshFormat::Stl, MeshFormat::Off}) {
+        io::PolygonMeshReadResult r = io::parsePolygonMesh(bytes, format);
+        if (r.mesh.has_value() == !r.error.empty()) std::abort();
+        if (!r.mesh) continue;
+        for (const uint32_t corner : r.mesh->faces.corners)
+            if (corner >= r.mesh->positions.size()) std::abort();
+        const csg::Polyhedron solid = csg::Polyhedron::make(r.mesh->positions, r.mesh->faces);
+        if (solid.invalidReason()) continue;
+        // Lines through (up to 64 of) the vertices, along a skew direction and along the axes.
+        std::vector<csg::Polyhedron::Crossing> crossings;
+        const size_t step = std::max<size_t>(1, solid.data->vertices.size() / 64);
+        for (size_t v = 0; v < solid.data->vertices.size(); v += step)
+            for (const csg::Vec3 d :
+                 {csg::Vec3(0.3, -0.7, 0.6), csg::Vec3(0, 0, 1), csg::Vec3(1, 0, 0)}) {
+                solid.crossings(solid.data->vertices[v] - d, d, crossings);
+                if (solid.edges().closed() && crossings.size() % 2 != 0) std::abort();
+                csg::LocalSpans spans;
+                solid.spans(solid.data->vertices[v] - d, d, spans);
+            }
     }
 }
 
