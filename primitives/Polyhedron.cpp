@@ -124,7 +124,8 @@ inline bool crosses(const Projected& A, const Projected& B, const Projected& C, 
 const Vec3 kInsideDirection = glm::normalize(Vec3(0.5711, 0.6289, 0.5277));
 
 // Mesh BVH: up to two triangles per leaf slot, a box test costing as much as a triangle test
-// (bench/README.md, polyhedron table: the best of 1, 2 and 4 per leaf at 10^4..10^6 triangles).
+// (bench/README.md, polygon meshes: 1, 2 and 4 per slot ran within noise of each other; 2
+// needs half the nodes of 1).
 constexpr BvhBuildOptions kMeshBvhOptions{.maxLeafItems = 2, .traversalCost = 1.0};
 
 // Faces of more corners than this that are not convex in their projection are cut into a fan
@@ -135,29 +136,34 @@ constexpr size_t kMaxEarClipCorners = 4096;
 // Welds points of equal position (-0 == +0): returns each point's welded index and leaves the
 // distinct positions in `points`, in order of first appearance.
 std::vector<uint32_t> weld(std::vector<Vec3>& points) {
-    for (Vec3& p : points) p += Vec3(0.0);  // -0 + 0 = +0: one key per position
-    std::vector<uint32_t> byPosition(points.size());
-    std::iota(byPosition.begin(), byPosition.end(), 0u);
-    auto less = [&](uint32_t a, uint32_t b) {
-        const Vec3 &p = points[a], &q = points[b];
-        if (p.x != q.x) return p.x < q.x;
-        if (p.y != q.y) return p.y < q.y;
-        if (p.z != q.z) return p.z < q.z;
-        return a < b;
+    // Sorted by position, the positions beside their indices: a sort that gathered positions
+    // through the indices took twice as long on an STL's 3 million corners.
+    struct Keyed {
+        Vec3 p;
+        uint32_t index;
     };
-    std::sort(byPosition.begin(), byPosition.end(), less);
+    std::vector<Keyed> sorted(points.size());
+    for (uint32_t i = 0; i < points.size(); ++i)
+        sorted[i] = {points[i] + Vec3(0.0), i};  // -0 + 0 = +0: one key per position
+    std::sort(sorted.begin(), sorted.end(), [](const Keyed& a, const Keyed& b) {
+        if (a.p.x != b.p.x) return a.p.x < b.p.x;
+        if (a.p.y != b.p.y) return a.p.y < b.p.y;
+        if (a.p.z != b.p.z) return a.p.z < b.p.z;
+        return a.index < b.index;
+    });
     // Each run of equal positions maps to its first point (lowest index).
     std::vector<uint32_t> firstOf(points.size());
-    for (size_t i = 0; i < byPosition.size(); ++i) {
-        const bool same = i > 0 && points[byPosition[i]] == points[byPosition[i - 1]];
-        firstOf[byPosition[i]] = same ? firstOf[byPosition[i - 1]] : byPosition[i];
+    for (size_t i = 0; i < sorted.size(); ++i) {
+        const bool same = i > 0 && sorted[i].p == sorted[i - 1].p;
+        firstOf[sorted[i].index] = same ? firstOf[sorted[i - 1].index] : sorted[i].index;
     }
+    sorted = {};
     std::vector<uint32_t> welded(points.size());
     std::vector<Vec3> distinct;
     for (size_t i = 0; i < points.size(); ++i) {
         if (firstOf[i] == i) {
             welded[i] = static_cast<uint32_t>(distinct.size());
-            distinct.push_back(points[i]);
+            distinct.push_back(points[i] + Vec3(0.0));
         } else {
             welded[i] = welded[firstOf[i]];
         }

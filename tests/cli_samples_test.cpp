@@ -59,6 +59,20 @@ std::map<std::string, std::vector<ProbeCase>> analyticCases() {
 
     cases["csg_grid.scad"] = {{{-2, 0.4, 0}, px, gridRow()}};
 
+    // gem: octahedron |x| + |y| + |z| <= 10 (a polyhedron) n box |x|, |y| <= 7, |z| <= 6, minus
+    // a bore r = 2 along z.
+    const double gemBore = std::sqrt(4 - 0.25);
+    cases["gem.scad"] = {
+        // At (4, 1) the octahedron allows |z| <= 5, inside the box's 6.
+        {{4, 1, -20}, pz, {{15, 25}}},
+        // y = 0.5, z = 0: the box's |x| <= 7 (the octahedron's is 9.5), the bore |x| <= 1.936.
+        {{-20, 0.5, 0}, px, {{13, 20 - gemBore}, {20 + gemBore, 27}}},
+        // x = 6, z = 3: the octahedron's |y| <= 1; the bore is 6 away.
+        {{6, -20, 3}, py, {{19, 21}}},
+        // Down the bore: nothing.
+        {{0.5, 0.5, 20}, mz, {}},
+    };
+
     // bracket: base [0,40]x[0,20]x[0,4], upright [0,4]x[0,20]x[0,30]; holes r = 3 at
     // (15,10) and (30,10) through the base, and along x at y = 10, z = 20 through the upright.
     cases["bracket.scad"] = {
@@ -216,7 +230,7 @@ TEST_P(SampleSpans, MatchHandDerivedSpans) {
 
 const std::vector<std::string> kOpenScadSamples = {
     "emblem.scad", "csg_grid.scad", "bracket.scad", "gear_ring.scad", "pipe_tee.scad", "pawn.scad",
-    "flange.scad", "hinge.scad",    "dice.scad",    "table.scad",     "knob.scad"};
+    "flange.scad", "hinge.scad",    "dice.scad",    "table.scad",     "knob.scad",     "gem.scad"};
 
 INSTANTIATE_TEST_SUITE_P(Samples, SampleSpans, ::testing::ValuesIn(kOpenScadSamples),
                          sampleTestName);
