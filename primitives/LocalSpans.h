@@ -20,7 +20,9 @@ struct LocalSpans {
     // A convex primitive gives 1 span, a torus 2, a degree-16 algebraic surface cut by its
     // box 9 (16 roots split the chord into 17 pieces, alternating, inside at both ends); a
     // patch set one per crossing of a sheet or per pair of a solid's: the teapot's worst line
-    // crosses ~12 patches, 32 leaves room (further crossings of a line are dropped).
+    // crosses ~12 patches, 32 leaves room (further crossings of a line are dropped). A polygon
+    // mesh closes a line's narrowest gaps until its spans fit (primitives/Polyhedron.h). Not
+    // raised: one lives on the stack of every level of the recursive CSG walk.
     static constexpr int kCapacity = 32;
     struct Entry {
         double tIn, tOut;

@@ -539,7 +539,7 @@ void sortCrossings(std::vector<Polyhedron::Crossing>& c) {
 
 // Per thread, grown to the most crossings a line has had: no allocation per ray after that.
 thread_local std::vector<Polyhedron::Crossing> lineCrossings;
-thread_local std::vector<double> lineGaps;
+thread_local std::vector<double> lineGaps, lineGapsSorted;
 
 uint16_t faceOf(uint32_t triangle) {
     return static_cast<uint16_t>(triangle % Polyhedron::kFaceIds);
@@ -579,7 +579,8 @@ void Polyhedron::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     if (pairs > size_t(LocalSpans::kCapacity)) {
         toClose = pairs - LocalSpans::kCapacity;
         for (size_t i = 0; i + 1 < pairs; ++i) gaps.push_back(c[2 * i + 2].t - c[2 * i + 1].t);
-        std::vector<double> sorted = gaps;  // rare: lines of over 64 crossings
+        std::vector<double>& sorted = lineGapsSorted;
+        sorted.assign(gaps.begin(), gaps.end());
         std::nth_element(sorted.begin(), sorted.begin() + long(toClose - 1), sorted.end());
         threshold = sorted[toClose - 1];
         const size_t below = size_t(

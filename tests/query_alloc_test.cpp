@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "csg/Scene.h"
+#include "primitives/Polyhedron.h"
 #include "tests/CountingNew.h"
 #include "tests/TreeOracle.h"
 
@@ -37,6 +38,54 @@ TEST(QueryAllocation, SteadyStateQueriesAllocateNothing) {
     EXPECT_EQ(allocations.load() - before, 0);
     EXPECT_EQ(warm, again);
     EXPECT_GT(warm, 1000u);  // the rays did meet the scene
+}
+
+// Meshes keep their crossings in per-thread scratch: after the first rays, none allocates, also
+// on lines of more spans than LocalSpans holds (a comb of 40 slabs) and when asked for normals.
+TEST(QueryAllocation, MeshQueriesAllocateNothing) {
+    std::vector<Vec3> points;
+    PolygonFaces faces;
+    for (int slab = 0; slab < 40; ++slab) {
+        const uint32_t base = uint32_t(points.size());
+        for (int corner = 0; corner < 8; ++corner)
+            points.emplace_back(1.5 * slab + (corner & 1), (corner >> 1) & 1, corner >> 2);
+        for (const auto& quad : {std::array<uint32_t, 4>{0, 2, 3, 1},
+                                 {4, 5, 7, 6},
+                                 {0, 1, 5, 4},
+                                 {2, 6, 7, 3},
+                                 {0, 4, 6, 2},
+                                 {1, 3, 7, 5}}) {
+            for (uint32_t k : quad) faces.corners.push_back(base + k);
+            faces.closeFace();
+        }
+    }
+    const Polyhedron comb = Polyhedron::make(points, faces);
+    ASSERT_EQ(comb.invalidReason(), nullptr);
+    const Scene scene = Scene::compile(
+        unite(leaf(comb), transformed(glm::translate(Mat4(1.0), Vec3(0, 3, 0)), leaf(comb))));
+    QueryContext ctx;
+    std::uniform_real_distribution<double> u(0, 1);
+    auto runAll = [&] {
+        size_t found = 0;
+        for (int i = 0; i < 2000; ++i) {
+            std::mt19937_64 r(i);
+            // Along the comb (over 32 spans) or across it, from outside its box.
+            const Ray ray = i % 2 ? Ray{{-1, 4 * u(r), u(r)}, {1, 0.01 * u(r), 0}, 0.0, 100.0}
+                                  : Ray{{60 * u(r), -1, u(r)}, {u(r), 1, 0.1}, 0.0, 100.0};
+            found += scene.spans(ray, ctx).size();
+            if (const auto hit = scene.closest(ray, ctx)) {
+                found += glm::length(scene.surface(ray, *hit).normal) > 0.5;
+            }
+            found += scene.occluded(ray, ctx);
+        }
+        return found;
+    };
+    const size_t warm = runAll();
+    const long before = allocations.load();
+    const size_t again = runAll();
+    EXPECT_EQ(allocations.load() - before, 0);
+    EXPECT_EQ(warm, again);
+    EXPECT_GT(warm, 1000u);
 }
 
 }  // namespace
