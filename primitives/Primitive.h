@@ -70,7 +70,8 @@ concept HasValidation = requires(const P& p) {
 // Optional: a primitive that lies inside a ball centred in its own frame says so. Placed by a
 // similarity, the ball becomes a world-frame ball that rejects lines before any leaf frame is
 // entered (csg/Compile.cpp); it pays only where it is much tighter than the box, as for a
-// sphere.
+// sphere. A primitive whose ball pays for some values only (a convex polyhedron) returns an
+// infinite radius for the others, which compile takes as no ball.
 struct LocalBall {
     Vec3 center{0.0};
     double radius = 0.0;

@@ -11,6 +11,7 @@
 
 #include "primitives/AlgebraicSurface.h"
 #include "primitives/Box.h"
+#include "primitives/ConvexPolytope.h"
 #include "primitives/Cylinder.h"
 #include "primitives/HalfSpace.h"
 #include "primitives/PatchSet.h"
@@ -20,8 +21,8 @@
 
 namespace csg {
 
-using Primitive =
-    std::variant<Sphere, Box, Cylinder, HalfSpace, Torus, AlgebraicSurface, PatchSet, Polyhedron>;
+using Primitive = std::variant<Sphere, Box, Cylinder, HalfSpace, Torus, AlgebraicSurface, PatchSet,
+                               Polyhedron, ConvexPolytope>;
 
 namespace detail {
 template <class Variant>
