@@ -9,6 +9,7 @@
 #include "io/Colors.h"
 #include "io/Degrees.h"
 #include "io/Evaluator.h"
+#include "io/FacetedPrimitives.h"
 #include "io/MeshModules.h"
 #include "io/PatchModule.h"
 #include "io/SurfaceModule.h"
@@ -110,6 +111,7 @@ uint32_t leafTag(Evaluator& e, const InstantiationStmt& s, const GeomState& stat
 Instance cube(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
               const GeomState& state) {
     BoundArgs b = bindArgs(e, s, ctx, {"size", "center"}, "cube(size, center)");
+    fragmentSettings(e, b, ctx);  // only for OpenSCAD's warnings about $fa and $fs
     Vec3 size(1.0);
     if (b.given(0)) {
         const std::optional<Vec3> read = transformVector(b[0], 0.0, true);
@@ -131,12 +133,15 @@ Instance cube(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
 Instance sphere(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                 const GeomState& state) {
     BoundArgs b = bindArgs(e, s, ctx, {"r", "d"}, "sphere(r | d)");
+    const FragmentSettings facets = fragmentSettings(e, b, ctx);
     double r = numberArg(e, b, 0, 1.0);
     if (b.given(1)) r = numberArg(e, b, 1, 2.0) / 2.0;  // d wins over r, as in OpenSCAD
     if (r <= 0) {
         e.warn(s.loc, "sphere() with a radius that is not positive is empty");
         return csg::NodePtr();
     }
+    if (auto faceted = spherePolytope(e, s, facets, r))
+        return csg::leaf(std::move(*faceted), {leafTag(e, s, state), state.material});
     return csg::leaf(csg::Sphere{r}, {leafTag(e, s, state), state.material});
 }
 
@@ -144,6 +149,7 @@ Instance cylinder(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ct
                   const GeomState& state) {
     BoundArgs b = bindArgs(e, s, ctx, {"h", "r1", "r2", "center", "r", "d", "d1", "d2"},
                            "cylinder(h, r|d, r1|d1, r2|d2, center)");
+    const FragmentSettings facets = fragmentSettings(e, b, ctx);
     const double h = numberArg(e, b, 0, 1.0);
     // OpenSCAD's precedence: d over r, d1 over r1, d2 over r2; r1/r2 over r.
     double r1 = 1.0, r2 = 1.0;
@@ -164,6 +170,8 @@ Instance cylinder(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ct
         e.warn(s.loc, "cylinder() with a height or radii that are not positive is empty");
         return csg::NodePtr();
     }
+    if (auto faceted = cylinderPolytope(e, s, facets, h, r1, r2, center))
+        return csg::leaf(std::move(*faceted), {leafTag(e, s, state), state.material});
     csg::NodePtr node = csg::leaf(csg::Cylinder{h, r1, r2}, {leafTag(e, s, state), state.material});
     if (center) node = csg::transformed(glm::translate(Mat4(1.0), Vec3(0, 0, -h / 2)), node);
     return node;

@@ -30,4 +30,14 @@ inline double cosDegrees(double degrees) {
     return sinDegrees(x + 90.0);
 }
 
+// OpenSCAD 2021.01's sin_degrees and cos_degrees (src/degree_trig.cc), bit for bit: exact at
+// multiples of 30, 45, 60 and 90 degrees, otherwise sin or cos of the angle folded into
+// [0, 45] and converted with one multiplication by the rounded pi/180. Faceting (io/Faceting.h)
+// places OpenSCAD's vertices with these, so a faceted solid's vertices are OpenSCAD's doubles.
+// The language's sin(), cos() and rotate() still use the pair above: moving them to these
+// changes rotations by 45 and 60 degrees by an ulp, i.e. the outputs of parts that have them,
+// which is a change of its own.
+double openscadSinDegrees(double degrees);
+double openscadCosDegrees(double degrees);
+
 }  // namespace io

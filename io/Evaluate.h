@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "io/Diagnostic.h"
+#include "io/Faceting.h"
 #include "io/Model.h"
 
 namespace io {
@@ -33,6 +34,9 @@ struct EvaluateOptions {
     uint64_t maxSteps = 500'000'000;
     // False: include <f> and use <f> are errors, for evaluating untrusted text (the fuzzer).
     bool allowFiles = true;
+    // What cylinder() and sphere() become: OpenSCAD's polyhedra or exact quadrics (--curves;
+    // see CurveMode in io/Faceting.h).
+    CurveMode curves = CurveMode::Auto;
 };
 
 struct EvaluateResult {

@@ -189,6 +189,8 @@ public:
     // is allowed (EvaluateOptions::allowFiles).
     const std::filesystem::path& filePath(uint32_t file) const { return sources_.path(file); }
     bool filesAllowed() const { return options_.allowFiles; }
+    // What cylinder() and sphere() become (EvaluateOptions::curves).
+    CurveMode curveMode() const { return options_.curves; }
 
     // ---- built-in modules (BuiltinModules.cpp) ----
     using BuiltinModule = Instance (*)(Evaluator&, const InstantiationStmt&, const ContextPtr&,

@@ -1,6 +1,6 @@
 // A 3 x 3 x 3 grid of CSG emblems, each turned a little differently: the peer benchmark
-// scene (../shared/peers/csg_grid3.scad). $fn is accepted and ignored by csgray, whose
-// surfaces are exact.
+// scene (../shared/peers/csg_grid3.scad). Its $fn = 64 makes every sphere and cylinder
+// OpenSCAD's polyhedron (--curves auto); --curves exact gives the exact surfaces.
 $fn = 64;
 spacing = 1.2;
 

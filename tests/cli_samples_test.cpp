@@ -21,17 +21,35 @@ struct ProbeCase {
     std::vector<SpanT> expected;
 };
 
+// Half the width at height h of the regular n-gon of circumradius r with a vertex on +x, as
+// OpenSCAD's circle(r, $fn = n) places it (n a multiple of 4, so it is symmetric about both
+// axes): on the side between the vertices at angles 360 k / n and 360 (k + 1) / n whose
+// heights enclose h, linearly between the two.
+double ngonHalfWidth(double r, int n, double h) {
+    h = std::abs(h);
+    for (int k = 0; k < n / 4; ++k) {
+        const double a0 = 2 * M_PI * k / n, a1 = 2 * M_PI * (k + 1) / n;
+        const double y0 = r * std::sin(a0), y1 = r * std::sin(a1);
+        if (h <= y1)
+            return r * std::cos(a0) + (h - y0) / (y1 - y0) * r * (std::cos(a1) - std::cos(a0));
+    }
+    return 0.0;
+}
+
 // Spans of the grid row j = k = 0 of csg_grid.scad along x at y = 0.4, z = 0, from x = -2.
+// The part sets $fn = 64, so (--curves auto) its sphere and bores are OpenSCAD's polyhedra.
 // Part i sits at x = 1.2 i, turned 13 i degrees about x, so the ray meets it at local
-// y' = 0.4 cos, z' = -0.4 sin: the cube bounds |x'| <= 0.5 (the sphere r = 0.68 allows
-// sqrt(0.68^2 - 0.4^2) > 0.5), the z bore misses (y' > 0.3) and the y bore (r = 0.3)
-// removes |x'| <= sqrt(0.09 - z'^2).
+// y' = 0.4 cos, z' = -0.4 sin: the cube bounds |x'| <= 0.5 (the faceted sphere r = 0.68 keeps
+// every facet over 0.678 from its centre, beyond (0.5, 0.4)'s 0.64), the z bore misses
+// (y' > 0.3, and its 64-gon lies within r = 0.3) and the y bore removes x' inside its 64-gon
+// of radius 0.3 in the x'-z' plane (rotate([90, 0, 0]) takes the cylinder's y to z), at
+// height z'.
 std::vector<SpanT> gridRow() {
     std::vector<SpanT> spans;
     for (int i = 0; i < 3; ++i) {
         const double theta = 13.0 * i * M_PI / 180.0;
         const double z = 0.4 * std::sin(theta);
-        const double cut = std::sqrt(0.09 - z * z);
+        const double cut = ngonHalfWidth(0.3, 64, z);
         const double c = 1.2 * i + 2.0;  // the part's centre, as a distance from x = -2
         spans.push_back({c - 0.5, c - cut});
         spans.push_back({c + cut, c + 0.5});

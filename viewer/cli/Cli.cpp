@@ -9,6 +9,13 @@ namespace viewer {
 const char* const kCommonOptionsHelp =
     "  -D name=value          override the part's top-level variable name (value is an\n"
     "                         expression, as with OpenSCAD's -D); may be repeated\n"
+    "  --curves=MODE          what cylinder() and sphere() become:\n"
+    "                         auto (default): OpenSCAD's polyhedron, vertex for vertex, where\n"
+    "                           $fn > 0 sets its facets (a $fn=6 nut trap stays hexagonal);\n"
+    "                           the exact quadric where OpenSCAD would take $fa and $fs;\n"
+    "                         exact: every cylinder and sphere exact, $fn ignored;\n"
+    "                         openscad: every cylinder and sphere faceted as OpenSCAD 2021\n"
+    "                           would, $fa and $fs included (to check against its meshes)\n"
     "  --diagnostics=FORMAT   text (default): file:line:col: error: message on stderr;\n"
     "                         json: one JSON array of diagnostics on stderr\n"
     "  -h, --help             show this help\n";
@@ -52,6 +59,13 @@ bool ArgCursor::common(CommonOptions& options) {
         if (eq == 0 || eq == std::string::npos)
             throw UsageError("-D expects name=value, got '" + *define + "'");
         options.defines.emplace_back(define->substr(0, eq), define->substr(eq + 1));
+        return true;
+    }
+    if (auto mode = option("--curves")) {
+        const std::optional<io::CurveMode> curves = io::parseCurveMode(*mode);
+        if (!curves)
+            throw UsageError("--curves expects auto, exact or openscad, got '" + *mode + "'");
+        options.curves = *curves;
         return true;
     }
     if (auto format = option("--diagnostics")) {

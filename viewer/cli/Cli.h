@@ -1,6 +1,6 @@
 // Command-line plumbing shared by the csgray subcommands: exit codes, the options every
-// subcommand takes (the part, -D, --diagnostics, --help), an argument cursor, and parsers for
-// the value forms (X,Y,Z vectors, WxH sizes). Each subcommand parses its own options with it.
+// subcommand takes (the part, -D, --curves, --diagnostics, --help), an argument cursor, and parsers
+// for the value forms (X,Y,Z vectors, WxH sizes). Each subcommand parses its own options with it.
 #pragma once
 
 #include <optional>
@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "io/Faceting.h"
 #include "primitives/base/Math.h"
 
 namespace viewer {
@@ -28,6 +29,7 @@ struct CommonOptions {
     std::string part;                                          // the part file
     std::vector<std::pair<std::string, std::string>> defines;  // -D name=value, in order
     bool jsonDiagnostics = false;                              // --diagnostics=json
+    io::CurveMode curves = io::CurveMode::Auto;                // --curves
     bool help = false;                                         // --help or -h
 };
 
@@ -45,7 +47,8 @@ public:
     std::optional<std::string> option(std::string_view name);
     // When the current argument is exactly name, consumes it.
     bool flag(std::string_view name);
-    // Consumes one of -D name=value (or -Dname=value), --diagnostics=text|json, --help/-h, or
+    // Consumes one of -D name=value (or -Dname=value), --curves=auto|exact|openscad,
+    // --diagnostics=text|json, --help/-h, or
     // the part (the first argument that is not an option). Returns false for anything else.
     bool common(CommonOptions& options);
 

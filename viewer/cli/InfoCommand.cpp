@@ -23,11 +23,13 @@ namespace {
 const char* const kInfoHelp =
     "usage: csgray info PART [options]\n"
     "\n"
-    "Prints JSON on stdout: \"counts\" of the evaluated tree's nodes by kind (leaves by\n"
-    "primitive, unions, intersections, differences, transformed nodes), world \"bounds\"\n"
-    "(null when empty; an unbounded side is null), the compiled leaf count, the scene\n"
-    "extras (camera, lights, background, materials) and the \"tree\": operators, primitives\n"
-    "with their parameters in local coordinates, transforms (3x4 rows, parent from node) and\n"
+    "Prints JSON on stdout: the \"curves\" mode the part was read with (--curves), \"counts\"\n"
+    "of the evaluated tree's nodes by kind (leaves by primitive, unions, intersections,\n"
+    "differences, transformed nodes), world \"bounds\" (null when empty; an unbounded side is\n"
+    "null), the compiled leaf count, the scene extras (camera, lights, background, materials)\n"
+    "and the \"tree\": operators, primitives with their parameters in local coordinates (a\n"
+    "faceted cylinder or sphere is a convex_polyhedron with its fragments, rings and planes),\n"
+    "transforms (3x4 rows, parent from node) and\n"
     "each node's module path and file:line:col. A subtree used more than once is printed\n"
     "once with an \"id\" and referenced as {\"ref\": id}. Last, the renderer's effects\n"
     "\"plan\" with render's defaults: which lights get shadow rays and why, and which\n"
@@ -263,6 +265,7 @@ int infoCommand(std::span<const std::string> args) {
     csg::JsonWriter json(out);
     json.beginObject();
     json.key("part").value(options.part);
+    json.key("curves").value(io::curveModeName(options.curves));
     writeCounts(json, counts);
     writeBounds(json, part.scene.bounds());
     json.key("compiledLeaves").value(uint64_t(part.scene.leafCount()));

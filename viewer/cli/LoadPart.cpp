@@ -23,6 +23,7 @@ int loadPart(const CommonOptions& options, Report& report, LoadedPart& part) {
 
     io::EvaluateOptions evaluateOptions;
     evaluateOptions.defines = options.defines;
+    evaluateOptions.curves = options.curves;
     evaluateOptions.echo = [&report](const std::string& line) { report.echo(line); };
     io::EvaluateResult result = io::evaluateFile(options.part, evaluateOptions);
     report.addAll(result.diagnostics);

@@ -1,0 +1,209 @@
+// OpenSCAD 2021.01's fragment rule and vertex placement (src/calc.cc, src/primitives.cc,
+// src/degree_trig.cc at tag openscad-2021.01), written so that each double comes out of the
+// same operations in the same order as there: a faceted solid's vertices are OpenSCAD's.
+#include "io/Faceting.h"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "io/Degrees.h"
+
+namespace io {
+
+namespace {
+
+// degree_trig.cc: pi / 180 as the literal 0.017453292519943295769 (src/degree_trig.h
+// M_DEG2RAD), applied by one multiplication.
+constexpr double kDegreesToRadians = 0.017453292519943295769;
+// sqrt(3) / 2 as degree_trig.h's literal M_SQRT3_4, and sqrt(1/2) as <cmath>'s M_SQRT1_2.
+constexpr double kSqrt3Over2 = 0.86602540378443859659;
+constexpr double kSqrtHalf = 0.70710678118654752440;
+// Beyond 2^52 degrees an angle has no fractional degrees left; degree_trig.cc gives NaN there.
+constexpr double kHugeDegrees = double(int64_t(1) << 26) * 360.0 * double(int64_t(1) << 26);
+
+// The angle reduced to [0, 360) as degree_trig.cc does it (floor, not fmod); NaN when it is
+// too large to mean anything or not finite (the caller's branches then yield NaN too).
+double reduceDegrees(double x) {
+    if (x < 360.0 && x >= 0.0) return x;
+    if (x < kHugeDegrees && x > -kHugeDegrees) return x - 360.0 * std::floor(x / 360.0);
+    return std::numeric_limits<double>::quiet_NaN();
+}
+
+void closeFace(FacetedSolid& solid) {
+    solid.faceStarts.push_back(uint32_t(solid.faceVertices.size()));
+}
+
+}  // namespace
+
+double openscadSinDegrees(double degrees) {
+    double x = reduceDegrees(degrees);
+    if (std::isnan(x)) return x;
+    const bool oppose = x >= 180.0;
+    if (oppose) x -= 180.0;
+    if (x > 90.0) x = 180.0 - x;
+    if (x < 45.0) {
+        x = x == 30.0 ? 0.5 : std::sin(x * kDegreesToRadians);
+    } else if (x == 45.0) {
+        x = kSqrtHalf;
+    } else if (x == 60.0) {
+        x = kSqrt3Over2;
+    } else {
+        x = std::cos((90.0 - x) * kDegreesToRadians);
+    }
+    return oppose ? -x : x;
+}
+
+double openscadCosDegrees(double degrees) {
+    double x = reduceDegrees(degrees);
+    if (std::isnan(x)) return x;
+    bool oppose = x >= 180.0;
+    if (oppose) x -= 180.0;
+    if (x > 90.0) {
+        x = 180.0 - x;
+        oppose = !oppose;
+    }
+    if (x > 45.0) {
+        x = x == 60.0 ? 0.5 : std::sin((90.0 - x) * kDegreesToRadians);
+    } else if (x == 45.0) {
+        x = kSqrtHalf;
+    } else if (x == 30.0) {
+        x = kSqrt3Over2;
+    } else {
+        x = std::cos(x * kDegreesToRadians);
+    }
+    return oppose ? -x : x;
+}
+
+const char* curveModeName(CurveMode mode) {
+    switch (mode) {
+        case CurveMode::Auto:
+            return "auto";
+        case CurveMode::Exact:
+            return "exact";
+        case CurveMode::OpenScad:
+            return "openscad";
+    }
+    return "auto";
+}
+
+std::optional<CurveMode> parseCurveMode(std::string_view name) {
+    for (CurveMode mode : {CurveMode::Auto, CurveMode::Exact, CurveMode::OpenScad})
+        if (name == curveModeName(mode)) return mode;
+    return std::nullopt;
+}
+
+int64_t fragments(double r, double fn, double fa, double fs) {
+    constexpr double kMaxCount = double(std::numeric_limits<int32_t>::max());
+    if (r < kGridFine || std::isinf(fn) || std::isnan(fn)) return 3;
+    if (fn > 0.0) return int64_t(std::min(fn >= 3 ? fn : 3.0, kMaxCount));
+    const double count = std::ceil(std::fmax(std::fmin(360.0 / fa, r * 2 * M_PI / fs), 5));
+    return int64_t(std::min(count, kMaxCount));
+}
+
+bool fnDecidesCount(const FragmentSettings& settings) {
+    return !std::isfinite(settings.fn) || settings.fn > 0.0;
+}
+
+bool isFaceted(CurveMode mode, const FragmentSettings& settings) {
+    switch (mode) {
+        case CurveMode::Exact:
+            return false;
+        case CurveMode::OpenScad:
+            return true;
+        case CurveMode::Auto:
+            return fnDecidesCount(settings);
+    }
+    return false;
+}
+
+std::vector<csg::Vec2> circleVertices(double r, int64_t n) {
+    std::vector<csg::Vec2> circle(static_cast<size_t>(n));
+    for (int64_t i = 0; i < n; ++i) {
+        // OpenSCAD's int i and int fragments, converted to double for the division.
+        const double phi = (360.0 * double(i)) / double(n);
+        circle[size_t(i)] = {r * openscadCosDegrees(phi), r * openscadSinDegrees(phi)};
+    }
+    return circle;
+}
+
+uint64_t facetedCylinderFaceCount(int64_t n, double r1, double r2) {
+    return uint64_t(n) + (r1 > 0.0 ? 1 : 0) + (r2 > 0.0 ? 1 : 0);
+}
+
+uint64_t facetedSphereFaceCount(int64_t n) {
+    return uint64_t(n) * uint64_t(sphereRingCount(n) - 1) + 2;
+}
+
+FacetedSolid facetedCylinder(double r1, double r2, double z1, double z2, int64_t n) {
+    FacetedSolid solid;
+    const auto count = uint32_t(n);
+    // One end's vertices: its ring, or the apex when its radius is 0 (OpenSCAD makes n copies
+    // of the apex; one vertex is the same solid). Returns the index of the end's first vertex.
+    auto addEnd = [&](double r, double z) {
+        const auto first = uint32_t(solid.vertices.size());
+        if (r > 0.0) {
+            for (const csg::Vec2& p : circleVertices(r, n)) solid.vertices.push_back({p.x, p.y, z});
+        } else {
+            solid.vertices.push_back({0.0, 0.0, z});
+        }
+        return first;
+    };
+    const uint32_t bottom = addEnd(r1, z1), top = addEnd(r2, z2);
+    solid.faceVertices.reserve(size_t(4 * count + 2 * count));
+    for (uint32_t i = 0; i < count; ++i) {
+        const uint32_t j = (i + 1) % count;
+        // Counter-clockwise from outside: along the bottom ring, then back along the top.
+        if (r1 > 0.0)
+            solid.faceVertices.insert(solid.faceVertices.end(), {bottom + i, bottom + j});
+        else
+            solid.faceVertices.push_back(bottom);
+        if (r2 > 0.0)
+            solid.faceVertices.insert(solid.faceVertices.end(), {top + j, top + i});
+        else
+            solid.faceVertices.push_back(top);
+        closeFace(solid);
+    }
+    if (r1 > 0.0) {  // seen from below: clockwise in x, y
+        for (uint32_t i = count; i-- > 0;) solid.faceVertices.push_back(bottom + i);
+        closeFace(solid);
+    }
+    if (r2 > 0.0) {
+        for (uint32_t i = 0; i < count; ++i) solid.faceVertices.push_back(top + i);
+        closeFace(solid);
+    }
+    return solid;
+}
+
+FacetedSolid facetedSphere(double r, int64_t n) {
+    FacetedSolid solid;
+    const auto count = uint32_t(n);
+    const auto rings = uint32_t(sphereRingCount(n));
+    solid.vertices.reserve(size_t(rings) * count);
+    for (uint32_t i = 0; i < rings; ++i) {
+        // OpenSCAD: phi = (180.0 * (i + 0.5)) / rings, with int i and int rings.
+        const double phi = (180.0 * (double(i) + 0.5)) / double(rings);
+        const double ringRadius = r * openscadSinDegrees(phi);
+        const double z = r * openscadCosDegrees(phi);
+        for (const csg::Vec2& p : circleVertices(ringRadius, n))
+            solid.vertices.push_back({p.x, p.y, z});
+    }
+    auto vertex = [count](uint32_t ring, uint32_t k) { return ring * count + k % count; };
+    solid.faceVertices.reserve(size_t(4) * count * rings);
+    for (uint32_t i = 0; i + 1 < rings; ++i) {
+        for (uint32_t k = 0; k < count; ++k) {
+            // Counter-clockwise from outside: down the meridian at k, back up the one at k + 1.
+            solid.faceVertices.insert(
+                solid.faceVertices.end(),
+                {vertex(i, k), vertex(i + 1, k), vertex(i + 1, k + 1), vertex(i, k + 1)});
+            closeFace(solid);
+        }
+    }
+    for (uint32_t k = 0; k < count; ++k) solid.faceVertices.push_back(vertex(0, k));
+    closeFace(solid);
+    for (uint32_t k = count; k-- > 0;) solid.faceVertices.push_back(vertex(rings - 1, k));
+    closeFace(solid);
+    return solid;
+}
+
+}  // namespace io
