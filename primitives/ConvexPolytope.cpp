@@ -97,6 +97,19 @@ ConvexPolytope ConvexPolytope::fromFaces(std::vector<Vec3> vertices,
     const double ballVolume = 4.0 / 3.0 * std::numbers::pi * std::pow(data->ball.radius, 3);
     if (!(ballVolume < boxVolume)) data->ball.radius = kInfinity;
 
+    // Step 4: the planes again, four to a block for spans(); the last block is filled with
+    // planes no line can cross (n = 0, offset 1: parallel, and inside by 1).
+    data->planeBlocks.resize((faceCount + kPlaneLanes - 1) / kPlaneLanes);
+    for (PlaneBlock& block : data->planeBlocks) block.offset = PlaneLanes{} + 1.0;
+    for (size_t f = 0; f < faceCount; ++f) {
+        PlaneBlock& block = data->planeBlocks[f / kPlaneLanes];
+        const PolytopePlane& plane = data->planes[f];
+        block.nx[f % kPlaneLanes] = plane.normal.x;
+        block.ny[f % kPlaneLanes] = plane.normal.y;
+        block.nz[f % kPlaneLanes] = plane.normal.z;
+        block.offset[f % kPlaneLanes] = plane.offset;
+    }
+
     data->vertices = std::move(vertices);
     return ConvexPolytope{std::move(data)};
 }
@@ -119,23 +132,38 @@ Bounds3 ConvexPolytope::boundsUnder(const Mat4& m) const {
 void ConvexPolytope::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     double tIn = -kInfinity, tOut = kInfinity;
     uint16_t faceIn = kClipFace, faceOut = kClipFace;
-    const PolytopePlane* planes = data->planes.data();
-    const size_t count = data->planes.size();
-    for (size_t i = 0; i < count; ++i) {
-        const PolytopePlane& plane = planes[i];
-        const double nd = glm::dot(plane.normal, d);
-        const double gap = plane.offset - glm::dot(plane.normal, o);
-        // A crossing that overflows (nd tiny) is at -inf or +inf, which is right: the line is
-        // then as good as parallel, entering never (gap > 0) or only beyond every exit.
-        if (nd < 0.0) {
-            const double t = gap / nd;
-            if (t > tIn) tIn = t, faceIn = uint16_t(i);
-        } else if (nd > 0.0) {
-            const double t = gap / nd;
-            if (t < tOut) tOut = t, faceOut = uint16_t(i);
-        } else if (gap < 0.0) {
-            return;  // parallel to the plane and outside it
+    const PlaneLanes dx = PlaneLanes{} + d.x, dy = PlaneLanes{} + d.y, dz = PlaneLanes{} + d.z;
+    const PlaneLanes ox = PlaneLanes{} + o.x, oy = PlaneLanes{} + o.y, oz = PlaneLanes{} + o.z;
+    const std::vector<PlaneBlock>& blocks = data->planeBlocks;
+    for (size_t b = 0; b < blocks.size(); ++b) {
+        const PlaneBlock& block = blocks[b];
+        // In the operation order of glm::dot, so each lane has the bits of the scalar form.
+        const PlaneLanes nd = (block.nx * dx + block.ny * dy) + block.nz * dz;
+        const PlaneLanes gap = block.offset - ((block.nx * ox + block.ny * oy) + block.nz * oz);
+        // The crossing t = gap / nd matters only where it may move an end: t > tIn is
+        // gap < tIn nd for nd < 0, t < tOut is gap < tOut nd for nd > 0, a multiplication for
+        // every plane and a division only for the few that pass (the two forms differ only
+        // where t is within rounding of the end, which then moves by an ulp or not). A line
+        // parallel to a plane (nd = 0) and outside it (gap < 0) misses.
+        const PlaneMask moves = ((nd < 0.0) & (gap < tIn * nd)) | ((nd > 0.0) & (gap < tOut * nd)) |
+                                ((nd == 0.0) & (gap < 0.0));
+        if (!(moves[0] | moves[1] | moves[2] | moves[3])) continue;
+        for (size_t lane = 0; lane < kPlaneLanes; ++lane) {
+            if (!moves[lane]) continue;
+            const auto face = uint16_t(b * kPlaneLanes + lane);
+            // A crossing that overflows (nd tiny) is at -inf or +inf, which is right: the line
+            // is then as good as parallel, entering never (gap > 0) or only beyond every exit.
+            if (nd[lane] < 0.0) {
+                const double t = gap[lane] / nd[lane];
+                if (t > tIn) tIn = t, faceIn = face;
+            } else if (nd[lane] > 0.0) {
+                const double t = gap[lane] / nd[lane];
+                if (t < tOut) tOut = t, faceOut = face;
+            } else {
+                return;  // parallel to the plane and outside it
+            }
         }
+        if (tIn > tOut) return;  // the ends have crossed: no later plane brings them back
     }
     // Misses, or a direction too small to leave the solid in a finite t (d = 0).
     if (!(tIn <= tOut) || !std::isfinite(tIn) || !std::isfinite(tOut)) return;

@@ -79,8 +79,19 @@ struct PolytopePlane {
     double offset = 0.0;
 };
 
+// Four planes side by side, for the ray loop (ConvexPolytope::spans). A GCC/Clang vector
+// extension: AVX where the build may use it, two SSE2 halves otherwise; each lane does the
+// operations of the scalar form in the same order, so its bits are the same.
+inline constexpr size_t kPlaneLanes = 4;
+using PlaneLanes = double __attribute__((vector_size(kPlaneLanes * sizeof(double))));
+using PlaneMask = int64_t __attribute__((vector_size(kPlaneLanes * sizeof(int64_t))));
+struct PlaneBlock {
+    PlaneLanes nx, ny, nz, offset;
+};
+
 struct ConvexPolytopeData {
-    std::vector<PolytopePlane> planes;  // in face order: face id = index
+    std::vector<PolytopePlane> planes;    // in face order: face id = index
+    std::vector<PlaneBlock> planeBlocks;  // the same planes, planes[4 b + k] in block b lane k
     std::vector<Vec3> vertices;
     Bounds3 box;
     LocalBall ball{Vec3(0.0), kInfinity};

@@ -22,6 +22,7 @@
 #include "io/Evaluate.h"
 #include "io/Faceting.h"
 #include "primitives/ConvexPolytope.h"
+#include "tests/CountingNew.h"
 #include "tests/SeededRng.h"
 #include "tests/TempDir.h"
 #include "tests/TreeOracle.h"
@@ -470,6 +471,36 @@ TEST(FacetedSpans, RandomTreesWithPolytopesAgreeWithTheOracle) {
     }
     EXPECT_GT(nonEmpty, 60 * 300 / 5);
     EXPECT_GT(checked, 200'000);
+}
+
+// No heap allocation per ray (STYLE.md): a scene of faceted solids, queried again after a
+// warm-up that grows the context's scratch, allocates nothing.
+TEST(FacetedSpans, QueriesAllocateNothing) {
+    const io::EvaluateResult r = evaluate(
+        "difference() { sphere(2, $fn = 64); cylinder(r = 1, h = 5, center = true, $fn = 6); }\n"
+        "translate([3, 0, 0]) cylinder(r1 = 1, r2 = 0, h = 2, $fn = 12);",
+        CurveMode::Auto);
+    ASSERT_TRUE(r.ok()) << diagnosticsOf(r);
+    const csg::Scene scene = csg::Scene::compile(r.model->root);
+    csg::QueryContext ctx;
+    auto runAll = [&] {
+        csg::testing::Rng rng(3);
+        size_t found = 0;
+        for (int i = 0; i < 2000; ++i) {
+            const Vec3 target = rng.inBox(Vec3(-2.5), Vec3(4.5, 2.5, 2.5));
+            const Vec3 o = target + 10.0 * rng.unit();
+            const csg::Ray ray{o, target - o, 0.0, 2.0};
+            found += scene.spans(ray, ctx).size();
+            found += scene.closest(ray, ctx).has_value();
+            found += scene.occluded(ray, ctx);
+        }
+        return found;
+    };
+    const size_t warm = runAll();
+    const long before = csg::testing::allocations.load();
+    EXPECT_EQ(runAll(), warm);
+    EXPECT_EQ(csg::testing::allocations.load() - before, 0);
+    EXPECT_GT(warm, 1000u);
 }
 
 // ---- the language: scoping, warnings, the face budget ----
