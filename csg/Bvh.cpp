@@ -6,8 +6,8 @@ uint32_t buildBvh(std::span<uint32_t> items, const std::vector<CompiledNode>& it
                   uint32_t itemsOffset, std::vector<BvhNode>& nodes) {
     // One child per leaf (more only where no split pays): the leaf's box is then the child's
     // own, so the ray loop does not test the child's bounds again
-    // (CompiledNode::boundsImplied); two per leaf cost 1.8 % more instructions on
-    // bench/scenes/csg_grid. A box test costs half a child's evaluation.
+    // (CompiledNode::boundsImplied); two per leaf cost more instructions on csg_grid
+    // (bench/README.md, one child per BVH leaf). A box test costs half a child's evaluation.
     constexpr BvhBuildOptions kUnionOptions{.maxLeafItems = 1, .traversalCost = 0.5};
     std::vector<Bounds3> boxes(items.size());
     for (size_t i = 0; i < items.size(); ++i) boxes[i] = itemNodes[items[i]].bounds;
