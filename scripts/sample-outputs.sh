@@ -12,6 +12,7 @@ mkdir -p "$out"
 cd "$(dirname "$0")/.."
 for f in samples/*.scad bench/scenes/*.scad; do
     n=$(basename "$f" .scad)
+    [[ $f == bench/* ]] && n=bench_$n  # bench/scenes/csg_grid.scad is not samples/csg_grid.scad
     "$csgray" render "$f" -o "$out/$n.png" --size 160x120 2>/dev/null
     "$csgray" render "$f" -o "$out/$n.pfm" --size 96x72 --aa 2 2>/dev/null
     "$csgray" info "$f" >"$out/$n.info.json" 2>"$out/$n.info.err"
