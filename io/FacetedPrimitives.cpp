@@ -30,16 +30,20 @@ int64_t mostFragments(FaceCount faceCount) {
 }
 
 // The error for a face count over the limit, at the call, and the work charged for the solid,
-// both before anything is built.
+// both before anything is built. mostFragmentsAllowed() names the limit in the message; it is asked
+// only on that error.
+template <class MostFragments>
 void checkAndCharge(Evaluator& e, const InstantiationStmt& s, const FragmentSettings& settings,
-                    int64_t n, uint64_t faces, int64_t most) {
-    if (faces > csg::ConvexPolytope::kMaxPlanes)
+                    int64_t n, uint64_t faces, MostFragments mostFragmentsAllowed) {
+    if (faces > csg::ConvexPolytope::kMaxPlanes) {
+        const int64_t most = mostFragmentsAllowed();
         e.fail(s.loc, s.name + "(): " + countReason(settings, n) + ", which make " +
                           std::to_string(faces) + " faces; a faceted " + s.name +
                           " may have at most " + std::to_string(csg::ConvexPolytope::kMaxPlanes) +
                           " (" + std::to_string(most) + " fragments); expected " +
                           (fnDecidesCount(settings) ? "a smaller $fn" : "a larger $fa or $fs") +
                           ", or --curves exact for the exact " + s.name);
+    }
     // About as many vertices as faces (2 n + 2 against n + 2 for a cylinder).
     e.spend(s.loc, kFacetSteps * 2 * faces);
 }
@@ -78,7 +82,7 @@ std::optional<csg::ConvexPolytope> cylinderPolytope(Evaluator& e, const Instanti
     const int64_t n = fragments(std::fmax(r1, r2), settings);
     const int64_t caps = (r1 > 0.0 ? 1 : 0) + (r2 > 0.0 ? 1 : 0);
     checkAndCharge(e, s, settings, n, facetedCylinderFaceCount(n, r1, r2),
-                   int64_t(csg::ConvexPolytope::kMaxPlanes) - caps);
+                   [&] { return int64_t(csg::ConvexPolytope::kMaxPlanes) - caps; });
     // OpenSCAD's ends: z1 = 0 and z2 = h, or -h/2 and +h/2 centred.
     const double z1 = center ? -h / 2 : 0.0, z2 = center ? +h / 2 : h;
     return build(facetedCylinder(r1, r2, z1, z2, n), {"cylinder", uint32_t(n), 0});
@@ -89,7 +93,7 @@ std::optional<csg::ConvexPolytope> spherePolytope(Evaluator& e, const Instantiat
     if (!isFaceted(e.curveMode(), settings)) return std::nullopt;
     const int64_t n = fragments(r, settings);
     checkAndCharge(e, s, settings, n, facetedSphereFaceCount(n),
-                   mostFragments(facetedSphereFaceCount));
+                   [] { return mostFragments(facetedSphereFaceCount); });
     return build(facetedSphere(r, n), {"sphere", uint32_t(n), uint32_t(sphereRingCount(n))});
 }
 

@@ -12,7 +12,6 @@
 #include "primitives/base/Json.h"
 #include "viewer/cli/Cli.h"
 #include "viewer/cli/LoadPart.h"
-#include "viewer/cli/ProbeJson.h"
 #include "viewer/render/EffectsPlan.h"
 #include "viewer/render/RenderCamera.h"
 

@@ -1,5 +1,5 @@
 // Click-to-probe in the window: the ray through a pixel, as the same JSON as `csgray probe`
-// (viewer/ProbeJson), a one-line summary for the title bar and the lines the panel shows.
+// (viewer/cli/ProbeJson), a one-line summary for the title bar and the lines the panel shows.
 #pragma once
 
 #include <string>
