@@ -1,6 +1,7 @@
 #include "io/BoundArgs.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace io {
@@ -46,6 +47,29 @@ BoundArgs bindArgs(Evaluator& e, const InstantiationStmt& s, const ContextPtr& c
         b.exprs[k] = s.args[i].value.get();
     }
     return b;
+}
+
+double numberArg(Evaluator& e, const BoundArgs& b, size_t i, double dflt) {
+    if (!b.given(i)) return dflt;
+    if (!b[i].isNumber() || !std::isfinite(b[i].number())) b.bad(e, i, "a finite number");
+    return b[i].number();
+}
+
+bool boolArg(Evaluator& e, const BoundArgs& b, size_t i, bool dflt) {
+    if (!b.given(i)) return dflt;
+    if (!b[i].isBool()) b.bad(e, i, "true or false");
+    return b[i].asBool();
+}
+
+Instance childrenGroup(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
+                       const GeomState& state, uint32_t* tagOut) {
+    GeomState inner = state;
+    inner.modulePath = e.childPath(state, b.call.name);
+    bool any = false;
+    auto parts = e.instantiateChildren(b.call, ctx, inner, b.all, any);
+    const uint32_t tag = any ? e.sourceTag(b.call.loc, inner.modulePath) : 0;
+    if (tagOut) *tagOut = tag;
+    return e.group(std::move(parts), any, tag);
 }
 
 }  // namespace io

@@ -61,4 +61,14 @@ BoundArgs bindArgs(Evaluator& e, const InstantiationStmt& s, const ContextPtr& c
                    std::initializer_list<std::string_view> names, std::string_view form,
                    std::initializer_list<RefusedParam> refused = {});
 
+// Argument i as a finite number (dflt when not given); anything else is an error at it.
+double numberArg(Evaluator& e, const BoundArgs& b, size_t i, double dflt);
+// Argument i as true or false (dflt when not given); anything else is an error at it.
+bool boolArg(Evaluator& e, const BoundArgs& b, size_t i, bool dflt);
+
+// The children of a built-in operator call as one group (see Evaluator::group), evaluated one
+// module-path step below state; *tagOut receives the group's source tag.
+Instance childrenGroup(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
+                       const GeomState& state, uint32_t* tagOut = nullptr);
+
 }  // namespace io

@@ -11,7 +11,9 @@
 #include "io/Evaluator.h"
 #include "io/FacetedPrimitives.h"
 #include "io/MeshModules.h"
+#include "io/Modules2D.h"
 #include "io/PatchModule.h"
+#include "io/Shapes2D.h"
 #include "io/SurfaceModule.h"
 #include "primitives/base/Tolerances.h"
 #include "viewer/render/PngReader.h"
@@ -22,18 +24,6 @@ namespace {
 
 using csg::Mat4;
 using csg::Vec3;
-
-double numberArg(Evaluator& e, const BoundArgs& b, size_t i, double dflt) {
-    if (!b.given(i)) return dflt;
-    if (!b[i].isNumber() || !std::isfinite(b[i].number())) b.bad(e, i, "a finite number");
-    return b[i].number();
-}
-
-bool boolArg(Evaluator& e, const BoundArgs& b, size_t i, bool dflt) {
-    if (!b.given(i)) return dflt;
-    if (!b[i].isBool()) b.bad(e, i, "true or false");
-    return b[i].asBool();
-}
 
 // A vector of 2 or 3 finite numbers (missing entries take `fill`), or with allowScalar a
 // number for all three.
@@ -89,17 +79,6 @@ std::optional<Vec3> transformVector(const Value& v, double fill, bool allowScala
         out[static_cast<int>(k)] = v.list()[k].number();
     }
     return out;
-}
-
-Instance childrenGroup(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
-                       const GeomState& state, uint32_t* tagOut = nullptr) {
-    GeomState inner = state;
-    inner.modulePath = e.childPath(state, b.call.name);
-    bool any = false;
-    auto parts = e.instantiateChildren(b.call, ctx, inner, b.all, any);
-    const uint32_t tag = any ? e.sourceTag(b.call.loc, inner.modulePath) : 0;
-    if (tagOut) *tagOut = tag;
-    return e.group(std::move(parts), any, tag);
 }
 
 uint32_t leafTag(Evaluator& e, const InstantiationStmt& s, const GeomState& state) {
@@ -227,6 +206,8 @@ Instance booleanModule(Evaluator& e, const InstantiationStmt& s, const ContextPt
     auto parts = e.instantiateChildren(s, ctx, inner, b.all, any);
     if (!any) return std::nullopt;
     const csg::Tags tags{e.sourceTag(s.loc, inner.modulePath), 0};
+    e.keepOneDimension(parts, tags.source);
+    if (parts.empty()) return std::nullopt;
     if (isDifference) {
         // The first child minus all the others; empty children cut nothing.
         if (!parts[0]) return csg::NodePtr();
@@ -258,6 +239,7 @@ Instance applyTransform(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
     inner.worldFromHere = state.worldFromHere * m;
     Instance children = childrenGroup(e, b, ctx, inner);
     if (!children || !*children) return children;
+    if (dimensionOf(*children) == 2) return transformed2D(m, *children);
     return csg::transformed(m, *children);
 }
 
@@ -583,6 +565,11 @@ const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {
         {"bezier_patches", childless<bezierPatchesModule>},
         {"polyhedron", childless<polyhedronModule>},
         {"import", childless<importModule>},
+        {"square", childless<squareModule>},
+        {"circle", childless<circleModule>},
+        {"polygon", childless<polygonModule>},
+        {"linear_extrude", linearExtrudeModule},
+        {"rotate_extrude", rotateExtrudeModule},
         {"union", unionModule},
         {"group", unionModule},
         {"render", unionModule},
@@ -599,11 +586,6 @@ const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {
         {"light", light},
         {"background", background},
         // OpenSCAD modules with no exact ray-cast counterpart yet: an error, never a skip.
-        {"linear_extrude", unsupported},
-        {"rotate_extrude", unsupported},
-        {"square", unsupported},
-        {"circle", unsupported},
-        {"polygon", unsupported},
         {"text", unsupported},
         {"offset", unsupported},
         {"hull", unsupported},

@@ -183,6 +183,9 @@ public:
     uint32_t internMaterial(const Material& m);
     // Union of present children: nothing when there are none, else a node (null if empty).
     Instance group(std::vector<csg::NodePtr> parts, bool anyPresent, uint32_t tag);
+    // Drops (nulls) the parts whose dimension differs from the first non-empty one's, with
+    // OpenSCAD's warning at tag's source.
+    void keepOneDimension(std::vector<csg::NodePtr>& parts, uint32_t tag);
     Model& model() { return model_; }
     const std::string& fileName(uint32_t file) const { return sources_.name(file); }
     // Where a file's data files (material textures) resolve from, and whether reading any

@@ -43,6 +43,9 @@ struct MarkedPart {
 struct Model : viewer::render::SceneLook {
     // The solid: the implicit top-level union. nullptr is the empty solid (an empty file).
     csg::NodePtr root;
+    // The part is 2-D: root is its shape extruded 1 unit thick about z = 0, as OpenSCAD
+    // previews it (a 3-D export of it is an error).
+    bool twoD = false;
 
     std::vector<MarkedPart> highlighted;      // # subtrees, for a highlight overlay
     std::vector<MarkedPart> backgroundParts;  // % subtrees, transparent and not solid

@@ -1,7 +1,10 @@
 // Statements: scopes, modifiers, user modules, children(), for/intersection_for, if, let,
 // echo and assert as modules, and the bookkeeping of source tags, module paths and materials.
+#include <algorithm>
+
 #include "io/Evaluator.h"
 #include "io/Parser.h"
+#include "io/Shapes2D.h"
 
 namespace io {
 
@@ -80,10 +83,18 @@ void Evaluator::run(const ParsedFile& file) {
         model_.root = *rootOverride_;
     } else {
         std::vector<csg::NodePtr> solids;
+        keepOneDimension(parts, 0);
         for (auto& p : parts)
             if (p) solids.push_back(std::move(p));
         // The implicit top-level union is tagged with the file itself (line 0: no statement).
         model_.root = csg::uniteAll(solids, {sourceTag(Loc{file.fileIndex, 0, 0}, 0), 0});
+    }
+    // A 2-D part is shown as OpenSCAD previews it: the shape 1 unit thick about z = 0.
+    if (dimensionOf(model_.root) == 2) {
+        model_.twoD = true;
+        model_.root = liftLeaves(model_.root, [](const csg::Extrusion& leaf) {
+            return leaf.linear(-0.5, 0.5, 1.0);
+        });
     }
 }
 
@@ -125,10 +136,28 @@ uint32_t Evaluator::internMaterial(const Material& m) {
     return static_cast<uint32_t>(n);
 }
 
+void Evaluator::keepOneDimension(std::vector<csg::NodePtr>& parts, uint32_t tag) {
+    int dimension = 0;
+    for (const csg::NodePtr& p : parts)
+        if ((dimension = dimensionOf(p)) != 0) break;
+    const auto other = [&](const csg::NodePtr& p) {
+        const int d = dimensionOf(p);
+        return d != 0 && d != dimension;
+    };
+    const auto end = std::remove_if(parts.begin(), parts.end(), other);
+    if (end == parts.end()) return;
+    parts.erase(end, parts.end());
+    const SourceInfo& at = model_.source(tag);
+    warn(Loc{at.fileIndex, at.line, at.col},
+         std::string("Mixing 2D and 3D objects is not supported: the ") +
+             (dimension == 2 ? "3-D" : "2-D") + " ones are ignored, as in OpenSCAD");
+}
+
 Instance Evaluator::group(std::vector<csg::NodePtr> parts, bool anyPresent, uint32_t tag) {
     if (!anyPresent) return std::nullopt;
     std::vector<csg::NodePtr> solids;
     solids.reserve(parts.size());
+    keepOneDimension(parts, tag);
     for (auto& p : parts)
         if (p) solids.push_back(std::move(p));
     return csg::uniteAll(solids, {tag, 0});

@@ -13,6 +13,7 @@
 #include "primitives/Box.h"
 #include "primitives/ConvexPolytope.h"
 #include "primitives/Cylinder.h"
+#include "primitives/Extrusion.h"
 #include "primitives/HalfSpace.h"
 #include "primitives/PatchSet.h"
 #include "primitives/Polyhedron.h"
@@ -22,7 +23,7 @@
 namespace csg {
 
 using Primitive = std::variant<Sphere, Box, Cylinder, HalfSpace, Torus, AlgebraicSurface, PatchSet,
-                               Polyhedron, ConvexPolytope>;
+                               Polyhedron, ConvexPolytope, Extrusion>;
 
 namespace detail {
 template <class Variant>

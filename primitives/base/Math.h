@@ -16,6 +16,7 @@ using Mat4 = glm::dmat4;
 using Affine = glm::dmat4x3;  // an affine map stored as 4 columns of 3 rows (no 0 0 0 1 row)
 
 inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+inline constexpr double kPi = 3.14159265358979323846;
 
 // Point and direction transforms by an affine 4x4 matrix (the last row is 0 0 0 1).
 inline Vec3 transformPoint(const Mat4& m, const Vec3& p) {

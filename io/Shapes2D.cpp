@@ -1,0 +1,62 @@
+#include "io/Shapes2D.h"
+
+#include <unordered_map>
+
+namespace io {
+
+namespace {
+
+using csg::Extrusion;
+using csg::Node;
+using csg::NodePtr;
+
+// A copy of the tree with each leaf rebuilt by f, sharing what the original shares.
+template <class F>
+NodePtr mapLeaves(const NodePtr& node, F& f, std::unordered_map<const Node*, NodePtr>& done) {
+    if (!node) return node;
+    if (auto it = done.find(node.get()); it != done.end()) return it->second;
+    NodePtr result;
+    if (node->op == csg::Op::Leaf) {
+        result = csg::leaf(f(*node), node->tags);
+    } else {
+        auto copy = std::make_shared<Node>(*node);
+        copy->left = mapLeaves(node->left, f, done);
+        copy->right = mapLeaves(node->right, f, done);
+        result = std::move(copy);
+    }
+    done.emplace(node.get(), result);
+    return result;
+}
+
+}  // namespace
+
+int dimensionOf(const NodePtr& node) {
+    const Node* n = node.get();
+    while (n && n->op != csg::Op::Leaf) n = n->left ? n->left.get() : n->right.get();
+    if (!n) return 0;
+    const auto* e = std::get_if<Extrusion>(&n->primitive);
+    return e && e->kind == Extrusion::Kind::Plane ? 2 : 3;
+}
+
+NodePtr transformed2D(const csg::Mat4& m, const NodePtr& shape) {
+    const glm::dmat2 linear(m[0][0], m[0][1], m[1][0], m[1][1]);
+    const csg::Vec2 shift(m[3][0], m[3][1]);
+    std::unordered_map<const csg::Outline*, std::shared_ptr<const csg::Outline>> outlines;
+    auto map = [&](const Node& leaf) {
+        Extrusion e = std::get<Extrusion>(leaf.primitive);
+        auto& mapped = outlines[e.outline.get()];
+        if (!mapped) mapped = std::make_shared<csg::Outline>(e.outline->mapped(linear, shift));
+        return Extrusion::plane(mapped, e.shape);
+    };
+    std::unordered_map<const Node*, NodePtr> done;
+    return mapLeaves(shape, map, done);
+}
+
+NodePtr liftLeaves(const NodePtr& shape,
+                   const std::function<Extrusion(const Extrusion&)>& lift) {
+    auto map = [&](const Node& leaf) { return lift(std::get<Extrusion>(leaf.primitive)); };
+    std::unordered_map<const Node*, NodePtr> done;
+    return mapLeaves(shape, map, done);
+}
+
+}  // namespace io
