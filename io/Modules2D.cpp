@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "io/BoundArgs.h"
+#include "io/Degrees.h"
 #include "io/FacetedPrimitives.h"
 #include "io/Shapes2D.h"
 
@@ -186,6 +187,51 @@ Instance linearExtrudeModule(Evaluator& e, const InstantiationStmt& s, const Con
     });
 }
 
+namespace {
+
+// OpenSCAD's faceted revolution (OPENSCAD.md section 4): `sections` sectors of equal angle
+// from azimuth `start`. Between two rings every profile vertex (r, z) becomes a chord at
+// distance r cos(delta/2) from the axis along the sector's bisector m, so the sector is
+// exactly the wedge cut from the prism {p : ((p . m) / cos(delta/2), p.z) in profile}: the
+// profile's 2-D tree lifted into that plane by a linear map, no triangles needed.
+csg::NodePtr facetedRevolution(const csg::NodePtr& profile, double start, double angle,
+                               int64_t sections, double rmax, double zlo, double zhi,
+                               uint32_t tag) {
+    const double delta = angle / double(sections);
+    const double reach = 2.0 * rmax + 1.0;  // past the wedge's width at any radius
+    const csg::NodePtr prism = liftLeaves(
+        profile, [&](const Extrusion& leaf) { return leaf.linear(-reach, reach, 1.0); });
+    std::vector<csg::NodePtr> sectors;
+    sectors.reserve(size_t(sections));
+    for (int64_t j = 0; j < sections; ++j) {
+        const double a0 = start + double(j) * delta, a1 = a0 + delta, mid = a0 + 0.5 * delta;
+        const csg::Vec3 m(cosDegrees(mid), sinDegrees(mid), 0.0);
+        const csg::Vec3 w(-m.y, m.x, 0.0);
+        const double c = cosDegrees(0.5 * delta);
+        // Local (u, v, s) = ((p . m) / c, p.z, p . w): world = u c m + v z + s w.
+        csg::Mat4 worldFromLocal(1.0);
+        worldFromLocal[0] = csg::Vec4(c * m, 0.0);
+        worldFromLocal[1] = csg::Vec4(0.0, 0.0, 1.0, 0.0);
+        worldFromLocal[2] = csg::Vec4(w, 0.0);
+        const csg::NodePtr after = csg::leaf(
+            csg::HalfSpace{csg::Vec3(sinDegrees(a0), -cosDegrees(a0), 0.0), 0.0}, {tag, 0});
+        const csg::NodePtr before = csg::leaf(
+            csg::HalfSpace{csg::Vec3(-sinDegrees(a1), cosDegrees(a1), 0.0), 0.0}, {tag, 0});
+        // The sector's box (the triangle from the axis to its outer chord, times the
+        // profile's height) keeps its bounds tight for the BVH.
+        const csg::Vec2 e0(cosDegrees(a0), sinDegrees(a0)), e1(cosDegrees(a1), sinDegrees(a1));
+        const csg::Vec2 lo = glm::min(csg::Vec2(0.0), rmax * glm::min(e0, e1));
+        const csg::Vec2 hi = glm::max(csg::Vec2(0.0), rmax * glm::max(e0, e1));
+        const csg::NodePtr box =
+            csg::leaf(csg::Box{csg::Vec3(lo, zlo), csg::Vec3(hi, zhi)}, {tag, 0});
+        sectors.push_back(csg::intersectAll(
+            {box, after, before, csg::transformed(worldFromLocal, prism)}, {tag, 0}));
+    }
+    return csg::uniteAll(sectors, {tag, 0});
+}
+
+}  // namespace
+
 Instance rotateExtrudeModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                              const GeomState& state) {
     BoundArgs b = bindArgs(e, s, ctx, {"file", "layer", "origin", "scale", "convexity", "angle"},
@@ -193,30 +239,47 @@ Instance rotateExtrudeModule(Evaluator& e, const InstantiationStmt& s, const Con
     if (b.given(0))
         e.fail(b.loc(0), "rotate_extrude(file = ...): DXF files are not supported yet (an "
                          "angle is given as angle = ...)");
+    const FragmentSettings settings = fragmentSettings(e, b, ctx);
     double angle = numberArg(e, b, 5, 360.0);
     if (angle <= -360.0 || angle > 360.0) angle = 360.0;
     Instance shape = shapeChildren(e, b, ctx, state);
     if (!shape || !*shape) return shape;
     if (angle == 0.0) return csg::NodePtr();
-    // The profile's half-plane: x >= 0, or a profile wholly in x <= 0 mirrored into it.
+    // The profile's half-plane: x >= 0, or a profile wholly in x <= 0 mirrored into it. (A
+    // leaf reaching into x < 0 is fine: the revolution reads the half-plane x >= 0 only.)
     bool mirrored = true;
-    bool straddles = false;
+    double rmax = 0.0, zlo = csg::kInfinity, zhi = -csg::kInfinity;
     std::function<void(const csg::Node*)> scan = [&](const csg::Node* n) {
         if (!n) return;
         if (n->op != csg::Op::Leaf) return scan(n->left.get()), scan(n->right.get());
         const csg::Bounds2 box = std::get<Extrusion>(n->primitive).box;
         if (box.hi.x > 0.0) mirrored = false;
-        if (box.lo.x < 0.0 && box.hi.x > 0.0) straddles = true;
+        rmax = std::max({rmax, std::abs(box.lo.x), std::abs(box.hi.x)});
+        zlo = std::min(zlo, box.lo.y), zhi = std::max(zhi, box.hi.y);
     };
     scan(shape->get());
-    (void)straddles;  // the x < 0 part of a straddling leaf lies outside the half-plane
     csg::NodePtr profile = *shape;
     if (mirrored) profile = transformed2D(glm::scale(csg::Mat4(1.0), csg::Vec3(-1, 1, 1)), profile);
-    csg::NodePtr solid = liftLeaves(profile, [&](const Extrusion& leaf) {
-        return leaf.rotated(std::abs(angle));
-    });
+    csg::NodePtr solid;
+    if (isFaceted(e.curveMode(), settings)) {
+        // OpenSCAD 2021's rings: a full turn starts on -x.
+        const double sweep = std::abs(angle);
+        const int64_t sections =
+            std::max<int64_t>(int64_t(double(fragments(rmax, settings)) * sweep / 360.0), 1);
+        const double start = sweep == 360.0 ? 180.0 : 0.0;
+        solid = facetedRevolution(profile, start, sweep, sections, rmax, zlo, zhi,
+                                  e.sourceTag(s.loc, e.childPath(state, s.name)));
+    } else {
+        solid = liftLeaves(profile,
+                           [&](const Extrusion& leaf) { return leaf.rotated(std::abs(angle)); });
+    }
+    // OpenSCAD maps a profile point (x, y) to (x cos a, x sin a, y) even for x < 0: the
+    // mirrored profile's solid lies half a turn round.
+    if (mirrored)
+        solid = csg::transformed(glm::rotate(csg::Mat4(1.0), csg::kPi, csg::Vec3(0, 0, 1)), solid);
     // A negative angle sweeps clockwise: the mirror image in y of the counter-clockwise sweep.
-    if (angle < 0.0) solid = csg::transformed(glm::scale(csg::Mat4(1.0), csg::Vec3(1, -1, 1)), solid);
+    if (angle < 0.0)
+        solid = csg::transformed(glm::scale(csg::Mat4(1.0), csg::Vec3(1, -1, 1)), solid);
     return solid;
 }
 

@@ -3,13 +3,18 @@
 //   - spans of rays derived by hand from the shapes' geometry;
 //   - the torus primitive (its own quartic, primitives/Torus.h) for rotate_extrude of a circle;
 //   - closed-form volumes: prism A h, frustum A h (1 + s + s^2) / 3, Pappus 2 pi R A;
-//   - for random lines, point membership (inside(), a different code path from spans()).
+//   - for random lines, point membership (inside(), a different code path from spans());
+//   - OpenSCAD 2021's own STL of faceted extrusions (`openscad` on the PATH), through csgray's
+//     compare command.
 // Notation: t is the parameter of o + t d; rays along an axis have unit d.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
+#include <nlohmann/json.hpp>
+
+#include "CliRunner.h"
 #include "csg/Scene.h"
 #include "csg/Volume.h"
 #include "io/Evaluate.h"
@@ -279,6 +284,43 @@ TEST(Extrusion, DimensionRules) {
     // A 3-D rotation of a 2-D shape uses only its x-y part (OPENSCAD.md section 2).
     const csg::Scene turned = compiled("linear_extrude(1) rotate([0, 0, 90]) square([2, 1]);");
     expectSpans(turned, {-5, 1, 0.5}, {1, 0, 0}, {{4, 5}}, 1e-14);
+}
+
+// With $fn (or --curves openscad) rotate_extrude is OpenSCAD's faceted solid, sector by
+// sector: OpenSCAD 2021's STL lies on csgray's part, and the part on it, to rounding. Rounding
+// here: CGAL's 2^-20 snapping and float STL coordinates (~1e-6 at these sizes); a profile that
+// went through a 2-D boolean is snapped to Clipper's 2^-16 grid (1.5e-5 per coordinate).
+TEST(Extrusion, FacetedRevolutionLiesOnOpenScadsMesh) {
+    if (std::system("command -v openscad >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "openscad is not installed";
+    struct Case {
+        const char* part;
+        double tolerance;
+    };
+    const Case cases[] = {
+        {"rotate_extrude($fn = 8) translate([2, 0]) square([1, 2]);", 2e-6},
+        {"rotate_extrude(angle = 100, $fn = 12) translate([3, 0]) square([1, 2]);", 2e-6},
+        {"rotate_extrude(angle = 100, $fn = 12) translate([-3, 0]) square([1, 2]);", 2e-6},
+        {"rotate_extrude(angle = -70, $fn = 30) translate([2, 1]) circle(1, $fn = 5);", 2e-6},
+        {"rotate_extrude($fn = 12) translate([-3, 0]) difference() { square([1, 2]); "
+         "translate([0.5, 1]) circle(0.3, $fn = 7); }",
+         3e-5},
+    };
+    cli::ScratchDir dir;
+    int index = 0;
+    for (const Case& c : cases) {
+        const std::string part = (dir / ("part" + std::to_string(index) + ".scad")).string();
+        const std::string stl = (dir / ("part" + std::to_string(index++) + ".stl")).string();
+        cli::writeFile(part, std::string(c.part) + "\n");
+        const std::string command = "openscad --export-format binstl -o " + cli::shellQuote(stl) +
+                                    " " + cli::shellQuote(part) + " >/dev/null 2>&1";
+        ASSERT_EQ(std::system(command.c_str()), 0) << command;
+        const cli::RunResult r = cli::runCsgray({"compare", part, stl, "--json"}, dir.path());
+        ASSERT_FALSE(r.out.empty()) << r.err;
+        const nlohmann::json j = nlohmann::json::parse(r.out);
+        EXPECT_LE(j["meshToSurface"]["max"].get<double>(), c.tolerance) << c.part;
+        EXPECT_LE(j["surfaceToMesh"]["max"].get<double>(), c.tolerance) << c.part;
+    }
 }
 
 }  // namespace

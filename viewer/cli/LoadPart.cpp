@@ -40,6 +40,15 @@ int loadPart(const CommonOptions& options, Report& report, LoadedPart& part) {
 }
 
 int requireSolids(const LoadedPart& part, Report& report, std::string_view command) {
+    if (part.model.twoD) {
+        const uint32_t tag = part.model.root ? part.model.root->tags.source : 0;
+        report.add(io::diagnosticAt(
+            part.model, tag, io::Severity::Error,
+            std::string(command) + ": the top level object is not a 3-D object, as OpenSCAD "
+                                   "says: a 2-D part has no volume to mesh or measure "
+                                   "(extrude it with linear_extrude or rotate_extrude)"));
+        return kExitBadModel;
+    }
     for (uint32_t leaf = 0; leaf < part.scene.leafCount(); ++leaf) {
         if (!csg::isSheet(part.scene.leafPrimitive(leaf))) continue;
         report.add(io::diagnosticAt(

@@ -23,7 +23,8 @@ int loadPart(const CommonOptions& options, Report& report, LoadedPart& part);
 
 // For commands that need volume (export's mesh, compare's volumes): kExitOk when every leaf is
 // a solid, else kExitBadModel after reporting an error at the first surface (a bezier_patch
-// with solid=false): a surface has no inside, so there is nothing to mesh or measure.
+// with solid=false): a surface has no inside, so there is nothing to mesh or measure. A 2-D
+// part (io::Model::twoD) is an error too, as in OpenSCAD.
 int requireSolids(const LoadedPart& part, Report& report, std::string_view command);
 
 }  // namespace viewer
