@@ -265,13 +265,49 @@ void Extrusion::revolvedSpans(const Vec3& o, const Vec3& d, LocalSpans& out) con
     };
     double roots[Polynomial::kMaxDegree];
     const Polynomial r2{C, B, A};
+    // A profile curve (x(u), z(u)), u in [0, 1], in its own parameter: where the line reaches
+    // the curve's height z(u) its radius is sqrt(A tau^2 + B tau + C) with tau = (z(u) - o.z)
+    // / d.z, a polynomial in u of twice the curve's degree. The range is widened a little so
+    // that a line through a vertex is not lost between its two segments.
+    const auto curveCandidates = [&](const Polynomial& x, const Polynomial& z, uint32_t i) {
+        constexpr double lo = -kCandidateSlackRel, hi = 1.0 + kCandidateSlackRel;
+        if (d.z != 0.0) {
+            const Polynomial tau = sum(z, Polynomial{-o.z}).scaled(1.0 / d.z);
+            const Polynomial h =
+                sum(product(x, x),
+                    sum(sum(product(tau, tau).scaled(A), tau.scaled(B)), Polynomial{C}), -1.0)
+                    .trimmed();
+            if (h.degree() == 0) return;
+            const int found = solve(h, lo, hi, roots);
+            for (int j = 0; j < found; ++j) keep(tau(roots[j]), i);
+            return;
+        }
+        // A level line: where the curve reaches the line's height, r(u) gives two t,
+        // symmetric about the line's point nearest the axis.
+        const Polynomial level = sum(z, Polynomial{-o.z}).trimmed();
+        if (level.degree() == 0) return;
+        const int found = solve(level, lo, hi, roots);
+        const double tc = -B / (2.0 * A), rmin2 = C - B * B / (4.0 * A);
+        for (int j = 0; j < found; ++j) {
+            const double r = x(roots[j]);
+            const double half = std::sqrt(std::max(0.0, (r * r - rmin2) / A));
+            keep(tc - half, i);
+            keep(tc + half, i);
+        }
+    };
     for (uint32_t i = 0; i < profile.segments.size(); ++i) {
         const Segment2& s = profile.segments[i];
         switch (s.kind) {
             case Segment2::Kind::Line: {
-                // n . (r, z) = k, so n_r r = L(t) = L0 + L1 t; squared: a quadratic in t.
                 const Vec2 a = s.p[0], e = s.p[1] - s.p[0];
                 const Vec2 n(e.y, -e.x);
+                if (std::abs(n.x) < std::abs(n.y)) {
+                    // More level than steep: n_r is small and squaring below would lose the
+                    // crossing (a level edge is a disc, n_r = 0); its own parameter is sound.
+                    curveCandidates(Polynomial{a.x, e.x}, Polynomial{a.y, e.y}, i);
+                    break;
+                }
+                // n . (r, z) = k, so n_r r = L(t) = L0 + L1 t; squared: a quadratic in t.
                 const double k = glm::dot(n, a);
                 const double l0 = k - n.y * o.z, l1 = -n.y * d.z, nr2 = n.x * n.x;
                 double t0, t1;
@@ -316,35 +352,9 @@ void Extrusion::revolvedSpans(const Vec3& o, const Vec3& d, LocalSpans& out) con
                 break;
             }
             case Segment2::Kind::Quadratic:
-            case Segment2::Kind::Cubic: {
-                const Polynomial x = bezierCoordinate(s, 0), z = bezierCoordinate(s, 1);
-                if (d.z != 0.0) {
-                    // tau(u) = (z(u) - o.z) / d.z is the line's t at the curve's height.
-                    const Polynomial tau = sum(z, Polynomial{-o.z}).scaled(1.0 / d.z);
-                    const Polynomial h =
-                        sum(product(x, x),
-                            sum(sum(product(tau, tau).scaled(A), tau.scaled(B)), Polynomial{C}),
-                            -1.0)
-                            .trimmed();
-                    if (h.degree() == 0) break;
-                    const int found = solve(h, 0.0, 1.0, roots);
-                    for (int j = 0; j < found; ++j) keep(tau(roots[j]), i);
-                } else {
-                    // A level line: where the curve reaches the line's height, r(u) gives
-                    // two t, symmetric about the point nearest the axis.
-                    const Polynomial level = sum(z, Polynomial{-o.z}).trimmed();
-                    if (level.degree() == 0) break;
-                    const int found = solve(level, 0.0, 1.0, roots);
-                    const double tc = -B / (2.0 * A), rmin2 = C - B * B / (4.0 * A);
-                    for (int j = 0; j < found; ++j) {
-                        const double r = x(roots[j]);
-                        const double half = std::sqrt(std::max(0.0, (r * r - rmin2) / A));
-                        keep(tc - half, i);
-                        keep(tc + half, i);
-                    }
-                }
+            case Segment2::Kind::Cubic:
+                curveCandidates(bezierCoordinate(s, 0), bezierCoordinate(s, 1), i);
                 break;
-            }
         }
     }
     std::sort(cand.begin(), cand.end(),

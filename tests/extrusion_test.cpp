@@ -240,6 +240,9 @@ TEST(Extrusion, SpansAgreeWithInsideOnRandomLines) {
         "rotate_extrude() translate([1, 0]) difference() { square([2, 2]); "
         "translate([1, 1]) circle(0.7); }",
         "rotate_extrude(angle = 250) translate([1, -1]) scale([1, 2]) circle(0.8);",
+        // Level edges (discs swept by the profile's horizontal sides) and steep ones.
+        "rotate_extrude() polygon([[0, 0], [2, 0], [2.5, 1], [2.5, 1.5], [1, 1.5], [1, 3], "
+        "[0, 3]]);",
     };
     csg::testing::Rng rng(7);
     for (const char* part : parts) {
@@ -257,11 +260,17 @@ TEST(Extrusion, SpansAgreeWithInsideOnRandomLines) {
                 EXPECT_TRUE(scene.inside(o + 0.5 * (s.in + s.out) * d)) << part << " line " << i;
                 ++checked;
             }
-            // Just outside each span, and between spans, the point is outside.
-            for (size_t k = 0; k + 1 < spans.size(); ++k) {
-                if (spans[k + 1].in - spans[k].out < 1e-6) continue;
-                EXPECT_FALSE(scene.inside(o + 0.5 * (spans[k].out + spans[k + 1].in) * d))
-                    << part << " line " << i;
+            // Every point of the line is inside exactly when some span holds it (this finds
+            // a span that was lost, which the midpoints above cannot).
+            for (int k = 0; k < 40; ++k) {
+                const double t = rng.uniform(-8, 8);
+                bool inSpan = false, nearEnd = false;
+                for (const Interval& s : spans) {
+                    inSpan |= t >= s.in && t <= s.out;
+                    nearEnd |= std::abs(t - s.in) < 1e-7 || std::abs(t - s.out) < 1e-7;
+                }
+                if (nearEnd) continue;
+                EXPECT_EQ(scene.inside(o + t * d), inSpan) << part << " line " << i << " t " << t;
             }
         }
         EXPECT_GT(checked, 50) << part;
