@@ -30,7 +30,7 @@ std::string starPart(int n) {
     std::string points;
     for (int i = 0; i < n; ++i) {
         const double a = 2.0 * 3.14159265358979323846 * i / n;
-        const double r = i % 2 ? 0.6 : 1.0;
+        const double r = i % 2 ? 0.97 : 1.0;
         points += (i ? "," : "") + std::string("[") + std::to_string(r * std::cos(a)) + "," +
                   std::to_string(r * std::sin(a)) + "]";
     }

@@ -25,6 +25,7 @@ uint32_t leafTag(Evaluator& e, const InstantiationStmt& s, const GeomState& stat
 
 Instance shapeLeaf(Evaluator& e, const InstantiationStmt& s, const GeomState& state,
                    Outline outline, const char* shape) {
+    outline.buildIndex();
     return csg::leaf(Extrusion::plane(std::make_shared<Outline>(std::move(outline)), shape),
                      {leafTag(e, s, state), state.material});
 }

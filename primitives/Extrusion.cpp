@@ -133,6 +133,11 @@ constexpr double kCandidateSlackRel = 1e-6;
 }  // namespace
 
 Extrusion Extrusion::plane(std::shared_ptr<const Outline> outline, const char* shape) {
+    if (!outline->indexed()) {
+        auto indexed = std::make_shared<Outline>(*outline);
+        indexed->buildIndex();
+        outline = std::move(indexed);
+    }
     Extrusion e;
     e.box = outline->bounds();
     e.outline = std::move(outline);

@@ -19,6 +19,12 @@ double side(Vec2 o, Vec2 d, Vec2 p) {
     return cross(d, p - o);
 }
 
+// How much a box is widened, relative to the whole outline's size, and the slack of the
+// line-box test relative to the line's scale: both far above the rounding of side() (a few
+// ulps), so the hierarchy never culls a segment the side test would cross.
+constexpr double kBoxWidenRel = 1e-9;
+constexpr double kLineBoxSlack = 1e-12;
+
 // The ellipse parameter of a point q on (or near) the arc's ellipse.
 double arcAngle(const Segment2& s, Vec2 q) {
     const glm::dmat2 axes(s.p[2], s.p[3]);
@@ -177,65 +183,141 @@ Segment2 Segment2::mapped(const glm::dmat2& m, Vec2 shift) const {
     return s;
 }
 
-Bounds2 Outline::bounds() const {
+Bounds2 Segment2::bounds() const {
     Bounds2 b;
-    for (const Segment2& s : segments) {
-        switch (s.kind) {
-            case Segment2::Kind::Line:
-                b.add(s.p[0]);
-                b.add(s.p[1]);
-                break;
-            case Segment2::Kind::Quadratic:
-                for (int i = 0; i < 3; ++i) b.add(s.p[i]);
-                break;
-            case Segment2::Kind::Cubic:
-                for (const Vec2& q : s.p) b.add(q);
-                break;
-            case Segment2::Kind::Arc: {
-                // The whole ellipse's box: half-extent sqrt(a_i^2 + b_i^2) per axis.
-                const Vec2 half(std::hypot(s.p[2].x, s.p[3].x), std::hypot(s.p[2].y, s.p[3].y));
-                b.add(s.p[1] - half);
-                b.add(s.p[1] + half);
-                break;
-            }
+    switch (kind) {
+        case Kind::Line:
+            b.add(p[0]);
+            b.add(p[1]);
+            break;
+        case Kind::Quadratic:
+            for (int i = 0; i < 3; ++i) b.add(p[i]);
+            break;
+        case Kind::Cubic:
+            for (const Vec2& q : p) b.add(q);
+            break;
+        case Kind::Arc: {
+            // The whole ellipse's box: half-extent sqrt(a_i^2 + b_i^2) per axis.
+            const Vec2 half(std::hypot(p[2].x, p[3].x), std::hypot(p[2].y, p[3].y));
+            b.add(p[1] - half);
+            b.add(p[1] + half);
+            break;
         }
     }
     return b;
 }
 
-void Outline::crossings(Vec2 o, Vec2 d, std::vector<Crossing2>& out) const {
+Bounds2 Outline::bounds() const {
+    Bounds2 b;
+    for (const Segment2& s : segments) {
+        const Bounds2 one = s.bounds();
+        b.add(one.lo);
+        b.add(one.hi);
+    }
+    return b;
+}
+
+void Outline::crossSegment(uint32_t i, Vec2 o, Vec2 d, std::vector<Crossing2>& out) const {
     const double dd = glm::dot(d, d);
-    for (uint32_t i = 0; i < segments.size(); ++i) {
-        const Segment2& s = segments[i];
-        const Vec2 a = s.start(), b = s.finish();
-        const double sa = side(o, d, a), sb = side(o, d, b);
-        const bool negA = sa < 0.0, negB = sb < 0.0;
-        if (s.kind == Segment2::Kind::Line) {
-            if (negA == negB) continue;
-            const Vec2 q = a + (b - a) * (sa / (sa - sb));
-            out.push_back({glm::dot(q - o, d) / dd, i, int8_t(negA ? 1 : -1)});
+    const Segment2& s = segments[i];
+    const Vec2 a = s.start(), b = s.finish();
+    const double sa = side(o, d, a), sb = side(o, d, b);
+    const bool negA = sa < 0.0, negB = sb < 0.0;
+    if (s.kind == Segment2::Kind::Line) {
+        if (negA == negB) return;
+        const Vec2 q = a + (b - a) * (sa / (sa - sb));
+        out.push_back({glm::dot(q - o, d) / dd, i, int8_t(negA ? 1 : -1)});
+        return;
+    }
+    // The side's sign on each piece between the roots (read at the piece's middle, so
+    // a double root changes nothing) and at the ends (by the rule above): a crossing
+    // wherever consecutive signs differ, at a root or at an end.
+    double u[5];
+    const int n = curvedRoots(s, o, d, u);
+    u[n] = 1.0;
+    bool negBefore = negA;
+    double lo = 0.0;
+    for (int k = 0; k <= n; ++k) {
+        const double hi = u[k];
+        const bool neg = side(o, d, s.at(0.5 * (lo + hi))) < 0.0;
+        if (neg != negBefore)
+            out.push_back({glm::dot((k == 0 ? a : s.at(lo)) - o, d) / dd, i,
+                           int8_t(negBefore ? 1 : -1)});
+        negBefore = neg;
+        lo = hi;
+    }
+    if (negBefore != negB)
+        out.push_back({glm::dot(b - o, d) / dd, i, int8_t(negBefore ? 1 : -1)});
+}
+
+void Outline::crossings(Vec2 o, Vec2 d, std::vector<Crossing2>& out) const {
+    if (nodes.empty()) {
+        for (uint32_t i = 0; i < segments.size(); ++i) crossSegment(i, o, d, out);
+        return;
+    }
+    const double scale = std::abs(d.x) + std::abs(d.y);
+    uint32_t stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const OutlineNode& node = nodes[stack[--top]];
+        // The line meets the box when the box's extent across the line reaches its centre's
+        // side value; boxes are widened (buildIndex), so rounding never culls a crossing.
+        const Vec2 c = 0.5 * (node.box.lo + node.box.hi), h = 0.5 * (node.box.hi - node.box.lo);
+        if (std::abs(side(o, d, c)) > std::abs(d.y) * h.x + std::abs(d.x) * h.y +
+                                          kLineBoxSlack * scale *
+                                              (std::abs(c.x - o.x) + std::abs(c.y - o.y)))
+            continue;
+        if (node.count > 0) {
+            for (uint32_t k = 0; k < node.count; ++k) crossSegment(order[node.first + k], o, d, out);
             continue;
         }
-        // The side's sign on each piece between the roots (read at the piece's middle, so
-        // a double root changes nothing) and at the ends (by the rule above): a crossing
-        // wherever consecutive signs differ, at a root or at an end.
-        double u[5];
-        const int n = curvedRoots(s, o, d, u);
-        u[n] = 1.0;
-        bool negBefore = negA;
-        double lo = 0.0;
-        for (int k = 0; k <= n; ++k) {
-            const double hi = u[k];
-            const bool neg = side(o, d, s.at(0.5 * (lo + hi))) < 0.0;
-            if (neg != negBefore)
-                out.push_back({glm::dot((k == 0 ? a : s.at(lo)) - o, d) / dd, i,
-                               int8_t(negBefore ? 1 : -1)});
-            negBefore = neg;
-            lo = hi;
-        }
-        if (negBefore != negB)
-            out.push_back({glm::dot(b - o, d) / dd, i, int8_t(negBefore ? 1 : -1)});
+        stack[top++] = node.right;
+        stack[top++] = uint32_t(&node - nodes.data()) + 1;
     }
+}
+
+void Outline::buildIndex() {
+    nodes.clear();
+    order.clear();
+    if (segments.size() <= kIndexMinSegments) return;
+    std::vector<Bounds2> boxes(segments.size());
+    Bounds2 all;
+    for (uint32_t i = 0; i < segments.size(); ++i) {
+        boxes[i] = segments[i].bounds();
+        all.add(boxes[i].lo);
+        all.add(boxes[i].hi);
+        order.push_back(i);
+    }
+    // Widened by a part in 10^9 of the whole outline: far above the rounding of a side value.
+    const double margin = kBoxWidenRel * std::max(1.0, glm::length(all.hi - all.lo));
+    const auto build = [&](auto& self, uint32_t first, uint32_t count) -> uint32_t {
+        const uint32_t index = uint32_t(nodes.size());
+        nodes.emplace_back();
+        Bounds2 box;
+        for (uint32_t k = first; k < first + count; ++k) {
+            box.add(boxes[order[k]].lo);
+            box.add(boxes[order[k]].hi);
+        }
+        box.lo -= Vec2(margin), box.hi += Vec2(margin);
+        nodes[index].box = box;
+        if (count <= 4) {
+            nodes[index].first = first, nodes[index].count = count;
+            return index;
+        }
+        const int axis = box.hi.x - box.lo.x >= box.hi.y - box.lo.y ? 0 : 1;
+        const auto mid = order.begin() + first + count / 2;
+        std::nth_element(order.begin() + first, mid, order.begin() + first + count,
+                         [&](uint32_t a, uint32_t b) {
+                             return boxes[a].lo[axis] + boxes[a].hi[axis] <
+                                    boxes[b].lo[axis] + boxes[b].hi[axis];
+                         });
+        self(self, first, count / 2);
+        const uint32_t right = self(self, first + count / 2, count - count / 2);
+        nodes[index].right = right;
+        return index;
+    };
+    build(build, 0, uint32_t(segments.size()));
 }
 
 bool Outline::inside(Vec2 p) const {
@@ -302,6 +384,7 @@ Outline Outline::mapped(const glm::dmat2& m, Vec2 shift) const {
     out.rule = rule;
     out.segments.reserve(segments.size());
     for (const Segment2& s : segments) out.segments.push_back(s.mapped(m, shift));
+    out.buildIndex();
     return out;
 }
 

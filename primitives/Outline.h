@@ -24,6 +24,17 @@
 
 namespace csg {
 
+// An axis-aligned box of the plane.
+struct Bounds2 {
+    Vec2 lo{kInfinity};
+    Vec2 hi{-kInfinity};
+    bool empty() const { return lo.x > hi.x || lo.y > hi.y; }
+    void add(Vec2 p) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+};
+
 struct Segment2 {
     enum class Kind : uint8_t { Line, Arc, Quadratic, Cubic };
     Kind kind = Kind::Line;
@@ -47,19 +58,11 @@ struct Segment2 {
     Vec2 at(double u) const;
     // The derivative with respect to u.
     Vec2 tangent(double u) const;
+    // A box holding the segment (for a Bezier its control points' box, for an arc its
+    // ellipse's).
+    Bounds2 bounds() const;
     // The same segment under the affine map x -> m * x + shift.
     Segment2 mapped(const glm::dmat2& m, Vec2 shift) const;
-};
-
-// An axis-aligned box of the plane.
-struct Bounds2 {
-    Vec2 lo{kInfinity};
-    Vec2 hi{-kInfinity};
-    bool empty() const { return lo.x > hi.x || lo.y > hi.y; }
-    void add(Vec2 p) {
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-    }
 };
 
 enum class FillRule : uint8_t { EvenOdd, NonZero };
@@ -72,9 +75,26 @@ struct Crossing2 {
     int8_t winding;
 };
 
+// A node of an outline's segment hierarchy: a leaf holds segments order[first, first + count),
+// an inner node (count 0) has its left child next to it and its right child at `right`.
+struct OutlineNode {
+    Bounds2 box;  // widened: see Outline::buildIndex
+    uint32_t first = 0, count = 0, right = 0;
+};
+
 struct Outline {
     std::vector<Segment2> segments;
     FillRule rule = FillRule::EvenOdd;
+    // A binary hierarchy of the segments' boxes, so that a line meets O(log n) of them in a
+    // smooth outline; empty (every segment tried) until buildIndex(), and for few segments.
+    std::vector<OutlineNode> nodes;
+    std::vector<uint32_t> order;
+
+    // Builds the hierarchy (call once the segments are final; mapped() and
+    // Extrusion::plane() do).
+    void buildIndex();
+    bool indexed() const { return !nodes.empty() || segments.size() <= kIndexMinSegments; }
+    static constexpr size_t kIndexMinSegments = 16;
 
     Bounds2 bounds() const;
     // Whether p is in the region (a point on the boundary may go either way).
@@ -82,6 +102,8 @@ struct Outline {
     // Appends the crossings of the line o + t d (d != 0) in the order of the segments, not
     // of t. The caller sorts.
     void crossings(Vec2 o, Vec2 d, std::vector<Crossing2>& out) const;
+    // The crossings of the line with segment i (see crossings()).
+    void crossSegment(uint32_t i, Vec2 o, Vec2 d, std::vector<Crossing2>& out) const;
     // Whether a winding number or crossing count means inside, by the fill rule.
     bool filled(int winding) const {
         return rule == FillRule::EvenOdd ? (winding & 1) != 0 : winding != 0;
