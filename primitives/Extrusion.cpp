@@ -213,16 +213,19 @@ void Extrusion::prismSpans(const Vec3& o, const Vec3& d, LocalSpans& out) const 
 void Extrusion::frustumSpans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     const double h = z1 - z0;
     const double kappa = (scale - 1.0) / h;
-    // A new origin on the mid-plane, where s(z) = (1 + scale)/2 > 0 (with d.z = 0 the line
-    // stays at its height, which the prism test below accepts or not).
+    // The map is singular where s(z) = 0 (an apex): an origin near there moves along the line
+    // to the mid-plane, where s(z) = (1 + scale)/2 (with d.z = 0 the line stays at its height,
+    // which the prism test below accepts or not). An origin elsewhere stays: the caller put it
+    // close to the solid, where the rounding is smallest.
+    const double sMid = 0.5 * (1.0 + scale);
     double tm = 0.0;
     Vec3 om = o;
-    if (d.z != 0.0) {
+    if (d.z != 0.0 && !(1.0 + kappa * (o.z - z0) > 0.5 * sMid)) {
         tm = (0.5 * (z0 + z1) - o.z) / d.z;
         om = o + tm * d;
     }
     const double zeta = om.z - z0;
-    const double wo = 1.0 + kappa * zeta;  // s at the new origin
+    const double wo = 1.0 + kappa * zeta;  // s at the origin used
     if (!(wo > 0.0)) return;
     const double wd = kappa * d.z;
     // The mapped line q(s) = om'/wo + s (d' - om' wd/wo), s = t / w(t).

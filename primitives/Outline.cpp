@@ -225,7 +225,10 @@ void Outline::crossSegment(uint32_t i, Vec2 o, Vec2 d, std::vector<Crossing2>& o
     const bool negA = sa < 0.0, negB = sb < 0.0;
     if (s.kind == Segment2::Kind::Line) {
         if (negA == negB) return;
-        const Vec2 q = a + (b - a) * (sa / (sa - sb));
+        // From the end nearer the line: the rounding of the step is then that of the shorter
+        // part of the segment.
+        const Vec2 q = std::abs(sa) <= std::abs(sb) ? a + (b - a) * (sa / (sa - sb))
+                                                    : b + (a - b) * (sb / (sb - sa));
         out.push_back({glm::dot(q - o, d) / dd, i, int8_t(negA ? 1 : -1)});
         return;
     }
@@ -368,9 +371,11 @@ Vec2 Outline::outwardNormal(uint32_t segment, Vec2 q) const {
     const Segment2& s = segments[segment];
     const double u = nearestParameter(segment, q);
     Vec2 t = s.tangent(u);
-    if (glm::dot(t, t) == 0.0) t = s.finish() - s.start();  // a cusp or degenerate arc
-    if (glm::dot(t, t) == 0.0) return {1.0, 0.0};
-    Vec2 n = glm::normalize(Vec2(t.y, -t.x));
+    if (t == Vec2(0.0)) t = s.finish() - s.start();  // a cusp or degenerate arc
+    // Scaled to its largest component first, so that a huge tangent does not overflow.
+    const double size = std::max(std::abs(t.x), std::abs(t.y));
+    if (!(size > 0.0) || !std::isfinite(size)) return {1.0, 0.0};
+    Vec2 n = glm::normalize(Vec2(t.y, -t.x) / size);
     // Which side is inside is the fill rule's business: step off the boundary and ask.
     const Bounds2 box = bounds();
     const double step = 1e-7 * std::max(1.0, glm::length(box.hi - box.lo));
