@@ -303,7 +303,14 @@ void Extrusion::revolvedSpans(const Vec3& o, const Vec3& d, LocalSpans& out) con
             keep(tc + half, i);
         }
     };
-    for (uint32_t i = 0; i < profile.segments.size(); ++i) {
+    // The line's image over [tlo, thi] lies in a box of the (r, z) half-plane; only segments
+    // whose boxes meet it can be crossed.
+    Bounds2 image;
+    image.add(imageAt(tlo));
+    image.add(imageAt(thi));
+    if (A > 0.0) image.add(imageAt(std::clamp(-B / (2.0 * A), tlo, thi)));  // nearest the axis
+    image.lo -= Vec2(slack), image.hi += Vec2(slack);
+    profile.forSegmentsIn(image, [&](uint32_t i) {
         const Segment2& s = profile.segments[i];
         switch (s.kind) {
             case Segment2::Kind::Line: {
@@ -364,7 +371,7 @@ void Extrusion::revolvedSpans(const Vec3& o, const Vec3& d, LocalSpans& out) con
                 curveCandidates(bezierCoordinate(s, 0), bezierCoordinate(s, 1), i);
                 break;
         }
-    }
+    });
     std::sort(cand.begin(), cand.end(),
               [](const Candidate& a, const Candidate& b) { return a.t < b.t; });
     // Each gap between consecutive candidates is inside or outside as its midpoint is.

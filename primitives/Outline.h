@@ -102,6 +102,10 @@ struct Outline {
     // Appends the crossings of the line o + t d (d != 0) in the order of the segments, not
     // of t. The caller sorts.
     void crossings(Vec2 o, Vec2 d, std::vector<Crossing2>& out) const;
+    // Calls f(i) for every segment i whose (widened) box may meet `box`: all of them when
+    // there is no hierarchy.
+    template <class F>
+    void forSegmentsIn(const Bounds2& box, F&& f) const;
     // The crossings of the line with segment i (see crossings()).
     void crossSegment(uint32_t i, Vec2 o, Vec2 d, std::vector<Crossing2>& out) const;
     // Whether a winding number or crossing count means inside, by the fill rule.
@@ -117,5 +121,29 @@ struct Outline {
     // winding sign, which both fill rules ignore).
     Outline mapped(const glm::dmat2& m, Vec2 shift) const;
 };
+
+template <class F>
+void Outline::forSegmentsIn(const Bounds2& box, F&& f) const {
+    if (nodes.empty()) {
+        for (uint32_t i = 0; i < segments.size(); ++i) f(i);
+        return;
+    }
+    uint32_t stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const uint32_t index = stack[--top];
+        const OutlineNode& node = nodes[index];
+        if (node.box.lo.x > box.hi.x || node.box.hi.x < box.lo.x || node.box.lo.y > box.hi.y ||
+            node.box.hi.y < box.lo.y)
+            continue;
+        if (node.count > 0) {
+            for (uint32_t k = 0; k < node.count; ++k) f(order[node.first + k]);
+            continue;
+        }
+        stack[top++] = node.right;
+        stack[top++] = index + 1;
+    }
+}
 
 }  // namespace csg
