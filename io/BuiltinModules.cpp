@@ -233,24 +233,44 @@ Instance intersection(Evaluator& e, const InstantiationStmt& s, const ContextPtr
 
 // ---- transforms ----
 
+// Whether m flattens space in the dimension of its children: its linear part's determinant
+// is zero relative to its size (3x3 for solids, the x-y 2x2 for 2-D shapes, whose z OpenSCAD
+// drops).
+bool flattens(const Mat4& m, int dimension) {
+    const int n = dimension == 2 ? 2 : 3;
+    double size = 0.0, det = 0.0;
+    if (n == 2) {
+        const glm::dmat2 linear(m[0][0], m[0][1], m[1][0], m[1][1]);
+        size = std::max(glm::length(linear[0]), glm::length(linear[1]));
+        det = glm::determinant(linear);
+    } else {
+        const csg::Mat3 linear(m);
+        for (int c = 0; c < 3; ++c) size = std::max(size, glm::length(linear[c]));
+        det = glm::determinant(linear);
+    }
+    return std::fabs(det) <= csg::tol::kSingularDetRel * std::pow(size, n);
+}
+
+// The children seen through m. A transform that flattens space (a zero scale factor, a
+// singular matrix) leaves its children no volume (no area, for 2-D ones): OpenSCAD 2021 drops
+// them and goes on, and so does csgray, with a warning that says so (`what` names the
+// transform). The children are still evaluated, for their echo()s and errors, as OpenSCAD does.
 Instance applyTransform(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
-                        const GeomState& state, const Mat4& m) {
+                        const GeomState& state, const Mat4& m, const std::string& what = "") {
     GeomState inner = state;
     inner.worldFromHere = state.worldFromHere * m;
     Instance children = childrenGroup(e, b, ctx, inner);
     if (!children || !*children) return children;
-    if (dimensionOf(*children) == 2) return transformed2D(m, *children);
+    const int dimension = dimensionOf(*children);
+    if (flattens(m, dimension)) {
+        e.warn(b.call.loc, (what.empty() ? b.call.name + "()" : what) +
+                               " flattens its children: they have no " +
+                               (dimension == 2 ? "area" : "volume") +
+                               " and are dropped, as in OpenSCAD");
+        return csg::NodePtr();
+    }
+    if (dimension == 2) return transformed2D(m, *children);
     return csg::transformed(m, *children);
-}
-
-// A transform that flattens space (a zero scale factor, a singular matrix) leaves its children
-// no volume: OpenSCAD 2021 drops them and goes on, and so does csgray, with a warning that says
-// so. The children are still evaluated, for their echo()s and errors, as OpenSCAD does.
-Instance dropFlattenedChildren(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
-                               const GeomState& state, const std::string& why) {
-    e.warn(b.call.loc, why + ": its children have no volume and are dropped, as in OpenSCAD");
-    childrenGroup(e, b, ctx, state);
-    return csg::NodePtr();
 }
 
 // The vector argument of translate or scale (identity: the default, which also fills a vec2's
@@ -324,10 +344,8 @@ Instance scale(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                const GeomState& state) {
     BoundArgs b = bindArgs(e, s, ctx, {"v"}, "scale(v)");
     const Vec3 v = transformArg(e, b, Vec3(1.0), true, "a number, a vec3 or vec2 of numbers");
-    if (v.x == 0 || v.y == 0 || v.z == 0)
-        return dropFlattenedChildren(e, b, ctx, state,
-                                     "scale(" + b[0].brief() + ") has a zero factor");
-    return applyTransform(e, b, ctx, state, glm::scale(Mat4(1.0), v));
+    return applyTransform(e, b, ctx, state, glm::scale(Mat4(1.0), v),
+                          b.given(0) ? "scale(" + b[0].brief() + ")" : "");
 }
 
 Instance mirror(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
@@ -372,12 +390,6 @@ Instance multmatrix(Evaluator& e, const InstantiationStmt& s, const ContextPtr& 
                    "object.");
             return csg::NodePtr();
         }
-        // Singular: the linear part flattens space (relative to its own size).
-        const csg::Mat3 linear(m);
-        double size = 0.0;
-        for (int c = 0; c < 3; ++c) size = std::max(size, glm::length(linear[c]));
-        if (std::fabs(glm::determinant(linear)) <= csg::tol::kSingularDetRel * size * size * size)
-            return dropFlattenedChildren(e, b, ctx, state, "multmatrix(): the matrix is singular");
     } else if (b.given(0)) {
         e.warn(b.loc(0), "multmatrix(" + b[0].brief() + "): not a matrix; multmatrix() ignored");
     }

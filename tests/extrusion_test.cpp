@@ -290,6 +290,14 @@ TEST(Extrusion, DimensionRules) {
     ASSERT_TRUE(r.ok());
     EXPECT_NE(diagnosticsOf(r).find("children are 3-D"), std::string::npos);
     EXPECT_FALSE(r.model->root);
+    // A transform of a 2-D shape flattens it only when its x-y part does: scale([2, 2, 0])
+    // doubles a square (OpenSCAD 2021 exports the 2 x 2 x 1 box), scale([2, 0]) drops it.
+    expectSpans(compiled("linear_extrude(1) scale([2, 2, 0]) square(1);"), {-5, 1, 0.5},
+                {1, 0, 0}, {{5, 7}}, 1e-14);
+    r = evaluate("linear_extrude(1) scale([2, 0]) square(1);");
+    ASSERT_TRUE(r.ok());
+    EXPECT_NE(diagnosticsOf(r).find("no area and are dropped"), std::string::npos);
+    EXPECT_FALSE(r.model->root);
     // A 3-D rotation of a 2-D shape uses only its x-y part (OPENSCAD.md section 2).
     const csg::Scene turned = compiled("linear_extrude(1) rotate([0, 0, 90]) square([2, 1]);");
     expectSpans(turned, {-5, 1, 0.5}, {1, 0, 0}, {{4, 5}}, 1e-14);
