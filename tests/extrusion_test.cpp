@@ -340,4 +340,23 @@ TEST(Extrusion, FacetedRevolutionLiesOnOpenScadsMesh) {
     }
 }
 
+// A 2-D part on the command line: info says so, render shows it, export and compare refuse it
+// with OpenSCAD's message and write nothing.
+TEST(Extrusion, TwoDimensionalPartOnTheCommandLine) {
+    cli::ScratchDir dir;
+    const std::string part = (dir / "flat.scad").string(), glb = (dir / "flat.glb").string();
+    cli::writeFile(part, "difference() { circle(10); square(8, center = true); }\n");
+    const cli::RunResult info = cli::runCsgray({"info", part}, dir.path());
+    ASSERT_EQ(info.exitCode, 0) << info.err;
+    EXPECT_EQ(nlohmann::json::parse(info.out)["dimensions"].get<int>(), 2);
+    const cli::RunResult exported = cli::runCsgray({"export", part, "-o", glb}, dir.path());
+    EXPECT_EQ(exported.exitCode, 1);
+    EXPECT_NE(exported.err.find("not a 3-D object"), std::string::npos) << exported.err;
+    EXPECT_FALSE(std::filesystem::exists(glb));
+    const cli::RunResult solid = cli::runCsgray({"info", cli::samplePath("vase.scad").string()},
+                                                dir.path());
+    ASSERT_EQ(solid.exitCode, 0) << solid.err;
+    EXPECT_EQ(nlohmann::json::parse(solid.out)["dimensions"].get<int>(), 3);
+}
+
 }  // namespace

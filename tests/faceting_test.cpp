@@ -677,7 +677,7 @@ TEST(CurvesOption, ModesChangeInfoAndProbe) {
     for (const char* command : {"render", "probe", "info", "export", "compare", "view"}) {
         const cli::RunResult help = cli::runCsgray({command, "--help"}, dir.path());
         EXPECT_NE(help.out.find("--curves=MODE"), std::string::npos) << command;
-        EXPECT_NE(help.out.find("openscad: every cylinder and sphere faceted as OpenSCAD"),
+        EXPECT_NE(help.out.find("openscad: every curve faceted as OpenSCAD 2021"),
                   std::string::npos)
             << command;
     }

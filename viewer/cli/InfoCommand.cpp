@@ -22,10 +22,12 @@ namespace {
 const char* const kInfoHelp =
     "usage: csgray info PART [options]\n"
     "\n"
-    "Prints JSON on stdout: the \"curves\" mode the part was read with (--curves), \"counts\"\n"
-    "of the evaluated tree's nodes by kind (leaves by primitive, unions, intersections,\n"
-    "differences, transformed nodes), world \"bounds\" (null when empty; an unbounded side is\n"
-    "null), the compiled leaf count, the scene extras (camera, lights, background, materials)\n"
+    "Prints JSON on stdout: the \"curves\" mode the part was read with (--curves), its\n"
+    "\"dimensions\" (2 for a 2-D part, whose tree is its shape 1 unit thick as OpenSCAD\n"
+    "previews it; else 3), \"counts\" of the evaluated tree's nodes by kind (leaves by\n"
+    "primitive, unions, intersections, differences, transformed nodes), world \"bounds\"\n"
+    "(null when empty; an unbounded side is null), the compiled leaf count, the scene extras\n"
+    "(camera, lights, background, materials)\n"
     "and the \"tree\": operators, primitives with their parameters in local coordinates (a\n"
     "faceted cylinder or sphere is a convex_polyhedron with its fragments, rings and planes),\n"
     "transforms (3x4 rows, parent from node) and\n"
@@ -265,6 +267,8 @@ int infoCommand(std::span<const std::string> args) {
     json.beginObject();
     json.key("part").value(options.part);
     json.key("curves").value(io::curveModeName(options.curves));
+    // A 2-D part's tree is its shape shown 1 unit thick (io::Model::twoD).
+    json.key("dimensions").value(part.model.twoD ? 2 : 3);
     writeCounts(json, counts);
     writeBounds(json, part.scene.bounds());
     json.key("compiledLeaves").value(uint64_t(part.scene.leafCount()));
