@@ -4,7 +4,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh
 # The test set-up's one download: the Khronos glTF validator from the npm registry, into
-# build/npm (cli_mesh_test says so and skips the validation if it could not be installed).
+# build/npm (if it could not be installed, cli_mesh_test skips the validation, and fails in CI).
 [ -d build/npm/node_modules/gltf-validator ] || cmake --build build --target gltf_validator >/dev/null ||
     echo "run-tests: could not install gltf-validator; GLB validation will be skipped" >&2
 cd build

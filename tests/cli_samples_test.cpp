@@ -9,6 +9,7 @@
 #include <map>
 #include <random>
 
+#include "MissingTool.h"
 #include "CliRunner.h"
 
 namespace cli {
@@ -318,7 +319,7 @@ const std::map<std::string, bool> kTurnedByNonRightAngles = {
 class OpenScadRoundTrip : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(OpenScadRoundTrip, CsgExportGivesTheSameSpans) {
-    if (!haveOpenScad()) GTEST_SKIP() << "openscad not installed";
+    if (!haveOpenScad()) SKIP_OR_FAIL_IN_CI("openscad is not installed");
     const std::string sample = GetParam();
     ScratchDir dir;
     const fs::path csg = dir / "part.csg";

@@ -16,6 +16,7 @@
 #include <functional>
 #include <numbers>
 
+#include "MissingTool.h"
 #include "CliRunner.h"
 #include "csg/Scene.h"
 #include "io/Degrees.h"
@@ -163,7 +164,7 @@ class OpenScadVertices : public ::testing::TestWithParam<ExportCase> {};
 // the same libm).
 TEST_P(OpenScadVertices, MatchItsBinaryStl) {
     const ExportCase& c = GetParam();
-    if (!haveOpenScad()) GTEST_SKIP() << "openscad is not installed";
+    if (!haveOpenScad()) SKIP_OR_FAIL_IN_CI("openscad is not installed");
     csg::testing::TempDir dir(std::string("csgray_facet_") + c.name);
     const auto scad = dir.path / "part.scad", stl = dir.path / "part.stl";
     cli::writeFile(scad, c.scad);
@@ -690,7 +691,7 @@ TEST(CurvesOption, ModesChangeInfoAndProbe) {
 // planes' intersections), and must agree with OpenSCAD's to 1e-5. Measured the other way, every
 // sample of OpenSCAD's mesh lies on csgray's faceted part (float rounding apart).
 TEST(CurvesOption, HexagonalPrismMeshAgreesWithOpenScadsStl) {
-    if (!haveOpenScad()) GTEST_SKIP() << "openscad is not installed";
+    if (!haveOpenScad()) SKIP_OR_FAIL_IN_CI("openscad is not installed");
     cli::ScratchDir dir;
     const std::string part = (dir / "hex.scad").string(), theirs = (dir / "theirs.stl").string(),
                       ours = (dir / "ours.obj").string();
@@ -726,7 +727,7 @@ TEST(CurvesOption, HexagonalPrismMeshAgreesWithOpenScadsStl) {
 // with margin (as a maximum over every sample). The same samples read with --curves exact are
 // off by their facets' depth: 0.007 to 0.09 on average, against 3e-8 to 5e-7 here.
 TEST(CurvesOption, OpenScadModeLiesOnOpenScadsOwnMesh) {
-    if (!haveOpenScad()) GTEST_SKIP() << "openscad is not installed";
+    if (!haveOpenScad()) SKIP_OR_FAIL_IN_CI("openscad is not installed");
     cli::ScratchDir dir;
     for (const char* sample : {"emblem", "bracket", "pawn", "flange", "hinge", "dice"}) {
         const std::string part = cli::samplePath(std::string(sample) + ".scad").string();

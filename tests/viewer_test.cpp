@@ -16,6 +16,7 @@
 #include <functional>
 #include <thread>
 
+#include "MissingTool.h"
 #include "CliRunner.h"
 #include "viewer/window/SdlLibrary.h"
 
@@ -167,7 +168,7 @@ protected:
     }
 
     void SetUp() override {
-        if (!display_->ok()) GTEST_SKIP() << display_->reason();
+        if (!display_->ok()) SKIP_OR_FAIL_IN_CI(display_->reason());
         part_ = dir_ / "part.scad";
         writeFile(part_, kPart);
     }
@@ -332,7 +333,7 @@ TEST_F(ViewerTest, FinestFrameShowsThePartAsRenderDoes) {
 }
 
 TEST_F(ViewerTest, KeysAndClickReachTheWindow) {
-    if (!onPath("xdotool")) GTEST_SKIP() << "xdotool is not installed (Debian package xdotool)";
+    if (!onPath("xdotool")) SKIP_OR_FAIL_IN_CI("xdotool is not installed (Debian package xdotool)");
     launch();
     ASSERT_TRUE(waitForFrame(1)) << err();
     const Image first = readPng(dir_ / "frame.png");
@@ -424,7 +425,7 @@ TEST_F(ViewerTest, FixingTheFileAnErrorNamesReloads) {
 }
 
 TEST_F(ViewerTest, DragOrbitsWheelZoomsAndResetAndFrameRestoreTheView) {
-    if (!onPath("xdotool")) GTEST_SKIP() << "xdotool is not installed (Debian package xdotool)";
+    if (!onPath("xdotool")) SKIP_OR_FAIL_IN_CI("xdotool is not installed (Debian package xdotool)");
     launch();
     ASSERT_TRUE(waitForFrame(1)) << err();
     const Image first = frame();
@@ -455,7 +456,7 @@ TEST_F(ViewerTest, DragOrbitsWheelZoomsAndResetAndFrameRestoreTheView) {
 }
 
 TEST_F(ViewerTest, EffectKeysSwitchShadowsReflectionAndRefraction) {
-    if (!onPath("xdotool")) GTEST_SKIP() << "xdotool is not installed (Debian package xdotool)";
+    if (!onPath("xdotool")) SKIP_OR_FAIL_IN_CI("xdotool is not installed (Debian package xdotool)");
     writeFile(part_, kEffectsPart);
     launch();
     ASSERT_TRUE(waitForFrame(1)) << err();
