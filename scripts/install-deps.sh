@@ -16,6 +16,8 @@ packages=(
     xvfb xdotool          # viewer_test: a virtual X server and the input it sends the window
     libgtest-dev libgmock-dev  # tests
     libbenchmark-dev      # bench/
+    libfreetype-dev libharfbuzz-dev libfontconfig-dev  # text(): outlines, shaping, font lookup
+    fonts-liberation2     # text()'s default font, Liberation Sans, the file Debian's openscad opens
     libboost-dev          # Boost.Multiprecision: 50-digit references (tests, csgray bench accuracy)
     openscad              # CLI tests: samples load in OpenSCAD and round-trip through its .csg
     openscad-mcad         # MCAD, the library OpenSCAD's examples and users include (use <MCAD/...>)
