@@ -15,6 +15,7 @@
 #include "io/PatchModule.h"
 #include "io/Shapes2D.h"
 #include "io/SurfaceModule.h"
+#include "io/TextModule.h"
 #include "primitives/base/Tolerances.h"
 #include "viewer/render/PngReader.h"
 
@@ -580,6 +581,7 @@ const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {
         {"square", childless<squareModule>},
         {"circle", childless<circleModule>},
         {"polygon", childless<polygonModule>},
+        {"text", childless<textModule>},
         {"linear_extrude", linearExtrudeModule},
         {"rotate_extrude", rotateExtrudeModule},
         {"union", unionModule},
@@ -598,7 +600,6 @@ const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {
         {"light", light},
         {"background", background},
         // OpenSCAD modules with no exact ray-cast counterpart yet: an error, never a skip.
-        {"text", unsupported},
         {"offset", unsupported},
         {"hull", unsupported},
         {"minkowski", unsupported},

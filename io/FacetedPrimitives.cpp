@@ -55,7 +55,8 @@ csg::ConvexPolytope build(FacetedSolid solid, csg::ConvexPolytope::Origin origin
 
 }  // namespace
 
-FragmentSettings fragmentSettings(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx) {
+FragmentSettings fragmentSettings(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
+                                  bool clampAsPrimitive) {
     auto read = [&](const char* name) {
         const Value* given = nullptr;
         for (const ArgValue& a : b.all)
@@ -64,6 +65,7 @@ FragmentSettings fragmentSettings(Evaluator& e, const BoundArgs& b, const Contex
         return value.isNumber() ? value.number() : 0.0;
     };
     FragmentSettings settings{read("$fn"), read("$fa"), read("$fs")};
+    if (!clampAsPrimitive) return settings;
     // OpenSCAD's order: $fs, then $fa.
     for (auto [name, value] : {std::pair{"$fs", &settings.fs}, std::pair{"$fa", &settings.fa}}) {
         if (!(*value < kMinFragmentSetting)) continue;
