@@ -85,6 +85,25 @@ std::string stringArg(Evaluator& e, const BoundArgs& b, size_t i, const char* df
 // Segment2 is about 100 bytes), so that a huge $fn runs out of budget, not out of memory.
 constexpr uint64_t kSegmentSteps = 20;
 
+// The error for a faceting finer than the evaluation budget allows.
+std::string tooManySegments(const FragmentSettings& settings, int64_t n, int64_t chords,
+                            uint64_t segments) {
+    const bool fn = fnDecidesCount(settings);
+    const std::string why = fn ? "$fn = " + formatNumber(settings.fn) + " gives "
+                               : "$fa = " + formatNumber(settings.fa) +
+                                     " and $fs = " + formatNumber(settings.fs) + " give ";
+    return "text(): " + why + std::to_string(n) + " fragments, so " + std::to_string(chords) +
+           " chords per curve (OpenSCAD's fragments / 8 + 1) and " + std::to_string(segments) +
+           " outline segments, more than the evaluation budget allows; expected " +
+           (fn ? "a smaller $fn" : "a larger $fa or $fs") + ", or --curves exact for exact curves";
+}
+
+// OpenSCAD's messages (FreetypeRenderer::calc_x_offset, calc_y_offset), the value appended.
+const std::string kUnknownHalign =
+    R"(Unknown value for the halign parameter (use "left", "right" or "center"): ')";
+const std::string kUnknownValign =
+    R"(Unknown value for the valign parameter (use "baseline", "bottom", "top" or "center"): ')";
+
 constexpr const char* kForm =
     "text(text, size = 10, font, halign = \"left\", valign = \"baseline\", spacing = 1, "
     "direction = \"ltr\", language = \"en\", script = \"latin\")";
@@ -125,10 +144,9 @@ Instance textModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& 
     size_t positional = 0;
     for (const ArgValue& a : b.all) {
         if (!a.name.empty() || ++positional <= 3) continue;
-        e.fail(a.loc,
-               "too many unnamed arguments to text(): only text, size and font may be "
-               "given by position; expected " +
-                   std::string(kForm));
+        e.fail(a.loc, std::string("too many unnamed arguments to text(): only text, size and font "
+                                  "may be given by position; expected ") +
+                          kForm);
     }
     TextParams params;
     params.text = stringArg(e, b, 0, "");
@@ -141,17 +159,11 @@ Instance textModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& 
     params.valign = stringArg(e, b, 7, "baseline");
     params.spacing = numberArg(e, b, 8, 1.0);
     // OpenSCAD's messages for an alignment it does not know; it then aligns as left/baseline.
-    if (params.halign != "left" && params.halign != "center" && params.halign != "right")
-        e.warn(b.loc(6),
-               "Unknown value for the halign parameter (use \"left\", \"right\" or "
-               "\"center\"): '" +
-                   params.halign + "'");
-    if (params.valign != "baseline" && params.valign != "bottom" && params.valign != "top" &&
-        params.valign != "center")
-        e.warn(b.loc(7),
-               "Unknown value for the valign parameter (use \"baseline\", \"bottom\", "
-               "\"top\" or \"center\"): '" +
-                   params.valign + "'");
+    const std::string& h = params.halign;
+    const std::string& v = params.valign;
+    if (h != "left" && h != "center" && h != "right") e.warn(b.loc(6), kUnknownHalign + h + "'");
+    if (v != "baseline" && v != "bottom" && v != "top" && v != "center")
+        e.warn(b.loc(7), kUnknownValign + v + "'");
 
     // OpenSCAD reads $fn, $fa and $fs unclamped for text, with size as the radius.
     const FragmentSettings settings = fragmentSettings(e, b, ctx, false);
@@ -165,22 +177,9 @@ Instance textModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& 
     if (params.size == 0.0) return csg::NodePtr();  // every point at the origin
     // Refused before any segment is made, with the reason rather than the budget's message.
     const uint64_t segments = glyphSegmentCount(layout, chords);
-    if (segments > e.budget().left / kSegmentSteps) {
-        const int64_t n = fragments(params.size, settings);
+    if (segments > e.budget().left / kSegmentSteps)
         e.fail(s.loc,
-               "text(): " +
-                   (fnDecidesCount(settings) ? "$fn = " + formatNumber(settings.fn)
-                                             : "$fa = " + formatNumber(settings.fa) +
-                                                   " and $fs = " + formatNumber(settings.fs)) +
-                   (fnDecidesCount(settings) ? " gives " : " give ") + std::to_string(n) +
-                   " fragments, so " + std::to_string(chords) +
-                   " chords per curve (OpenSCAD's fragments / 8 + "
-                   "1) and " +
-                   std::to_string(segments) +
-                   " outline segments, more than the evaluation budget allows; expected " +
-                   (fnDecidesCount(settings) ? "a smaller $fn" : "a larger $fa or $fs") +
-                   ", or --curves exact for exact curves");
-    }
+               tooManySegments(settings, fragments(params.size, settings), chords, segments));
     e.spend(s.loc, segments * kSegmentSteps);
 
     const uint32_t tag = e.sourceTag(s.loc, e.childPath(state, s.name));
