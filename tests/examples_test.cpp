@@ -34,20 +34,12 @@ const fs::path kExamples = "/usr/share/openscad/examples";
 
 // Examples csgray cannot load yet, and why.
 const std::map<std::string, std::string> kNotLoadingYet = {
-    {"Advanced/GEB.scad", "offset() and text()"},
+    {"Advanced/GEB.scad", "offset()"},
     {"Advanced/animation.scad", "offset()"},
-    {"Advanced/children.scad", "text()"},
-    {"Advanced/children_indexed.scad", "text()"},
     {"Advanced/offset.scad", "offset()"},
     {"Advanced/surface_image.scad", "projection() and surface(file = png)"},
-    {"Basics/LetterBlock.scad", "text()"},
     {"Basics/linear_extrude.scad", "linear_extrude(twist)"},
-    {"Basics/logo_and_text.scad", "text()"},
     {"Basics/projection.scad", "projection()"},
-    {"Basics/rotate_extrude.scad", "text()"},
-    {"Basics/text_on_cube.scad", "text()"},
-    {"Functions/polygon_areas.scad", "text()"},
-    {"Functions/recursion.scad", "text()"},
     {"Old/example006.scad", "hull()"},
     {"Old/example007.scad", "import() of DXF"},
     {"Old/example008.scad", "import() of DXF"},
@@ -57,7 +49,6 @@ const std::map<std::string, std::string> kNotLoadingYet = {
     {"Old/example015.scad", "import() of DXF"},
     {"Old/example020.scad", "linear_extrude(twist)"},
     {"Old/example021.scad", "projection()"},
-    {"Parametric/sign.scad", "text()"},
 };
 
 // Examples OpenSCAD takes more than ~25 s to export here (CGAL's exact booleans), measured

@@ -25,6 +25,7 @@
 #include FT_FREETYPE_H
 #include FT_OUTLINE_H
 
+#include "MissingTool.h"
 #include "csg/Scene.h"
 #include "io/Evaluate.h"
 #include "io/TextLayout.h"
@@ -249,8 +250,8 @@ Stl openScadPrism(const std::string& shape, const std::string& name) {
 
 TEST(TextLayout, DefaultFontIsTheFileOpenScadOpens) {
     if (!std::filesystem::exists(kLiberationSans))
-        GTEST_SKIP() << kLiberationSans
-                     << " is missing (scripts/install-deps.sh: fonts-liberation2)";
+        SKIP_OR_FAIL_IN_CI(std::string(kLiberationSans) +
+                           " is missing (scripts/install-deps.sh: fonts-liberation2)");
     io::TextParams params;
     params.text = "H";
     const io::TextLayout layout = io::layoutText(params);
@@ -267,7 +268,7 @@ TEST(TextLayout, DefaultFontIsTheFileOpenScadOpens) {
 // 1479/2048 em, so its figures are 9.7950 against 10.0301.
 TEST(TextLayout, AdvanceBetweenTwoHsIsOpenScad2021s) {
     const FontMetrics font(kLiberationSans);
-    if (!font.ok()) GTEST_SKIP() << kLiberationSans << " is missing";
+    if (!font.ok()) SKIP_OR_FAIL_IN_CI(std::string(kLiberationSans) + " is missing");
     const auto leaves = glyphLeaves("text(\"HH\");");
     ASSERT_EQ(leaves.size(), 2u);
     const double advance = leaves[1]->box.lo.x - leaves[0]->box.lo.x;
@@ -296,7 +297,7 @@ TEST(TextLayout, AdvanceBetweenTwoHsIsOpenScad2021s) {
 // size * (v + offset + advance) does.
 TEST(TextLayout, GlyphHeightsAreTheFontsOwn) {
     const FontMetrics font(kLiberationSans);
-    if (!font.ok()) GTEST_SKIP() << kLiberationSans << " is missing";
+    if (!font.ok()) SKIP_OR_FAIL_IN_CI(std::string(kLiberationSans) + " is missing");
     const double pixel = 64e-5 * 10.0;
     const auto h = glyphLeaves("text(\"H\");");
     ASSERT_EQ(h.size(), 1u);
@@ -320,7 +321,7 @@ TEST(TextLayout, GlyphHeightsAreTheFontsOwn) {
 // H 0.22 above y = 0 at size 10, not touching it.
 TEST(TextLayout, AlignmentOffsetsAreOpenScad2021s) {
     const FontMetrics font(kLiberationSans);
-    if (!font.ok()) GTEST_SKIP() << kLiberationSans << " is missing";
+    if (!font.ok()) SKIP_OR_FAIL_IN_CI(std::string(kLiberationSans) + " is missing");
     const double size = 10.0;
     const double width = font.penAdvance('H', size) + font.penAdvance('g', size);
     // Grid-fitted (to 64 units) ascent of the H and descent of the g, in units of 1/1.024e5:
@@ -561,7 +562,7 @@ TEST(TextLayout, ConcurrentLayoutsAgree) {
 // OpenSCAD's bounding box (to 1e-4: OpenSCAD snaps to 2^-16 ~ 1.5e-5 and writes floats) and
 // its volume (to 1e-3 relative, as asked; the two differ by OpenSCAD's snapping only).
 TEST(TextAgainstOpenScad, CsgrayTwentyTwentyOneBoxAndVolume) {
-    if (!haveOpenScad()) GTEST_SKIP() << "openscad is not installed";
+    if (!haveOpenScad()) SKIP_OR_FAIL_IN_CI("openscad is not installed");
     const std::string shape = "text(\"csgray 2021\")";
     const Stl theirs = openScadPrism(shape, "csgray2021");
     ASSERT_FALSE(theirs.bottom.empty()) << "OpenSCAD's export";
@@ -592,7 +593,7 @@ class TextMatchesOpenScad : public ::testing::TestWithParam<OpenScadCase> {};
 // by the snapping; where glyphs overlap OpenSCAD's union adds crossing vertices, so only the
 // area is compared there).
 TEST_P(TextMatchesOpenScad, VerticesAndArea) {
-    if (!haveOpenScad()) GTEST_SKIP() << "openscad is not installed";
+    if (!haveOpenScad()) SKIP_OR_FAIL_IN_CI("openscad is not installed");
     const OpenScadCase& c = GetParam();
     const Stl theirs = openScadPrism(c.shape, c.name);
     ASSERT_FALSE(theirs.bottom.empty()) << "OpenSCAD's export of " << c.shape;
