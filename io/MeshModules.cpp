@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "io/BoundArgs.h"
+#include "io/DataFiles.h"
 #include "io/mesh/MeshFile.h"
 #include "primitives/Polyhedron.h"
 
@@ -165,21 +166,7 @@ Instance importModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr
     }
     if (!e.filesAllowed()) e.fail(b.loc(0), "import(): reading files is not allowed here");
 
-    // OpenSCAD's lookup: beside the .scad file that holds the call, else beside the main file.
-    std::filesystem::path path(written);
-    if (path.is_relative()) {
-        const std::filesystem::path local = e.filePath(s.loc.file).parent_path() / path;
-        const std::filesystem::path top = e.filePath(0).parent_path() / path;
-        std::error_code ec;
-        path = local;
-        if (!std::filesystem::exists(local, ec) && s.loc.file != 0 &&
-            std::filesystem::exists(top, ec)) {
-            e.warn(b.loc(0), "Imported file (" + written +
-                                 ") found in document root instead of relative to the importing "
-                                 "module. This behavior is deprecated");
-            path = top;
-        }
-    }
+    const std::filesystem::path path = lookupDataFile(e, s.loc, b.loc(0), written);
     PolygonMeshReadResult read = readPolygonMesh(path);
     if (!read.mesh) {
         std::string where = path.string();

@@ -10,8 +10,8 @@ namespace io {
 // The built-in modules. polyhedron(): faces are OpenSCAD's (clockwise seen from outside, though
 // the solid does not depend on it); an out-of-range index is skipped with OpenSCAD's warning; a
 // point that is not [x, y, z] (or [x, y]) of finite numbers is an error at the argument.
-// import(): the file is found relative to the directory of the .scad file that contains the
-// call (else next to the main file, with OpenSCAD's deprecation warning); a missing, unreadable
+// import(): the file is found as io/DataFiles.h says (beside the .scad file that contains the
+// call, else next to the main file, with OpenSCAD's deprecation warning); a missing, unreadable
 // or malformed file is an error at the call naming the file's line and column. Both warn at the
 // call when the mesh is open, non-manifold or inconsistently wound, and say what csgray does.
 Instance polyhedronModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,

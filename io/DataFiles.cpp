@@ -1,0 +1,20 @@
+#include "io/DataFiles.h"
+
+namespace io {
+
+std::filesystem::path lookupDataFile(Evaluator& e, Loc call, Loc at, const std::string& written) {
+    std::filesystem::path path(written);
+    if (!path.is_relative()) return path;
+    const std::filesystem::path local = e.filePath(call.file).parent_path() / path;
+    const std::filesystem::path top = e.filePath(0).parent_path() / path;
+    std::error_code ec;
+    if (!std::filesystem::exists(local, ec) && call.file != 0 && std::filesystem::exists(top, ec)) {
+        e.warn(at, "Imported file (" + written +
+                       ") found in document root instead of relative to the importing module. "
+                       "This behavior is deprecated");
+        return top;
+    }
+    return local;
+}
+
+}  // namespace io
