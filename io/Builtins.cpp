@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "io/Degrees.h"
+#include "io/DxfModules.h"
 #include "io/Evaluator.h"
 #include "io/Lexer.h"
 
@@ -330,6 +331,8 @@ const std::unordered_map<std::string, Evaluator::BuiltinFunction>& table() {
              return ValueList{2021, 1, 0};
          }},
         {"version_num", [](Evaluator&, const Args&, Loc) -> Value { return 20210100.0; }},
+        {"dxf_dim", dxfDimFunction},
+        {"dxf_cross", dxfCrossFunction},
     };
     return functions;
 }

@@ -6,6 +6,7 @@
 
 #include "io/BoundArgs.h"
 #include "io/DataFiles.h"
+#include "io/DxfModules.h"
 #include "io/mesh/MeshFile.h"
 #include "primitives/Polyhedron.h"
 
@@ -16,8 +17,8 @@ namespace {
 constexpr const char* kPolyhedronForm =
     "polyhedron(points = [[x, y, z], ...], faces = [[i, j, k, ...], ...], convexity = 1)";
 constexpr const char* kImportForm =
-    "import(file = \"part.stl\" | \"part.off\" | \"part.obj\", "
-    "convexity = 1)";
+    "import(file = \"part.stl\" | \"part.off\" | \"part.obj\" | \"drawing.dxf\", layer, "
+    "convexity = 1, origin = [x, y], scale = 1)";
 // Out-of-range indices warned about one by one (as OpenSCAD does) before a summary.
 constexpr uint64_t kMaxIndexWarnings = 10;
 
@@ -143,6 +144,7 @@ Instance importModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr
         bindArgs(e, s, ctx, {"file", "layer", "convexity", "origin", "scale"}, kImportForm);
     if (!b.given(0)) e.fail(s.loc, "import() needs a file; expected " + std::string(b.form));
     if (!b[0].isString()) b.bad(e, 0, "a file name");
+    if (isDxfFile(b[0].string())) return importDxf(e, b, ctx, state);
     for (size_t i : {size_t(1), size_t(3), size_t(4)})
         if (b.given(i))
             e.warn(b.loc(i), "import(): '" + std::string(b.names[i]) +
@@ -155,9 +157,8 @@ Instance importModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr
         std::string ext = std::filesystem::path(written).extension().string();
         std::transform(ext.begin(), ext.end(), ext.begin(),
                        [](unsigned char c) { return char(std::tolower(c)); });
-        const bool openscadKnows = ext == ".amf" || ext == ".3mf" || ext == ".dxf" ||
-                                   ext == ".svg" || ext == ".nef3" || ext == ".glb" ||
-                                   ext == ".gltf";
+        const bool openscadKnows = ext == ".amf" || ext == ".3mf" || ext == ".svg" ||
+                                   ext == ".nef3" || ext == ".glb" || ext == ".gltf";
         e.fail(b.loc(0), "import(): " +
                              std::string(openscadKnows ? "importing " + ext +
                                                              " files is not supported by csgray"

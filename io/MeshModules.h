@@ -1,6 +1,6 @@
 // polyhedron(points, faces, convexity) (and 2021's deprecated triangles=) and import(file,
 // convexity) of STL, OFF and OBJ files: both a primitives/Polyhedron.h mesh, a solid by
-// crossing parity.
+// crossing parity. import() of a DXF file hands over to io/DxfModules.h (a 2-D shape).
 #pragma once
 
 #include "io/Evaluator.h"

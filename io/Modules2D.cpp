@@ -7,6 +7,7 @@
 
 #include "io/BoundArgs.h"
 #include "io/Degrees.h"
+#include "io/DxfModules.h"
 #include "io/FacetedPrimitives.h"
 #include "io/Shapes2D.h"
 
@@ -143,6 +144,18 @@ Instance shapeChildren(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
     return children;
 }
 
+// OpenSCAD 2021's legacy file = of the extrusions: the drawing instead of the children, with
+// its deprecation warning.
+Instance legacyDxfShape(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
+                        const GeomState& state, const DxfArgs& args) {
+    e.warn(b.loc(args.file), "DEPRECATED: Support for reading files in " + b.call.name +
+                                 " will be removed in future releases. Use a child import() "
+                                 "instead.");
+    if (!b.call.children.empty())
+        e.warn(b.call.loc, b.call.name + "(file = ...): its children are ignored, as in OpenSCAD");
+    return dxfShape(e, b, ctx, state, args);
+}
+
 }  // namespace
 
 Instance linearExtrudeModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
@@ -152,13 +165,14 @@ Instance linearExtrudeModule(Evaluator& e, const InstantiationStmt& s, const Con
                            {"file", "layer", "height", "origin", "scale", "center", "twist",
                             "slices", "convexity"},
                            "linear_extrude(height, center, convexity, twist, slices, scale)");
+    const bool fromFile = b.given(0) && b[0].isString();
     double height = 100.0;
     if (b.given(2))
         height = numberArg(e, b, 2, 100.0);
     else if (b.given(0) && b[0].isNumber())
         height = numberArg(e, b, 0, 100.0);
-    else if (b.given(0))
-        e.fail(b.loc(0), "linear_extrude(file = ...): DXF files are not supported yet");
+    else if (b.given(0) && !fromFile)
+        b.bad(e, 0, "a DXF file name (OpenSCAD 2021's legacy file = ...) or the height");
     const bool center = boolArg(e, b, 5, false);
     double scale = 1.0;
     if (b.given(4)) {
@@ -179,7 +193,10 @@ Instance linearExtrudeModule(Evaluator& e, const InstantiationStmt& s, const Con
     if (twist != 0.0)
         e.fail(b.loc(6), "linear_extrude(twist = ...) is not supported yet");
     numberArg(e, b, 7, 1.0);  // slices: the exact solid needs none
-    Instance shape = shapeChildren(e, b, ctx, state);
+    // OpenSCAD 2021 reads the drawing with the extrusion's scale (so it also scales the
+    // drawing) and ignores the children.
+    Instance shape = fromFile ? legacyDxfShape(e, b, ctx, state, DxfArgs{0, 1, 3, scale})
+                              : shapeChildren(e, b, ctx, state);
     if (!shape || !*shape) return shape;
     if (!(height > 0.0)) return csg::NodePtr();
     const double z0 = center ? -0.5 * height : 0.0;
@@ -237,13 +254,22 @@ Instance rotateExtrudeModule(Evaluator& e, const InstantiationStmt& s, const Con
                              const GeomState& state) {
     BoundArgs b = bindArgs(e, s, ctx, {"file", "layer", "origin", "scale", "convexity", "angle"},
                            "rotate_extrude(angle, convexity)");
-    if (b.given(0))
-        e.fail(b.loc(0), "rotate_extrude(file = ...): DXF files are not supported yet (an "
-                         "angle is given as angle = ...)");
+    if (b.given(0) && !b[0].isString())
+        b.bad(e, 0,
+              "a DXF file name (OpenSCAD 2021's first parameter is the legacy file; an "
+              "angle is given as angle = ...)");
     const FragmentSettings settings = fragmentSettings(e, b, ctx);
     double angle = numberArg(e, b, 5, 360.0);
     if (angle <= -360.0 || angle > 360.0) angle = 360.0;
-    Instance shape = shapeChildren(e, b, ctx, state);
+    Instance shape;
+    if (b.given(0)) {
+        // The drawing's scale: OpenSCAD takes one that is not above 0 as 1.
+        double scale = numberArg(e, b, 3, 1.0);
+        if (scale <= 0.0) scale = 1.0;
+        shape = legacyDxfShape(e, b, ctx, state, DxfArgs{0, 1, 2, scale});
+    } else {
+        shape = shapeChildren(e, b, ctx, state);
+    }
     if (!shape || !*shape) return shape;
     if (angle == 0.0) return csg::NodePtr();
     // The profile's half-plane: x >= 0, or a profile wholly in x <= 0 mirrored into it. (A

@@ -14,7 +14,8 @@ Instance circleModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr
 Instance polygonModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                        const GeomState& state);
 // linear_extrude(height, center, scale) and rotate_extrude(angle): the 2-D children lifted,
-// exactly (primitives/Extrusion.h). twist and a non-uniform scale are errors for now.
+// exactly (primitives/Extrusion.h), or OpenSCAD 2021's legacy file = DXF drawing in their
+// place (io/DxfModules.h). twist and a non-uniform scale are errors for now.
 Instance linearExtrudeModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                              const GeomState& state);
 Instance rotateExtrudeModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,

@@ -232,9 +232,9 @@ TEST(PolyhedronIo, MissingAndMalformedFilesAreErrorsAtTheImport) {
               (dir.path / "main.scad").string() +
                   ":1:8: error: import(): " + (dir.path / "bad.off").string() +
                   ":6:7: vertex index 5 names no vertex (3 vertices)");
-    writeFile(dir.path / "main.scad", "import(\"drawing.dxf\");\n");
+    writeFile(dir.path / "main.scad", "import(\"drawing.svg\");\n");
     EXPECT_NE(firstOf(evaluateFile(dir.path / "main.scad"), Severity::Error)
-                  .find("main.scad:1:8: error: import(): importing .dxf files is not supported"),
+                  .find("main.scad:1:8: error: import(): importing .svg files is not supported"),
               std::string::npos);
 }
 
