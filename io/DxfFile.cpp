@@ -320,9 +320,12 @@ void Reader::countEdges(uint64_t n) const {
 
 void Reader::emit(const Place& at, Vec2 p1, Vec2 p2, const Segment2* arc) {
     if (!drawn(at)) return;
-    for (const Vec2& p : {p1, p2})
-        if (!(std::abs(p.x) <= kMaxCoordinate && std::abs(p.y) <= kMaxCoordinate))
-            fail(entity_.line, entity_.mode + " reaches beyond +-2^40 (after origin and scale)");
+    auto far = [](Vec2 p) {
+        return !(std::abs(p.x) <= kMaxCoordinate && std::abs(p.y) <= kMaxCoordinate);
+    };
+    // An arc's centre and axes too: a huge or infinite ellipse has ends in range only by luck.
+    if (far(p1) || far(p2) || (arc && (far(arc->p[1]) || far(arc->p[2]) || far(arc->p[3]))))
+        fail(entity_.line, entity_.mode + " reaches beyond +-2^40 (after origin and scale)");
     countEdges(1);
     DxfGrid::Cell& c1 = grid_.align(p1);
     DxfGrid::Cell& c2 = grid_.align(p2);
@@ -481,15 +484,16 @@ void Reader::emitPolyline(const Place& at, const std::vector<double>& xs,
 }
 
 void Reader::emitBulge(const Place& at, Vec2 p, Vec2 q, double bulge) {
-    if (bulge == 0.0 || p == q) return emit(at, p, q);
+    // A bulge below 1e-9 bends its edge by less than 1e-9 of its length: straight (and its
+    // circle would be too large to compute with).
+    if (std::abs(bulge) < 1e-9 || p == q) return emit(at, p, q);
     if (!drawn(at)) return;
     if (options_.only2021) {
         if (!warnedBulges_)
             drawing_.warnings.push_back(
                 {entity_.line, entity_.mode +
-                                   " bulges (arcs) are read as straight lines, as OpenSCAD "
-                                   "2021 reads them (csgray reads them as arcs outside "
-                                   "--curves openscad)"});
+                                   " bulges (arcs) are read as straight lines, as OpenSCAD 2021 "
+                                   "reads them"});
         warnedBulges_ = true;
         return emit(at, p, q);
     }
