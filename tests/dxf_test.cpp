@@ -19,6 +19,7 @@
 #include <map>
 #include <sstream>
 
+#include "MissingTool.h"
 #include "TempDir.h"
 #include "csg/Scene.h"
 #include "csg/Volume.h"
@@ -279,7 +280,7 @@ TEST(DxfReader, MalformedInputIsAnErrorWithItsLine) {
 // Whatever the bytes, the reader answers with a drawing or an error and its line: the Debian
 // examples' DXF files with lines dropped, swapped, duplicated or replaced by junk.
 TEST(DxfReader, MutatedFilesNeverCrash) {
-    if (!fs::exists(kExamples)) GTEST_SKIP() << kExamples << " is not installed (openscad-data)";
+    if (!fs::exists(kExamples)) SKIP_OR_FAIL_IN_CI(kExamples.string() + " is not installed (openscad-data)");
     csg::testing::Rng rng(20250405);
     const char* junk[] = {"",        "x",          "-",      "1e999",  "nan",  "0",
                           "SECTION", "ENTITIES",   "BLOCKS", "INSERT", "LINE", "ARC",
@@ -641,8 +642,8 @@ void expectAgreesWithOpenScad(const fs::path& part, const fs::path& dir) {
 }
 
 TEST(DxfOpenScad, DebianExamplesThatUseDxf) {
-    if (!haveOpenScad()) GTEST_SKIP() << "openscad (2021.01, Debian's) is not installed";
-    if (!fs::exists(kExamples)) GTEST_SKIP() << kExamples << " is not installed";
+    if (!haveOpenScad()) SKIP_OR_FAIL_IN_CI("openscad (2021.01, Debian's) is not installed");
+    if (!fs::exists(kExamples)) SKIP_OR_FAIL_IN_CI(kExamples.string() + " is not installed");
     csg::testing::TempDir dir("csgray_dxf_examples");
     // 008 and 013 are intersections and differences of extruded layers (013 through INSERTs).
     for (const char* name : {"example008.scad", "example013.scad"})
@@ -702,7 +703,7 @@ bool closedMesh(const fs::path& file) {
 // region to be the same. Each drawing, extruded, against OpenSCAD's mesh of it (when that mesh
 // is closed): the same volume, or both empty.
 TEST(DxfOpenScad, LineSoupsChainAsOpenScadChainsThem) {
-    if (!haveOpenScad()) GTEST_SKIP() << "openscad (2021.01, Debian's) is not installed";
+    if (!haveOpenScad()) SKIP_OR_FAIL_IN_CI("openscad (2021.01, Debian's) is not installed");
     csg::testing::TempDir dir("csgray_dxf_soups");
     csg::testing::Rng rng(7041);
     int compared = 0, empty = 0;
@@ -773,7 +774,7 @@ std::vector<double> echoedValues(const std::vector<std::string>& lines) {
 }
 
 TEST(DxfOpenScad, Example009Dimensions) {
-    if (!fs::exists(kExamples)) GTEST_SKIP() << kExamples << " is not installed";
+    if (!fs::exists(kExamples)) SKIP_OR_FAIL_IN_CI(kExamples.string() + " is not installed");
     csg::testing::TempDir dir("csgray_dxf_example009");
     const std::string file = (kExamples / "example009.dxf").string();
     std::string scad;
@@ -804,7 +805,7 @@ TEST(DxfOpenScad, Example009Dimensions) {
     EXPECT_EQ(values[2], 2);
     EXPECT_NEAR(values[3], fanrot, 1e-10);
     EXPECT_EQ(ours[4], "ECHO: [0, -40]");
-    if (!haveOpenScad()) GTEST_SKIP() << "openscad (2021.01, Debian's) is not installed";
+    if (!haveOpenScad()) SKIP_OR_FAIL_IN_CI("openscad (2021.01, Debian's) is not installed");
     std::istringstream again(scad);
     std::vector<std::string> theirs;
     int k = 0;
