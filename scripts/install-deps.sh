@@ -18,6 +18,8 @@ packages=(
     libbenchmark-dev      # bench/
     libfreetype-dev libharfbuzz-dev libfontconfig-dev  # text(): outlines, shaping, font lookup
     fonts-liberation2     # text()'s default font, Liberation Sans, the file Debian's openscad opens
+    libpolyclipping-dev   # Clipper 6.4: offset() as OpenSCAD 2021 computes it (csg/derived/)
+    libqhull-dev          # qhull (reentrant libqhull_r): 3-D hull() (csg/derived/Hull3D.cpp)
     libboost-dev          # Boost.Multiprecision: 50-digit references (tests, csgray bench accuracy)
     openscad              # CLI tests: samples load in OpenSCAD and round-trip through its .csg
     openscad-mcad         # MCAD, the library OpenSCAD's examples and users include (use <MCAD/...>)

@@ -440,4 +440,25 @@ inline constexpr double kEdgeSignFilter = gamma(4);
 // ~10^9 below any feature a part resolves; it only lets a few more boxes be opened.
 inline constexpr double kMeshBoxMarginRel = 1e-12;
 
+// 2-D boundaries (csg/derived/Boundary2D.cpp): two points of the outlines of a 2-D shape closer
+// than this fraction of the shape's size (max(1, largest |coordinate|)) are one point: a
+// crossing that near a segment's end is that end, and a segment parallel to another that near
+// it lies on it (unit: relative). Why: the crossings come from a few operations on coordinates
+// (a 2x2 solve, a square root for a circle), so they err by ~10^2 ulps of the size, 10^4 below
+// this; and no outline a part draws on purpose has features 10^-10 of its size apart.
+inline constexpr double kBoundaryPointRel = 1e-10;
+
+// Whether a piece of an outline between two crossings bounds the shape is read at two points
+// this fraction of the shape's size to either side of its middle, or 1/20 of the piece's
+// length if that is less (unit: relative). Why: 100 times kBoundaryPointRel, so the two points
+// lie on the two sides of the piece whatever the rounding of its crossings, yet no other
+// outline passes between them unless it lies on the piece (then they agree, see Boundary2D.h).
+inline constexpr double kBoundarySideRel = 1e-8;
+
+// Elliptic arcs and Beziers, whose offsets are no circles or lines, are replaced by chords no
+// farther than this fraction of the shape's size from the curve before an offset or hull
+// (unit: relative). Why: 1e-7 of a 100 mm part is 10 nm, 150 times finer than OpenSCAD's own
+// 2^-16 grid at that size, while a glyph's quadratic of 10 mm needs only tens of chords.
+inline constexpr double kFlattenRel = 1e-7;
+
 }  // namespace csg::tol
