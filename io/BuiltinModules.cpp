@@ -8,6 +8,7 @@
 #include "io/BoundArgs.h"
 #include "io/Colors.h"
 #include "io/Degrees.h"
+#include "io/DerivedModules.h"
 #include "io/Evaluator.h"
 #include "io/FacetedPrimitives.h"
 #include "io/MeshModules.h"
@@ -584,6 +585,8 @@ const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {
         {"text", childless<textModule>},
         {"linear_extrude", linearExtrudeModule},
         {"rotate_extrude", rotateExtrudeModule},
+        {"offset", offsetModule},
+        {"hull", hullModule},
         {"union", unionModule},
         {"group", unionModule},
         {"render", unionModule},
@@ -600,8 +603,6 @@ const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {
         {"light", light},
         {"background", background},
         // OpenSCAD modules with no exact ray-cast counterpart yet: an error, never a skip.
-        {"offset", unsupported},
-        {"hull", unsupported},
         {"minkowski", unsupported},
         {"projection", unsupported},
         {"resize", unsupported},

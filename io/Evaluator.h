@@ -194,6 +194,21 @@ public:
     bool filesAllowed() const { return options_.allowFiles; }
     // What cylinder() and sphere() become (EvaluateOptions::curves).
     CurveMode curveMode() const { return options_.curves; }
+    // What cylinder(), sphere() and rotate_extrude() become: curveMode(), except among the
+    // children of hull(), where they are faceted as OpenSCAD's whatever the mode: a hull is
+    // the hull of vertices, and a curved solid's are OpenSCAD's faceted ones (io/Hull.cpp).
+    CurveMode solidCurveMode() const { return hullDepth_ > 0 ? CurveMode::OpenScad : curveMode(); }
+    // While one lives, solids are evaluated as the children of a hull().
+    class HullChildren {
+    public:
+        explicit HullChildren(Evaluator& e) : e_(e) { ++e_.hullDepth_; }
+        ~HullChildren() { --e_.hullDepth_; }
+        HullChildren(const HullChildren&) = delete;
+        HullChildren& operator=(const HullChildren&) = delete;
+
+    private:
+        Evaluator& e_;
+    };
 
     // ---- built-in modules (BuiltinModules.cpp) ----
     using BuiltinModule = Instance (*)(Evaluator&, const InstantiationStmt&, const ContextPtr&,
@@ -236,6 +251,7 @@ private:
     const EvaluateOptions& options_;
     std::mt19937 random_{0};
     uint32_t depth_ = 0;
+    uint32_t hullDepth_ = 0;  // hull()s whose children are being evaluated
     uint32_t warnings_ = 0;
     uint64_t steps_ = 0;
     const char* stackTop_ = nullptr;

@@ -55,8 +55,8 @@ csg::ConvexPolytope build(FacetedSolid solid, csg::ConvexPolytope::Origin origin
 
 }  // namespace
 
-FragmentSettings fragmentSettings(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
-                                  bool clampAsPrimitive) {
+FragmentSettings unclampedFragmentSettings(Evaluator& e, const BoundArgs& b,
+                                           const ContextPtr& ctx) {
     auto read = [&](const char* name) {
         const Value* given = nullptr;
         for (const ArgValue& a : b.all)
@@ -64,8 +64,11 @@ FragmentSettings fragmentSettings(Evaluator& e, const BoundArgs& b, const Contex
         const Value value = given ? *given : e.lookupVariable(name, ctx, b.call.loc);
         return value.isNumber() ? value.number() : 0.0;
     };
-    FragmentSettings settings{read("$fn"), read("$fa"), read("$fs")};
-    if (!clampAsPrimitive) return settings;
+    return FragmentSettings{read("$fn"), read("$fa"), read("$fs")};
+}
+
+FragmentSettings fragmentSettings(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx) {
+    FragmentSettings settings = unclampedFragmentSettings(e, b, ctx);
     // OpenSCAD's order: $fs, then $fa.
     for (auto [name, value] : {std::pair{"$fs", &settings.fs}, std::pair{"$fa", &settings.fa}}) {
         if (!(*value < kMinFragmentSetting)) continue;
@@ -80,7 +83,7 @@ FragmentSettings fragmentSettings(Evaluator& e, const BoundArgs& b, const Contex
 std::optional<csg::ConvexPolytope> cylinderPolytope(Evaluator& e, const InstantiationStmt& s,
                                                     const FragmentSettings& settings, double h,
                                                     double r1, double r2, bool center) {
-    if (!isFaceted(e.curveMode(), settings)) return std::nullopt;
+    if (!isFaceted(e.solidCurveMode(), settings)) return std::nullopt;
     const int64_t n = fragments(std::fmax(r1, r2), settings);
     const int64_t caps = (r1 > 0.0 ? 1 : 0) + (r2 > 0.0 ? 1 : 0);
     checkAndCharge(e, s, settings, n, facetedCylinderFaceCount(n, r1, r2),
@@ -92,7 +95,7 @@ std::optional<csg::ConvexPolytope> cylinderPolytope(Evaluator& e, const Instanti
 
 std::optional<csg::ConvexPolytope> spherePolytope(Evaluator& e, const InstantiationStmt& s,
                                                   const FragmentSettings& settings, double r) {
-    if (!isFaceted(e.curveMode(), settings)) return std::nullopt;
+    if (!isFaceted(e.solidCurveMode(), settings)) return std::nullopt;
     const int64_t n = fragments(r, settings);
     checkAndCharge(e, s, settings, n, facetedSphereFaceCount(n),
                    [] { return mostFragments(facetedSphereFaceCount); });

@@ -15,10 +15,13 @@ namespace io {
 // the variable in scope (special variables are dynamically scoped). A value that is not a number
 // reads as 0, as OpenSCAD's Value::toDouble does. $fa or $fs below kMinFragmentSetting (or not
 // a number) is raised to it with a warning at the call, as OpenSCAD 2021 does for every
-// primitive, whether or not it has curves. text() is no primitive to OpenSCAD: it reads the
-// three as they are (clampAsPrimitive = false), with no warning.
-FragmentSettings fragmentSettings(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
-                                  bool clampAsPrimitive = true);
+// primitive, whether or not it has curves.
+FragmentSettings fragmentSettings(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx);
+// The same read without clamping or warnings, as OpenSCAD's offset() and text() read them
+// (they are no primitives to OpenSCAD and hand $fa and $fs to their fragment counts as they
+// are).
+FragmentSettings unclampedFragmentSettings(Evaluator& e, const BoundArgs& b,
+                                           const ContextPtr& ctx);
 
 // The convex polyhedron OpenSCAD makes of cylinder(h, r1, r2, center), vertex for vertex, when
 // the curve mode facets it (see CurveMode); nullopt when the exact cylinder stays. The

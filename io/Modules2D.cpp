@@ -288,7 +288,7 @@ Instance rotateExtrudeModule(Evaluator& e, const InstantiationStmt& s, const Con
     csg::NodePtr profile = *shape;
     if (mirrored) profile = transformed2D(glm::scale(csg::Mat4(1.0), csg::Vec3(-1, 1, 1)), profile);
     csg::NodePtr solid;
-    if (isFaceted(e.curveMode(), settings)) {
+    if (isFaceted(e.solidCurveMode(), settings)) {
         // OpenSCAD 2021's rings: a full turn starts on -x.
         const double sweep = std::abs(angle);
         const int64_t sections =

@@ -166,7 +166,7 @@ Instance textModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& 
         e.warn(b.loc(7), kUnknownValign + v + "'");
 
     // OpenSCAD reads $fn, $fa and $fs unclamped for text, with size as the radius.
-    const FragmentSettings settings = fragmentSettings(e, b, ctx, false);
+    const FragmentSettings settings = unclampedFragmentSettings(e, b, ctx);
     const int64_t chords =
         isFaceted(e.curveMode(), settings) ? textChordCount(fragments(params.size, settings)) : 0;
 
