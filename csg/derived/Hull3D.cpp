@@ -21,10 +21,13 @@ constexpr double kOnPlaneRel = 1e-9;
 // ~10^7 below any feature a part draws.
 constexpr double kStepRel = 1e-7;
 
+// A face's plane, with the box of the face (infinite for a half-space's): three faces can only
+// meet at a corner inside all three boxes.
 struct Plane {
     Vec3 n;
     double c;
     uint32_t leaf;
+    Bounds3 face;
 };
 
 struct Leaf {
@@ -36,15 +39,29 @@ Mat4 frameOf(const Mat4& parent, const Node& node) {
     return parent * node.parentFromNode;
 }
 
-// The world plane of local plane n . l = c under x = W l.
-bool worldPlane(const Mat4& w, Vec3 n, double c, uint32_t leaf, std::vector<Plane>& out) {
+Bounds3 everywhere() {
+    return {Vec3(-kInfinity), Vec3(kInfinity)};
+}
+
+// The world plane of local plane n . l = c under x = W l, with the world box of the face's
+// local points (none: an unbounded face).
+void worldPlane(const Mat4& w, Vec3 n, double c, uint32_t leaf, std::vector<Plane>& out,
+                std::initializer_list<Vec3> face = {}, const Bounds3* faceBox = nullptr) {
     const Mat3 a(w);
     const Vec3 t(w[3]);
     const Vec3 m = glm::transpose(glm::inverse(a)) * n;
     const double len = glm::length(m);
-    if (!(len > 0.0) || !std::isfinite(len)) return false;
-    out.push_back({m / len, (c + glm::dot(m, t)) / len, leaf});
-    return true;
+    if (!(len > 0.0) || !std::isfinite(len)) return;
+    Bounds3 box;
+    for (const Vec3& p : face) box.extend(transformPoint(w, p));
+    if (faceBox) {
+        for (int k = 0; k < 8; ++k)
+            box.extend(transformPoint(w, {(k & 1) ? faceBox->hi.x : faceBox->lo.x,
+                                          (k & 2) ? faceBox->hi.y : faceBox->lo.y,
+                                          (k & 4) ? faceBox->hi.z : faceBox->lo.z}));
+    }
+    if (face.size() == 0 && !faceBox) box = everywhere();
+    out.push_back({m / len, (c + glm::dot(m, t)) / len, leaf, box});
 }
 
 // The planes of a leaf's faces (false: it has curved faces too).
@@ -55,15 +72,29 @@ bool leafPlanes(const Leaf& leaf, uint32_t id, std::vector<Plane>& out) {
         for (int axis = 0; axis < 3; ++axis) {
             Vec3 n(0.0);
             n[axis] = 1.0;
-            worldPlane(w, n, box->hi[axis], id, out);
-            worldPlane(w, -n, -box->lo[axis], id, out);
+            Bounds3 face{box->lo, box->hi};
+            face.lo[axis] = box->hi[axis];
+            worldPlane(w, n, box->hi[axis], id, out, {}, &face);
+            face = Bounds3{box->lo, box->hi};
+            face.hi[axis] = box->lo[axis];
+            worldPlane(w, -n, -box->lo[axis], id, out, {}, &face);
         }
         return true;
     }
     if (const auto* poly = std::get_if<ConvexPolytope>(&p)) {
-        if (poly->data)
-            for (const PolytopePlane& plane : poly->data->planes)
-                worldPlane(w, plane.normal, plane.offset, id, out);
+        if (!poly->data) return true;
+        // A face: the vertices on its plane (fromFaces pushed each plane out to its farthest
+        // face vertex, so they lie on it to rounding).
+        double size = 1.0;
+        for (const Vec3& v : poly->data->vertices)
+            size = std::max({size, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+        for (const PolytopePlane& plane : poly->data->planes) {
+            Bounds3 face;
+            for (const Vec3& v : poly->data->vertices)
+                if (std::abs(glm::dot(plane.normal, v) - plane.offset) <= kOnPlaneRel * size)
+                    face.extend(v);
+            worldPlane(w, plane.normal, plane.offset, id, out, {}, face.empty() ? nullptr : &face);
+        }
         return true;
     }
     if (const auto* half = std::get_if<HalfSpace>(&p)) {
@@ -78,7 +109,9 @@ bool leafPlanes(const Leaf& leaf, uint32_t id, std::vector<Plane>& out) {
                        c = mesh->data->vertices[tri[2]];
             const Vec3 n = glm::cross(b - a, c - a);
             const double len = glm::length(n);
-            if (len > 0.0) local.push_back({n / len, glm::dot(n / len, a), id});
+            Bounds3 face;
+            for (const Vec3& v : {a, b, c}) face.extend(v);
+            if (len > 0.0) local.push_back({n / len, glm::dot(n / len, a), id, face});
         }
         // Coplanar triangles make one plane.
         std::sort(local.begin(), local.end(), [](const Plane& x, const Plane& y) {
@@ -87,25 +120,35 @@ bool leafPlanes(const Leaf& leaf, uint32_t id, std::vector<Plane>& out) {
             if (x.n.z != y.n.z) return x.n.z < y.n.z;
             return x.c < y.c;
         });
-        for (size_t k = 0; k < local.size(); ++k)
-            if (k == 0 || glm::distance(local[k].n, local[k - 1].n) > 1e-12 ||
-                std::abs(local[k].c - local[k - 1].c) > 1e-12 * (1.0 + std::abs(local[k].c)))
-                worldPlane(w, local[k].n, local[k].c, id, out);
+        for (size_t k = 0; k < local.size();) {
+            size_t end = k + 1;
+            Bounds3 face = local[k].face;
+            while (end < local.size() && glm::distance(local[end].n, local[k].n) <= 1e-12 &&
+                   std::abs(local[end].c - local[k].c) <= 1e-12 * (1.0 + std::abs(local[k].c)))
+                face.extend(local[end++].face);
+            worldPlane(w, local[k].n, local[k].c, id, out, {}, &face);
+            k = end;
+        }
         return true;
     }
     if (const auto* e = std::get_if<Extrusion>(&p)) {
         if (e->kind != Extrusion::Kind::Linear || !e->outline) return false;
-        worldPlane(w, Vec3(0, 0, 1), e->z1, id, out);
-        worldPlane(w, Vec3(0, 0, -1), -e->z0, id, out);
+        const Bounds2& box = e->box;
+        const Bounds3 capBottom{Vec3(box.lo, e->z0), Vec3(box.hi, e->z0)};
+        const Bounds3 capTop{Vec3(box.lo * e->scale, e->z1), Vec3(box.hi * e->scale, e->z1)};
+        worldPlane(w, Vec3(0, 0, 1), e->z1, id, out, {}, &capTop);
+        worldPlane(w, Vec3(0, 0, -1), -e->z0, id, out, {}, &capBottom);
         bool allLines = true;
         for (const Segment2& s : e->outline->segments) {
             if (s.kind != Segment2::Kind::Line) {
                 allLines = false;
                 continue;
             }
-            const Vec3 a(s.p[0], e->z0), b(s.p[1], e->z0), top(s.p[0] * e->scale, e->z1);
+            const Vec3 a(s.p[0], e->z0), b(s.p[1], e->z0), top(s.p[0] * e->scale, e->z1),
+                topEnd(s.p[1] * e->scale, e->z1);
             const Vec3 n = glm::cross(b - a, top - a);
-            if (glm::length(n) > 0.0) worldPlane(w, n, glm::dot(n, a), id, out);
+            if (glm::length(n) > 0.0)
+                worldPlane(w, n, glm::dot(n, a), id, out, {a, b, top, topEnd});
         }
         return allLines;
     }
@@ -256,31 +299,66 @@ private:
             scale = std::max({scale, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
         }
         const double onPlane = kOnPlaneRel * scale;
-        const uint64_t n = planes.size();
-        if (n >= 3 && n * (n - 1) * (n - 2) / 6 > kMaxPlaneTriples) {
-            tooManyPlanes = true;
-        } else if (!box.empty()) {
-            // Corners of three planes, not all of one leaf, on each convex leaf's surface.
-            for (size_t i = 0; i < n; ++i)
-                for (size_t j = i + 1; j < n; ++j)
-                    for (size_t k = j + 1; k < n; ++k) {
-                        if (planes[i].leaf == planes[k].leaf) continue;  // sorted by leaf
-                        Vec3 x;
-                        if (!corner(planes[i], planes[j], planes[k], x)) continue;
-                        if (x.x < box.lo.x - onPlane || x.y < box.lo.y - onPlane ||
-                            x.z < box.lo.z - onPlane || x.x > box.hi.x + onPlane ||
-                            x.y > box.hi.y + onPlane || x.z > box.hi.z + onPlane)
-                            continue;
-                        bool onAll = true;
-                        for (uint32_t leaf : {planes[i].leaf, planes[j].leaf, planes[k].leaf})
-                            if (convex[leaf] && !withinConvexLeaf(planes, leafStart[leaf],
-                                                                  leafStart[leaf + 1], x, onPlane))
-                                onAll = false;
-                        if (onAll) candidates.push_back(x);
-                    }
-        }
+        if (!box.empty()) corners(planes, leafStart, convex, box, onPlane, candidates);
         for (const Vec3& x : candidates)
             if (besideSolid(node, parent, x, planes, scale)) out.push_back(x);
+    }
+
+    // Corners of three faces, not all of one leaf, whose boxes overlap, within the candidates'
+    // box and on every convex leaf's surface they belong to.
+    void corners(const std::vector<Plane>& planes, const std::vector<size_t>& leafStart,
+                 const std::vector<bool>& convex, const Bounds3& box, double onPlane,
+                 std::vector<Vec3>& candidates) {
+        auto widened = [&](Bounds3 b) {
+            b.lo -= Vec3(onPlane);
+            b.hi += Vec3(onPlane);
+            return b;
+        };
+        auto overlap = [](const Bounds3& a, const Bounds3& b) {
+            Bounds3 r{glm::max(a.lo, b.lo), glm::min(a.hi, b.hi)};
+            return r;
+        };
+        std::vector<uint32_t> order(planes.size());
+        std::iota(order.begin(), order.end(), 0u);
+        std::vector<Bounds3> faces(planes.size());
+        for (size_t i = 0; i < planes.size(); ++i)
+            faces[i] = overlap(widened(planes[i].face), widened(box));
+        std::sort(order.begin(), order.end(),
+                  [&](uint32_t a, uint32_t b) { return faces[a].lo.x < faces[b].lo.x; });
+        uint64_t tried = 0;
+        for (size_t ia = 0; ia < order.size(); ++ia) {
+            const Plane& a = planes[order[ia]];
+            const Bounds3& fa = faces[order[ia]];
+            if (fa.empty()) continue;
+            for (size_t ib = ia + 1; ib < order.size(); ++ib) {
+                if (faces[order[ib]].lo.x > fa.hi.x) break;
+                const Bounds3 fab = overlap(fa, faces[order[ib]]);
+                if (fab.empty()) continue;
+                const Plane& b = planes[order[ib]];
+                for (size_t ic = ib + 1; ic < order.size(); ++ic) {
+                    if (faces[order[ic]].lo.x > fab.hi.x) break;
+                    const Plane& c = planes[order[ic]];
+                    if (a.leaf == b.leaf && b.leaf == c.leaf) continue;
+                    const Bounds3 fabc = overlap(fab, faces[order[ic]]);
+                    if (fabc.empty()) continue;
+                    if (++tried > kMaxPlaneTriples) {
+                        tooManyPlanes = true;
+                        return;
+                    }
+                    Vec3 x;
+                    if (!corner(a, b, c, x)) continue;
+                    if (x.x < fabc.lo.x || x.y < fabc.lo.y || x.z < fabc.lo.z || x.x > fabc.hi.x ||
+                        x.y > fabc.hi.y || x.z > fabc.hi.z)
+                        continue;
+                    bool onAll = true;
+                    for (uint32_t leaf : {a.leaf, b.leaf, c.leaf})
+                        if (convex[leaf] && !withinConvexLeaf(planes, leafStart[leaf],
+                                                              leafStart[leaf + 1], x, onPlane))
+                            onAll = false;
+                    if (onAll) candidates.push_back(x);
+                }
+            }
+        }
     }
 
     const LeafPoints& leafPoints_;
@@ -405,8 +483,9 @@ std::optional<ConvexPolytope> convexHull3D(const std::vector<Vec3>& input, std::
                 }
                 id = remap[id];
             }
-            ConvexPolytope polytope = ConvexPolytope::fromFaces(
-                std::move(vertices), faceVertices, faceStarts, PolytopeOrigin{"hull", 0, 0});
+            // No origin: a hull was not faceted from anything (info names its module).
+            ConvexPolytope polytope =
+                ConvexPolytope::fromFaces(std::move(vertices), faceVertices, faceStarts);
             if (const char* bad = polytope.invalidReason())
                 why = bad;
             else

@@ -39,12 +39,13 @@ struct HullPoints {
     // Curved faces took part in an intersection or difference: corners where they meet other
     // faces are not among the points.
     bool curvedCut = false;
-    // Too many planes met in one intersection or difference (more than kMaxPlaneTriples
-    // triples): only the leaves' own points were used there.
+    // Too many faces met in one intersection or difference (more than kMaxPlaneTriples
+    // triples of faces whose boxes overlap): corners past that budget are missing.
     bool tooManyPlanes = false;
 };
 
-// Most plane triples one intersection or difference may try (a budget of time: ~1 s).
+// Most triples of faces (with overlapping boxes) one intersection or difference may try: a
+// budget of time, a few seconds.
 inline constexpr uint64_t kMaxPlaneTriples = uint64_t(1) << 25;
 
 // The points of a 3-D tree, in the tree's frame, whose hull is its hull (see above).
