@@ -19,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "MissingTool.h"
 #include "CliRunner.h"
 #include "csg/Scene.h"
 #include "io/Evaluate.h"
@@ -462,7 +463,7 @@ TEST(OffsetHull, Diagnostics) {
 // it, within Clipper's grid (2^-16 = 1.5e-5 per coordinate, twice for a transformed leaf).
 TEST(OffsetHull, LiesOnOpenScadsMesh) {
     if (std::system("command -v openscad >/dev/null 2>&1") != 0)
-        GTEST_SKIP() << "openscad is not installed";
+        SKIP_OR_FAIL_IN_CI("openscad is not installed");
     std::vector<std::string> parts = {
         "linear_extrude(1) offset(r = 1) square(2);",
         "linear_extrude(1) offset(r = 1, $fn = 12) square(2);",
