@@ -239,18 +239,24 @@ Instance intersection(Evaluator& e, const InstantiationStmt& s, const ContextPtr
 // is zero relative to its size (3x3 for solids, the x-y 2x2 for 2-D shapes, whose z OpenSCAD
 // drops).
 bool flattens(const Mat4& m, int dimension) {
-    const int n = dimension == 2 ? 2 : 3;
-    double size = 0.0, det = 0.0;
-    if (n == 2) {
-        const glm::dmat2 linear(m[0][0], m[0][1], m[1][0], m[1][1]);
-        size = std::max(glm::length(linear[0]), glm::length(linear[1]));
-        det = glm::determinant(linear);
-    } else {
-        const csg::Mat3 linear(m);
-        for (int c = 0; c < 3; ++c) size = std::max(size, glm::length(linear[c]));
-        det = glm::determinant(linear);
+    // Divided by its largest entry first, so that a tiny but regular scale (1e-200) does not
+    // underflow (a column's length would).
+    if (dimension == 2) {
+        glm::dmat2 linear(m[0][0], m[0][1], m[1][0], m[1][1]);
+        double size = 0.0;
+        for (int c = 0; c < 2; ++c)
+            for (int r = 0; r < 2; ++r) size = std::max(size, std::fabs(linear[c][r]));
+        if (!(size > 0.0)) return true;
+        linear /= size;
+        return std::fabs(glm::determinant(linear)) <= csg::tol::kSingularDetRel;
     }
-    return std::fabs(det) <= csg::tol::kSingularDetRel * std::pow(size, n);
+    csg::Mat3 linear(m);
+    double size = 0.0;
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) size = std::max(size, std::fabs(linear[c][r]));
+    if (!(size > 0.0)) return true;
+    linear /= size;
+    return std::fabs(glm::determinant(linear)) <= csg::tol::kSingularDetRel;
 }
 
 // The children seen through m. A transform that flattens space (a zero scale factor, a

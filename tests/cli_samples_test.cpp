@@ -92,6 +92,15 @@ std::map<std::string, std::vector<ProbeCase>> analyticCases() {
         {{0.5, 0.5, 20}, mz, {}},
     };
 
+    // vase: the profile revolved and lifted by 3.5, on a hexagonal foot [0, 4] with a slot
+    // |y| <= 1.5 at z in [0.5, 3.5]. Down the axis: the vase's bottom, z in [3.5, 4.7], and the
+    // foot under the slot, z in [0, 0.5]. Across at profile height 20 (z = 23.5): the outer
+    // edge (13, 14)-(10, 24) is at r = 11.2, the inner one (11.8, 14)-(8.8, 24) at r = 10.
+    cases["vase.scad"] = {
+        {{0, 0, 50}, mz, {{45.3, 46.5}, {49.5, 50}}},
+        {{-30, 0, 23.5}, px, {{18.8, 20}, {40, 41.2}}},
+    };
+
     // bracket: base [0,40]x[0,20]x[0,4], upright [0,4]x[0,20]x[0,30]; holes r = 3 at
     // (15,10) and (30,10) through the base, and along x at y = 10, z = 20 through the upright.
     cases["bracket.scad"] = {
@@ -249,7 +258,8 @@ TEST_P(SampleSpans, MatchHandDerivedSpans) {
 
 const std::vector<std::string> kOpenScadSamples = {
     "emblem.scad", "csg_grid.scad", "bracket.scad", "gear_ring.scad", "pipe_tee.scad", "pawn.scad",
-    "flange.scad", "hinge.scad",    "dice.scad",    "table.scad",     "knob.scad",     "gem.scad"};
+    "flange.scad", "hinge.scad",    "dice.scad",    "table.scad",     "knob.scad",     "gem.scad",
+    "vase.scad"};
 
 INSTANTIATE_TEST_SUITE_P(Samples, SampleSpans, ::testing::ValuesIn(kOpenScadSamples),
                          sampleTestName);
