@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "io/BoundArgs.h"
+#include "io/HeightmapModule.h"
 #include "io/Parser.h"
 #include "primitives/AlgebraicSurface.h"
 
@@ -24,12 +25,6 @@ using csg::ExactPolynomial;
 constexpr const char* kForm =
     "surface(f = \"polynomial in x, y, z\", bbox = [[x0, y0, z0], [x1, y1, z1]], "
     "solver = \"auto\", tolerance = 0)";
-// The error at OpenSCAD's heightmap parameter, built once (not on every surface() call).
-const std::string kFileRefused =
-    std::string(
-        "surface(file = ...): OpenSCAD's heightmaps are not supported; csgray's "
-        "surface() is ") +
-    kForm;
 
 // The walk holds a left operand while it expands the right one; each held ExactPolynomial is
 // 17^3 double-double coefficients (79 KB), so right-nesting is bounded (64: 5 MB). A long
@@ -265,8 +260,9 @@ csg::Solver solverArg(Evaluator& e, const BoundArgs& b) {
 
 Instance surfaceModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                        const GeomState& state) {
-    const BoundArgs b =
-        bindArgs(e, s, ctx, {"f", "bbox", "solver", "tolerance"}, kForm, {{"file", kFileRefused}});
+    // OpenSCAD's heightmap, surface(file = ...), is another module under the same name.
+    if (isHeightmapCall(s)) return heightmapModule(e, s, ctx, state);
+    const BoundArgs b = bindArgs(e, s, ctx, {"f", "bbox", "solver", "tolerance"}, kForm);
 
     // f: parsed by the language's own parser as a source of its own.
     if (b.values[0].isUndef())
