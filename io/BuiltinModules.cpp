@@ -11,6 +11,7 @@
 #include "io/DerivedModules.h"
 #include "io/Evaluator.h"
 #include "io/FacetedPrimitives.h"
+#include "io/MeasureModules.h"
 #include "io/MeshModules.h"
 #include "io/Modules2D.h"
 #include "io/PatchModule.h"
@@ -593,6 +594,8 @@ const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {
         {"rotate_extrude", rotateExtrudeModule},
         {"offset", offsetModule},
         {"hull", hullModule},
+        {"projection", projectionModule},
+        {"resize", resizeModule},
         {"union", unionModule},
         {"group", unionModule},
         {"render", unionModule},
@@ -610,8 +613,6 @@ const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {
         {"background", background},
         // OpenSCAD modules with no exact ray-cast counterpart yet: an error, never a skip.
         {"minkowski", unsupported},
-        {"projection", unsupported},
-        {"resize", unsupported},
         {"roof", unsupported},
         {"child", unsupported},
     };

@@ -46,7 +46,9 @@ NodePtr transformed2D(const csg::Mat4& m, const NodePtr& shape) {
         Extrusion e = std::get<Extrusion>(leaf.primitive);
         auto& mapped = outlines[e.outline.get()];
         if (!mapped) mapped = std::make_shared<csg::Outline>(e.outline->mapped(linear, shift));
-        return Extrusion::plane(mapped, e.shape);
+        Extrusion out = Extrusion::plane(mapped, e.shape);
+        out.accuracy = e.accuracy;
+        return out;
     };
     std::unordered_map<const Node*, NodePtr> done;
     return mapLeaves(shape, map, done);

@@ -40,6 +40,8 @@ ConvexPolytope ConvexPolytope::fromFaces(std::vector<Vec3> vertices,
                                          std::span<const uint32_t> faceStarts, Origin origin) {
     auto data = std::make_shared<ConvexPolytopeData>();
     data->origin = origin;
+    data->faceVertices.assign(faceVertices.begin(), faceVertices.end());
+    data->faceStarts.assign(faceStarts.begin(), faceStarts.end());
     const size_t faceCount = faceStarts.empty() ? 0 : faceStarts.size() - 1;
     if (faceCount > kMaxPlanes)
         return invalid(std::move(data), "a convex polyhedron may have at most 65535 faces");

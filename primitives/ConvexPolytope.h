@@ -93,6 +93,9 @@ struct ConvexPolytopeData {
     std::vector<PolytopePlane> planes;    // in face order: face id = index
     std::vector<PlaneBlock> planeBlocks;  // the same planes, planes[4 b + k] in block b lane k
     std::vector<Vec3> vertices;
+    // The faces as given to fromFaces (vertex indices; face f is faceVertices[faceStarts[f] ..
+    // faceStarts[f + 1])): the boundary, for clients that need it as polygons (projection).
+    std::vector<uint32_t> faceVertices, faceStarts;
     Bounds3 box;
     LocalBall ball{Vec3(0.0), kInfinity};
     ConvexPolytope::Origin origin;

@@ -494,6 +494,7 @@ void Extrusion::describe(JsonWriter& json) const {
     static constexpr const char* kKinds[] = {"2d", "linear_extrude", "rotate_extrude"};
     json.key("kind").value(kKinds[int(kind)]).key("shape").value(shape);
     json.key("segments").value(uint64_t(outline ? outline->segments.size() : 0));
+    if (accuracy) json.key("accuracy").value(accuracy);
     if (kind == Kind::Linear)
         json.key("z0").value(z0).key("z1").value(z1).key("scale").value(scale);
     if (kind == Kind::Rotate) json.key("angle").value(angle);

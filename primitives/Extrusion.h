@@ -46,6 +46,9 @@ struct Extrusion {
     Bounds2 box;                             // the outline's bounds
     // What the language called it ("square", "circle", "polygon", "text", ...), for info.
     const char* shape = "polygon";
+    // How exactly the outline stands for what the language asked, when that needs saying (a
+    // projection of meshed leaves): a static text info prints as "accuracy"; null: exact.
+    const char* accuracy = nullptr;
     Kind kind = Kind::Plane;
     double z0 = -kInfinity, z1 = kInfinity;  // Linear
     double scale = 1.0;                      // Linear: the top's size relative to the bottom's

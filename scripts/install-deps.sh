@@ -10,6 +10,7 @@ packages=(
     libopenmesh-dev       # mesh structure and OBJ IO (mesh export)
     libtinygltf-dev nlohmann-json3-dev libstb-dev  # glTF/GLB writer and its JSON/image deps
     libpng-dev libdeflate-dev  # PNG: reading textures (libpng), writing images (libdeflate)
+    libpolyclipping-dev   # Clipper: polygon booleans of projection() (csg/section)
     libjemalloc-dev       # csgray's heap, on transparent huge pages (viewer/cli/HeapConfig.cpp)
     libopenexr-dev        # OpenEXR output (render --format exr)
     libsdl2-dev           # `csgray view`: the interactive window

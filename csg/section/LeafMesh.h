@@ -1,0 +1,37 @@
+// A leaf of a CSG tree as a closed triangle mesh in a given frame, for the plane sections and
+// shadows of csg/section/Projection.h. Polyhedral leaves give their own boundary, exactly (up
+// to the one rounding of mapping each vertex): a box's 12 triangles, a convex polytope's faces
+// (OpenSCAD's faceted cylinders and spheres), a polyhedron's triangles (polyhedron(), import(),
+// surface(file)). Every other leaf (an exact sphere, cylinder or torus, an extrusion, an
+// algebraic surface, Bezier patches) has no polygonal boundary: it is meshed by csgray's own
+// mesher (csg/mesh/Tessellate.h) within a distance tolerance, and says so (exact = false).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "primitives/Primitives.h"
+#include "primitives/base/Bounds.h"
+
+namespace csg {
+
+struct WorldMesh {
+    std::vector<Vec3> vertices;
+    // Corner indices; winding is not used (sections and shadows go by crossing parity and by
+    // covered area).
+    std::vector<std::array<uint32_t, 3>> triangles;
+    Bounds3 box;         // of the vertices
+    bool exact = true;   // the leaf's own boundary, not a mesh of it
+    double error = 0.0;  // when meshed: the mesher's measured distance to the surface
+};
+
+// The leaf's boundary in the frame where worldFromLocal puts it. A leaf that is not polyhedral
+// is meshed within `tolerance` (world units, > 0). Throws std::invalid_argument for a leaf that
+// has no bounded solid to mesh (a half-space, a 2-D shape's infinite prism).
+WorldMesh leafMesh(const Primitive& shape, const Mat4& worldFromLocal, double tolerance);
+
+// Whether leafMesh() gives the leaf's own boundary (no meshing).
+bool isPolyhedral(const Primitive& shape);
+
+}  // namespace csg
