@@ -16,8 +16,8 @@ namespace {
 // info's "accuracy" of a projection that meshed something (static texts: the leaf keeps a
 // pointer).
 constexpr const char* kMeshedLeaves =
-    "approximate: leaves that are not polyhedral were meshed within 5e-4 of their bounds' "
-    "diagonal before projecting";
+    "approximate: curved leaves were made polyhedra within 5e-4 of their bounds' diagonal "
+    "(inscribed, or csgray's mesher) before projecting";
 constexpr const char* kMeshedSubtree =
     "approximate: an intersection or difference with too many faces to project exactly was "
     "meshed within 5e-4 of its bounds' diagonal";

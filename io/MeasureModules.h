@@ -11,10 +11,11 @@
 //     intersection or difference the projections of the leaves' faces cut by the subtree's
 //     section in each face's plane, unless that costs more than csg::kMaxFaceWork (then the
 //     subtree is meshed as a whole, as below).
-// What is approximate: a leaf that is not polyhedral (an exact sphere, cylinder or torus, an
-// extrusion, an algebraic surface, patches) is meshed by csgray's mesher within
-// csg::kLeafMeshToleranceRel (5e-4) of its bounds' diagonal first; the outline is then within
-// that distance of the true section or shadow. info shows "accuracy" on such a leaf.
+// What is approximate: a leaf that is not polyhedral is first made a closed mesh within
+// csg::kLeafMeshToleranceRel (5e-4) of its bounds' diagonal: an exact sphere, cylinder or torus
+// an inscribed polyhedron of enough segments, any other (an extrusion, an algebraic surface,
+// patches) csgray's mesher's grid mesh; the outline is then within that distance of the true
+// section or shadow. info shows "accuracy" on such a leaf.
 //
 // resize(newsize, auto = false, convexity): OpenSCAD's scaling about the origin that takes the
 // child's bounding box to newsize (0 or less keeps an axis; auto = true or [bx, by, bz] scales

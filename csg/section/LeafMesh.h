@@ -2,9 +2,11 @@
 // shadows of csg/section/Projection.h. Polyhedral leaves give their own boundary, exactly (up
 // to the one rounding of mapping each vertex): a box's 12 triangles, a convex polytope's faces
 // (OpenSCAD's faceted cylinders and spheres), a polyhedron's triangles (polyhedron(), import(),
-// surface(file)). Every other leaf (an exact sphere, cylinder or torus, an extrusion, an
-// algebraic surface, Bezier patches) has no polygonal boundary: it is meshed by csgray's own
-// mesher (csg/mesh/Tessellate.h) within a distance tolerance, and says so (exact = false).
+// surface(file)). An exact sphere, cylinder or torus becomes an inscribed polyhedron with the
+// segment count that keeps every point of it within the tolerance of the surface (built
+// directly: the mesher's grid would give tens of times the triangles for the same bound). Every
+// other leaf (an extrusion, an algebraic surface, Bezier patches) is meshed by csgray's own
+// mesher (csg/mesh/Tessellate.h) within the tolerance. Both say so (exact = false).
 #pragma once
 
 #include <array>
@@ -23,7 +25,7 @@ struct WorldMesh {
     std::vector<std::array<uint32_t, 3>> triangles;
     Bounds3 box;         // of the vertices
     bool exact = true;   // the leaf's own boundary, not a mesh of it
-    double error = 0.0;  // when meshed: the mesher's measured distance to the surface
+    double error = 0.0;  // when not exact: the bound (inscribed) or the mesher's measurement
 };
 
 // The leaf's boundary in the frame where worldFromLocal puts it. A leaf that is not polyhedral

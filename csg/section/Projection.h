@@ -1,7 +1,7 @@
 // OpenSCAD's projection() of a CSG tree onto the plane z = 0, as a 2-D region (an Outline of
 // straight segments), and the tight bounds resize() needs. Each leaf becomes a closed triangle
-// mesh in the tree's frame (csg/section/LeafMesh.h: exact for polyhedral leaves, meshed within
-// a tolerance for the others); polygons are combined by Clipper on an integer grid of 2^-50 of
+// mesh in the tree's frame (csg/section/LeafMesh.h: exact for polyhedral leaves, within a
+// tolerance for the others); polygons are combined by Clipper on an integer grid of 2^-50 of
 // the part's extent (so a snapped coordinate moves by about a double's rounding).
 //
 // Notation: the section of a mesh by a plane n . x = c on side + is its section by the plane
