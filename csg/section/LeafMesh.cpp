@@ -178,7 +178,9 @@ WorldMesh leafMesh(const Primitive& shape, const Mat4& worldFromLocal, double to
     const Scene scene = Scene::compile(transformed(worldFromLocal, leaf(shape)));
     TessellateOptions options;
     options.tolerance = tolerance;
-    options.simplify = false;  // see kLeafMeshToleranceRel in Projection.h
+    // The grid mesh: simplifying it costs several times the meshing, and Clipper sums up the
+    // sections and shadows of its triangles anyway.
+    options.simplify = false;
     TessellateResult meshed = tessellate(scene, options);
     out.exact = false;
     out.error = std::max(meshed.error.max, meshed.backError.max);

@@ -26,10 +26,6 @@ using ClipperLib::Paths;
 // to 2^62 and multiplies them in 128 bits; 2^50 leaves room for sums and rounds a coordinate
 // to 2^-50 of the extent, about what a double's own rounding does there.
 constexpr int kGridBits = 50;
-// Vertices within this distance of a face's plane (relative to the part's extent) count as on
-// it: the plane through a triangle is computed from one corner, and its other corners (and
-// the other triangles of the same planar face) then sit a rounding error off it.
-constexpr double kOnPlaneRel = 1e-12;
 
 struct Grid {
     double scale = 1.0;
@@ -77,9 +73,10 @@ int flatten(const NodePtr& node, const Mat4& parent, Flat& flat) {
     out.source = node;
     out.frame = parent;
     if (node->op == Op::Leaf) {
-        const double tolerance = isPolyhedral(node->primitive)
-                                     ? 0.0
-                                     : kLeafMeshToleranceRel * tightDiagonal(node->primitive, here);
+        const double tolerance =
+            isPolyhedral(node->primitive)
+                ? 0.0
+                : tol::kLeafMeshToleranceRel * tightDiagonal(node->primitive, here);
         WorldMesh mesh = leafMesh(node->primitive, here, tolerance);
         if (!mesh.exact) {
             flat.result->exact = false;
@@ -314,7 +311,7 @@ std::optional<Paths> faceShadow(const Flat& flat, int node) {
             if (work > kMaxFaceWork) return std::nullopt;
         }
     Paths pieces;
-    const double onPlane = kOnPlaneRel * std::max(flat.extent, 1e-300);
+    const double onPlane = tol::kOnFacePlaneRel * std::max(flat.extent, 1e-300);
     for (int f : leaves) {
         const WorldMesh& mesh = flat.leaves[size_t(f)];
         for (const auto& t : mesh.triangles) {
@@ -350,7 +347,7 @@ Paths shadowOf(const Flat& flat, int node) {
     const Bounds3 box = scene.bounds();
     if (box.empty()) return {};
     TessellateOptions options;
-    options.tolerance = kLeafMeshToleranceRel * glm::length(box.hi - box.lo);
+    options.tolerance = tol::kLeafMeshToleranceRel * glm::length(box.hi - box.lo);
     options.simplify = false;
     const TessellateResult meshed = tessellate(scene, options);
     flat.result->exact = false;

@@ -34,6 +34,7 @@
 
 #include "csg/Tree.h"
 #include "primitives/Outline.h"
+#include "primitives/base/Tolerances.h"
 
 namespace csg {
 
@@ -42,13 +43,8 @@ namespace csg {
 // a whole: a few seconds at most.
 inline constexpr uint64_t kMaxFaceWork = uint64_t(200) << 20;
 
-// The distance tolerance for meshing a leaf that is not polyhedral, relative to the diagonal
-// of its bounds (the mesher's grid mesh, not simplified: simplifying costs several times the
-// meshing and the polygons are summed up by Clipper anyway). 5e-4 puts a sphere's section
-// within 5e-4 * 2 sqrt(3) r ~ 1.7e-3 r of its circle (measured: about 1e-4 of the diagonal,
-// the mesher's vertices lie on the surface), finer than OpenSCAD's default facets of a sphere
-// of any size (a sagitta of at least 5e-3 r), in under a second for a sphere.
-inline constexpr double kLeafMeshToleranceRel = 5e-4;
+// Leaves that are not polyhedral are made meshes within tol::kLeafMeshToleranceRel of their
+// bounds' diagonal first (primitives/base/Tolerances.h says why that value).
 
 struct ProjectionResult {
     Outline outline;              // straight segments, even-odd; empty when nothing is there

@@ -461,4 +461,20 @@ inline constexpr double kBoundarySideRel = 1e-8;
 // 2^-16 grid at that size, while a glyph's quadratic of 10 mm needs only tens of chords.
 inline constexpr double kFlattenRel = 1e-7;
 
+// projection() and resize() (csg/section/Projection.h): a leaf that is not polyhedral is made
+// a closed mesh within this distance of its surface, relative to the diagonal of its bounds
+// (unit: length / length). 5e-4 puts a sphere's section within 5e-4 * 2 sqrt(3) r ~ 1.7e-3 r
+// of its circle, finer than OpenSCAD's default facets of a sphere of any size (a sagitta of at
+// least 5e-3 r), at ~6k triangles for an inscribed sphere: small enough that a shadow's face
+// method (faces x triangles) stays within a second for a sphere minus a few cones.
+inline constexpr double kLeafMeshToleranceRel = 5e-4;
+
+// Vertices this close to a face's plane count as on it when a shadow cuts the part by that
+// plane (unit: length, relative to the part's largest coordinate). The plane through a
+// triangle is computed from one corner; its other corners, and the other triangles of the
+// same planar face, then sit a few rounding errors off it (~1e-16 relative), and counting
+// them on the plane keeps the pieces of neighbouring faces edge to edge. 1e-12 (~4500 ulps)
+// is ~10^9 below any feature a part resolves.
+inline constexpr double kOnFacePlaneRel = 1e-12;
+
 }  // namespace csg::tol
