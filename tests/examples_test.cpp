@@ -34,14 +34,9 @@ const fs::path kExamples = "/usr/share/openscad/examples";
 
 // Examples csgray cannot load yet, and why.
 const std::map<std::string, std::string> kNotLoadingYet = {
-    {"Advanced/GEB.scad", "projection()"},
-    {"Advanced/surface_image.scad", "projection() and surface(file = png)"},
     {"Basics/linear_extrude.scad", "linear_extrude(twist)"},
-    {"Basics/projection.scad", "projection()"},
     {"Old/example009.scad", "linear_extrude(twist)"},
-    {"Old/example010.scad", "surface(file = dat)"},
     {"Old/example020.scad", "linear_extrude(twist)"},
-    {"Old/example021.scad", "projection()"},
 };
 
 // Examples OpenSCAD takes more than ~25 s to export here (CGAL's exact booleans), measured

@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "MissingTool.h"
 #include "CliRunner.h"
 #include "TempDir.h"
 #include "csg/Scene.h"
@@ -256,7 +257,7 @@ TEST_F(Heightmap, VolumeAgainstOpenScadsStl) {
     EXPECT_NEAR(csg::volume(s, 512), byHand, 2e-3 * byHand);
 
     if (std::system("command -v openscad >/dev/null 2>&1") != 0)
-        GTEST_SKIP() << "openscad is not installed";
+        SKIP_OR_FAIL_IN_CI("openscad is not installed");
     std::ofstream(main) << "surface(file = \"v.dat\");\n";
     const std::string stl = (dir.path / "v.stl").string();
     const std::string command =
@@ -377,14 +378,14 @@ TEST(Resize, CircleToEllipse) {
 // silhouettes not aligned with the grid, like example010's rotated heightmap: 5e-4).
 TEST(Projection, OpenScadExamplesAgainstTheirStl) {
     if (std::system("command -v openscad >/dev/null 2>&1") != 0)
-        GTEST_SKIP() << "openscad is not installed";
+        SKIP_OR_FAIL_IN_CI("openscad is not installed");
     const std::string examples = "/usr/share/openscad/examples/";
     const char* files[] = {"Basics/projection.scad", "Old/example010.scad",
                            "Advanced/surface_image.scad", "Old/example021.scad"};
     cli::ScratchDir dir;
     for (const char* file : files) {
         const std::string part = examples + file;
-        if (!std::filesystem::exists(part)) GTEST_SKIP() << part << " is not installed";
+        if (!std::filesystem::exists(part)) SKIP_OR_FAIL_IN_CI(part + " is not installed");
         const std::string stl = (dir / "out.stl").string();
         const std::string command = "openscad --export-format binstl -o " + cli::shellQuote(stl) +
                                     " " + cli::shellQuote(part) + " >/dev/null 2>&1";
