@@ -2,8 +2,8 @@
 // src/surface.cc (read_dat, convert_image) step for step, so that the same file gives the same
 // grid, and the mesh has OpenSCAD's vertices exactly (x = column, y = row, each cell's centre
 // at the mean of its four corners), so `csgray compare` against OpenSCAD's STL sees rounding.
-#include "io/DataFiles.h"
 #include "io/HeightmapModule.h"
+#include "io/DataFiles.h"
 
 #include <charconv>
 #include <cmath>

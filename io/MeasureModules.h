@@ -12,8 +12,8 @@
 //     section in each face's plane, unless that costs more than csg::kMaxFaceWork (then the
 //     subtree is meshed as a whole, as below).
 // What is approximate: a leaf that is not polyhedral is first made a closed mesh within
-// csg::tol::kLeafMeshToleranceRel (5e-4) of its bounds' diagonal: an exact sphere, cylinder or torus
-// an inscribed polyhedron of enough segments, any other (an extrusion, an algebraic surface,
+// csg::tol::kLeafMeshToleranceRel (5e-4) of its bounds' diagonal: an exact sphere, cylinder or
+// torus an inscribed polyhedron of enough segments, any other (an extrusion, an algebraic surface,
 // patches) csgray's mesher's grid mesh; the outline is then within that distance of the true
 // section or shadow. info shows "accuracy" on such a leaf.
 //

@@ -54,8 +54,7 @@ NodePtr transformed2D(const csg::Mat4& m, const NodePtr& shape) {
     return mapLeaves(shape, map, done);
 }
 
-NodePtr liftLeaves(const NodePtr& shape,
-                   const std::function<Extrusion(const Extrusion&)>& lift) {
+NodePtr liftLeaves(const NodePtr& shape, const std::function<Extrusion(const Extrusion&)>& lift) {
     auto map = [&](const Node& leaf) { return lift(std::get<Extrusion>(leaf.primitive)); };
     std::unordered_map<const Node*, NodePtr> done;
     return mapLeaves(shape, map, done);

@@ -163,7 +163,8 @@ Extrusion Extrusion::rotated(double degrees) const {
 const char* Extrusion::invalidReason() const {
     if (!outline) return "an extrusion needs an outline";
     switch (kind) {
-        case Kind::Plane: return nullptr;
+        case Kind::Plane:
+            return nullptr;
         case Kind::Linear:
             return std::isfinite(z0) && std::isfinite(z1) && z0 < z1 && std::isfinite(scale) &&
                            scale >= 0.0
@@ -256,7 +257,8 @@ void Extrusion::revolvedSpans(const Vec3& o, const Vec3& d, LocalSpans& out) con
     double tlo = -kInfinity, thi = kInfinity;
     if (!clipToBox(SlabRay(o, d), bounds(), tlo, thi)) return;
     // Crossings on the box's own faces (a tube's tangent points) must survive rounding.
-    const double margin = kCandidateSlackRel * (thi - tlo) + 1e-12 * (std::abs(tlo) + std::abs(thi));
+    const double margin =
+        kCandidateSlackRel * (thi - tlo) + 1e-12 * (std::abs(tlo) + std::abs(thi));
     tlo -= margin, thi += margin;
     const Outline& profile = *outline;
     const double slack = kCandidateSlackRel * std::max(1.0, glm::length(box.hi - box.lo));
@@ -424,7 +426,8 @@ void Extrusion::revolvedSpans(const Vec3& o, const Vec3& d, LocalSpans& out) con
 bool Extrusion::inside(const Vec3& p) const {
     if (!outline || box.empty()) return false;
     switch (kind) {
-        case Kind::Plane: return outline->inside(Vec2(p));
+        case Kind::Plane:
+            return outline->inside(Vec2(p));
         case Kind::Linear: {
             if (!(p.z >= z0 && p.z <= z1)) return false;
             const double s = 1.0 + (scale - 1.0) * (p.z - z0) / (z1 - z0);
@@ -461,14 +464,18 @@ uint32_t Extrusion::segmentOf(uint16_t face, Vec2 q) const {
 Vec3 Extrusion::normal(const Vec3& p, uint16_t face) const {
     if (!outline || outline->segments.empty()) return Vec3(0.0, 0.0, 1.0);
     switch (face) {
-        case kBottomFace: return Vec3(0.0, 0.0, -1.0);
-        case kTopFace: return Vec3(0.0, 0.0, 1.0);
-        case kWedgeStartFace: return Vec3(0.0, -1.0, 0.0);
+        case kBottomFace:
+            return Vec3(0.0, 0.0, -1.0);
+        case kTopFace:
+            return Vec3(0.0, 0.0, 1.0);
+        case kWedgeStartFace:
+            return Vec3(0.0, -1.0, 0.0);
         case kWedgeEndFace: {
             const double rad = angle * kPi / 180.0;
             return Vec3(-std::sin(rad), std::cos(rad), 0.0);
         }
-        default: break;
+        default:
+            break;
     }
     if (face == kClipFace) return Vec3(0.0, 0.0, 1.0);
     if (kind == Kind::Rotate) {

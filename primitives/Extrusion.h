@@ -36,8 +36,8 @@ namespace csg {
 
 struct Extrusion {
     static constexpr const char* kName = "extrusion";
-    static constexpr uint16_t kBottomFace = 0, kTopFace = 1, kWedgeStartFace = 2,
-                              kWedgeEndFace = 3, kFirstSideFace = 4;
+    static constexpr uint16_t kBottomFace = 0, kTopFace = 1, kWedgeStartFace = 2, kWedgeEndFace = 3,
+                              kFirstSideFace = 4;
     static constexpr uint32_t kSideFaceIds = 65535 - kFirstSideFace;
 
     enum class Kind : uint8_t { Plane, Linear, Rotate };

@@ -3,6 +3,8 @@
 // an edge's side is E(P, Q) = Q.x P.y - Q.y P.x, positive when the ray passes left of P -> Q.
 #include "primitives/Polyhedron.h"
 
+#include "primitives/SpanCapacity.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -539,7 +541,7 @@ void sortCrossings(std::vector<Polyhedron::Crossing>& c) {
 
 // Per thread, grown to the most crossings a line has had: no allocation per ray after that.
 thread_local std::vector<Polyhedron::Crossing> lineCrossings;
-thread_local std::vector<double> lineGaps, lineGapsSorted;
+thread_local std::vector<LocalSpans::Entry> lineSpans;
 
 uint16_t faceOf(uint32_t triangle) {
     return static_cast<uint16_t>(triangle % Polyhedron::kFaceIds);
@@ -572,34 +574,12 @@ void Polyhedron::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     for (size_t i = 0; i + 1 < c.size(); i += 2)
         if (c[i].t < c[i + 1].t) c[2 * pairs] = c[i], c[2 * pairs + 1] = c[i + 1], ++pairs;
     // Step 2: more spans than LocalSpans holds: close the narrowest gaps (see Polyhedron.h).
-    std::vector<double>& gaps = lineGaps;
-    gaps.clear();
-    double threshold = -kInfinity;
-    size_t toClose = 0, atThreshold = 0;
-    if (pairs > size_t(LocalSpans::kCapacity)) {
-        toClose = pairs - LocalSpans::kCapacity;
-        for (size_t i = 0; i + 1 < pairs; ++i) gaps.push_back(c[2 * i + 2].t - c[2 * i + 1].t);
-        std::vector<double>& sorted = lineGapsSorted;
-        sorted.assign(gaps.begin(), gaps.end());
-        std::nth_element(sorted.begin(), sorted.begin() + long(toClose - 1), sorted.end());
-        threshold = sorted[toClose - 1];
-        const size_t below = size_t(
-            std::count_if(gaps.begin(), gaps.end(), [&](double g) { return g < threshold; }));
-        atThreshold = toClose - below;  // ties at the threshold closed first in t
-    }
-    size_t i = 0;
-    while (i < pairs) {
-        const size_t first = i;
-        while (i + 1 < pairs && toClose > 0 &&
-               (gaps[i] < threshold || (gaps[i] == threshold && atThreshold > 0))) {
-            if (!(gaps[i] < threshold)) --atThreshold;
-            --toClose;
-            ++i;
-        }
-        out.add(c[2 * first].t, faceOf(c[2 * first].triangle), c[2 * i + 1].t,
-                faceOf(c[2 * i + 1].triangle));
-        ++i;
-    }
+    std::vector<LocalSpans::Entry>& spans = lineSpans;
+    spans.clear();
+    for (size_t i = 0; i < pairs; ++i)
+        spans.push_back(
+            {c[2 * i].t, c[2 * i + 1].t, faceOf(c[2 * i].triangle), faceOf(c[2 * i + 1].triangle)});
+    addWithinCapacity(spans, out);
 }
 
 bool Polyhedron::inside(const Vec3& p) const {
