@@ -440,4 +440,11 @@ inline constexpr double kEdgeSignFilter = gamma(4);
 // ~10^9 below any feature a part resolves; it only lets a few more boxes be opened.
 inline constexpr double kMeshBoxMarginRel = 1e-12;
 
+// glibc's cos and sin are within this of the exact value at any double argument (unit:
+// absolute, the values lying in [-1, 1]). Why: glibc documents a maximum error of 1 ulp for
+// both on x86-64 (its manual's "Errors in Math Functions"), and an ulp of a value in [-1, 1] is
+// at most kUlp; twice that is a margin against a libm that misses by a little more. Interval
+// enclosures of cos and sin (solvers/Interval.h) widen by it.
+inline constexpr double kLibmTrigError = 2 * kUlp;
+
 }  // namespace csg::tol
