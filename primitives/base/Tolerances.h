@@ -447,4 +447,13 @@ inline constexpr double kMeshBoxMarginRel = 1e-12;
 // enclosures of cos and sin (solvers/Interval.h) widen by it.
 inline constexpr double kLibmTrigError = 2 * kUlp;
 
+// An outline Bezier whose control points lie within this fraction of their extent from the
+// line through the farthest two is carried by that line, and a cubic whose third-degree
+// coefficient is this small relative to its extent by the quadratic it then is (unit:
+// relative). Why: the implicit equation of a flatter curve cancels to this fraction, so it
+// carries less information than the straight carrier, whose error is the curve's distance from
+// it: 1e-12 of the curve, 1000x below kCoincidentRel. (Exactly flat curves make the implicit
+// equation a power of the line's, which has no sign change to isolate.)
+inline constexpr double kFlatCurveRel = 1e-12;
+
 }  // namespace csg::tol
