@@ -158,31 +158,25 @@ Instance linearExtrudeModule(Evaluator& e, const InstantiationStmt& s, const Con
     else if (b.given(0))
         e.fail(b.loc(0), "linear_extrude(file = ...): DXF files are not supported yet");
     const bool center = boolArg(e, b, 5, false);
-    double scale = 1.0;
+    // scale: a number or [sx, sy]; negative factors are 0, as in OpenSCAD.
+    Vec2 scale(1.0);
     if (b.given(4)) {
         const Value& v = b[4];
-        if (v.isNumber() && std::isfinite(v.number())) {
-            scale = std::max(0.0, v.number());
-        } else if (const auto p = pointOf(v)) {
-            const Vec2 sxy = glm::max(*p, Vec2(0.0));
-            if (sxy.x != sxy.y)
-                e.fail(b.loc(4), "linear_extrude(scale = [sx, sy]) with sx != sy is not "
-                                 "supported yet (a uniform scale is)");
-            scale = sxy.x;
-        } else {
+        if (v.isNumber() && std::isfinite(v.number()))
+            scale = Vec2(std::max(0.0, v.number()));
+        else if (const auto p = pointOf(v))
+            scale = glm::max(*p, Vec2(0.0));
+        else
             b.bad(e, 4, "a number or [sx, sy]");
-        }
     }
     const double twist = numberArg(e, b, 6, 0.0);
-    if (twist != 0.0)
-        e.fail(b.loc(6), "linear_extrude(twist = ...) is not supported yet");
     numberArg(e, b, 7, 1.0);  // slices: the exact solid needs none
     Instance shape = shapeChildren(e, b, ctx, state);
     if (!shape || !*shape) return shape;
     if (!(height > 0.0)) return csg::NodePtr();
     const double z0 = center ? -0.5 * height : 0.0;
     return liftLeaves(*shape, [&](const Extrusion& leaf) {
-        return leaf.linear(z0, z0 + height, scale);
+        return leaf.linear(z0, z0 + height, scale, twist);
     });
 }
 
