@@ -16,6 +16,8 @@ const char* const kCommonOptionsHelp =
     "                         exact: every cylinder and sphere exact, $fn ignored;\n"
     "                         openscad: every cylinder and sphere faceted as OpenSCAD 2021\n"
     "                           would, $fa and $fs included (to check against its meshes)\n"
+    "                         linear_extrude's twist and scale = [sx, sy] are exact in every\n"
+    "                           mode: OpenSCAD's sliced solid is not built (slices is ignored)\n"
     "  --diagnostics=FORMAT   text (default): file:line:col: error: message on stderr;\n"
     "                         json: one JSON array of diagnostics on stderr\n"
     "  -h, --help             show this help\n";
