@@ -435,10 +435,6 @@ bool insideAt(const Frame<double>& f, const Outline& outline) {
     return outline.inside(Vec2(f.px / f.w, f.py / f.w));
 }
 
-}  // namespace
-
-namespace {
-
 // R(twist s) (p.x / sx, p.y / sy).
 Vec2 turned(double twist, double s, double sx, double sy, const Vec3& p) {
     const Vec2 w(p.x / sx, p.y / sy);
@@ -510,6 +506,9 @@ std::shared_ptr<const TwistedOutline> TwistedOutline::of(const Outline& outline)
             const double slack = tol::kSweepCandidateSlackRel * (std::max(size.x, size.y) + reach);
             keep.lo -= Vec2(slack), keep.hi += Vec2(slack);
         }
+        prepared->straight = prepared->straight && c.kind != SegmentCarrier::Kind::Ellipse &&
+                             c.kind != SegmentCarrier::Kind::Parabola &&
+                             c.kind != SegmentCarrier::Kind::Cubic;
         prepared->carriers.push_back(c);
         prepared->keepBoxes.push_back(keep);
     }
@@ -595,22 +594,28 @@ void twistedSpans(const Outline& outline, const TwistedOutline& prepared, const 
     cand.clear();
     cand.push_back({ta, fa});
     cand.push_back({tb, fb});
+    // Without twist, straight edges are quadratics: the pieces are for the curved ones.
+    const bool quadraticLines = !line.twisted && !line.uniform;
     tlEnds.clear();
     tlFirst.clear();
-    if (!hole) {
-        addFirstPieces(line, ta, tb);
-    } else {
-        // The solid lies outside the inner cylinder: pieces on either side of it, and its ends
-        // as candidates (the gap between them is outside).
+    if (hole) {
+        // The solid lies outside the inner cylinder: its ends are candidates (the gap between
+        // them is outside), and the pieces lie on either side of it.
         cand.push_back({hole0, kClipFace});
         cand.push_back({hole1, kClipFace});
-        if (ta < hole0) addFirstPieces(line, ta, hole0);
-        if (hole1 < tb) addFirstPieces(line, hole1, tb);
+    }
+    if (!quadraticLines || !prepared.straight) {
+        if (!hole) {
+            addFirstPieces(line, ta, tb);
+        } else {
+            if (ta < hole0) addFirstPieces(line, ta, hole0);
+            if (hole1 < tb) addFirstPieces(line, hole1, tb);
+        }
     }
     for (uint32_t i = 0; i < prepared.carriers.size(); ++i) {
         const SegmentCarrier& c = prepared.carriers[i];
         if (c.kind == SegmentCarrier::Kind::None) continue;
-        if (!line.twisted && !line.uniform && c.kind == SegmentCarrier::Kind::Line)
+        if (quadraticLines && c.kind == SegmentCarrier::Kind::Line)
             straightCrossings(c, prepared.keepBoxes[i], i, line, ta, tb, cand);
         else
             isolate(c, prepared.keepBoxes[i], i, line, tm, cand);

@@ -101,6 +101,8 @@ struct TwistedOutline {
     // Every point q of the region has innerRadius <= |q| <= outerRadius: a section's points
     // lie in the annulus these radii span, scaled by the smallest and largest scale factor.
     double innerRadius = 0.0, outerRadius = 0.0;
+    // Whether every segment is carried by a line (or by nothing).
+    bool straight = true;
     static std::shared_ptr<const TwistedOutline> of(const Outline& outline);
 };
 

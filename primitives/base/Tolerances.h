@@ -484,8 +484,8 @@ inline constexpr int kSweepTurnIterations = 6;
 // A twisted extrusion tests at most this many pieces per segment and line (unit: pieces).
 // Why: it bounds the work on any line whatever the twist and the outline (the pieces left
 // when it runs out become candidates at both ends, exact to their width); a simple root
-// costs a handful of pieces, a tangency about 2 per halving, so 1 << 14 is never reached by
-// the lines of the tests and samples.
+// costs a handful of pieces and a tangency about 2 per level of kSweepMaxDepth, so only a
+// line with thousands of near-tangencies along one segment's sweep could run out.
 inline constexpr int kSweepMaxPieces = 1 << 14;
 
 // A twisted extrusion's bounding cylinder (radius: the outline's farthest box corner from the
