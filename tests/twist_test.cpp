@@ -464,6 +464,62 @@ TEST(TwistedSpans, NormalsAreOrthogonalToTheSurface) {
     EXPECT_GT(checked, 600);
 }
 
+// For per-axis scales and curved segments the normal is checked against the solid itself: a
+// step of 1e-6 of the part along it from a side hit leaves the solid and a step against it
+// enters (hits near the segments' ends and the caps' rims, where the surface has an edge, are
+// skipped), and the hits of lines 1e-5 of the part beside it lie in the tangent plane to
+// second order.
+TEST(TwistedSpans, NormalsPointOutOfScaledAndCurvedSolids) {
+    const RandomCase cases[] = {
+        {"star scale [2, 0.5] twist 120", star(), Vec2(2.0, 0.5), 120.0},
+        {"offset circle scale [1, 3]", offsetCircle(), Vec2(1.0, 3.0), 0.0},
+        {"curvy scale 0.3 twist -90", curvy(), Vec2(0.3), -90.0},
+    };
+    csg::testing::Rng rng(77);
+    for (const RandomCase& c : cases) {
+        const Extrusion e = extrude(c.outline, -1.0, 4.0, c.scale, c.twist);
+        const csg::Bounds3 box = e.bounds();
+        const double size = glm::length(box.hi - box.lo);
+        int checked = 0;
+        for (int i = 0; i < 400; ++i) {
+            const Vec3 target = rng.inBox(box.lo, box.hi);
+            const Vec3 d = rng.unit();
+            const Vec3 o = target - size * d;
+            csg::LocalSpans s;
+            e.spans(o, d, s);
+            if (s.count == 0 || s.entries[0].faceIn < Extrusion::kFirstSideFace) continue;
+            const double t = s.entries[0].tIn;
+            const Vec3 p = o + t * d;
+            if (p.z < -1.0 + 1e-3 * size || p.z > 4.0 - 1e-3 * size) continue;
+            const Vec3 n = e.normal(p, s.entries[0].faceIn);
+            // Away from edges: the neighbouring lines hit the same face.
+            const Vec3 side = glm::normalize(glm::cross(d, n + Vec3(0.1, 0.2, 0.3)));
+            const Vec3 side2 = glm::cross(d, side);
+            bool smooth = true;
+            for (const Vec3 offset : {side, -side, side2, -side2}) {
+                csg::LocalSpans near;
+                e.spans(o + 1e-5 * size * offset, d, near);
+                if (near.count == 0 || near.entries[0].faceIn != s.entries[0].faceIn ||
+                    std::abs(near.entries[0].tIn - t) > 1e-3 * size) {
+                    smooth = false;
+                    break;
+                }
+                // Off the tangent plane by the curvature (radii >= 0.1 here) times the squared
+                // distance; a normal off by an angle a would add a |q - p|.
+                const Vec3 q = o + 1e-5 * size * offset + near.entries[0].tIn * d;
+                const double gap = glm::distance(q, p);
+                EXPECT_LT(std::abs(glm::dot(q - p, n)), 10.0 * gap * gap + 1e-12 * size)
+                    << c.name;
+            }
+            if (!smooth) continue;
+            EXPECT_FALSE(e.inside(p + 1e-6 * size * n)) << c.name << " line " << i;
+            EXPECT_TRUE(e.inside(p - 1e-6 * size * n)) << c.name << " line " << i;
+            ++checked;
+        }
+        EXPECT_GT(checked, 60) << c.name;
+    }
+}
+
 // ---- (e) volumes ----
 
 double scadVolume(const std::string& text, int resolution, bool onItsSide) {
