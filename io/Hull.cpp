@@ -76,7 +76,10 @@ bool leafPoints(const csg::Primitive& p, const FragmentSettings& settings, std::
         return true;
     }
     const auto* e = std::get_if<csg::Extrusion>(&p);
-    if (!e || !e->outline || e->kind == csg::Extrusion::Kind::Plane) return false;
+    // A twisted side bulges past the hull of its sections' corners: no finite point set spans
+    // the exact solid's hull (OpenSCAD hulls its slices instead, which csgray does not build).
+    if (!e || !e->outline || e->kind == csg::Extrusion::Kind::Plane || e->twist != 0.0)
+        return false;
     std::vector<Vec2> profile;
     const double tolerance =
         csg::tol::kFlattenRel * std::max(1.0, glm::length(e->box.hi - e->box.lo));

@@ -174,34 +174,28 @@ Instance linearExtrudeModule(Evaluator& e, const InstantiationStmt& s, const Con
     else if (b.given(0) && !fromFile)
         b.bad(e, 0, "a DXF file name (OpenSCAD 2021's legacy file = ...) or the height");
     const bool center = boolArg(e, b, 5, false);
-    double scale = 1.0;
+    // scale: a number or [sx, sy]; negative factors are 0, as in OpenSCAD.
+    Vec2 scale(1.0);
     if (b.given(4)) {
         const Value& v = b[4];
-        if (v.isNumber() && std::isfinite(v.number())) {
-            scale = std::max(0.0, v.number());
-        } else if (const auto p = pointOf(v)) {
-            const Vec2 sxy = glm::max(*p, Vec2(0.0));
-            if (sxy.x != sxy.y)
-                e.fail(b.loc(4), "linear_extrude(scale = [sx, sy]) with sx != sy is not "
-                                 "supported yet (a uniform scale is)");
-            scale = sxy.x;
-        } else {
+        if (v.isNumber() && std::isfinite(v.number()))
+            scale = Vec2(std::max(0.0, v.number()));
+        else if (const auto p = pointOf(v))
+            scale = glm::max(*p, Vec2(0.0));
+        else
             b.bad(e, 4, "a number or [sx, sy]");
-        }
     }
     const double twist = numberArg(e, b, 6, 0.0);
-    if (twist != 0.0)
-        e.fail(b.loc(6), "linear_extrude(twist = ...) is not supported yet");
     numberArg(e, b, 7, 1.0);  // slices: the exact solid needs none
     // OpenSCAD 2021 reads the drawing with the extrusion's scale (so it also scales the
     // drawing) and ignores the children.
-    Instance shape = fromFile ? legacyDxfShape(e, b, ctx, state, DxfArgs{0, 1, 3, scale})
+    Instance shape = fromFile ? legacyDxfShape(e, b, ctx, state, DxfArgs{0, 1, 3, scale.x})
                               : shapeChildren(e, b, ctx, state);
     if (!shape || !*shape) return shape;
     if (!(height > 0.0)) return csg::NodePtr();
     const double z0 = center ? -0.5 * height : 0.0;
     return liftLeaves(*shape, [&](const Extrusion& leaf) {
-        return leaf.linear(z0, z0 + height, scale);
+        return leaf.linear(z0, z0 + height, scale, twist);
     });
 }
 
@@ -218,7 +212,7 @@ csg::NodePtr facetedRevolution(const csg::NodePtr& profile, double start, double
     const double delta = angle / double(sections);
     const double reach = 2.0 * rmax + 1.0;  // past the wedge's width at any radius
     const csg::NodePtr prism = liftLeaves(
-        profile, [&](const Extrusion& leaf) { return leaf.linear(-reach, reach, 1.0); });
+        profile, [&](const Extrusion& leaf) { return leaf.linear(-reach, reach, Vec2(1.0)); });
     std::vector<csg::NodePtr> sectors;
     sectors.reserve(size_t(sections));
     for (int64_t j = 0; j < sections; ++j) {

@@ -93,7 +93,7 @@ void Evaluator::run(const ParsedFile& file) {
     if (dimensionOf(model_.root) == 2) {
         model_.twoD = true;
         model_.root = liftLeaves(model_.root, [](const csg::Extrusion& leaf) {
-            return leaf.linear(-0.5, 0.5, 1.0);
+            return leaf.linear(-0.5, 0.5, csg::Vec2(1.0));
         });
     }
 }

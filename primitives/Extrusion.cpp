@@ -145,17 +145,24 @@ Extrusion Extrusion::plane(std::shared_ptr<const Outline> outline, const char* s
     return e;
 }
 
-Extrusion Extrusion::linear(double bottom, double top, double topScale) const {
+Extrusion Extrusion::linear(double bottom, double top, Vec2 topScale, double twistDegrees) const {
     Extrusion e = *this;
     e.kind = Kind::Linear;
-    e.z0 = bottom, e.z1 = top, e.scale = topScale;
+    e.z0 = bottom, e.z1 = top, e.scale = topScale, e.twist = twistDegrees;
+    e.twisted.reset();
+    if (twistDegrees != 0.0 || topScale.x != topScale.y) e.twisted = TwistedOutline::of(*outline);
     return e;
+}
+
+TwistMap Extrusion::twistMap() const {
+    return {z0, z1, twist * kPi / 180.0, scale};
 }
 
 Extrusion Extrusion::rotated(double degrees) const {
     Extrusion e = *this;
     e.kind = Kind::Rotate;
-    e.z0 = -kInfinity, e.z1 = kInfinity, e.scale = 1.0;
+    e.z0 = -kInfinity, e.z1 = kInfinity, e.scale = Vec2(1.0), e.twist = 0.0;
+    e.twisted.reset();
     e.angle = degrees;
     return e;
 }
@@ -166,10 +173,12 @@ const char* Extrusion::invalidReason() const {
         case Kind::Plane:
             return nullptr;
         case Kind::Linear:
-            return std::isfinite(z0) && std::isfinite(z1) && z0 < z1 && std::isfinite(scale) &&
-                           scale >= 0.0
+            return std::isfinite(z0) && std::isfinite(z1) && z0 < z1 && std::isfinite(scale.x) &&
+                           std::isfinite(scale.y) && scale.x >= 0.0 && scale.y >= 0.0 &&
+                           std::isfinite(twist)
                        ? nullptr
-                       : "linear_extrude needs a finite height > 0 and a scale >= 0";
+                       : "linear_extrude needs a finite height > 0, scales >= 0 and a finite "
+                         "twist";
         case Kind::Rotate:
             return angle > 0.0 && angle <= 360.0 && (box.empty() || box.lo.x >= 0.0)
                        ? nullptr
@@ -184,6 +193,11 @@ Bounds3 Extrusion::bounds() const {
         case Kind::Plane:
             return {Vec3(box.lo, -kInfinity), Vec3(box.hi, kInfinity)};
         case Kind::Linear: {
+            if (twist != 0.0) {
+                // Sections turn about the axis: the cylinder that holds them all.
+                const double r = twistMap().boundingRadius(box);
+                return {Vec3(-r, -r, z0), Vec3(r, r, z1)};
+            }
             // Sections are the outline scaled about the origin by factors between 1 and scale.
             const Vec2 lo = glm::min(box.lo, box.lo * scale), hi = glm::max(box.hi, box.hi * scale);
             return {Vec3(lo, z0), Vec3(hi, z1)};
@@ -200,7 +214,9 @@ void Extrusion::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     if (!outline || box.empty()) return;
     if (kind == Kind::Rotate)
         revolvedSpans(o, d, out);
-    else if (kind == Kind::Linear && scale != 1.0)
+    else if (kind == Kind::Linear && twisted)
+        twistSpans(o, d, out);
+    else if (kind == Kind::Linear && scale.x != 1.0)
         frustumSpans(o, d, out);
     else
         prismSpans(o, d, out);
@@ -211,14 +227,34 @@ void Extrusion::prismSpans(const Vec3& o, const Vec3& d, LocalSpans& out) const 
     addWithinCapacity(tlSpans, out);
 }
 
+void Extrusion::twistSpans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
+    const TwistMap map = twistMap();
+    if (d.z != 0.0) {
+        twistedSpans(*outline, *twisted, map, o, d, tlSpans);
+        addWithinCapacity(tlSpans, out);
+        return;
+    }
+    // A level line meets one section, the outline under an affine map: the line's image under
+    // that map crosses the outline as a prism's line does.
+    if (!(o.z >= z0 && o.z <= z1) || (d.x == 0.0 && d.y == 0.0)) return;
+    const double s = (o.z - z0) / (z1 - z0);
+    const double sx = 1.0 + (scale.x - 1.0) * s, sy = 1.0 + (scale.y - 1.0) * s;
+    if (!(sx > 0.0 && sy > 0.0)) return;
+    const double phi = map.twist * s, c = std::cos(phi), sn = std::sin(phi);
+    const glm::dmat2 m = glm::dmat2(c, sn, -sn, c) * glm::dmat2(1.0 / sx, 0.0, 0.0, 1.0 / sy);
+    straightPrism(*outline, m * Vec2(o), m * Vec2(d), 0.0, 0.0, 0.0, 0.0, tlSpans);
+    addWithinCapacity(tlSpans, out);
+}
+
 void Extrusion::frustumSpans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     const double h = z1 - z0;
-    const double kappa = (scale - 1.0) / h;
+    const double k = scale.x;  // uniform here
+    const double kappa = (k - 1.0) / h;
     // The map is singular where s(z) = 0 (an apex): an origin near there moves along the line
-    // to the mid-plane, where s(z) = (1 + scale)/2 (with d.z = 0 the line stays at its height,
+    // to the mid-plane, where s(z) = (1 + k)/2 (with d.z = 0 the line stays at its height,
     // which the prism test below accepts or not). An origin elsewhere stays: the caller put it
     // close to the solid, where the rounding is smallest.
-    const double sMid = 0.5 * (1.0 + scale);
+    const double sMid = 0.5 * (1.0 + k);
     double tm = 0.0;
     Vec3 om = o;
     if (d.z != 0.0 && !(1.0 + kappa * (o.z - z0) > 0.5 * sMid)) {
@@ -233,7 +269,7 @@ void Extrusion::frustumSpans(const Vec3& o, const Vec3& d, LocalSpans& out) cons
     const double ratio = wd / wo;
     const Vec2 o2 = Vec2(om) / wo, d2 = Vec2(d) - Vec2(om) * ratio;
     const double zo = zeta / wo, zd = d.z - zeta * ratio;
-    const double top = scale > 0.0 ? h / scale : kInfinity;
+    const double top = k > 0.0 ? h / k : kInfinity;
     straightPrism(*outline, o2, d2, zo, zd, 0.0, top, tlSpans);
     // Back to t: t = tm + s wo / (1 - s wd), on the branch where w > 0.
     const double sValidLo = wd < 0.0 ? 1.0 / wd : -kInfinity;
@@ -429,8 +465,12 @@ bool Extrusion::inside(const Vec3& p) const {
         case Kind::Plane:
             return outline->inside(Vec2(p));
         case Kind::Linear: {
+            if (twisted) {
+                Vec2 q;
+                return twistMap().profilePoint(p, q) && outline->inside(q);
+            }
             if (!(p.z >= z0 && p.z <= z1)) return false;
-            const double s = 1.0 + (scale - 1.0) * (p.z - z0) / (z1 - z0);
+            const double s = 1.0 + (scale.x - 1.0) * (p.z - z0) / (z1 - z0);
             if (s <= 0.0) return false;  // the apex
             return outline->inside(Vec2(p) / s);
         }
@@ -485,9 +525,14 @@ Vec3 Extrusion::normal(const Vec3& p, uint16_t face) const {
         if (r < 1e-300) return Vec3(0.0, 0.0, n.y >= 0.0 ? 1.0 : -1.0);
         return glm::normalize(Vec3(n.x * p.x / r, n.x * p.y / r, n.y));
     }
-    if (kind == Kind::Linear && scale != 1.0) {
+    if (kind == Kind::Linear && twisted) {
+        const TwistMap map = twistMap();
+        const Vec2 q = map.nearestProfilePoint(p);
+        return map.normal(p, outline->outwardNormal(segmentOf(face, q), q));
+    }
+    if (kind == Kind::Linear && scale.x != 1.0) {
         // grad g(xy / s(z)) is parallel to (n, -kappa n . q) with q = xy / s.
-        const double kappa = (scale - 1.0) / (z1 - z0);
+        const double kappa = (scale.x - 1.0) / (z1 - z0);
         const double s = std::max(1.0 + kappa * (p.z - z0), 1e-300);
         const Vec2 q = Vec2(p) / s;
         const Vec2 n = outline->outwardNormal(segmentOf(face, q), q);
@@ -502,8 +547,14 @@ void Extrusion::describe(JsonWriter& json) const {
     json.key("kind").value(kKinds[int(kind)]).key("shape").value(shape);
     json.key("segments").value(uint64_t(outline ? outline->segments.size() : 0));
     if (accuracy) json.key("accuracy").value(accuracy);
-    if (kind == Kind::Linear)
-        json.key("z0").value(z0).key("z1").value(z1).key("scale").value(scale);
+    if (kind == Kind::Linear) {
+        json.key("z0").value(z0).key("z1").value(z1).key("scale");
+        if (scale.x == scale.y)
+            json.value(scale.x);
+        else
+            json.vec(scale, 2);
+        if (twist != 0.0) json.key("twist").value(twist);
+    }
     if (kind == Kind::Rotate) json.key("angle").value(angle);
 }
 

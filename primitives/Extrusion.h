@@ -2,6 +2,7 @@
 // rotate_extrude. Each is the preimage of the region under a map F from space to the plane,
 //   Plane   F(x, y, z) = (x, y)                        an infinite prism: a 2-D shape
 //   Linear  F(x, y, z) = (x, y) / s(z), z in [z0, z1]  s(z) = 1 + (scale - 1)(z - z0)/(z1 - z0)
+//           or, with a twist or a scale per axis, R(twist s) S(s)^-1 (x, y) (TwistedExtrusion.h)
 //   Rotate  F(x, y, z) = (sqrt(x^2 + y^2), z)          within the wedge 0 <= azimuth <= angle
 // and a preimage commutes with union, intersection and difference. So the language keeps a
 // 2-D shape as a CSG tree of Plane leaves, and extruding it lifts every leaf, leaving the
@@ -15,6 +16,10 @@
 //     takes the frustum to a straight prism of height h / scale and lines to lines; the
 //     line's parameter maps by a Moebius function, monotone where s > 0 (the whole slab).
 //     scale = 0 makes an apex; the prism is then unbounded.
+//   Linear with a twist or sx != sy: each segment's swept surface is crossed where a
+//     transcendental function of t vanishes; its roots are isolated with proven enclosures
+//     and the gaps between them classified at their midpoints (TwistedExtrusion.h). A
+//     level line (d.z = 0) meets one section, an affine image of the outline: a prism's line.
 //   Rotate: the line's image (r(t), z(t)) has r^2 quadratic in t. A straight profile edge
 //     sweeps a cone (a quadratic in t), an arc a torus (a quartic), a Bezier of degree k a
 //     surface met at the roots of a polynomial of degree 2k in the curve's parameter. These
@@ -31,6 +36,7 @@
 
 #include "primitives/Outline.h"
 #include "primitives/Primitive.h"
+#include "primitives/TwistedExtrusion.h"
 
 namespace csg {
 
@@ -51,13 +57,18 @@ struct Extrusion {
     const char* accuracy = nullptr;
     Kind kind = Kind::Plane;
     double z0 = -kInfinity, z1 = kInfinity;  // Linear
-    double scale = 1.0;                      // Linear: the top's size relative to the bottom's
-    double angle = 360.0;                    // Rotate: degrees, in (0, 360]
+    Vec2 scale{1.0};      // Linear: the top's size relative to the bottom's, per axis
+    double twist = 0.0;   // Linear: degrees over the height, positive clockwise seen from +z
+    double angle = 360.0;  // Rotate: degrees, in (0, 360]
+    // Linear with a twist or sx != sy: the outline's carriers (shared, immutable).
+    std::shared_ptr<const TwistedOutline> twisted;
 
     // A 2-D shape: the infinite prism over the outline.
     static Extrusion plane(std::shared_ptr<const Outline> outline, const char* shape);
-    // The same region lifted differently (the outline is shared).
-    Extrusion linear(double bottom, double top, double topScale) const;
+    // The same region lifted differently (the outline is shared): the section at height
+    // fraction s is the outline turned by -twist s degrees, then scaled by 1 + (scale - 1) s
+    // per axis (OpenSCAD's linear_extrude).
+    Extrusion linear(double bottom, double top, Vec2 topScale, double twistDegrees = 0.0) const;
     // Revolved about z; the outline lies in x >= 0 (the caller mirrors one in x <= 0).
     Extrusion rotated(double degrees) const;
 
@@ -72,6 +83,8 @@ private:
     void prismSpans(const Vec3& o, const Vec3& d, LocalSpans& out) const;
     void frustumSpans(const Vec3& o, const Vec3& d, LocalSpans& out) const;
     void revolvedSpans(const Vec3& o, const Vec3& d, LocalSpans& out) const;
+    void twistSpans(const Vec3& o, const Vec3& d, LocalSpans& out) const;
+    TwistMap twistMap() const;
     // The segment of face `face` nearest to q (see the faces above).
     uint32_t segmentOf(uint16_t face, Vec2 q) const;
 };

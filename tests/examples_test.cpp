@@ -14,7 +14,8 @@
 // Lists keep the test honest, each entry with its reason: examples that do not load yet (a
 // test fails if one of them loads, so the list only shrinks), examples whose OpenSCAD export
 // takes too long for the default test run (scripts/compare-examples.sh compares them all),
-// examples csgray itself is too slow on, and examples whose OpenSCAD mesh has inner faces.
+// examples whose twist OpenSCAD slices (held to its slicing error), examples csgray itself is
+// too slow on, and examples whose OpenSCAD mesh has inner faces.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -32,11 +33,23 @@ namespace fs = std::filesystem;
 
 const fs::path kExamples = "/usr/share/openscad/examples";
 
-// Examples csgray cannot load yet, and why.
-const std::map<std::string, std::string> kNotLoadingYet = {
-    {"Basics/linear_extrude.scad", "linear_extrude(twist)"},
-    {"Old/example009.scad", "linear_extrude(twist)"},
-    {"Old/example020.scad", "linear_extrude(twist)"},
+// Examples csgray cannot load yet, and why (none now; an example that stops loading fails).
+const std::map<std::string, std::string> kNotLoadingYet = {};
+
+// Examples whose twisted extrusions OpenSCAD slices into flat layers while csgray keeps the
+// exact helicoids: their meshes differ by OpenSCAD's slicing error, far above T, so they are
+// held to that error instead (both one-sided maxima; the volume is not compared here, the
+// slices' chords cut or add volume of that error times the area). The bounds are derived as in
+// twist_test's AgainstOpenScad (chord sagitta plus the bilinear quads' twist) from the slices
+// OpenSCAD's get_helix_slices makes.
+const std::map<std::string, double> kSlicedByOpenScad = {
+    // The cyan block: twist 90 over 20 in 7 slices of 0.224 rad, rho 11.2, edges <= 20:
+    // 0.224^2 * 11.2 / 8 + 0.224 * 20 / 4 = 1.2.
+    {"Basics/linear_extrude.scad", 1.2},
+    // The fan: twist -57.53 over 20 in min(ceil(57.53 / 12), ceil(26.4 / 2)) = 5 slices of
+    // 0.2008 rad, rho <= 17.12, the DXF's lines <= 10.92: 0.2008^2 * 17.12 / 8 +
+    // 0.2008 * 10.92 / 4 = 0.64.
+    {"Old/example009.scad", 0.64},
 };
 
 // Examples OpenSCAD takes more than ~25 s to export here (CGAL's exact booleans), measured
@@ -64,11 +77,18 @@ const std::map<std::string, std::string> kOpenScadMeshFlaws = {
      "reports them): mean sample distance 0.084, volume within 5e-4"},
 };
 
-// Examples csgray itself is too slow on for the default test run, and why.
-const std::map<std::string, std::string> kSlowInCsgray = {
+// Examples csgray itself is too slow on for the default test run, and why: to load at all...
+const std::map<std::string, std::string> kSlowToLoad = {
     {"Advanced/GEB.scad",
      "over 100 s to load: projection() of extruded text takes the face method's pairs of "
      "faces (csg/section/)"},
+};
+// ... or to compare (they load in the test).
+const std::map<std::string, std::string> kSlowToCompare = {
+    {"Old/example020.scad",
+     "312 s: 700k surface samples through the spring's 133 twisted leaves, which share one "
+     "bounding cylinder; twist_test holds its vertices and volume to OpenSCAD's within its "
+     "slicing error (3.2)"},
 };
 
 std::vector<std::string> exampleNames() {
@@ -90,8 +110,8 @@ class OpenScadExample : public ::testing::TestWithParam<std::string> {};
 TEST_P(OpenScadExample, LoadsAndLiesOnOpenScadsMesh) {
     const std::string name = GetParam();
     const fs::path path = kExamples / name;
-    if (const auto it = kSlowInCsgray.find(name); it != kSlowInCsgray.end())
-        GTEST_SKIP() << "csgray is too slow on it: " << it->second;
+    if (const auto it = kSlowToLoad.find(name); it != kSlowToLoad.end())
+        GTEST_SKIP() << "csgray is too slow to load it: " << it->second;
     cli::ScratchDir dir;
     const cli::RunResult info = cli::runCsgray({"info", path.string(), "--curves", "openscad"},
                                                dir.path());
@@ -103,6 +123,8 @@ TEST_P(OpenScadExample, LoadsAndLiesOnOpenScadsMesh) {
     const nlohmann::json tree = nlohmann::json::parse(info.out);
     if (tree["bounds"].is_null()) GTEST_SKIP() << "no geometry (OpenSCAD exports none either)";
     if (kSlowInOpenScad.count(name)) GTEST_SKIP() << "OpenSCAD takes " << kSlowInOpenScad.at(name);
+    if (const auto it = kSlowToCompare.find(name); it != kSlowToCompare.end())
+        GTEST_SKIP() << "csgray is too slow to compare it: " << it->second;
 
     const fs::path stl = dir / "openscad.stl";
     const std::string command = "cd " + cli::shellQuote(path.parent_path().string()) +
@@ -126,8 +148,13 @@ TEST_P(OpenScadExample, LoadsAndLiesOnOpenScadsMesh) {
     for (int a = 0; a < 3; ++a)
         diagonal += std::pow(hi[a].get<double>() - lo[a].get<double>(), 2.0);
     diagonal = std::sqrt(diagonal);
-    const double tolerance = 1e-5 * diagonal;
     ASSERT_FALSE(j["surfaceToMesh"]["max"].is_null()) << j.dump();
+    if (const auto it = kSlicedByOpenScad.find(name); it != kSlicedByOpenScad.end()) {
+        EXPECT_LE(j["surfaceToMesh"]["max"].get<double>(), it->second) << j.dump();
+        EXPECT_LE(j["meshToSurface"]["max"].get<double>(), it->second) << j.dump();
+        return;
+    }
+    const double tolerance = 1e-5 * diagonal;
     EXPECT_LE(j["surfaceToMesh"]["max"].get<double>(), tolerance) << j.dump();
     if (!kOpenScadMeshFlaws.count(name)) {
         EXPECT_LE(j["meshToSurface"]["mean"].get<double>(), tolerance) << j.dump();

@@ -138,6 +138,9 @@ bool leafPlanes(const Leaf& leaf, uint32_t id, std::vector<Plane>& out) {
         const Bounds3 capTop{Vec3(box.lo * e->scale, e->z1), Vec3(box.hi * e->scale, e->z1)};
         worldPlane(w, Vec3(0, 0, 1), e->z1, id, out, {}, &capTop);
         worldPlane(w, Vec3(0, 0, -1), -e->z0, id, out, {}, &capBottom);
+        // An edge's side is a plane only when its top is its bottom scaled uniformly and
+        // untwisted; a scale per axis or a twist makes it a ruled surface or a helicoid.
+        if (e->twist != 0.0 || e->scale.x != e->scale.y) return false;
         bool allLines = true;
         for (const Segment2& s : e->outline->segments) {
             if (s.kind != Segment2::Kind::Line) {
@@ -400,7 +403,9 @@ bool polyhedralLeafPoints(const Primitive& primitive, std::vector<Vec3>& out) {
         return true;
     }
     if (const auto* e = std::get_if<Extrusion>(&primitive)) {
-        if (e->kind != Extrusion::Kind::Linear || !e->outline) return false;
+        // A twisted side bulges past its corners' hull; a side scaled per axis is a bilinear
+        // patch, which lies within the hull of its four corners.
+        if (e->kind != Extrusion::Kind::Linear || !e->outline || e->twist != 0.0) return false;
         for (const Segment2& s : e->outline->segments)
             if (s.kind != Segment2::Kind::Line) return false;
         for (const Segment2& s : e->outline->segments) {

@@ -477,4 +477,87 @@ inline constexpr double kLeafMeshToleranceRel = 5e-4;
 // is ~10^9 below any feature a part resolves.
 inline constexpr double kOnFacePlaneRel = 1e-12;
 
+// glibc's cos and sin are within this of the exact value at any double argument (unit:
+// absolute, the values lying in [-1, 1]). Why: glibc documents a maximum error of 1 ulp for
+// both on x86-64 (its manual's "Errors in Math Functions"), and an ulp of a value in [-1, 1] is
+// at most kUlp; twice that is a margin against a libm that misses by a little more. Interval
+// enclosures of cos and sin (solvers/Interval.h) widen by it.
+inline constexpr double kLibmTrigError = 2 * kUlp;
+
+// Twisted extrusions (primitives/TwistedExtrusion.h). A line's chord through the solid is
+// first cut into pieces over which the twist turns the line's image by at most this angle
+// (unit: radians). Why 1: over a radian the image's curvature changes little, so the bounds on
+// its first and second derivatives that the isolation uses stay within a small factor of the
+// true values, and a piece rarely holds more than one turn of a segment's function; much
+// smaller only multiplies the pieces every segment must test, much larger makes the first
+// pieces' bounds so loose that they are split anyway.
+inline constexpr double kSweepPieceAngle = 1.0;
+
+// The most first pieces a twisted extrusion cuts a chord into (unit: pieces). Why: twist is
+// unbounded in the language (OpenSCAD accepts 1e6 degrees); past this count the pieces turn
+// by more than kSweepPieceAngle, which costs more halvings, never a root, and the work per ray
+// stays bounded. 4096 pieces cover 650 turns over a full-height chord.
+inline constexpr int kSweepMaxFirstPieces = 4096;
+
+// A twisted extrusion halves a piece at most this many times (unit: halvings of a first
+// piece). Why 60: a first piece is at most the chord, and 2^-60 of it is below the double
+// resolution of any parameter in it (2^-52 relative); a piece still undecided there is given
+// up as a cluster (its two ends become candidates), which is exact to that width.
+inline constexpr int kSweepMaxDepth = 60;
+
+// Below this depth a twisted extrusion splits an undecided piece where its segment's function
+// G turns (where G' vanishes, when G'' has a proven sign there), and from it on at the
+// midpoint (unit: splits). Why 8: a piece split at its turn usually has two monotone parts at
+// once; one still undecided after 8 such splits is near a tangency, where the turn and a root
+// nearly meet and halving is the sure way down. Any split point is correct: this only saves
+// work.
+inline constexpr int kSweepTurnSplitDepth = 8;
+// ... and finds that turn with this many steps of Newton's method on G', safeguarded by
+// bisection (unit: iterations). Why 6: the turn is only a split point, not a result, and
+// Newton converging quadratically from the secant's estimate is within a fraction of a percent
+// of the piece by then; more steps would refine what no answer depends on.
+inline constexpr int kSweepTurnIterations = 6;
+
+// A twisted extrusion tests at most this many pieces per segment and line (unit: pieces).
+// Why: it bounds the work on any line whatever the twist and the outline (the pieces left
+// when it runs out become candidates at both ends, exact to their width); a simple root
+// costs a handful of pieces and a tangency about 2 per level of kSweepMaxDepth, so only a
+// line with thousands of near-tangencies along one segment's sweep could run out.
+inline constexpr int kSweepMaxPieces = 1 << 14;
+
+// A twisted extrusion's bounding cylinder (radius: the outline's farthest box corner from the
+// axis times the largest scale) is widened by this fraction (unit: relative). Why: the radius
+// and the line's chord through the cylinder are rounded (a few ulps); the solid must lie
+// strictly inside the chord so that the chord's ends are outside it, and 1e-9 covers the
+// rounding by 10^6 while adding nothing but a little empty chord.
+inline constexpr double kSweepBoundsMarginRel = 1e-9;
+
+// A crossing found on a segment's carrier curve (its line, ellipse or implicit Bezier curve)
+// is kept as a candidate when its profile point lies in the segment's box widened by this
+// fraction of the box's size plus its distance from the origin (unit: relative). Why: the
+// point carries the root's and the map's rounding, ~1e-15 relative; a crossing at a segment's
+// end must survive it, and 1e-9 does by 10^6, while a spurious candidate (a crossing of the
+// carrier off the segment that passed) costs only one more midpoint test.
+inline constexpr double kSweepCandidateSlackRel = 1e-9;
+
+// An outline Bezier whose control points lie within this fraction of their extent from the
+// line through the farthest two is carried by that line, and a cubic whose third-degree
+// coefficient is this small relative to its extent by the quadratic it then is (unit:
+// relative). Why: the implicit equation of a flatter curve cancels to this fraction, so it
+// carries less information than the straight carrier, whose error is the curve's distance from
+// it: 1e-12 of the curve, 1000x below kCoincidentRel. (Exactly flat curves make the implicit
+// equation a power of the line's, which has no sign change to isolate.)
+inline constexpr double kFlatCurveRel = 1e-12;
+
+// Newton's method, safeguarded by bisection, polishes a bracketed crossing of a twisted
+// extrusion in at most this many steps (unit: iterations). Why: every step at least halves the
+// bracket when Newton's step is refused, and 64 halvings take any bracket below double
+// resolution, so the bound is never what stops a simple root (4 to 6 steps).
+inline constexpr int kSweepNewtonIterations = 64;
+// ... and stops when a step or the bracket is at most this many ulps of |t| (unit: ulps of the
+// line parameter, measured at |t| of the world-local line). Why: t = tm + tau is rounded to an
+// ulp of |t| when it is formed, so a finer root would be lost there; 4 leaves the last Newton
+// step (which is then below an ulp or two) room to land.
+inline constexpr double kSweepRootStepUlps = 4.0;
+
 }  // namespace csg::tol

@@ -1,12 +1,15 @@
-// A closed interval of doubles with outward rounding, and rigorous enclosures of a polynomial
-// and its derivative over an interval. Rounding outward is done after the fact: the
+// A closed interval of doubles with outward rounding, its arithmetic, enclosures of cos and
+// sin, and rigorous enclosures of a polynomial and its derivative over an interval. Rounding outward is done after the fact: the
 // round-to-nearest result moved one ulp outward (std::nextafter) contains the exact one, as
 // round-to-nearest is off by at most half an ulp. No rounding-mode switches, so it is safe in
 // any thread and under any compiler flags short of -ffast-math.
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include "primitives/base/Math.h"
 #include "primitives/base/Tolerances.h"
@@ -21,12 +24,98 @@ struct Interval {
     double magnitude() const { return std::max(-lo, hi); }
 };
 
-// The next double toward -inf / +inf: the outward step after a rounded operation.
-inline double down(double x) {
-    return std::nextafter(x, -kInfinity);
-}
+// The next double toward -inf / +inf: the outward step after a rounded operation. The same
+// values as std::nextafter(x, -inf / +inf), stepped on the bits inline: libm's nextafter is a
+// call that cost more than the arithmetic it widens (twice per interval operation).
 inline double up(double x) {
-    return std::nextafter(x, kInfinity);
+    if (!(x < kInfinity)) return x;  // +inf and NaN stay
+    if (x == 0.0) return std::numeric_limits<double>::denorm_min();
+    const uint64_t bits = std::bit_cast<uint64_t>(x);
+    return std::bit_cast<double>(x > 0.0 ? bits + 1 : bits - 1);
+}
+inline double down(double x) {
+    return -up(-x);
+}
+
+// Interval arithmetic, rounded outward: each bound is the round-to-nearest result moved one
+// ulp outward, so the result encloses every exact result of the operands' points. The
+// operands must be finite (an infinite bound makes inf - inf or 0 * inf, a NaN bound): a NaN
+// bound makes every test below false, which callers treat as "undecided", never as a proof.
+inline Interval pointInterval(double x) {
+    return {x, x};
+}
+inline Interval operator+(Interval a, Interval b) {
+    return {down(a.lo + b.lo), up(a.hi + b.hi)};
+}
+inline Interval operator-(Interval a, Interval b) {
+    return {down(a.lo - b.hi), up(a.hi - b.lo)};
+}
+inline Interval operator-(Interval a) {
+    return {-a.hi, -a.lo};
+}
+inline Interval operator+(Interval a, double b) {
+    return {down(a.lo + b), up(a.hi + b)};
+}
+inline Interval operator+(double a, Interval b) {
+    return b + a;
+}
+inline Interval operator-(Interval a, double b) {
+    return {down(a.lo - b), up(a.hi - b)};
+}
+inline Interval operator-(double a, Interval b) {
+    return {down(a - b.hi), up(a - b.lo)};
+}
+inline Interval operator*(double a, Interval b) {
+    return a >= 0.0 ? Interval{down(a * b.lo), up(a * b.hi)}
+                    : Interval{down(a * b.hi), up(a * b.lo)};
+}
+inline Interval operator*(Interval a, double b) {
+    return b * a;
+}
+inline Interval operator*(Interval a, Interval b) {
+    const double p0 = a.lo * b.lo, p1 = a.lo * b.hi, p2 = a.hi * b.lo, p3 = a.hi * b.hi;
+    return {down(std::min(std::min(p0, p1), std::min(p2, p3))),
+            up(std::max(std::max(p0, p1), std::max(p2, p3)))};
+}
+// a / b for a double b != 0.
+inline Interval operator/(Interval a, double b) {
+    return b > 0.0 ? Interval{down(a.lo / b), up(a.hi / b)}
+                   : Interval{down(a.hi / b), up(a.lo / b)};
+}
+// The square, tighter than a * a when a straddles 0 (the dependency of the two factors).
+inline Interval sqr(Interval a) {
+    if (a.lo >= 0.0) return {down(a.lo * a.lo), up(a.hi * a.hi)};
+    if (a.hi <= 0.0) return {down(a.hi * a.hi), up(a.lo * a.lo)};
+    const double m = std::max(-a.lo, a.hi);
+    return {0.0, up(m * m)};
+}
+// The symmetric interval [-r, r] (r >= 0).
+inline Interval plusMinus(double r) {
+    return {-r, r};
+}
+// Whether a and b may share a point: false only when they are provably disjoint (a NaN bound
+// proves nothing).
+inline bool overlaps(Interval a, Interval b) {
+    return !(a.hi < b.lo || b.hi < a.lo);
+}
+// The sign of every point of a: +1 or -1, or 0 when a holds 0 or a bound is NaN.
+inline int provenSign(Interval a) {
+    return a.lo > 0.0 ? 1 : a.hi < 0.0 ? -1 : 0;
+}
+// Enclosures of cos and sin over a, from libm's value at a's midpoint: both are 1-Lipschitz,
+// so they stay within a's half-width of it, and glibc's cos and sin are within
+// tol::kLibmTrigError of the exact value at any double (its documented 1-ulp bound).
+inline Interval enclosedCos(Interval a) {
+    const double m = a.lo + 0.5 * (a.hi - a.lo);
+    const double e = up(up(std::max(a.hi - m, m - a.lo)) + tol::kLibmTrigError);
+    const double c = std::cos(m);
+    return {std::max(-1.0, down(c - e)), std::min(1.0, up(c + e))};
+}
+inline Interval enclosedSin(Interval a) {
+    const double m = a.lo + 0.5 * (a.hi - a.lo);
+    const double e = up(up(std::max(a.hi - m, m - a.lo)) + tol::kLibmTrigError);
+    const double s = std::sin(m);
+    return {std::max(-1.0, down(s - e)), std::min(1.0, up(s + e))};
 }
 
 // Enclosures of p and p' over [m - r, m + r] (r >= 0) in centred (Taylor) form:

@@ -18,8 +18,10 @@ const char* const kCommonOptionsHelp =
     "                         exact: every curve exact, $fn ignored;\n"
     "                         openscad: every curve faceted as OpenSCAD 2021 would, $fa and\n"
     "                           $fs included (to check against its meshes)\n"
-    "                         linear_extrude (with a uniform scale) is exact in every mode:\n"
-    "                           OpenSCAD's own extrusion of a polygon has no other facets\n"
+    "                         linear_extrude is exact in every mode: OpenSCAD's own\n"
+    "                           extrusion of a polygon has no other facets; with twist\n"
+    "                           or scale = [sx, sy] OpenSCAD's sliced solid is not built\n"
+    "                           (slices is read and ignored)\n"
     "  --diagnostics=FORMAT   text (default): file:line:col: error: message on stderr;\n"
     "                         json: one JSON array of diagnostics on stderr\n"
     "  -h, --help             show this help\n";
