@@ -54,6 +54,38 @@ bool insideNode(const std::vector<CompiledNode>& nodes, const std::vector<LeafGe
 
 }  // namespace
 
+std::vector<Bounds3> Scene::leafReach() const {
+    std::vector<Bounds3> reach(leaves_.size());
+    if (nodes_.empty()) return reach;
+    struct Visit {
+        uint32_t node;
+        Bounds3 within;
+    };
+    const Bounds3 everywhere{Vec3(-kInfinity), Vec3(kInfinity)};
+    std::vector<Visit> stack{{root_, everywhere}};
+    while (!stack.empty()) {
+        const Visit v = stack.back();
+        stack.pop_back();
+        const CompiledNode& node = nodes_[v.node];
+        const Bounds3 within = overlap(v.within, node.bounds);
+        switch (node.kind) {
+            case Op::Leaf:
+                reach[node.first] = within;
+                break;
+            case Op::Union:
+                for (uint32_t k = 0; k < node.count; ++k)
+                    stack.push_back({children_[node.first + k], within});
+                break;
+            case Op::Intersection:
+            case Op::Difference:
+                stack.push_back({node.first, within});
+                stack.push_back({node.second, within});
+                break;
+        }
+    }
+    return reach;
+}
+
 bool Scene::inside(const Vec3& p) const {
     return insideNode(nodes_, leaves_, frames_, children_, root_, p);
 }

@@ -103,6 +103,11 @@ public:
     // Index of the leaf's primitive in Primitive (the variant), and the primitive itself.
     const Primitive& leafPrimitive(uint32_t leaf) const;
     const Mat4& leafWorldFromLocal(uint32_t leaf) const;
+    // Per leaf, a box outside which its surface cannot bound the part: the overlap of its own
+    // bounds with those of every operator above it (an intersection's bounds are its operands'
+    // overlap, a difference's its left operand's), so a difference's right operand reaches
+    // only as far as the left one does. Empty for a leaf that nothing of the part can show.
+    std::vector<Bounds3> leafReach() const;
 
 private:
     friend struct SpanWalk;

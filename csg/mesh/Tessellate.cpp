@@ -137,14 +137,32 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
         hMin = hi;
     }
 
+    // An all-polyhedral part: its exact boundary, measured both ways like the grid's mesh.
+    DistanceOptions measure;
+    measure.threads = options.threads;
+    measure.goodEnough = tolerance;
+    if (options.exactPolyhedra && allLeavesPolyhedral(scene)) {
+        if (auto mesh = polyhedralBoundary(scene, options.threads, &result.polyhedral)) {
+            result.mesh = std::move(*mesh);
+            result.exact = true;
+            // The figures are upper bounds, as for any mesh: the vertices and edge midpoints
+            // lie on the part's edges, where a sample's first line may only graze the solid
+            // and its answer is taken when within the tolerance (MeshDistance.h).
+            measure.reach = tolerance;
+            result.error = meshToSurface(scene, result.mesh, measure);
+            const TriangleBvh bvh(result.mesh, options.threads);
+            result.backError = surfaceToMesh(scene, bvh, kSurfaceRaysPerAxis, measure);
+            result.toleranceMet = std::max(result.error.max, result.backError.max) <= tolerance;
+            result.gridTriangles = result.mesh.triangles.size();
+            return result;
+        }
+    }
+
     // Step 2: the first spacing from the curvature rule with the reference radius.
     const double radius = tol::kMeshReferenceRadius * diagonal;
     double h = std::min(std::sqrt(8.0 * radius * tolerance / 3.0), diagonal / 8.0);
 
     // Step 3: mesh, measure, refine.
-    DistanceOptions measure;
-    measure.threads = options.threads;
-    measure.goodEnough = tolerance;
     for (int pass = 0; pass < std::max(1, options.maxPasses); ++pass) {
         if (h <= hMin) {
             result.capped = h < hMin;

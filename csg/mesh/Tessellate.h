@@ -1,4 +1,6 @@
-// A scene to a triangle mesh within a distance tolerance: tri-dexel Hermite data on a uniform
+// A scene to a triangle mesh within a distance tolerance. A part whose leaves are all polyhedra
+// is a polyhedron: it gets its exact boundary (PolyhedralBoundary.h), measured like any mesh.
+// Every other part: tri-dexel Hermite data on a uniform
 // grid with planes added through walls and gaps thinner than a cell (ThinFeatures.h), manifold
 // dual contouring (with flat blocks of cells merged, the octree of DualContour.h, when
 // TessellateOptions::adaptive is on), and a measure-and-refine loop on the grid spacing. The
@@ -36,6 +38,7 @@
 #include "csg/Scene.h"
 #include "csg/mesh/DualContour.h"
 #include "csg/mesh/MeshDistance.h"
+#include "csg/mesh/PolyhedralBoundary.h"
 #include "csg/mesh/ThinFeatures.h"
 #include "csg/mesh/TriangleBvh.h"
 #include "csg/mesh/TriangleMesh.h"
@@ -61,6 +64,10 @@ struct TessellateOptions {
     // and the unfolding step; its GLB there: 0 self-intersections since the simplifier's and
     // the unfolding's fixes).
     bool adaptive = false;
+    // A part whose leaves are all polyhedra (boxes, $fn-faceted cylinders and spheres,
+    // polyhedron(), imported meshes) gets its exact boundary (PolyhedralBoundary.h) instead of
+    // the grid's approximation; off only to measure the grid on such parts.
+    bool exactPolyhedra = true;
     bool simplify = true;  // coarsen flat regions after the grid passes (Simplify.h)
     // Grid meshes larger than this are not simplified (0: no limit). Decimation (in slabs on
     // all workers, then once over the whole) and its re-measurement both ways cost more than
@@ -100,6 +107,8 @@ struct TessellateResult {
     DistanceStats backError;  // surface to mesh (kSurfaceRaysPerAxis^2 lines per axis)
     DualContourStats contour;
     bool toleranceMet = false;            // error.max and backError.max <= tolerance
+    bool exact = false;                   // the exact boundary of an all-polyhedral part
+    PolyhedralBoundaryStats polyhedral;   // how it was made, or why it was declined
     bool capped = false;                  // maxCells stopped the refinement
     bool stalled = false;                 // refinement stopped paying (see Tessellate.h's header)
     uint64_t gridTriangles = 0;           // triangles of the grid's mesh, before simplification

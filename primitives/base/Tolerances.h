@@ -172,6 +172,25 @@ inline constexpr double kMeshReferenceRadius = 0.05;
 // measure-and-refine loop still measures the result.
 inline constexpr double kOctreeFlatFraction = 0.25;
 
+// The exact boundary of an all-polyhedral part (csg/mesh/PolyhedralBoundary.h). A vertex within
+// this fraction of the part's size (max(1, diagonal, largest |coordinate|)) of a cutting plane
+// lies on it (unit: relative). Why: the planes and the cut points come from a few products and
+// one division of world coordinates, ~10^2 ulps of the size, 10^4 below this; and no part puts
+// features 10^-10 of its size apart on purpose.
+inline constexpr double kPolyBoundaryOnPlaneRel = 1e-10;
+// ... positions closer than this fraction of the size are one vertex, a vertex this close to
+// another piece's edge is put into it, a triangle's corner this close to the line through the
+// other two is on it (no ear), and the pieces of one face are merged by collapses that
+// move no vertex farther than this off the face's plane (unit: relative). Why: ten times the
+// on-plane slack, so the same corner reached through different cuts (each within it of the
+// exact point) always welds.
+inline constexpr double kPolyBoundaryWeldRel = 1e-9;
+// Two faces whose unit normals' dot product is within this of +-1 are parallel: a coplanar one
+// cuts along its edges, a parallel one elsewhere not at all (unit: 1 - |cos|). Why: 1e-12 is an
+// angle of 1.4e-6 rad; the line where faces that close to parallel meet is ill-conditioned,
+// while OpenSCAD's coplanar faces (a cube on a cube) have equal normals to a few ulps.
+inline constexpr double kPolyBoundaryParallelCos = 1e-12;
+
 // ... and only when every sampled normal in the block lies within this angle of their mean
 // (unit: radians, 8 degrees). Two normals of a block then differ by at most 16 degrees, below
 // kCreaseAngle's 20: no face of a merged block carries a crease vertex, and a crease (a box

@@ -165,10 +165,28 @@ int exportCommand(std::span<const std::string> args) {
                 p.contour.octreeFallback ? ", not a manifold: uniform used" : "", p.error,
                 p.backError, p.seconds, p.castSeconds, p.contourSeconds, p.toSurfaceSeconds,
                 p.bvhSeconds, p.backSeconds);
+    const csg::PolyhedralBoundaryStats& exact = result.polyhedral;
+    if (verbose && !quiet && (result.exact || exact.declined))
+        std::fprintf(stderr,
+                     "csgray: export: exact polyhedral boundary: %s; %llu faces cut into %llu "
+                     "pieces, %llu on the boundary, %llu T-junctions closed, %llu triangles "
+                     "before merging; %.2f s cutting and classifying, %.2f s assembling, "
+                     "%.2f s merging\n",
+                     result.exact ? "made" : exact.declined, (unsigned long long)exact.faces,
+                     (unsigned long long)exact.pieces, (unsigned long long)exact.kept,
+                     (unsigned long long)exact.tJunctions,
+                     (unsigned long long)exact.trianglesBeforeMerge, exact.classifySeconds,
+                     exact.assembleSeconds, exact.mergeSeconds);
     if (verbose && !quiet)
         std::fprintf(stderr, "csgray: export: writing %s (checks, crease normals) took %.2f s\n",
                      output.c_str(), writeSeconds);
-    if (!quiet)
+    if (!quiet && result.exact)
+        std::fprintf(stderr,
+                     "csgray: export: %s: %zu triangles (the exact polyhedral boundary), %zu "
+                     "vertices, mesh->surface %.3g, surface->mesh %.3g (tolerance %.3g), %.2f s\n",
+                     output.c_str(), result.mesh.triangles.size(), result.mesh.positions.size(),
+                     result.error.max, result.backError.max, result.tolerance, seconds);
+    else if (!quiet)
         std::fprintf(
             stderr,
             "csgray: export: %s: %zu triangles (grid %llu%s), %zu vertices, cell %.6g, "

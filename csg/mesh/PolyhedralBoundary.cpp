@@ -1,0 +1,504 @@
+#include "csg/mesh/PolyhedralBoundary.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <unordered_map>
+#include <variant>
+#include <vector>
+
+#include "csg/mesh/BoxGrid.h"
+#include "csg/mesh/MeshCheck.h"
+#include "csg/mesh/Simplify.h"
+#include "primitives/Box.h"
+#include "primitives/ConvexPolytope.h"
+#include "primitives/Polyhedron.h"
+#include "primitives/base/ParallelFor.h"
+#include "primitives/base/Tolerances.h"
+
+namespace csg {
+
+namespace {
+
+using Polygon = std::vector<Vec3>;
+
+// A face of a leaf, in world coordinates: a convex polygon in the plane n . p = c.
+struct Face {
+    Polygon corners;
+    Vec3 n;
+    double c = 0.0;
+    Bounds3 box;
+    uint32_t leaf = 0;
+    uint16_t id = 0;
+};
+
+Vec3 newellNormal(const Polygon& p) {
+    Vec3 n(0.0);
+    for (size_t i = 0, k = p.size(); i < k; ++i) {
+        const Vec3& a = p[i];
+        const Vec3& b = p[(i + 1) % k];
+        n += Vec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
+    }
+    return n;
+}
+
+Vec3 centroidOf(const Polygon& p) {
+    Vec3 s(0.0);
+    for (const Vec3& v : p) s += v;
+    return s / double(p.size());
+}
+
+// Adds the face with corners (in local coordinates) under m; faces without area are left out
+// (no line can end a span on them).
+void addFace(const Mat4& m, const Polygon& local, uint32_t leaf, uint16_t id,
+             std::vector<Face>& out) {
+    Face f;
+    f.corners.reserve(local.size());
+    for (const Vec3& p : local) f.corners.push_back(Vec3(m * glm::dvec4(p, 1.0)));
+    const Vec3 n = newellNormal(f.corners);
+    const double length = glm::length(n);
+    if (!(length > 0.0) || !std::isfinite(length)) return;
+    f.n = n / length;
+    f.c = glm::dot(f.n, centroidOf(f.corners));
+    for (const Vec3& p : f.corners) f.box.extend(p);
+    f.leaf = leaf, f.id = id;
+    out.push_back(std::move(f));
+}
+
+// The faces of one leaf, with the face ids its spans report; false when it is not a polyhedron
+// this method takes.
+bool leafFaces(const Scene& scene, uint32_t leaf, std::vector<Face>& out) {
+    const Primitive& p = scene.leafPrimitive(leaf);
+    const Mat4& m = scene.leafWorldFromLocal(leaf);
+    if (const auto* box = std::get_if<Box>(&p)) {
+        // Face 2a is the low side of axis a, 2a + 1 the high side (Box.h).
+        for (int a = 0; a < 3; ++a)
+            for (int side = 0; side < 2; ++side) {
+                const int b = (a + 1) % 3, c = (a + 2) % 3;
+                Polygon q(4);
+                for (int k = 0; k < 4; ++k) {
+                    Vec3 v;
+                    v[a] = side ? box->hi[a] : box->lo[a];
+                    v[b] = (k == 1 || k == 2) ? box->hi[b] : box->lo[b];
+                    v[c] = (k >= 2) ? box->hi[c] : box->lo[c];
+                    q[size_t(k)] = v;
+                }
+                addFace(m, q, leaf, uint16_t(2 * a + side), out);
+            }
+        return true;
+    }
+    if (const auto* poly = std::get_if<ConvexPolytope>(&p)) {
+        if (!poly->data) return false;
+        const ConvexPolytopeData& d = *poly->data;
+        // Face f is plane f (ConvexPolytope.h).
+        for (size_t f = 0; f + 1 < d.faceStarts.size(); ++f) {
+            Polygon q;
+            for (uint32_t k = d.faceStarts[f]; k < d.faceStarts[f + 1]; ++k)
+                q.push_back(d.vertices[d.faceVertices[k]]);
+            addFace(m, q, leaf, uint16_t(f), out);
+        }
+        return true;
+    }
+    if (const auto* mesh = std::get_if<Polyhedron>(&p)) {
+        // A span end names its triangle by index only below kFaceIds triangles.
+        if (!mesh->data || mesh->data->triangles.size() > Polyhedron::kFaceIds) return false;
+        const PolyhedronData& d = *mesh->data;
+        for (size_t t = 0; t < d.triangles.size(); ++t) {
+            const auto& tri = d.triangles[t];
+            addFace(m, {d.vertices[tri[0]], d.vertices[tri[1]], d.vertices[tri[2]]}, leaf,
+                    uint16_t(t), out);
+        }
+        return true;
+    }
+    return false;
+}
+
+// A cut: the segment of the plane m . p = o (perpendicular to the face it cuts) whose points
+// have u . p in [uLo, uHi], u the direction of the segment.
+struct Cut {
+    Vec3 m;
+    double o;
+    Vec3 u;
+    double uLo, uHi;
+};
+
+// Splits the pieces the cut's segment reaches by its plane; points within eps of the plane lie
+// on it (in both halves). A piece the segment does not reach stays whole: the cut is no border
+// there (the T-junctions this leaves within a face are closed later like any other).
+void splitPieces(std::vector<Polygon>& pieces, const Cut& cut, double eps,
+                 std::vector<Polygon>& scratch) {
+    scratch.clear();
+    for (Polygon& piece : pieces) {
+        bool below = false, above = false;
+        double uMin = kInfinity, uMax = -kInfinity;
+        for (const Vec3& v : piece) {
+            const double s = glm::dot(cut.m, v) - cut.o;
+            below = below || s < -eps;
+            above = above || s > eps;
+            const double along = glm::dot(cut.u, v);
+            uMin = std::min(uMin, along), uMax = std::max(uMax, along);
+        }
+        if (!(below && above) || uMax < cut.uLo - eps || uMin > cut.uHi + eps) {
+            scratch.push_back(std::move(piece));
+            continue;
+        }
+        Polygon lo, hi;
+        for (size_t i = 0, k = piece.size(); i < k; ++i) {
+            const Vec3& a = piece[i];
+            const Vec3& b = piece[(i + 1) % k];
+            const double sa = glm::dot(cut.m, a) - cut.o, sb = glm::dot(cut.m, b) - cut.o;
+            if (sa <= eps) lo.push_back(a);
+            if (sa >= -eps) hi.push_back(a);
+            if ((sa < -eps && sb > eps) || (sa > eps && sb < -eps)) {
+                const Vec3 x = a + (b - a) * (sa / (sa - sb));
+                lo.push_back(x);
+                hi.push_back(x);
+            }
+        }
+        if (lo.size() >= 3) scratch.push_back(std::move(lo));
+        if (hi.size() >= 3) scratch.push_back(std::move(hi));
+    }
+    pieces.swap(scratch);
+}
+
+// The cuts the face g makes on the face f (see the header's step 1).
+void cutsOf(const Face& f, const Face& g, double eps, std::vector<Cut>& out) {
+    const double cosine = glm::dot(f.n, g.n);
+    if (std::abs(cosine) > 1.0 - tol::kPolyBoundaryParallelCos) {
+        // Parallel: a coplanar face cuts along its edges' lines, any other not at all.
+        if (std::abs(glm::dot(f.n, g.corners[0]) - f.c) > eps) return;
+        for (size_t i = 0, k = g.corners.size(); i < k; ++i) {
+            const Vec3& a = g.corners[i];
+            const Vec3 e = g.corners[(i + 1) % k] - a;
+            const Vec3 m = glm::cross(f.n, e);
+            const double length = glm::length(m), edge = glm::length(e);
+            if (!(length > 0.0 && edge > 0.0)) continue;
+            const Vec3 u = e / edge;
+            out.push_back(
+                {m / length, glm::dot(m / length, a), u, glm::dot(u, a), glm::dot(u, a) + edge});
+        }
+        return;
+    }
+    // f must reach g's plane (else the line of g in f's plane misses f) ...
+    bool fBelow = false, fAbove = false;
+    for (const Vec3& v : f.corners) {
+        const double s = glm::dot(g.n, v) - g.c;
+        fBelow = fBelow || s < -eps;
+        fAbove = fAbove || s > eps;
+    }
+    if (!(fBelow && fAbove)) {
+        bool fOn = false;
+        for (const Vec3& v : f.corners) fOn = fOn || std::abs(glm::dot(g.n, v) - g.c) <= eps;
+        if (!fOn) return;
+    }
+    // ... and g must meet f's plane in more than a point.
+    Vec3 lo(0.0), hi(0.0);
+    int found = 0;
+    const Vec3 u = glm::normalize(glm::cross(f.n, g.n));
+    double uLo = kInfinity, uHi = -kInfinity;
+    const auto take = [&](const Vec3& p) {
+        const double s = glm::dot(u, p);
+        if (s < uLo) uLo = s, lo = p;
+        if (s > uHi) uHi = s, hi = p;
+        ++found;
+    };
+    for (size_t i = 0, k = g.corners.size(); i < k; ++i) {
+        const Vec3& a = g.corners[i];
+        const Vec3& b = g.corners[(i + 1) % k];
+        const double sa = glm::dot(f.n, a) - f.c, sb = glm::dot(f.n, b) - f.c;
+        if (std::abs(sa) <= eps) take(a);
+        if ((sa < -eps && sb > eps) || (sa > eps && sb < -eps))
+            take(a + (b - a) * (sa / (sa - sb)));
+    }
+    if (found < 2 || !(uHi - uLo > eps)) return;
+    // The cut's plane holds the line and f's normal.
+    const Vec3 m = glm::normalize(glm::cross(u, f.n));
+    out.push_back({m, 0.5 * (glm::dot(m, lo) + glm::dot(m, hi)), u, uLo, uHi});
+}
+
+// A kept piece: its corners wound counter-clockwise seen from outside the part.
+struct Piece {
+    Polygon corners;
+    uint32_t material = 0;
+};
+
+// Step 1 and 2 for one face.
+void boundaryPieces(const Scene& scene, const std::vector<Face>& faces, const BoxGrid& grid,
+                    uint32_t index, double eps, QueryContext& ctx, std::vector<Piece>& out,
+                    uint64_t& piecesMade) {
+    const Face& f = faces[index];
+    std::vector<uint32_t> near;
+    Bounds3 box = f.box;
+    box.lo -= Vec3(eps), box.hi += Vec3(eps);
+    grid.forEachNear(box, [&](const BoxGrid::Entry& e) {
+        if (e.id != index && faces[e.id].leaf != f.leaf) near.push_back(e.id);
+    });
+    std::sort(near.begin(), near.end());
+    near.erase(std::unique(near.begin(), near.end()), near.end());
+    std::vector<Cut> cuts;
+    for (const uint32_t g : near) cutsOf(f, faces[g], eps, cuts);
+    std::vector<Polygon> pieces{f.corners}, scratch;
+    for (const Cut& cut : cuts) splitPieces(pieces, cut, eps, scratch);
+    piecesMade += pieces.size();
+    for (Polygon& piece : pieces) {
+        if (glm::length(newellNormal(piece)) <= eps * eps) continue;
+        const Vec3 middle = centroidOf(piece);
+        const std::span<const Span> spans =
+            scene.spans(Ray{middle, f.n, -kInfinity, kInfinity}, ctx);
+        // The crossing of the face's own plane is at t = 0; a span end there on this very face
+        // is the boundary. Entering along n means the part lies ahead: the outside is behind.
+        int facing = 0;
+        for (const Span& s : spans) {
+            if (s.in.leaf == f.leaf && s.in.face == f.id && std::abs(s.in.t) <= eps) facing = -1;
+            if (s.out.leaf == f.leaf && s.out.face == f.id && std::abs(s.out.t) <= eps) facing = 1;
+        }
+        if (facing == 0) continue;
+        if (facing < 0) std::reverse(piece.begin(), piece.end());
+        out.push_back({std::move(piece), scene.leafTags(f.leaf).material});
+    }
+}
+
+// Welds positions closer than eps into one index (a hash of cells of edge 2 eps: a position's
+// neighbours are in the 27 cells around its own).
+class Welder {
+public:
+    explicit Welder(double eps) : eps_(eps), cell_(2.0 * eps) {}
+
+    uint32_t index(const Vec3& p) {
+        const std::array<int64_t, 3> c = cellOf(p);
+        for (int64_t dz = -1; dz <= 1; ++dz)
+            for (int64_t dy = -1; dy <= 1; ++dy)
+                for (int64_t dx = -1; dx <= 1; ++dx) {
+                    const auto it = cells_.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
+                    if (it == cells_.end()) continue;
+                    for (const uint32_t i : it->second)
+                        if (glm::distance(positions[i], p) <= eps_) return i;
+                }
+        const uint32_t i = uint32_t(positions.size());
+        positions.push_back(p);
+        cells_[key(c)].push_back(i);
+        return i;
+    }
+
+    std::vector<Vec3> positions;
+
+private:
+    std::array<int64_t, 3> cellOf(const Vec3& p) const {
+        return {int64_t(std::floor(p.x / cell_)), int64_t(std::floor(p.y / cell_)),
+                int64_t(std::floor(p.z / cell_))};
+    }
+    static uint64_t key(const std::array<int64_t, 3>& c) {
+        return (uint64_t(c[0]) * 0x9E3779B97F4A7C15ull) ^ (uint64_t(c[1]) * 0xC2B2AE3D27D4EB4Full) ^
+               (uint64_t(c[2]) * 0x165667B19E3779F9ull);
+    }
+    double eps_, cell_;
+    std::unordered_map<uint64_t, std::vector<uint32_t>> cells_;
+};
+
+// Inserts into every edge the welded vertices that lie on it (within eps of the segment,
+// strictly between its ends), in order along it. Only edges no other piece runs the other way
+// can hold such a vertex, and only the ends of such edges can be one.
+uint64_t closeTJunctions(const std::vector<Vec3>& positions,
+                         std::vector<std::vector<uint32_t>>& polygons, double eps) {
+    std::unordered_map<uint64_t, int> directed;
+    const auto key = [](uint32_t a, uint32_t b) { return (uint64_t(a) << 32) | b; };
+    for (const auto& poly : polygons)
+        for (size_t i = 0, k = poly.size(); i < k; ++i) ++directed[key(poly[i], poly[(i + 1) % k])];
+    std::vector<uint32_t> loose;
+    for (const auto& poly : polygons)
+        for (size_t i = 0, k = poly.size(); i < k; ++i) {
+            const uint32_t a = poly[i], b = poly[(i + 1) % k];
+            if (!directed.count(key(b, a))) loose.push_back(a), loose.push_back(b);
+        }
+    std::sort(loose.begin(), loose.end());
+    loose.erase(std::unique(loose.begin(), loose.end()), loose.end());
+    if (loose.empty()) return 0;
+    // Sorted by x, so an edge looks only at the loose vertices within its x range.
+    std::sort(loose.begin(), loose.end(),
+              [&](uint32_t a, uint32_t b) { return positions[a].x < positions[b].x; });
+    uint64_t inserted = 0;
+    for (auto& poly : polygons) {
+        std::vector<uint32_t> out;
+        for (size_t i = 0, k = poly.size(); i < k; ++i) {
+            const uint32_t a = poly[i], b = poly[(i + 1) % k];
+            out.push_back(a);
+            if (directed.count(key(b, a))) continue;
+            const Vec3 pa = positions[a], pb = positions[b], e = pb - pa;
+            const double length2 = glm::dot(e, e);
+            if (!(length2 > 0.0)) continue;
+            const double xLo = std::min(pa.x, pb.x) - eps, xHi = std::max(pa.x, pb.x) + eps;
+            auto it = std::lower_bound(loose.begin(), loose.end(), xLo,
+                                       [&](uint32_t v, double x) { return positions[v].x < x; });
+            std::vector<std::pair<double, uint32_t>> on;
+            for (; it != loose.end() && positions[*it].x <= xHi; ++it) {
+                const uint32_t v = *it;
+                if (v == a || v == b) continue;
+                const Vec3 pv = positions[v];
+                const double s = glm::dot(pv - pa, e) / length2;
+                if (!(s > 0.0 && s < 1.0)) continue;
+                if (glm::distance(pa + s * e, pv) <= eps) on.push_back({s, v});
+            }
+            std::sort(on.begin(), on.end());
+            for (const auto& [s, v] : on) out.push_back(v);
+            inserted += on.size();
+        }
+        poly.swap(out);
+    }
+    return inserted;
+}
+
+// Ear clipping of a convex polygon whose corners may include points on its edges (T-junction
+// vertices): an ear is cut only where its tip stands more than the weld distance off the line
+// through its neighbours, and where what it leaves has that much height too (cutting the last
+// corner off a row of edge points would leave them collinear, with no ear at all). Areas are
+// doubled and measured along the polygon's normal.
+void triangulateConvex(const std::vector<Vec3>& positions, std::vector<uint32_t> poly,
+                       const Vec3& normal, double weld, uint32_t material, TriangleMesh& out) {
+    const auto area = [&](uint32_t a, uint32_t b, uint32_t c) {
+        return glm::dot(glm::cross(positions[b] - positions[a], positions[c] - positions[a]),
+                        normal);
+    };
+    double left = 0.0;
+    for (size_t i = 1; i + 1 < poly.size(); ++i) left += area(poly[0], poly[i], poly[i + 1]);
+    size_t i = 0, stale = 0;
+    while (poly.size() > 3 && stale < poly.size()) {
+        const size_t k = poly.size();
+        const uint32_t a = poly[(i + k - 1) % k], b = poly[i], c = poly[(i + 1) % k];
+        const double ear = area(a, b, c);
+        const double base = weld * glm::distance(positions[a], positions[c]);
+        if (ear > base && left - ear > base) {
+            out.triangles.push_back({a, b, c});
+            out.triangleMaterial.push_back(material);
+            poly.erase(poly.begin() + long(i));
+            left -= ear;
+            stale = 0;
+        } else {
+            ++i, ++stale;
+        }
+        i %= poly.size();
+    }
+    if (poly.size() == 3) {
+        out.triangles.push_back({poly[0], poly[1], poly[2]});
+        out.triangleMaterial.push_back(material);
+    }
+}
+
+}  // namespace
+
+bool allLeavesPolyhedral(const Scene& scene) {
+    for (uint32_t leaf = 0; leaf < scene.leafCount(); ++leaf) {
+        const Primitive& p = scene.leafPrimitive(leaf);
+        const auto* mesh = std::get_if<Polyhedron>(&p);
+        const bool ok =
+            std::holds_alternative<Box>(p) || std::holds_alternative<ConvexPolytope>(p) ||
+            (mesh && mesh->data && mesh->data->triangles.size() <= Polyhedron::kFaceIds);
+        if (!ok) return false;
+    }
+    return true;
+}
+
+std::optional<TriangleMesh> polyhedralBoundary(const Scene& scene, int threads,
+                                               PolyhedralBoundaryStats* stats) {
+    PolyhedralBoundaryStats local;
+    PolyhedralBoundaryStats& s = stats ? *stats : local;
+    s = {};
+    auto clock = std::chrono::steady_clock::now();
+    const auto lap = [&clock]() {
+        const auto now = std::chrono::steady_clock::now();
+        const double seconds = std::chrono::duration<double>(now - clock).count();
+        clock = now;
+        return seconds;
+    };
+    const Bounds3 bounds = scene.bounds();
+    if (bounds.empty() || !bounds.finite()) {
+        s.declined = "the part is empty or unbounded";
+        return std::nullopt;
+    }
+    std::vector<Face> all;
+    for (uint32_t leaf = 0; leaf < scene.leafCount(); ++leaf)
+        if (!leafFaces(scene, leaf, all)) {
+            s.declined = "a leaf is not a polyhedron";
+            return std::nullopt;
+        }
+    s.faces = all.size();
+    const double size =
+        std::max({1.0, glm::length(bounds.extent()), std::abs(bounds.lo.x), std::abs(bounds.lo.y),
+                  std::abs(bounds.lo.z), std::abs(bounds.hi.x), std::abs(bounds.hi.y),
+                  std::abs(bounds.hi.z)});
+    const double onPlane = tol::kPolyBoundaryOnPlaneRel * size;
+    const double weld = tol::kPolyBoundaryWeldRel * size;
+
+    // Only the part of a face within its leaf's reach can bound the part (Scene::leafReach):
+    // faces outside it are dropped, and the others cut only within it.
+    const std::vector<Bounds3> reach = scene.leafReach();
+    std::vector<Face> faces;
+    for (Face& f : all) {
+        Bounds3 within = overlap(f.box, reach[f.leaf]);
+        within.lo -= Vec3(onPlane), within.hi += Vec3(onPlane);
+        if (within.empty()) continue;
+        f.box = within;
+        faces.push_back(std::move(f));
+    }
+    all.clear();
+
+    // Step 1 and 2, face by face on every worker.
+    const double cell =
+        std::max(glm::length(bounds.extent()) / std::cbrt(double(faces.size()) + 1.0), weld);
+    BoxGrid grid(bounds.lo, cell);
+    for (uint32_t i = 0; i < faces.size(); ++i) {
+        Bounds3 box = faces[i].box;
+        box.lo -= Vec3(onPlane), box.hi += Vec3(onPlane);
+        grid.insert(i, box);
+    }
+    const int workers = resolveThreads(threads);
+    std::vector<QueryContext> contexts(static_cast<size_t>(workers));
+    std::vector<std::vector<Piece>> kept(faces.size());
+    std::vector<uint64_t> made(faces.size(), 0);
+    parallelFor(faces.size(), workers, [&](int worker, uint64_t i) {
+        boundaryPieces(scene, faces, grid, uint32_t(i), onPlane, contexts[size_t(worker)], kept[i],
+                       made[i]);
+    });
+
+    s.classifySeconds = lap();
+
+    // Step 3: weld, close T-junctions, triangulate, merge the pieces of a face.
+    Welder welder(weld);
+    std::vector<std::vector<uint32_t>> polygons;
+    std::vector<uint32_t> materials;
+    std::vector<Vec3> normals;
+    for (size_t i = 0; i < faces.size(); ++i) {
+        s.pieces += made[i];
+        for (const Piece& piece : kept[i]) {
+            std::vector<uint32_t> poly;
+            for (const Vec3& p : piece.corners) {
+                const uint32_t v = welder.index(p);
+                if (poly.empty() || poly.back() != v) poly.push_back(v);
+            }
+            while (poly.size() > 1 && poly.front() == poly.back()) poly.pop_back();
+            if (poly.size() < 3) continue;
+            polygons.push_back(std::move(poly));
+            materials.push_back(piece.material);
+            normals.push_back(glm::normalize(newellNormal(piece.corners)));
+            ++s.kept;
+        }
+    }
+    s.tJunctions = closeTJunctions(welder.positions, polygons, weld);
+    TriangleMesh mesh;
+    mesh.positions = welder.positions;
+    for (size_t i = 0; i < polygons.size(); ++i)
+        triangulateConvex(mesh.positions, polygons[i], normals[i], weld, materials[i], mesh);
+    s.trianglesBeforeMerge = mesh.triangles.size();
+    s.assembleSeconds = lap();
+    if (!checkTopology(mesh).closedManifold()) {
+        s.declined = "the pieces do not close into a manifold";
+        return std::nullopt;
+    }
+    TriangleMesh merged = simplify(mesh, weld, nullptr, threads);
+    const bool closed = checkTopology(merged).closedManifold();
+    s.mergeSeconds = lap();
+    if (!closed) return mesh;
+    return merged;
+}
+
+}  // namespace csg

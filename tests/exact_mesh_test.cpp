@@ -1,0 +1,150 @@
+// The exact boundary of all-polyhedral parts (csg/mesh/PolyhedralBoundary.h), the export's
+// default for them. Oracles independent of the code: volumes by hand (a notched cube, two
+// overlapping boxes, a cube bored by OpenSCAD's 16-gon), the invariance of volume under a turn,
+// and OpenSCAD 2021's own STL of the peer part (the same polyhedron: the same volume, and no
+// more triangles than OpenSCAD writes).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include "csg/Scene.h"
+#include "csg/mesh/MeshCheck.h"
+#include "csg/mesh/PolyhedralBoundary.h"
+#include "csg/mesh/Tessellate.h"
+#include "io/Evaluate.h"
+#include "io/mesh/MeshFile.h"
+#include "tests/MissingTool.h"
+#include "tests/TempDir.h"
+
+namespace {
+
+using csg::TriangleMesh;
+
+csg::Scene compiled(const std::string& text) {
+    const io::EvaluateResult r = io::evaluateString(text, "part.scad", {});
+    std::string all;
+    for (const io::Diagnostic& d : r.diagnostics) all += io::formatDiagnostic(d) + "\n";
+    EXPECT_TRUE(r.ok()) << all;
+    return r.ok() ? csg::Scene::compile(r.model->root) : csg::Scene();
+}
+
+// The exact boundary, checked closed, outward and free of self-intersections.
+TriangleMesh exactMesh(const csg::Scene& scene) {
+    csg::PolyhedralBoundaryStats stats;
+    const auto mesh = csg::polyhedralBoundary(scene, 0, &stats);
+    EXPECT_TRUE(mesh.has_value()) << (stats.declined ? stats.declined : "");
+    if (!mesh) return {};
+    const csg::MeshTopology topology = csg::checkTopology(*mesh);
+    EXPECT_TRUE(topology.closedManifold())
+        << topology.boundaryEdges << " boundary, " << topology.nonManifoldEdges << " non-manifold, "
+        << topology.misorientedEdges << " misoriented edges";
+    EXPECT_EQ(csg::findSelfIntersections(*mesh).pairs, 0u);
+    return *mesh;
+}
+
+TEST(ExactMesh, NotchedCubeByHand) {
+    // A unit cube cut from the corner of a 2-cube: 8 - 1; 9 faces, the notch's three concave.
+    const TriangleMesh mesh =
+        exactMesh(compiled("difference() { cube(2, center=true); cube(1); }"));
+    EXPECT_NEAR(csg::signedVolume(mesh), 7.0, 1e-12);
+    // 3 whole faces (2 triangles each), 3 L-shaped faces (4 each), the notch's 3 squares (2
+    // each): 24 at the fewest.
+    EXPECT_LE(mesh.triangles.size(), 30u);
+}
+
+TEST(ExactMesh, OverlappingBoxesUnionByHand) {
+    // Unit cubes at the origin and at (0.5, 0.3, 0.2): 1 + 1 - 0.5 * 0.7 * 0.8 = 1.72.
+    const TriangleMesh mesh = exactMesh(compiled("cube(1); translate([0.5, 0.3, 0.2]) cube(1);"));
+    EXPECT_NEAR(csg::signedVolume(mesh), 1.72, 1e-12);
+}
+
+TEST(ExactMesh, CubeBoredByOpenScadsPolygonByHand) {
+    // OpenSCAD's 16-gon of radius 0.3 has area 16/2 r^2 sin(2 pi / 16); the bore runs through.
+    const TriangleMesh mesh = exactMesh(compiled(
+        "difference() { cube(1, center=true); cylinder(h=2, r=0.3, center=true, $fn=16); }"));
+    const double bore = 8.0 * 0.09 * std::sin(std::numbers::pi / 8.0);
+    EXPECT_NEAR(csg::signedVolume(mesh), 1.0 - bore, 1e-12);
+    // OpenSCAD's own mesh of it: 32 triangles in the bore, 20 in each cap around the hole, 2 on
+    // each of the 4 sides: 80.
+    EXPECT_LE(mesh.triangles.size(), 80u);
+}
+
+TEST(ExactMesh, VolumeStaysUnderATurn) {
+    const std::string part =
+        "module part() { difference() { intersection() { cube(1, center=true); "
+        "sphere(0.68, $fn=32); } cylinder(h=2, r=0.3, center=true, $fn=32); "
+        "rotate([90,0,0]) cylinder(h=2, r=0.3, center=true, $fn=32); } }\n";
+    const double upright = csg::signedVolume(exactMesh(compiled(part + "part();")));
+    const double turned =
+        csg::signedVolume(exactMesh(compiled(part + "rotate([13, 34, 7]) part();")));
+    EXPECT_GT(upright, 0.3);
+    EXPECT_NEAR(turned, upright, 1e-9 * upright);
+}
+
+TEST(ExactMesh, CurvedPartsFallBackToTheGrid) {
+    const csg::Scene scene = compiled("difference() { cube(1, center=true); sphere(0.6); }");
+    EXPECT_FALSE(csg::allLeavesPolyhedral(scene));
+    csg::PolyhedralBoundaryStats stats;
+    EXPECT_FALSE(csg::polyhedralBoundary(scene, 0, &stats).has_value());
+    ASSERT_NE(stats.declined, nullptr);
+    csg::TessellateOptions options;
+    options.tolerance = 0.1;
+    options.maxPasses = 1;
+    options.simplify = false;
+    EXPECT_FALSE(csg::tessellate(scene, options).exact);
+}
+
+TEST(ExactMesh, TessellateUsesItAndMeasuresIt) {
+    csg::TessellateOptions options;
+    options.tolerance = 1e-3;
+    const csg::TessellateResult r =
+        csg::tessellate(compiled("difference() { cube(2, center=true); cube(1); }"), options);
+    EXPECT_TRUE(r.exact);
+    EXPECT_TRUE(r.toleranceMet);
+    EXPECT_NEAR(csg::signedVolume(r.mesh), 7.0, 1e-12);
+    // Exact surface points lie on the mesh to rounding.
+    EXPECT_LE(r.backError.max, 1e-12);
+}
+
+// The peer part of bench/README.md's export tables (../shared/peers/part1.scad: a cube cut by
+// OpenSCAD's $fn = 64 sphere, bored three ways) is the same polyhedron in csgray and OpenSCAD:
+// the volumes agree to OpenSCAD's float STL, and csgray writes no more triangles than OpenSCAD.
+constexpr const char* kPeerPart = R"($fn = 64;
+difference() {
+  intersection() { cube(1, center=true); sphere(0.68); }
+  cylinder(h=2, r=0.3, center=true);
+  rotate([90,0,0]) cylinder(h=2, r=0.3, center=true);
+  rotate([0,90,0]) cylinder(h=2, r=0.3, center=true);
+}
+)";
+
+TEST(ExactMesh, PeerPartMatchesOpenScadsMesh) {
+    if (std::system("openscad --version >/dev/null 2>&1") != 0)
+        SKIP_OR_FAIL_IN_CI("openscad is not installed");
+    csg::testing::TempDir dir("csgray_exact_mesh");
+    const auto part = dir.path / "part1.scad";
+    std::ofstream(part) << kPeerPart;
+    const auto stl = dir.path / "part1.stl";
+    const std::string command = "openscad --export-format binstl -o '" + stl.string() + "' '" +
+                                part.string() + "' >/dev/null 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    const io::MeshReadResult theirs = io::readMesh(stl);
+    ASSERT_TRUE(theirs.mesh.has_value()) << theirs.error;
+
+    const TriangleMesh ours = exactMesh(compiled(kPeerPart));
+    const double volume = csg::signedVolume(ours);
+    // OpenSCAD's STL rounds its vertices to floats (6e-8 relative of ~0.5): a volume error of
+    // that times the surface area (~5), 3e-7; 1e-6 leaves room.
+    EXPECT_NEAR(volume, csg::signedVolume(*theirs.mesh), 1e-6);
+    EXPECT_LE(ours.triangles.size(), theirs.mesh->triangles.size());
+    std::printf("csgray %zu triangles, OpenSCAD %zu; volumes %.9f and %.9f\n",
+                ours.triangles.size(), theirs.mesh->triangles.size(), volume,
+                csg::signedVolume(*theirs.mesh));
+}
+
+}  // namespace
