@@ -5,9 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 
-#include "MissingTool.h"
 #include "CliRunner.h"
+#include "MissingTool.h"
 
 namespace cli {
 namespace {
@@ -123,6 +124,32 @@ TEST(CliMesh, GlbPassesTheKhronosValidator) {
         runCsgray({"export", samplePath("pawn.scad").string(), "-o", glb.string()}, dir.path())
             .exitCode,
         0);
+    std::string why;
+    if (!validatorAccepts(glb, why)) SKIP_OR_FAIL_IN_CI(why);
+}
+
+// An all-polyhedral part exports its exact boundary, which the validator accepts like any
+// GLB; --grid meshes the same part on the grid (its summary names the cell).
+TEST(CliMesh, ExactPolyhedralExportAndTheGridFlag) {
+    ScratchDir dir;
+    const fs::path part = dir.path() / "notched.scad";
+    std::ofstream(part) << "difference() { cube(2, center=true); cube(1); }\n";
+    const fs::path glb = dir.path() / "notched.glb";
+    const RunResult exact = runCsgray({"export", part.string(), "-o", glb.string()}, dir.path());
+    ASSERT_EQ(exact.exitCode, 0) << exact.err;
+    EXPECT_NE(exact.err.find("the exact polyhedral boundary"), std::string::npos) << exact.err;
+    const RunResult c = runCsgray({"compare", part.string(), glb.string(), "--json"}, dir.path());
+    const nlohmann::json j = nlohmann::json::parse(c.out);
+    EXPECT_NEAR(j["volume"]["mesh"].get<double>(), 7.0, 1e-6) << c.out;  // 8 - 1, in floats
+    EXPECT_TRUE(j["topology"]["closedManifold"].get<bool>()) << c.out;
+
+    const fs::path gridGlb = dir.path() / "grid.glb";
+    const RunResult grid =
+        runCsgray({"export", part.string(), "-o", gridGlb.string(), "--grid"}, dir.path());
+    ASSERT_EQ(grid.exitCode, 0) << grid.err;
+    EXPECT_EQ(grid.err.find("exact polyhedral boundary"), std::string::npos) << grid.err;
+    EXPECT_NE(grid.err.find("cell"), std::string::npos) << grid.err;
+
     std::string why;
     if (!validatorAccepts(glb, why)) SKIP_OR_FAIL_IN_CI(why);
 }

@@ -17,7 +17,11 @@ namespace {
 const char* const kExportHelp =
     "usage: csgray export PART -o OUT.glb|OUT.gltf|OUT.obj [options]\n"
     "\n"
-    "Meshes the part from its own ray casts: rays along x, y and z through a uniform grid\n"
+    "A part whose every leaf is a polyhedron (cube, polyhedron(), an import, or a cylinder\n"
+    "or sphere faceted by $fn or --curves openscad) is a polyhedron itself: its mesh\n"
+    "is its exact boundary, each leaf face cut where the others meet it and each piece kept\n"
+    "when a ray along its normal says it bounds the part (--grid meshes it as below).\n"
+    "Every other part is meshed from its own ray casts: rays along x, y and z through a grid\n"
     "(with planes added through walls and gaps thinner than a cell) give the exact surface\n"
     "crossings and normals on every grid edge; dual contouring with a\n"
     "QEF per cell keeps sharp edges and corners; the mesh is a closed, outward-oriented\n"
@@ -40,12 +44,14 @@ const char* const kExportHelp =
     "                     vertex each: ~45 % fewer triangles, ~1.4x the time (blocks\n"
     "                     whose triangles would fold are split and the contour redone)\n"
     "  --no-octree        one vertex per cell everywhere (the default)\n"
+    "  --grid             mesh an all-polyhedral part on the grid too (to compare)\n"
     "  --no-simplify      keep the grid's mesh (no coarsening of flat regions)\n"
     "  --simplify         coarsen even a grid mesh over a million triangles (skipped by\n"
     "                     default: there it takes longer than the meshing, e.g. 2.7x)\n"
     "  --threads N        worker threads (default: all cores)\n"
     "  --quiet            no summary on stderr\n"
-    "  --verbose          also one line per grid pass on stderr\n";
+    "  --verbose          also one line per grid pass (or on the exact boundary's\n"
+    "                     pieces and phases) on stderr\n";
 
 }  // namespace
 
@@ -68,6 +74,8 @@ int exportCommand(std::span<const std::string> args) {
             options.adaptive = false;
         } else if (cursor.flag("--octree")) {
             options.adaptive = true;
+        } else if (cursor.flag("--grid")) {
+            options.exactPolyhedra = false;
         } else if (cursor.flag("--no-simplify")) {
             options.simplify = false;
         } else if (cursor.flag("--simplify")) {
