@@ -16,8 +16,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "MissingTool.h"
 #include "CliRunner.h"
+#include "MissingTool.h"
 #include "TempDir.h"
 #include "csg/Scene.h"
 #include "csg/Volume.h"
@@ -192,6 +192,66 @@ TEST(Projection, ShadowOfDifferenceByHand) {
     EXPECT_NEAR(projectedArea("projection() intersection() { cube(10); "
                               "translate([5, 0, 0]) cube(10); }"),
                 50.0, 1e-9);
+}
+
+// A linear_extrude of straight segments with no twist and one scale is a polyhedron, so its
+// shadows are exact (no accuracy note). U is the square [0, 6]^2 less the slot [2, 4] x [2, 6]
+// (area 28; a statement), wound from (0, 0) so that the fans over its caps from that corner overlap
+// the slot: a cap summed by the nonzero rule instead of the even-odd one would fill it (36).
+constexpr const char* kU =
+    "polygon([[0, 0], [6, 0], [6, 6], [4, 6], [4, 2], [2, 2], [2, 6], "
+    "[0, 6]]);";
+
+const csg::Extrusion* exactShadow(const io::EvaluateResult& r, const std::string& part) {
+    EXPECT_TRUE(r.ok()) << part << "\n" << diagnosticsOf(r);
+    const csg::Extrusion* e = shapeOf(r);
+    EXPECT_NE(e, nullptr) << part;
+    if (e) EXPECT_EQ(e->accuracy, nullptr) << part << ": " << e->accuracy;
+    return e;
+}
+
+double exactShadowArea(const std::string& part) {
+    const io::EvaluateResult r = evaluate(part);
+    const csg::Extrusion* e = exactShadow(r, part);
+    return e ? areaOf(*e->outline) : -1.0;
+}
+
+TEST(Projection, ShadowOfStraightExtrusionByHand) {
+    // Along its axis: the outline itself.
+    EXPECT_NEAR(exactShadowArea(std::string("projection() linear_extrude(3) ") + kU), 28.0, 1e-12);
+    // Turned by 30 degrees about x: the walls sweep the U (squeezed to cos 30 in y) by the
+    // height's shadow 3 sin 30 towards -y; the slot opens towards +y, away from the sweep, so
+    // it stays: 28 cos 30 + 6 * 1.5.
+    EXPECT_NEAR(
+        exactShadowArea(std::string("projection() rotate([30, 0, 0]) linear_extrude(3) ") + kU),
+        28.0 * std::cos(kPi / 6) + 9.0, 1e-9);
+    // A frustum: the sections are the square [1, 2] x [0, 1] scaled by 1 to 2 about the
+    // origin; for a convex outline their union is the hull of the bottom and the top, the two
+    // squares (1 + 4) and the triangle (1, 1), (2, 1), (2, 2) that only the walls cover.
+    EXPECT_NEAR(exactShadowArea("projection() linear_extrude(height = 2, scale = 2) "
+                                "translate([1, 0]) square(1);"),
+                5.5, 1e-12);
+    // A pyramid (scale 0) lying down: rotate([90, 0, 0]) takes (x, y, z) to (x, -z, y), so
+    // the base [0, 2]^2 stands on edge along x and the apex goes to (0, -3): a triangle.
+    EXPECT_NEAR(exactShadowArea("projection() rotate([90, 0, 0]) "
+                                "linear_extrude(height = 3, scale = 0) square(2);"),
+                3.0, 1e-12);
+    // Shadows of differences by their faces, with the U's fans among them: a through cut
+    // removes the strip [0, 1] x [0, 6] (28 - 6), a blind one nothing.
+    EXPECT_NEAR(exactShadowArea(std::string("projection() difference() { linear_extrude(3) ") + kU +
+                                " translate([0, 0, -1]) linear_extrude(5) square([1, 6]); }"),
+                22.0, 1e-12);
+    EXPECT_NEAR(exactShadowArea(std::string("projection() difference() { linear_extrude(3) ") + kU +
+                                " translate([0, 0, 1]) linear_extrude(5) square([1, 6]); }"),
+                28.0, 1e-12);
+    // The intersection of the U's prism with the prism over the triangle x + z <= 3 (x, z
+    // >= 0) along y: its top is the slanted wall, over all of the U with x <= 3, which is
+    // [0, 2] x [0, 6] and [2, 3] x [0, 2]: 12 + 2.
+    EXPECT_NEAR(
+        exactShadowArea(std::string("projection() intersection() { linear_extrude(3) ") + kU +
+                        "; rotate([90, 0, 0]) linear_extrude(20, center = true) "
+                        "polygon([[0, 0], [3, 0], [0, 3]]); }"),
+        14.0, 1e-12);
 }
 
 // 2-D children are ignored with OpenSCAD's warning; an unbounded child is an error.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <span>
 #include <stdexcept>
 
@@ -18,9 +19,10 @@ void addVertex(WorldMesh& out, const Mat4& m, const Vec3& p) {
     out.box.extend(v);
 }
 
-// A polygon of corner indices as a fan from its first corner: exact for the convex faces of a
-// box or a convex polytope.
+// A polygon of corner indices as a fan from its first corner, one face: exact for the convex
+// faces of a box or a convex polytope.
 void addFan(WorldMesh& out, uint32_t offset, std::span<const uint32_t> face) {
+    out.faceStarts.push_back(uint32_t(out.triangles.size()));
     for (size_t k = 1; k + 1 < face.size(); ++k)
         out.triangles.push_back({offset + face[0], offset + face[k], offset + face[k + 1]});
 }
@@ -34,6 +36,7 @@ void addBox(WorldMesh& out, const Box& box, const Mat4& m) {
     static constexpr uint32_t kFaces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1},
                                               {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
     for (const auto& face : kFaces) addFan(out, 0, face);
+    out.faceStarts.push_back(uint32_t(out.triangles.size()));
 }
 
 void addPolytope(WorldMesh& out, const ConvexPolytope& polytope, const Mat4& m) {
@@ -43,12 +46,80 @@ void addPolytope(WorldMesh& out, const ConvexPolytope& polytope, const Mat4& m) 
         addFan(out, 0,
                std::span<const uint32_t>(data.faceVertices)
                    .subspan(data.faceStarts[f], data.faceStarts[f + 1] - data.faceStarts[f]));
+    out.faceStarts.push_back(uint32_t(out.triangles.size()));
 }
 
 void addPolyhedron(WorldMesh& out, const Polyhedron& mesh, const Mat4& m) {
     const PolyhedronData& data = *mesh.data;
     for (const Vec3& v : data.vertices) addVertex(out, m, v);
     out.triangles = data.triangles;
+}
+
+// Whether a linear_extrude is a polyhedron: no twist and one scale for both axes (so each wall
+// is a planar trapezoid, or a triangle to an apex), straight segments, and the even-odd rule
+// (a fan over the cap is then the cap by crossing parity; a nonzero outline may wind twice).
+bool isStraightPrism(const Extrusion& e) {
+    if (e.kind != Extrusion::Kind::Linear || e.twist != 0.0 || e.scale.x != e.scale.y ||
+        e.outline->rule != FillRule::EvenOdd)
+        return false;
+    for (const Segment2& s : e.outline->segments)
+        if (s.kind != Segment2::Kind::Line) return false;
+    return true;
+}
+
+// The prism (or frustum, or pyramid at scale 0) over a straight outline: the bottom outline at
+// z0, the top one scaled by s at z1, a wall of two triangles per segment and each cap a fan
+// from one outline vertex c. The fan's triangles overlap where the outline is not convex from
+// c, but their even-odd sum is the cap: a point q lies in the triangle of segment ab exactly
+// when the ray from q away from c crosses ab, so the triangles over q are as many as that
+// ray's crossings of the outline, odd exactly inside. Sections and shadows read faces so
+// (LeafMesh.h).
+void addPrism(WorldMesh& out, const Extrusion& e, const Mat4& m) {
+    const Outline& outline = *e.outline;
+    // Corners welded by their exact coordinates: segments that meet share the very same
+    // doubles (Outline.h), so the walls share edges and the sections' loops close.
+    std::map<std::pair<double, double>, uint32_t> index;
+    std::vector<Vec2> corners;
+    auto corner = [&](Vec2 p) {
+        const auto [it, added] = index.try_emplace({p.x, p.y}, uint32_t(corners.size()));
+        if (added) corners.push_back(p);
+        return it->second;
+    };
+    std::vector<std::array<uint32_t, 2>> edges;
+    for (const Segment2& s : outline.segments) {
+        const uint32_t a = corner(s.p[0]), b = corner(s.p[1]);
+        if (a != b) edges.push_back({a, b});
+    }
+    if (edges.empty()) return;
+    const uint32_t n = uint32_t(corners.size());
+    const double s = e.scale.x;
+    for (const Vec2& p : corners) addVertex(out, m, Vec3(p, e.z0));
+    const bool apex = s == 0.0;
+    if (apex)
+        addVertex(out, m, Vec3(0.0, 0.0, e.z1));
+    else
+        for (const Vec2& p : corners) addVertex(out, m, Vec3(s * p, e.z1));
+    auto top = [&](uint32_t i) { return apex ? n : n + i; };
+    // Walls: a planar trapezoid per segment (its top edge is its bottom edge scaled).
+    for (const auto& [a, b] : edges) {
+        out.faceStarts.push_back(uint32_t(out.triangles.size()));
+        out.triangles.push_back({a, b, top(b)});
+        if (!apex) out.triangles.push_back({a, top(b), top(a)});
+    }
+    // Caps: fans from the first corner; a triangle on a segment through that corner has no
+    // area and adds nothing to the parity, so it is left out.
+    for (const bool upper : {false, true}) {
+        if (upper && apex) break;
+        out.faceStarts.push_back(uint32_t(out.triangles.size()));
+        const uint32_t pivot = upper ? top(0) : 0;
+        for (const auto& [a, b] : edges) {
+            if (a == 0 || b == 0) continue;
+            out.triangles.push_back(upper ? std::array<uint32_t, 3>{pivot, top(a), top(b)}
+                                          : std::array<uint32_t, 3>{pivot, a, b});
+        }
+        if (out.faceStarts.back() == out.triangles.size()) out.faceStarts.pop_back();
+    }
+    out.faceStarts.push_back(uint32_t(out.triangles.size()));
 }
 
 // Segments per turn that keep a circle of radius r within t of its inscribed polygon (the
@@ -147,6 +218,7 @@ bool addCurved(WorldMesh& out, const Primitive& shape, const Mat4& m, double t) 
 }  // namespace
 
 bool isPolyhedral(const Primitive& shape) {
+    if (const auto* e = std::get_if<Extrusion>(&shape)) return isStraightPrism(*e);
     return std::holds_alternative<Box>(shape) || std::holds_alternative<ConvexPolytope>(shape) ||
            std::holds_alternative<Polyhedron>(shape);
 }
@@ -167,6 +239,10 @@ WorldMesh leafMesh(const Primitive& shape, const Mat4& worldFromLocal, double to
     }
     if (const auto* e = std::get_if<Extrusion>(&shape); e && e->kind == Extrusion::Kind::Plane)
         throw std::invalid_argument("a 2-D shape has no bounded solid to project");
+    if (const auto* e = std::get_if<Extrusion>(&shape); e && isStraightPrism(*e)) {
+        addPrism(out, *e, worldFromLocal);
+        return out;
+    }
     // Spheres, cylinders and tori: inscribed polyhedra fine enough, built directly (far
     // fewer triangles than the mesher's, for the same bound).
     if (addCurved(out, shape, worldFromLocal, tolerance / stretchOf(worldFromLocal))) {

@@ -270,14 +270,44 @@ Path projected(const WorldMesh& mesh, const std::array<uint32_t, 3>& t, const Gr
     return p;
 }
 
-Paths triangleShadow(const WorldMesh& mesh, const Grid& grid) {
+// Calls f(first, last) for each face of the mesh, triangles [first, last) (LeafMesh.h).
+template <class F>
+void forFaces(const WorldMesh& mesh, F&& f) {
+    if (mesh.faceStarts.empty()) {
+        for (uint32_t t = 0; t < mesh.triangles.size(); ++t) f(t, t + 1);
+        return;
+    }
+    for (size_t k = 0; k + 1 < mesh.faceStarts.size(); ++k)
+        f(mesh.faceStarts[k], mesh.faceStarts[k + 1]);
+}
+
+// The projection of a face: the even-odd sum of its projected triangles, outer curves
+// counter-clockwise (so that faces can be summed by the nonzero rule); empty when it has no
+// area on the grid (a vertical face).
+Paths projectedFace(const WorldMesh& mesh, uint32_t first, uint32_t last, const Grid& grid) {
     Paths triangles;
-    triangles.reserve(mesh.triangles.size());
-    for (const auto& t : mesh.triangles)
-        if (Path p = projected(mesh, t, grid); !p.empty()) triangles.push_back(std::move(p));
+    for (uint32_t t = first; t < last; ++t)
+        if (Path p = projected(mesh, mesh.triangles[t], grid); !p.empty())
+            triangles.push_back(std::move(p));
+    if (triangles.size() <= 1) return triangles;
     Paths out;
     ClipperLib::Clipper c;
     c.AddPaths(triangles, ClipperLib::ptSubject, true);
+    c.Execute(ClipperLib::ctUnion, out, ClipperLib::pftEvenOdd, ClipperLib::pftEvenOdd);
+    return out;
+}
+
+Paths leafShadow(const WorldMesh& mesh, const Grid& grid) {
+    Paths faces;
+    faces.reserve(mesh.triangles.size());
+    forFaces(mesh, [&](uint32_t first, uint32_t last) {
+        Paths face = projectedFace(mesh, first, last, grid);
+        faces.insert(faces.end(), std::make_move_iterator(face.begin()),
+                     std::make_move_iterator(face.end()));
+    });
+    Paths out;
+    ClipperLib::Clipper c;
+    c.AddPaths(faces, ClipperLib::ptSubject, true);
     c.Execute(ClipperLib::ctUnion, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
     return out;
 }
@@ -290,9 +320,10 @@ void collectLeaves(const Flat& flat, int node, std::vector<int>& out) {
     collectLeaves(flat, x.right, out);
 }
 
-Bounds3 triangleBox(const WorldMesh& mesh, const std::array<uint32_t, 3>& t) {
+Bounds3 faceBox(const WorldMesh& mesh, uint32_t first, uint32_t last) {
     Bounds3 b;
-    for (uint32_t i : t) b.extend(mesh.vertices[i]);
+    for (uint32_t t = first; t < last; ++t)
+        for (uint32_t i : mesh.triangles[t]) b.extend(mesh.vertices[i]);
     return b;
 }
 
@@ -302,32 +333,41 @@ std::optional<Paths> faceShadow(const Flat& flat, int node) {
     std::vector<int> leaves;
     collectLeaves(flat, node, leaves);
     uint64_t work = 0;
-    for (int f : leaves)
-        for (const auto& t : flat.leaves[size_t(f)].triangles) {
-            const Bounds3 box = triangleBox(flat.leaves[size_t(f)], t);
+    for (int f : leaves) {
+        const WorldMesh& mesh = flat.leaves[size_t(f)];
+        forFaces(mesh, [&](uint32_t first, uint32_t last) {
+            const Bounds3 box = faceBox(mesh, first, last);
             for (int g : leaves)
                 if (overlaps(box, flat.leaves[size_t(g)].box))
                     work += flat.leaves[size_t(g)].triangles.size() + 1;
-            if (work > kMaxFaceWork) return std::nullopt;
-        }
+        });
+        if (work > kMaxFaceWork) return std::nullopt;
+    }
     Paths pieces;
     const double onPlane = tol::kOnFacePlaneRel * std::max(flat.extent, 1e-300);
     for (int f : leaves) {
         const WorldMesh& mesh = flat.leaves[size_t(f)];
-        for (const auto& t : mesh.triangles) {
-            Path face = projected(mesh, t, flat.grid);
-            if (face.empty()) continue;  // vertical: no area in the shadow
-            const Vec3 a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
-            const Vec3 n = glm::cross(b - a, c - a);
+        forFaces(mesh, [&](uint32_t first, uint32_t last) {
+            const Paths face = projectedFace(mesh, first, last, flat.grid);
+            if (face.empty()) return;  // vertical: no area in the shadow
+            // The face's plane through its largest triangle (its other corners lie within
+            // rounding of it, which the plane's onPlane takes in).
+            Vec3 n(0.0), a(0.0);
+            for (uint32_t t = first; t < last; ++t) {
+                const auto& tri = mesh.triangles[t];
+                const Vec3 p = mesh.vertices[tri[0]];
+                const Vec3 m = glm::cross(mesh.vertices[tri[1]] - p, mesh.vertices[tri[2]] - p);
+                if (glm::dot(m, m) > glm::dot(n, n)) n = m, a = p;
+            }
             const double length = glm::length(n);
-            if (!(length > 0.0)) continue;
+            if (!(length > 0.0)) return;
             CutPlane plane{n / length, glm::dot(n / length, a), true, onPlane};
-            Bounds3 window = triangleBox(mesh, t);
+            Bounds3 window = faceBox(mesh, first, last);
             const Paths section = closedSection(flat, node, plane, &window);
-            if (section.empty()) continue;
-            Paths piece = clip(ClipperLib::ctIntersection, section, Paths{face});
+            if (section.empty()) return;
+            Paths piece = clip(ClipperLib::ctIntersection, section, face);
             pieces.insert(pieces.end(), piece.begin(), piece.end());
-        }
+        });
     }
     Paths out;
     ClipperLib::Clipper c;
@@ -339,7 +379,7 @@ std::optional<Paths> faceShadow(const Flat& flat, int node) {
 Paths shadowOf(const Flat& flat, int node) {
     if (node < 0) return {};
     const FlatNode& x = flat.nodes[size_t(node)];
-    if (x.op == Op::Leaf) return triangleShadow(flat.leaves[size_t(x.leaf)], flat.grid);
+    if (x.op == Op::Leaf) return leafShadow(flat.leaves[size_t(x.leaf)], flat.grid);
     if (x.op == Op::Union) return unite(shadowOf(flat, x.left), shadowOf(flat, x.right));
     if (auto exact = faceShadow(flat, node)) return *exact;
     // Too many faces for the face method: mesh the subtree's solid as a whole.
@@ -357,7 +397,7 @@ Paths shadowOf(const Flat& flat, int node) {
     WorldMesh mesh;
     mesh.vertices = meshed.mesh.positions;
     mesh.triangles = meshed.mesh.triangles;
-    return triangleShadow(mesh, flat.grid);
+    return leafShadow(mesh, flat.grid);
 }
 
 Outline outlineOf(const Paths& paths, const Grid& grid) {
