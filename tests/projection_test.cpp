@@ -254,6 +254,39 @@ TEST(Projection, ShadowOfStraightExtrusionByHand) {
         14.0, 1e-12);
 }
 
+// Extrusions standing along z (no twist, scale 1) project to their own outlines, curves
+// kept: a circle's shadow is the circle itself, not the meshed one's chords (5e-4 of the
+// diagonal, ~6e-3 here), even turned about z and moved, and a 2-D boolean extruded as one
+// piece projects to that boolean.
+TEST(Projection, ShadowOfUprightExtrusionKeepsItsCurves) {
+    {
+        const std::string part =
+            "projection() rotate([0, 0, 30]) translate([1, 2, 3]) linear_extrude(5) circle(4);";
+        const io::EvaluateResult r = evaluate(part);
+        const csg::Extrusion* e = exactShadow(r, part);
+        ASSERT_NE(e, nullptr);
+        // The centre (1, 2) turned by 30 degrees.
+        const double c = std::cos(kPi / 6), s = std::sin(kPi / 6);
+        const Vec2 centre(c - 2.0 * s, s + 2.0 * c);
+        for (int k = 0; k < 12; ++k) {
+            const Vec2 u(std::cos(0.5 + k * kPi / 6), std::sin(0.5 + k * kPi / 6));
+            EXPECT_TRUE(e->outline->inside(centre + (4.0 - 1e-9) * u)) << k;
+            EXPECT_FALSE(e->outline->inside(centre + (4.0 + 1e-9) * u)) << k;
+        }
+    }
+    // The ring 2 <= r <= 4, through the ray along x at y = 0: [-4, -2] and [2, 4].
+    const csg::Scene ring = compiled(
+        "linear_extrude(1) projection() linear_extrude(2) "
+        "difference() { circle(4); circle(2); }");
+    expectSpans(ring, {-10, 0, 0.5}, {1, 0, 0}, {{6, 8}, {12, 14}}, 1e-12);
+    // Leaves over different heights are not a 2-D boolean: the hole that only reaches down to
+    // z = 1 leaves the square's shadow whole (a 2-D difference would take pi from it).
+    const std::string blind =
+        "projection() difference() { linear_extrude(2) square(4, center = "
+        "true); translate([0, 0, 1]) linear_extrude(2) circle(1); }";
+    EXPECT_NEAR(projectedArea(blind), 16.0, 1e-12);
+}
+
 // 2-D children are ignored with OpenSCAD's warning; an unbounded child is an error.
 TEST(Projection, TwoDChildrenAndHalfSpaces) {
     const io::EvaluateResult r = evaluate("projection() square(3);");

@@ -469,7 +469,75 @@ Bounds3 pathBounds(const Paths& paths, const Grid& grid) {
     return b;
 }
 
+// A subtree's shadow by axialShadow, and the z interval all its leaves span when they span one
+// (empty for the empty solid; `oneInterval` false when they do not, or one is sheared).
+struct Axial {
+    NodePtr shape;
+    bool oneInterval = true;
+    double lo = kInfinity, hi = -kInfinity;
+};
+
+// Whether two subtrees' solids are their regions times one interval (an empty one takes any).
+bool shareInterval(const Axial& a, const Axial& b) {
+    if (!a.oneInterval || !b.oneInterval) return false;
+    return !a.shape || !b.shape || (a.lo == b.lo && a.hi == b.hi);
+}
+
+std::optional<Axial> axial(const Node* node, const Mat4& parent, Tags tags) {
+    if (!node) return Axial{};
+    const Mat4 here = parent * node->parentFromNode;
+    if (node->op == Op::Leaf) {
+        const auto* e = std::get_if<Extrusion>(&node->primitive);
+        if (!e || e->kind != Extrusion::Kind::Linear || e->twist != 0.0 || e->scale != Vec2(1.0) ||
+            here[2].x != 0.0 || here[2].y != 0.0)
+            return std::nullopt;
+        // The map to x, y: (x, y, z) -> A (x, y) + shift whatever z is.
+        const glm::dmat2 a(here[0].x, here[0].y, here[1].x, here[1].y);
+        if (!(std::abs(glm::determinant(a)) > 0.0)) return std::nullopt;  // no area: meshed
+        const Vec2 shift(here[3].x, here[3].y);
+        std::shared_ptr<const Outline> outline = e->outline;
+        if (a != glm::dmat2(1.0) || shift != Vec2(0.0))
+            outline = std::make_shared<Outline>(outline->mapped(a, shift));
+        Extrusion shadow = Extrusion::plane(std::move(outline), "projection");
+        shadow.accuracy = e->accuracy;
+        Axial out;
+        out.shape = leaf(shadow, tags);
+        out.oneInterval = here[0].z == 0.0 && here[1].z == 0.0;
+        const double z0 = here[2].z * e->z0 + here[3].z, z1 = here[2].z * e->z1 + here[3].z;
+        out.lo = std::min(z0, z1), out.hi = std::max(z0, z1);
+        return out;
+    }
+    std::optional<Axial> l = axial(node->left.get(), here, tags);
+    if (!l) return std::nullopt;
+    std::optional<Axial> r = axial(node->right.get(), here, tags);
+    if (!r) return std::nullopt;
+    if (node->op == Op::Intersection && (!l->shape || !r->shape)) return Axial{};
+    if (node->op == Op::Difference && (!l->shape || !r->shape)) return l;
+    Axial out;
+    out.oneInterval = shareInterval(*l, *r);
+    out.lo = l->shape ? l->lo : r->lo, out.hi = l->shape ? l->hi : r->hi;
+    switch (node->op) {
+        case Op::Union:
+            out.shape = unite(l->shape, r->shape, tags);
+            return out;
+        case Op::Intersection:
+            if (!out.oneInterval) return std::nullopt;
+            out.shape = intersect(l->shape, r->shape, tags);
+            return out;
+        default:
+            if (!out.oneInterval) return std::nullopt;
+            out.shape = subtract(l->shape, r->shape, tags);
+            return out;
+    }
+}
+
 }  // namespace
+
+std::optional<NodePtr> axialShadow(const NodePtr& root, Tags tags) {
+    std::optional<Axial> out = axial(root.get(), Mat4(1.0), tags);
+    if (!out) return std::nullopt;
+    return out->shape;
+}
 
 Bounds3 solidBounds(const NodePtr& root) {
     Bounds3 out;
