@@ -160,6 +160,34 @@ TEST(Projection, CutOfSphereIsTheDisc) {
     EXPECT_GT(e->outline->segments.size(), 100u);
 }
 
+// A linear_extrude of a curved outline (no twist, one scale) is the prism over its chords, so
+// a section meets its walls' edges where the chords' ends, scaled, lie on the scaled circle:
+// halfway up a frustum from circle(1) to scale 3 that is the circle of radius 2, with those
+// vertices on it to rounding (a mesher's would not be), and the polygon inside it and within
+// the tolerance, 5e-4 of the box's diagonal |(6, 6, 2)|, of it.
+TEST(Projection, CutOfCurvedFrustumIsItsChordsScaled) {
+    const io::EvaluateResult r = evaluate(
+        "projection(cut = true) translate([0, 0, -1]) linear_extrude(height = 2, scale = 3) "
+        "circle(1);");
+    ASSERT_TRUE(r.ok()) << diagnosticsOf(r);
+    const csg::Extrusion* e = shapeOf(r);
+    ASSERT_NE(e, nullptr);
+    ASSERT_NE(e->accuracy, nullptr);  // chords, and info says so
+    const double tolerance = 5e-4 * std::sqrt(76.0);
+    // Each wall's section runs from one edge's crossing, on the circle, through its diagonal's,
+    // on the chord, to the next edge's.
+    size_t onCircle = 0;
+    for (const csg::Segment2& s : e->outline->segments) {
+        const double radius = glm::length(s.p[0]);
+        EXPECT_LE(radius, 2.0 + 1e-12);
+        EXPECT_GE(radius, 2.0 - tolerance);
+        onCircle += std::abs(radius - 2.0) <= 1e-12;
+    }
+    EXPECT_GE(3 * onCircle, e->outline->segments.size());
+    EXPECT_LE(areaOf(*e->outline), 4.0 * kPi);
+    EXPECT_GE(areaOf(*e->outline), 4.0 * kPi - 4.0 * kPi * tolerance);
+}
+
 // ---- projection(cut = false): shadows ----
 
 // The shadow of a turned cube of side a is a^2 (|r31| + |r32| + |r33|), r3 the rotation's

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "csg/Scene.h"
+#include "csg/derived/Flatten2D.h"
 #include "csg/mesh/Tessellate.h"
 
 namespace csg {
@@ -55,27 +56,33 @@ void addPolyhedron(WorldMesh& out, const Polyhedron& mesh, const Mat4& m) {
     out.triangles = data.triangles;
 }
 
-// Whether a linear_extrude is a polyhedron: no twist and one scale for both axes (so each wall
-// is a planar trapezoid, or a triangle to an apex), straight segments, and the even-odd rule
-// (a fan over the cap is then the cap by crossing parity; a nonzero outline may wind twice).
+// Whether a linear_extrude is a prism, a frustum or a pyramid over its outline: no twist and
+// one scale for both axes (so each wall is a ruled surface whose every section is the
+// outline's, scaled), by the even-odd rule (a fan over the cap is then the cap by crossing
+// parity; a nonzero outline may wind twice).
+bool isUprightPrism(const Extrusion& e) {
+    return e.kind == Extrusion::Kind::Linear && e.twist == 0.0 && e.scale.x == e.scale.y &&
+           e.outline->rule == FillRule::EvenOdd;
+}
+
+// ... and a polyhedron: every segment straight, so each wall is a planar trapezoid (or a
+// triangle to an apex).
 bool isStraightPrism(const Extrusion& e) {
-    if (e.kind != Extrusion::Kind::Linear || e.twist != 0.0 || e.scale.x != e.scale.y ||
-        e.outline->rule != FillRule::EvenOdd)
-        return false;
+    if (!isUprightPrism(e)) return false;
     for (const Segment2& s : e.outline->segments)
         if (s.kind != Segment2::Kind::Line) return false;
     return true;
 }
 
-// The prism (or frustum, or pyramid at scale 0) over a straight outline: the bottom outline at
-// z0, the top one scaled by s at z1, a wall of two triangles per segment and each cap a fan
-// from one outline vertex c. The fan's triangles overlap where the outline is not convex from
-// c, but their even-odd sum is the cap: a point q lies in the triangle of segment ab exactly
-// when the ray from q away from c crosses ab, so the triangles over q are as many as that
-// ray's crossings of the outline, odd exactly inside. Sections and shadows read faces so
-// (LeafMesh.h).
-void addPrism(WorldMesh& out, const Extrusion& e, const Mat4& m) {
-    const Outline& outline = *e.outline;
+// The prism (or frustum, or pyramid at scale 0) over an outline of straight segments (the
+// extrusion's own, or its chords): the bottom outline at z0, the top one scaled by s at z1, a
+// wall of two triangles per segment and each cap a fan from one outline vertex c. The fan's
+// triangles overlap where the outline is not convex from c, but their even-odd sum is the
+// cap: a point q lies in the triangle of segment ab exactly when the ray from q away from c
+// crosses ab, so the triangles over q are as many as that ray's crossings of the outline, odd
+// exactly inside. Sections and shadows read faces so (LeafMesh.h).
+void addPrism(WorldMesh& out, const Extrusion& e, const std::vector<std::array<Vec2, 2>>& lines,
+              const Mat4& m) {
     // Corners welded by their exact coordinates: segments that meet share the very same
     // doubles (Outline.h), so the walls share edges and the sections' loops close.
     std::map<std::pair<double, double>, uint32_t> index;
@@ -86,8 +93,8 @@ void addPrism(WorldMesh& out, const Extrusion& e, const Mat4& m) {
         return it->second;
     };
     std::vector<std::array<uint32_t, 2>> edges;
-    for (const Segment2& s : outline.segments) {
-        const uint32_t a = corner(s.p[0]), b = corner(s.p[1]);
+    for (const auto& [p, q] : lines) {
+        const uint32_t a = corner(p), b = corner(q);
         if (a != b) edges.push_back({a, b});
     }
     if (edges.empty()) return;
@@ -239,8 +246,28 @@ WorldMesh leafMesh(const Primitive& shape, const Mat4& worldFromLocal, double to
     }
     if (const auto* e = std::get_if<Extrusion>(&shape); e && e->kind == Extrusion::Kind::Plane)
         throw std::invalid_argument("a 2-D shape has no bounded solid to project");
-    if (const auto* e = std::get_if<Extrusion>(&shape); e && isStraightPrism(*e)) {
-        addPrism(out, *e, worldFromLocal);
+    if (const auto* e = std::get_if<Extrusion>(&shape); e && isUprightPrism(*e)) {
+        // Its own walls when they are straight, else those of its outline's chords within the
+        // tolerance (local units; the top's chords are scaled by s, the walls' in between).
+        const double chordTolerance =
+            tolerance / stretchOf(worldFromLocal) / std::max(1.0, e->scale.x);
+        std::vector<std::array<Vec2, 2>> lines;
+        std::vector<Vec2> points;
+        bool chords = false;
+        for (const Segment2& s : e->outline->segments) {
+            if (s.kind == Segment2::Kind::Line) {
+                lines.push_back({s.p[0], s.p[1]});
+                continue;
+            }
+            chords = true;
+            points.clear();
+            appendChordPoints(s, chordTolerance, points);
+            points.push_back(s.finish());
+            for (size_t k = 0; k + 1 < points.size(); ++k)
+                lines.push_back({points[k], points[k + 1]});
+        }
+        addPrism(out, *e, lines, worldFromLocal);
+        if (chords) out.exact = false, out.error = tolerance;
         return out;
     }
     // Spheres, cylinders and tori: inscribed polyhedra fine enough, built directly (far

@@ -4,12 +4,13 @@
 // (OpenSCAD's faceted cylinders and spheres), a polyhedron's triangles (polyhedron(), import(),
 // surface(file)), and a linear_extrude of straight segments by the even-odd rule with no twist
 // and one scale for both axes (extruded polygon()s, and offset()s with --curves openscad) as
-// its walls and fans over its caps. An exact sphere, cylinder or torus becomes an inscribed
-// polyhedron with the segment count that keeps every point of it within the tolerance of the
-// surface (built directly: the mesher's grid would give tens of times the triangles for the
-// same bound). Every other leaf (any other extrusion, an algebraic surface, Bezier patches) is
-// meshed by csgray's own mesher (csg/mesh/Tessellate.h) within the tolerance. Both say so
-// (exact = false).
+// its walls and fans over its caps. Built directly too, within the tolerance: an exact
+// sphere, cylinder or torus as an inscribed polyhedron with the segment count that keeps every
+// point of it within the tolerance of the surface, and such a linear_extrude of curved
+// segments as the prism over their chords (the mesher's grid would give tens of times the
+// triangles for the same bound). Every other leaf (a twisted or rotate_extrude, a nonzero
+// outline, an algebraic surface, Bezier patches) is meshed by csgray's own mesher
+// (csg/mesh/Tessellate.h) within the tolerance. Both say so (exact = false).
 #pragma once
 
 #include <array>
