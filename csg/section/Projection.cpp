@@ -347,26 +347,46 @@ std::optional<Paths> faceShadow(const Flat& flat, int node) {
     const double onPlane = tol::kOnFacePlaneRel * std::max(flat.extent, 1e-300);
     for (int f : leaves) {
         const WorldMesh& mesh = flat.leaves[size_t(f)];
-        forFaces(mesh, [&](uint32_t first, uint32_t last) {
+        // The piece of triangles [first, last), which lie in one plane.
+        auto addPiece = [&](uint32_t first, uint32_t last, const CutPlane& plane) {
             const Paths face = projectedFace(mesh, first, last, flat.grid);
             if (face.empty()) return;  // vertical: no area in the shadow
-            // The face's plane through its largest triangle (its other corners lie within
-            // rounding of it, which the plane's onPlane takes in).
-            Vec3 n(0.0), a(0.0);
-            for (uint32_t t = first; t < last; ++t) {
-                const auto& tri = mesh.triangles[t];
-                const Vec3 p = mesh.vertices[tri[0]];
-                const Vec3 m = glm::cross(mesh.vertices[tri[1]] - p, mesh.vertices[tri[2]] - p);
-                if (glm::dot(m, m) > glm::dot(n, n)) n = m, a = p;
-            }
-            const double length = glm::length(n);
-            if (!(length > 0.0)) return;
-            CutPlane plane{n / length, glm::dot(n / length, a), true, onPlane};
             Bounds3 window = faceBox(mesh, first, last);
             const Paths section = closedSection(flat, node, plane, &window);
             if (section.empty()) return;
             Paths piece = clip(ClipperLib::ctIntersection, section, face);
             pieces.insert(pieces.end(), piece.begin(), piece.end());
+        };
+        auto planeOf = [&](const std::array<uint32_t, 3>& t) {
+            const Vec3 a = mesh.vertices[t[0]];
+            const Vec3 n = glm::cross(mesh.vertices[t[1]] - a, mesh.vertices[t[2]] - a);
+            const double length = glm::length(n);
+            return CutPlane{n / length, glm::dot(n / length, a), true, onPlane};
+        };
+        forFaces(mesh, [&](uint32_t first, uint32_t last) {
+            // The face's plane through its largest triangle; its other corners lie within
+            // rounding of it, which the plane's onPlane takes in. A face that is not planar
+            // to that is taken triangle by triangle (a plane just outside the solid would cut
+            // nothing there).
+            uint32_t largest = first;
+            double largestArea = -1.0;
+            for (uint32_t t = first; t < last; ++t) {
+                const auto& tri = mesh.triangles[t];
+                const Vec3 p = mesh.vertices[tri[0]];
+                const Vec3 m = glm::cross(mesh.vertices[tri[1]] - p, mesh.vertices[tri[2]] - p);
+                if (glm::dot(m, m) > largestArea) largestArea = glm::dot(m, m), largest = t;
+            }
+            if (!(largestArea > 0.0)) return;
+            const CutPlane plane = planeOf(mesh.triangles[largest]);
+            bool planar = true;
+            for (uint32_t t = first; t < last && planar; ++t)
+                for (uint32_t i : mesh.triangles[t])
+                    planar = planar &&
+                             std::abs(glm::dot(plane.n, mesh.vertices[i]) - plane.c) <= onPlane;
+            if (planar) return addPiece(first, last, plane);
+            for (uint32_t t = first; t < last; ++t)
+                if (Path p = projected(mesh, mesh.triangles[t], flat.grid); !p.empty())
+                    addPiece(t, t + 1, planeOf(mesh.triangles[t]));
         });
     }
     Paths out;
