@@ -24,9 +24,10 @@
 //     F n S (the top point of S over any shadow point lies on some face), and F n S is F cut
 //     by S's section in F's plane; for csgray's regularised solid that is the CSG of the
 //     leaves' sections just above the plane united with the CSG just below. So every piece
-//     is a polygon computed from the leaves' own faces; no new surface is invented. Its cost
-//     is faces x leaf triangles; past kMaxFaceWork the subtree is meshed as a whole instead
-//     (and the result says so).
+//     is a polygon computed from the leaves' own faces; no new surface is invented. A face is
+//     a planar polygon (LeafMesh.h's faceStarts: a prism's wall or cap is one), cut once. Its
+//     cost is faces x leaf triangles; past kMaxFaceWork the subtree is meshed as a whole
+//     instead (and the result says so).
 #pragma once
 
 #include <cstdint>
