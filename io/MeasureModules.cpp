@@ -59,6 +59,10 @@ Instance projectionModule(Evaluator& e, const InstantiationStmt& s, const Contex
                "OpenSCAD");
         return csg::NodePtr();
     }
+    const csg::Tags tags{e.sourceTag(s.loc, e.childPath(state, s.name)), state.material};
+    // Extrusions standing along z: their own outlines, curves and all.
+    if (!cut)
+        if (std::optional<csg::NodePtr> exact = csg::axialShadow(*children, tags)) return *exact;
     const csg::ProjectionResult result = measured(
         e, s, [&] { return cut ? csg::sectionAtZ0(*children) : csg::shadowAlongZ(*children); });
     if (result.outline.segments.empty()) return csg::NodePtr();
@@ -68,7 +72,7 @@ Instance projectionModule(Evaluator& e, const InstantiationStmt& s, const Contex
         leaf.accuracy = kMeshedSubtree;
     else if (result.meshedLeaves > 0)
         leaf.accuracy = kMeshedLeaves;
-    return csg::leaf(leaf, {e.sourceTag(s.loc, e.childPath(state, s.name)), state.material});
+    return csg::leaf(leaf, tags);
 }
 
 namespace {

@@ -68,6 +68,17 @@ const std::map<std::string, std::string> kSlowInOpenScad = {
     {"Parametric/candleStand.scad", "103 s"},
 };
 
+// Examples whose volume quadrature (1024^2 rays along z through the cells' centres) is biased
+// by walls parallel to z that lie off the cells' edges: the part's volume over the mesh's is
+// expected at 1 + this, and why.
+const std::map<std::string, double> kQuadratureBias = {
+    // The upright plates' inner faces, y = 19 and x = -19, lie 0.4 of a cell (40 / 1024) past
+    // a cell edge, so 26 cells' centres fall in each 1-thick plate: 1/64 too much of their
+    // volumes, 40 * 39 - 48.41 and 39 * 39 - 49.69 (the areas of OpenSCAD's DXF of the E and
+    // G projections), 46.6 of the mesh's 4729.9.
+    {"Advanced/GEB.scad", 0.00985},
+};
+
 // Examples whose OpenSCAD mesh has faces inside the solid, so that its samples do not lie on
 // csgray's surface even on average (the other checks still apply), and why.
 const std::map<std::string, std::string> kOpenScadMeshFlaws = {
@@ -77,12 +88,9 @@ const std::map<std::string, std::string> kOpenScadMeshFlaws = {
      "reports them): mean sample distance 0.084, volume within 5e-4"},
 };
 
-// Examples csgray itself is too slow on for the default test run, and why: to load at all...
-const std::map<std::string, std::string> kSlowToLoad = {
-    {"Advanced/GEB.scad",
-     "over 100 s to load: projection() of extruded text takes the face method's pairs of "
-     "faces (csg/section/)"},
-};
+// Examples csgray itself is too slow on for the default test run (none now), and why: to load
+// at all...
+const std::map<std::string, std::string> kSlowToLoad = {};
 // ... or to compare (they load in the test).
 const std::map<std::string, std::string> kSlowToCompare = {
     {"Old/example020.scad",
@@ -169,7 +177,10 @@ TEST_P(OpenScadExample, LoadsAndLiesOnOpenScadsMesh) {
     const double partVolume = j["volume"]["part"].get<double>();
     // The part's volume is a quadrature of span lengths on a 1024^2 grid: good to ~1e-3 on
     // smooth parts, 3.6e-3 on children.scad's many short glyph edges.
-    EXPECT_NEAR(partVolume / meshVolume, 1.0, 5e-3) << j.dump();
+    const auto bias = kQuadratureBias.find(name);
+    EXPECT_NEAR(partVolume / meshVolume, 1.0 + (bias != kQuadratureBias.end() ? bias->second : 0.0),
+                5e-3)
+        << j.dump();
 }
 
 INSTANTIATE_TEST_SUITE_P(Debian, OpenScadExample, ::testing::ValuesIn(exampleNames()),

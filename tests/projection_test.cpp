@@ -16,8 +16,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "MissingTool.h"
 #include "CliRunner.h"
+#include "MissingTool.h"
 #include "TempDir.h"
 #include "csg/Scene.h"
 #include "csg/Volume.h"
@@ -160,6 +160,34 @@ TEST(Projection, CutOfSphereIsTheDisc) {
     EXPECT_GT(e->outline->segments.size(), 100u);
 }
 
+// A linear_extrude of a curved outline (no twist, one scale) is the prism over its chords, so
+// a section meets its walls' edges where the chords' ends, scaled, lie on the scaled circle:
+// halfway up a frustum from circle(1) to scale 3 that is the circle of radius 2, with those
+// vertices on it to rounding (a mesher's would not be), and the polygon inside it and within
+// the tolerance, 5e-4 of the box's diagonal |(6, 6, 2)|, of it.
+TEST(Projection, CutOfCurvedFrustumIsItsChordsScaled) {
+    const io::EvaluateResult r = evaluate(
+        "projection(cut = true) translate([0, 0, -1]) linear_extrude(height = 2, scale = 3) "
+        "circle(1);");
+    ASSERT_TRUE(r.ok()) << diagnosticsOf(r);
+    const csg::Extrusion* e = shapeOf(r);
+    ASSERT_NE(e, nullptr);
+    ASSERT_NE(e->accuracy, nullptr);  // chords, and info says so
+    const double tolerance = 5e-4 * std::sqrt(76.0);
+    // Each wall's section runs from one edge's crossing, on the circle, through its diagonal's,
+    // on the chord, to the next edge's.
+    size_t onCircle = 0;
+    for (const csg::Segment2& s : e->outline->segments) {
+        const double radius = glm::length(s.p[0]);
+        EXPECT_LE(radius, 2.0 + 1e-12);
+        EXPECT_GE(radius, 2.0 - tolerance);
+        onCircle += std::abs(radius - 2.0) <= 1e-12;
+    }
+    EXPECT_GE(3 * onCircle, e->outline->segments.size());
+    EXPECT_LE(areaOf(*e->outline), 4.0 * kPi);
+    EXPECT_GE(areaOf(*e->outline), 4.0 * kPi - 4.0 * kPi * tolerance);
+}
+
 // ---- projection(cut = false): shadows ----
 
 // The shadow of a turned cube of side a is a^2 (|r31| + |r32| + |r33|), r3 the rotation's
@@ -192,6 +220,99 @@ TEST(Projection, ShadowOfDifferenceByHand) {
     EXPECT_NEAR(projectedArea("projection() intersection() { cube(10); "
                               "translate([5, 0, 0]) cube(10); }"),
                 50.0, 1e-9);
+}
+
+// A linear_extrude of straight segments with no twist and one scale is a polyhedron, so its
+// shadows are exact (no accuracy note). U is the square [0, 6]^2 less the slot [2, 4] x [2, 6]
+// (area 28; a statement), wound from (0, 0) so that the fans over its caps from that corner overlap
+// the slot: a cap summed by the nonzero rule instead of the even-odd one would fill it (36).
+constexpr const char* kU =
+    "polygon([[0, 0], [6, 0], [6, 6], [4, 6], [4, 2], [2, 2], [2, 6], "
+    "[0, 6]]);";
+
+const csg::Extrusion* exactShadow(const io::EvaluateResult& r, const std::string& part) {
+    EXPECT_TRUE(r.ok()) << part << "\n" << diagnosticsOf(r);
+    const csg::Extrusion* e = shapeOf(r);
+    EXPECT_NE(e, nullptr) << part;
+    if (e) EXPECT_EQ(e->accuracy, nullptr) << part << ": " << e->accuracy;
+    return e;
+}
+
+double exactShadowArea(const std::string& part) {
+    const io::EvaluateResult r = evaluate(part);
+    const csg::Extrusion* e = exactShadow(r, part);
+    return e ? areaOf(*e->outline) : -1.0;
+}
+
+TEST(Projection, ShadowOfStraightExtrusionByHand) {
+    // Along its axis: the outline itself.
+    EXPECT_NEAR(exactShadowArea(std::string("projection() linear_extrude(3) ") + kU), 28.0, 1e-12);
+    // Turned by 30 degrees about x: the walls sweep the U (squeezed to cos 30 in y) by the
+    // height's shadow 3 sin 30 towards -y; the slot opens towards +y, away from the sweep, so
+    // it stays: 28 cos 30 + 6 * 1.5.
+    EXPECT_NEAR(
+        exactShadowArea(std::string("projection() rotate([30, 0, 0]) linear_extrude(3) ") + kU),
+        28.0 * std::cos(kPi / 6) + 9.0, 1e-9);
+    // A frustum: the sections are the square [1, 2] x [0, 1] scaled by 1 to 2 about the
+    // origin; for a convex outline their union is the hull of the bottom and the top, the two
+    // squares (1 + 4) and the triangle (1, 1), (2, 1), (2, 2) that only the walls cover.
+    EXPECT_NEAR(exactShadowArea("projection() linear_extrude(height = 2, scale = 2) "
+                                "translate([1, 0]) square(1);"),
+                5.5, 1e-12);
+    // A pyramid (scale 0) lying down: rotate([90, 0, 0]) takes (x, y, z) to (x, -z, y), so
+    // the base [0, 2]^2 stands on edge along x and the apex goes to (0, -3): a triangle.
+    EXPECT_NEAR(exactShadowArea("projection() rotate([90, 0, 0]) "
+                                "linear_extrude(height = 3, scale = 0) square(2);"),
+                3.0, 1e-12);
+    // Shadows of differences by their faces, with the U's fans among them: a through cut
+    // removes the strip [0, 1] x [0, 6] (28 - 6), a blind one nothing.
+    EXPECT_NEAR(exactShadowArea(std::string("projection() difference() { linear_extrude(3) ") + kU +
+                                " translate([0, 0, -1]) linear_extrude(5) square([1, 6]); }"),
+                22.0, 1e-12);
+    EXPECT_NEAR(exactShadowArea(std::string("projection() difference() { linear_extrude(3) ") + kU +
+                                " translate([0, 0, 1]) linear_extrude(5) square([1, 6]); }"),
+                28.0, 1e-12);
+    // The intersection of the U's prism with the prism over the triangle x + z <= 3 (x, z
+    // >= 0) along y: its top is the slanted wall, over all of the U with x <= 3, which is
+    // [0, 2] x [0, 6] and [2, 3] x [0, 2]: 12 + 2.
+    EXPECT_NEAR(
+        exactShadowArea(std::string("projection() intersection() { linear_extrude(3) ") + kU +
+                        "; rotate([90, 0, 0]) linear_extrude(20, center = true) "
+                        "polygon([[0, 0], [3, 0], [0, 3]]); }"),
+        14.0, 1e-12);
+}
+
+// Extrusions standing along z (no twist, scale 1) project to their own outlines, curves
+// kept: a circle's shadow is the circle itself, not the meshed one's chords (5e-4 of the
+// diagonal, ~6e-3 here), even turned about z and moved, and a 2-D boolean extruded as one
+// piece projects to that boolean.
+TEST(Projection, ShadowOfUprightExtrusionKeepsItsCurves) {
+    {
+        const std::string part =
+            "projection() rotate([0, 0, 30]) translate([1, 2, 3]) linear_extrude(5) circle(4);";
+        const io::EvaluateResult r = evaluate(part);
+        const csg::Extrusion* e = exactShadow(r, part);
+        ASSERT_NE(e, nullptr);
+        // The centre (1, 2) turned by 30 degrees.
+        const double c = std::cos(kPi / 6), s = std::sin(kPi / 6);
+        const Vec2 centre(c - 2.0 * s, s + 2.0 * c);
+        for (int k = 0; k < 12; ++k) {
+            const Vec2 u(std::cos(0.5 + k * kPi / 6), std::sin(0.5 + k * kPi / 6));
+            EXPECT_TRUE(e->outline->inside(centre + (4.0 - 1e-9) * u)) << k;
+            EXPECT_FALSE(e->outline->inside(centre + (4.0 + 1e-9) * u)) << k;
+        }
+    }
+    // The ring 2 <= r <= 4, through the ray along x at y = 0: [-4, -2] and [2, 4].
+    const csg::Scene ring = compiled(
+        "linear_extrude(1) projection() linear_extrude(2) "
+        "difference() { circle(4); circle(2); }");
+    expectSpans(ring, {-10, 0, 0.5}, {1, 0, 0}, {{6, 8}, {12, 14}}, 1e-12);
+    // Leaves over different heights are not a 2-D boolean: the hole that only reaches down to
+    // z = 1 leaves the square's shadow whole (a 2-D difference would take pi from it).
+    const std::string blind =
+        "projection() difference() { linear_extrude(2) square(4, center = "
+        "true); translate([0, 0, 1]) linear_extrude(2) circle(1); }";
+    EXPECT_NEAR(projectedArea(blind), 16.0, 1e-12);
 }
 
 // 2-D children are ignored with OpenSCAD's warning; an unbounded child is an error.

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <span>
 #include <stdexcept>
 
 #include "csg/Scene.h"
+#include "csg/derived/Flatten2D.h"
 #include "csg/mesh/Tessellate.h"
 
 namespace csg {
@@ -18,9 +20,10 @@ void addVertex(WorldMesh& out, const Mat4& m, const Vec3& p) {
     out.box.extend(v);
 }
 
-// A polygon of corner indices as a fan from its first corner: exact for the convex faces of a
-// box or a convex polytope.
+// A polygon of corner indices as a fan from its first corner, one face: exact for the convex
+// faces of a box or a convex polytope.
 void addFan(WorldMesh& out, uint32_t offset, std::span<const uint32_t> face) {
+    out.faceStarts.push_back(uint32_t(out.triangles.size()));
     for (size_t k = 1; k + 1 < face.size(); ++k)
         out.triangles.push_back({offset + face[0], offset + face[k], offset + face[k + 1]});
 }
@@ -34,6 +37,7 @@ void addBox(WorldMesh& out, const Box& box, const Mat4& m) {
     static constexpr uint32_t kFaces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1},
                                               {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
     for (const auto& face : kFaces) addFan(out, 0, face);
+    out.faceStarts.push_back(uint32_t(out.triangles.size()));
 }
 
 void addPolytope(WorldMesh& out, const ConvexPolytope& polytope, const Mat4& m) {
@@ -43,12 +47,86 @@ void addPolytope(WorldMesh& out, const ConvexPolytope& polytope, const Mat4& m) 
         addFan(out, 0,
                std::span<const uint32_t>(data.faceVertices)
                    .subspan(data.faceStarts[f], data.faceStarts[f + 1] - data.faceStarts[f]));
+    out.faceStarts.push_back(uint32_t(out.triangles.size()));
 }
 
 void addPolyhedron(WorldMesh& out, const Polyhedron& mesh, const Mat4& m) {
     const PolyhedronData& data = *mesh.data;
     for (const Vec3& v : data.vertices) addVertex(out, m, v);
     out.triangles = data.triangles;
+}
+
+// Whether a linear_extrude is a prism, a frustum or a pyramid over its outline: no twist and
+// one scale for both axes (so each wall is a ruled surface whose every section is the
+// outline's, scaled), by the even-odd rule (a fan over the cap is then the cap by crossing
+// parity; a nonzero outline may wind twice).
+bool isUprightPrism(const Extrusion& e) {
+    return e.kind == Extrusion::Kind::Linear && e.twist == 0.0 && e.scale.x == e.scale.y &&
+           e.outline->rule == FillRule::EvenOdd;
+}
+
+// ... and a polyhedron: every segment straight, so each wall is a planar trapezoid (or a
+// triangle to an apex).
+bool isStraightPrism(const Extrusion& e) {
+    if (!isUprightPrism(e)) return false;
+    for (const Segment2& s : e.outline->segments)
+        if (s.kind != Segment2::Kind::Line) return false;
+    return true;
+}
+
+// The prism (or frustum, or pyramid at scale 0) over an outline of straight segments (the
+// extrusion's own, or its chords): the bottom outline at z0, the top one scaled by s at z1, a
+// wall of two triangles per segment and each cap a fan from one outline vertex c. The fan's
+// triangles overlap where the outline is not convex from c, but their even-odd sum is the
+// cap: a point q lies in the triangle of segment ab exactly when the ray from q away from c
+// crosses ab, so the triangles over q are as many as that ray's crossings of the outline, odd
+// exactly inside. Sections and shadows read faces so (LeafMesh.h).
+void addPrism(WorldMesh& out, const Extrusion& e, const std::vector<std::array<Vec2, 2>>& lines,
+              const Mat4& m) {
+    // Corners welded by their exact coordinates: segments that meet share the very same
+    // doubles (Outline.h), so the walls share edges and the sections' loops close.
+    std::map<std::pair<double, double>, uint32_t> index;
+    std::vector<Vec2> corners;
+    auto corner = [&](Vec2 p) {
+        const auto [it, added] = index.try_emplace({p.x, p.y}, uint32_t(corners.size()));
+        if (added) corners.push_back(p);
+        return it->second;
+    };
+    std::vector<std::array<uint32_t, 2>> edges;
+    for (const auto& [p, q] : lines) {
+        const uint32_t a = corner(p), b = corner(q);
+        if (a != b) edges.push_back({a, b});
+    }
+    if (edges.empty()) return;
+    const uint32_t n = uint32_t(corners.size());
+    const double s = e.scale.x;
+    for (const Vec2& p : corners) addVertex(out, m, Vec3(p, e.z0));
+    const bool apex = s == 0.0;
+    if (apex)
+        addVertex(out, m, Vec3(0.0, 0.0, e.z1));
+    else
+        for (const Vec2& p : corners) addVertex(out, m, Vec3(s * p, e.z1));
+    auto top = [&](uint32_t i) { return apex ? n : n + i; };
+    // Walls: a planar trapezoid per segment (its top edge is its bottom edge scaled).
+    for (const auto& [a, b] : edges) {
+        out.faceStarts.push_back(uint32_t(out.triangles.size()));
+        out.triangles.push_back({a, b, top(b)});
+        if (!apex) out.triangles.push_back({a, top(b), top(a)});
+    }
+    // Caps: fans from the first corner; a triangle on a segment through that corner has no
+    // area and adds nothing to the parity, so it is left out.
+    for (const bool upper : {false, true}) {
+        if (upper && apex) break;
+        out.faceStarts.push_back(uint32_t(out.triangles.size()));
+        const uint32_t pivot = upper ? top(0) : 0;
+        for (const auto& [a, b] : edges) {
+            if (a == 0 || b == 0) continue;
+            out.triangles.push_back(upper ? std::array<uint32_t, 3>{pivot, top(a), top(b)}
+                                          : std::array<uint32_t, 3>{pivot, a, b});
+        }
+        if (out.faceStarts.back() == out.triangles.size()) out.faceStarts.pop_back();
+    }
+    out.faceStarts.push_back(uint32_t(out.triangles.size()));
 }
 
 // Segments per turn that keep a circle of radius r within t of its inscribed polygon (the
@@ -147,6 +225,7 @@ bool addCurved(WorldMesh& out, const Primitive& shape, const Mat4& m, double t) 
 }  // namespace
 
 bool isPolyhedral(const Primitive& shape) {
+    if (const auto* e = std::get_if<Extrusion>(&shape)) return isStraightPrism(*e);
     return std::holds_alternative<Box>(shape) || std::holds_alternative<ConvexPolytope>(shape) ||
            std::holds_alternative<Polyhedron>(shape);
 }
@@ -167,6 +246,30 @@ WorldMesh leafMesh(const Primitive& shape, const Mat4& worldFromLocal, double to
     }
     if (const auto* e = std::get_if<Extrusion>(&shape); e && e->kind == Extrusion::Kind::Plane)
         throw std::invalid_argument("a 2-D shape has no bounded solid to project");
+    if (const auto* e = std::get_if<Extrusion>(&shape); e && isUprightPrism(*e)) {
+        // Its own walls when they are straight, else those of its outline's chords within the
+        // tolerance (local units; the top's chords are scaled by s, the walls' in between).
+        const double chordTolerance =
+            tolerance / stretchOf(worldFromLocal) / std::max(1.0, e->scale.x);
+        std::vector<std::array<Vec2, 2>> lines;
+        std::vector<Vec2> points;
+        bool chords = false;
+        for (const Segment2& s : e->outline->segments) {
+            if (s.kind == Segment2::Kind::Line) {
+                lines.push_back({s.p[0], s.p[1]});
+                continue;
+            }
+            chords = true;
+            points.clear();
+            appendChordPoints(s, chordTolerance, points);
+            points.push_back(s.finish());
+            for (size_t k = 0; k + 1 < points.size(); ++k)
+                lines.push_back({points[k], points[k + 1]});
+        }
+        addPrism(out, *e, lines, worldFromLocal);
+        if (chords) out.exact = false, out.error = tolerance;
+        return out;
+    }
     // Spheres, cylinders and tori: inscribed polyhedra fine enough, built directly (far
     // fewer triangles than the mesher's, for the same bound).
     if (addCurved(out, shape, worldFromLocal, tolerance / stretchOf(worldFromLocal))) {

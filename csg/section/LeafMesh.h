@@ -1,12 +1,16 @@
 // A leaf of a CSG tree as a closed triangle mesh in a given frame, for the plane sections and
 // shadows of csg/section/Projection.h. Polyhedral leaves give their own boundary, exactly (up
-// to the one rounding of mapping each vertex): a box's 12 triangles, a convex polytope's faces
+// to the rounding of mapping each vertex): a box's 12 triangles, a convex polytope's faces
 // (OpenSCAD's faceted cylinders and spheres), a polyhedron's triangles (polyhedron(), import(),
-// surface(file)). An exact sphere, cylinder or torus becomes an inscribed polyhedron with the
-// segment count that keeps every point of it within the tolerance of the surface (built
-// directly: the mesher's grid would give tens of times the triangles for the same bound). Every
-// other leaf (an extrusion, an algebraic surface, Bezier patches) is meshed by csgray's own
-// mesher (csg/mesh/Tessellate.h) within the tolerance. Both say so (exact = false).
+// surface(file)), and a linear_extrude of straight segments by the even-odd rule with no twist
+// and one scale for both axes (extruded polygon()s, and offset()s with --curves openscad) as
+// its walls and fans over its caps. Built directly too, within the tolerance: an exact
+// sphere, cylinder or torus as an inscribed polyhedron with the segment count that keeps every
+// point of it within the tolerance of the surface, and such a linear_extrude of curved
+// segments as the prism over their chords (the mesher's grid would give tens of times the
+// triangles for the same bound). Every other leaf (a twisted or rotate_extrude, a nonzero
+// outline, an algebraic surface, Bezier patches) is meshed by csgray's own mesher
+// (csg/mesh/Tessellate.h) within the tolerance. Both say so (exact = false).
 #pragma once
 
 #include <array>
@@ -23,6 +27,10 @@ struct WorldMesh {
     // Corner indices; winding is not used (sections and shadows go by crossing parity and by
     // covered area).
     std::vector<std::array<uint32_t, 3>> triangles;
+    // Planar faces: face k is triangles [faceStarts[k], faceStarts[k + 1]), and it is the
+    // even-odd sum of those (a fan over a concave cap overlaps itself). Empty: every triangle
+    // is a face of its own.
+    std::vector<uint32_t> faceStarts;
     Bounds3 box;         // of the vertices
     bool exact = true;   // the leaf's own boundary, not a mesh of it
     double error = 0.0;  // when not exact: the bound (inscribed) or the mesher's measurement

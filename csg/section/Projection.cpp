@@ -270,14 +270,44 @@ Path projected(const WorldMesh& mesh, const std::array<uint32_t, 3>& t, const Gr
     return p;
 }
 
-Paths triangleShadow(const WorldMesh& mesh, const Grid& grid) {
+// Calls f(first, last) for each face of the mesh, triangles [first, last) (LeafMesh.h).
+template <class F>
+void forFaces(const WorldMesh& mesh, F&& f) {
+    if (mesh.faceStarts.empty()) {
+        for (uint32_t t = 0; t < mesh.triangles.size(); ++t) f(t, t + 1);
+        return;
+    }
+    for (size_t k = 0; k + 1 < mesh.faceStarts.size(); ++k)
+        f(mesh.faceStarts[k], mesh.faceStarts[k + 1]);
+}
+
+// The projection of a face: the even-odd sum of its projected triangles, outer curves
+// counter-clockwise (so that faces can be summed by the nonzero rule); empty when it has no
+// area on the grid (a vertical face).
+Paths projectedFace(const WorldMesh& mesh, uint32_t first, uint32_t last, const Grid& grid) {
     Paths triangles;
-    triangles.reserve(mesh.triangles.size());
-    for (const auto& t : mesh.triangles)
-        if (Path p = projected(mesh, t, grid); !p.empty()) triangles.push_back(std::move(p));
+    for (uint32_t t = first; t < last; ++t)
+        if (Path p = projected(mesh, mesh.triangles[t], grid); !p.empty())
+            triangles.push_back(std::move(p));
+    if (triangles.size() <= 1) return triangles;
     Paths out;
     ClipperLib::Clipper c;
     c.AddPaths(triangles, ClipperLib::ptSubject, true);
+    c.Execute(ClipperLib::ctUnion, out, ClipperLib::pftEvenOdd, ClipperLib::pftEvenOdd);
+    return out;
+}
+
+Paths leafShadow(const WorldMesh& mesh, const Grid& grid) {
+    Paths faces;
+    faces.reserve(mesh.triangles.size());
+    forFaces(mesh, [&](uint32_t first, uint32_t last) {
+        Paths face = projectedFace(mesh, first, last, grid);
+        faces.insert(faces.end(), std::make_move_iterator(face.begin()),
+                     std::make_move_iterator(face.end()));
+    });
+    Paths out;
+    ClipperLib::Clipper c;
+    c.AddPaths(faces, ClipperLib::ptSubject, true);
     c.Execute(ClipperLib::ctUnion, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
     return out;
 }
@@ -290,9 +320,10 @@ void collectLeaves(const Flat& flat, int node, std::vector<int>& out) {
     collectLeaves(flat, x.right, out);
 }
 
-Bounds3 triangleBox(const WorldMesh& mesh, const std::array<uint32_t, 3>& t) {
+Bounds3 faceBox(const WorldMesh& mesh, uint32_t first, uint32_t last) {
     Bounds3 b;
-    for (uint32_t i : t) b.extend(mesh.vertices[i]);
+    for (uint32_t t = first; t < last; ++t)
+        for (uint32_t i : mesh.triangles[t]) b.extend(mesh.vertices[i]);
     return b;
 }
 
@@ -302,32 +333,61 @@ std::optional<Paths> faceShadow(const Flat& flat, int node) {
     std::vector<int> leaves;
     collectLeaves(flat, node, leaves);
     uint64_t work = 0;
-    for (int f : leaves)
-        for (const auto& t : flat.leaves[size_t(f)].triangles) {
-            const Bounds3 box = triangleBox(flat.leaves[size_t(f)], t);
+    for (int f : leaves) {
+        const WorldMesh& mesh = flat.leaves[size_t(f)];
+        forFaces(mesh, [&](uint32_t first, uint32_t last) {
+            const Bounds3 box = faceBox(mesh, first, last);
             for (int g : leaves)
                 if (overlaps(box, flat.leaves[size_t(g)].box))
                     work += flat.leaves[size_t(g)].triangles.size() + 1;
-            if (work > kMaxFaceWork) return std::nullopt;
-        }
+        });
+        if (work > kMaxFaceWork) return std::nullopt;
+    }
     Paths pieces;
     const double onPlane = tol::kOnFacePlaneRel * std::max(flat.extent, 1e-300);
     for (int f : leaves) {
         const WorldMesh& mesh = flat.leaves[size_t(f)];
-        for (const auto& t : mesh.triangles) {
-            Path face = projected(mesh, t, flat.grid);
-            if (face.empty()) continue;  // vertical: no area in the shadow
-            const Vec3 a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
-            const Vec3 n = glm::cross(b - a, c - a);
-            const double length = glm::length(n);
-            if (!(length > 0.0)) continue;
-            CutPlane plane{n / length, glm::dot(n / length, a), true, onPlane};
-            Bounds3 window = triangleBox(mesh, t);
+        // The piece of triangles [first, last), which lie in one plane.
+        auto addPiece = [&](uint32_t first, uint32_t last, const CutPlane& plane) {
+            const Paths face = projectedFace(mesh, first, last, flat.grid);
+            if (face.empty()) return;  // vertical: no area in the shadow
+            Bounds3 window = faceBox(mesh, first, last);
             const Paths section = closedSection(flat, node, plane, &window);
-            if (section.empty()) continue;
-            Paths piece = clip(ClipperLib::ctIntersection, section, Paths{face});
+            if (section.empty()) return;
+            Paths piece = clip(ClipperLib::ctIntersection, section, face);
             pieces.insert(pieces.end(), piece.begin(), piece.end());
-        }
+        };
+        auto planeOf = [&](const std::array<uint32_t, 3>& t) {
+            const Vec3 a = mesh.vertices[t[0]];
+            const Vec3 n = glm::cross(mesh.vertices[t[1]] - a, mesh.vertices[t[2]] - a);
+            const double length = glm::length(n);
+            return CutPlane{n / length, glm::dot(n / length, a), true, onPlane};
+        };
+        forFaces(mesh, [&](uint32_t first, uint32_t last) {
+            // The face's plane through its largest triangle; its other corners lie within
+            // rounding of it, which the plane's onPlane takes in. A face that is not planar
+            // to that is taken triangle by triangle (a plane just outside the solid would cut
+            // nothing there).
+            uint32_t largest = first;
+            double largestArea = -1.0;
+            for (uint32_t t = first; t < last; ++t) {
+                const auto& tri = mesh.triangles[t];
+                const Vec3 p = mesh.vertices[tri[0]];
+                const Vec3 m = glm::cross(mesh.vertices[tri[1]] - p, mesh.vertices[tri[2]] - p);
+                if (glm::dot(m, m) > largestArea) largestArea = glm::dot(m, m), largest = t;
+            }
+            if (!(largestArea > 0.0)) return;
+            const CutPlane plane = planeOf(mesh.triangles[largest]);
+            bool planar = true;
+            for (uint32_t t = first; t < last && planar; ++t)
+                for (uint32_t i : mesh.triangles[t])
+                    planar = planar &&
+                             std::abs(glm::dot(plane.n, mesh.vertices[i]) - plane.c) <= onPlane;
+            if (planar) return addPiece(first, last, plane);
+            for (uint32_t t = first; t < last; ++t)
+                if (Path p = projected(mesh, mesh.triangles[t], flat.grid); !p.empty())
+                    addPiece(t, t + 1, planeOf(mesh.triangles[t]));
+        });
     }
     Paths out;
     ClipperLib::Clipper c;
@@ -339,7 +399,7 @@ std::optional<Paths> faceShadow(const Flat& flat, int node) {
 Paths shadowOf(const Flat& flat, int node) {
     if (node < 0) return {};
     const FlatNode& x = flat.nodes[size_t(node)];
-    if (x.op == Op::Leaf) return triangleShadow(flat.leaves[size_t(x.leaf)], flat.grid);
+    if (x.op == Op::Leaf) return leafShadow(flat.leaves[size_t(x.leaf)], flat.grid);
     if (x.op == Op::Union) return unite(shadowOf(flat, x.left), shadowOf(flat, x.right));
     if (auto exact = faceShadow(flat, node)) return *exact;
     // Too many faces for the face method: mesh the subtree's solid as a whole.
@@ -357,7 +417,7 @@ Paths shadowOf(const Flat& flat, int node) {
     WorldMesh mesh;
     mesh.vertices = meshed.mesh.positions;
     mesh.triangles = meshed.mesh.triangles;
-    return triangleShadow(mesh, flat.grid);
+    return leafShadow(mesh, flat.grid);
 }
 
 Outline outlineOf(const Paths& paths, const Grid& grid) {
@@ -429,7 +489,75 @@ Bounds3 pathBounds(const Paths& paths, const Grid& grid) {
     return b;
 }
 
+// A subtree's shadow by axialShadow, and the z interval all its leaves span when they span one
+// (empty for the empty solid; `oneInterval` false when they do not, or one is sheared).
+struct Axial {
+    NodePtr shape;
+    bool oneInterval = true;
+    double lo = kInfinity, hi = -kInfinity;
+};
+
+// Whether two subtrees' solids are their regions times one interval (an empty one takes any).
+bool shareInterval(const Axial& a, const Axial& b) {
+    if (!a.oneInterval || !b.oneInterval) return false;
+    return !a.shape || !b.shape || (a.lo == b.lo && a.hi == b.hi);
+}
+
+std::optional<Axial> axial(const Node* node, const Mat4& parent, Tags tags) {
+    if (!node) return Axial{};
+    const Mat4 here = parent * node->parentFromNode;
+    if (node->op == Op::Leaf) {
+        const auto* e = std::get_if<Extrusion>(&node->primitive);
+        if (!e || e->kind != Extrusion::Kind::Linear || e->twist != 0.0 || e->scale != Vec2(1.0) ||
+            here[2].x != 0.0 || here[2].y != 0.0)
+            return std::nullopt;
+        // The map to x, y: (x, y, z) -> A (x, y) + shift whatever z is.
+        const glm::dmat2 a(here[0].x, here[0].y, here[1].x, here[1].y);
+        if (!(std::abs(glm::determinant(a)) > 0.0)) return std::nullopt;  // no area: meshed
+        const Vec2 shift(here[3].x, here[3].y);
+        std::shared_ptr<const Outline> outline = e->outline;
+        if (a != glm::dmat2(1.0) || shift != Vec2(0.0))
+            outline = std::make_shared<Outline>(outline->mapped(a, shift));
+        Extrusion shadow = Extrusion::plane(std::move(outline), "projection");
+        shadow.accuracy = e->accuracy;
+        Axial out;
+        out.shape = leaf(shadow, tags);
+        out.oneInterval = here[0].z == 0.0 && here[1].z == 0.0;
+        const double z0 = here[2].z * e->z0 + here[3].z, z1 = here[2].z * e->z1 + here[3].z;
+        out.lo = std::min(z0, z1), out.hi = std::max(z0, z1);
+        return out;
+    }
+    std::optional<Axial> l = axial(node->left.get(), here, tags);
+    if (!l) return std::nullopt;
+    std::optional<Axial> r = axial(node->right.get(), here, tags);
+    if (!r) return std::nullopt;
+    if (node->op == Op::Intersection && (!l->shape || !r->shape)) return Axial{};
+    if (node->op == Op::Difference && (!l->shape || !r->shape)) return l;
+    Axial out;
+    out.oneInterval = shareInterval(*l, *r);
+    out.lo = l->shape ? l->lo : r->lo, out.hi = l->shape ? l->hi : r->hi;
+    switch (node->op) {
+        case Op::Union:
+            out.shape = unite(l->shape, r->shape, tags);
+            return out;
+        case Op::Intersection:
+            if (!out.oneInterval) return std::nullopt;
+            out.shape = intersect(l->shape, r->shape, tags);
+            return out;
+        default:
+            if (!out.oneInterval) return std::nullopt;
+            out.shape = subtract(l->shape, r->shape, tags);
+            return out;
+    }
+}
+
 }  // namespace
+
+std::optional<NodePtr> axialShadow(const NodePtr& root, Tags tags) {
+    std::optional<Axial> out = axial(root.get(), Mat4(1.0), tags);
+    if (!out) return std::nullopt;
+    return out->shape;
+}
 
 Bounds3 solidBounds(const NodePtr& root) {
     Bounds3 out;

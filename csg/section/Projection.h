@@ -24,12 +24,14 @@
 //     F n S (the top point of S over any shadow point lies on some face), and F n S is F cut
 //     by S's section in F's plane; for csgray's regularised solid that is the CSG of the
 //     leaves' sections just above the plane united with the CSG just below. So every piece
-//     is a polygon computed from the leaves' own faces; no new surface is invented. Its cost
-//     is faces x leaf triangles; past kMaxFaceWork the subtree is meshed as a whole instead
-//     (and the result says so).
+//     is a polygon computed from the leaves' own faces; no new surface is invented. A face is
+//     a planar polygon (LeafMesh.h's faceStarts: a prism's wall or cap is one), cut once. Its
+//     cost is faces x leaf triangles; past kMaxFaceWork the subtree is meshed as a whole
+//     instead (and the result says so).
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "csg/Tree.h"
@@ -61,6 +63,15 @@ ProjectionResult sectionAtZ0(const NodePtr& root);
 // The shadow of the tree's solid along z on z = 0 (OpenSCAD's projection(cut = false)).
 // Throws std::invalid_argument as sectionAtZ0.
 ProjectionResult shadowAlongZ(const NodePtr& root);
+
+// The shadow along z, exactly and with its curves, when every leaf is a linear_extrude with no
+// twist and scale 1 whose axis the tree's transforms keep along z: each leaf's shadow is its
+// outline under the leaf's map to x, y, and a union's shadow their union. An intersection or
+// difference is the 2-D one only where its leaves have no shear into z and span one z
+// interval (a linear_extrude of a 2-D boolean): the solid is then the region times that
+// interval. Returns the 2-D tree (Plane leaves tagged `tags`, shape "projection"), or nullopt
+// when the tree is not of that form (an empty tree's shadow is nullptr).
+std::optional<NodePtr> axialShadow(const NodePtr& root, Tags tags);
 
 // The solid's bounding box: exact for trees of unions of leaves (from their vertices, or the
 // primitive's tight bounds); for trees with an intersection or difference, from the shadows
