@@ -47,7 +47,8 @@ Evaluator::~Evaluator() {
 
 void Evaluator::loadUses(const ParsedFile& file, const ContextPtr& fileContext) {
     for (const auto& [written, loc] : file.uses) {
-        const auto path = sources_.resolve(written, file.fileIndex);
+        // From the file the use<> is written in, which an included file's is not.
+        const auto path = sources_.resolve(written, loc.file);
         const std::string key = std::filesystem::weakly_canonical(path).string();
         auto known = usedFileContexts_.find(key);
         if (known != usedFileContexts_.end()) {

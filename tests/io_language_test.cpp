@@ -3,8 +3,12 @@
 // Debian's openscad 2021.01 prints for the same source (its ECHO and WARNING lines).
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include "io/Evaluate.h"
 
@@ -18,11 +22,11 @@ struct Outcome {
     std::vector<std::string> warnings;  // "line:col message"
 };
 
-Outcome run(const std::string& source) {
+Outcome run(const std::string& source, const std::string& name = "test.scad") {
     Outcome r;
     EvaluateOptions options;
     options.echo = [&r](const std::string& line) { r.echoes.push_back(line); };
-    r.result = evaluateString(source, "test.scad", options);
+    r.result = evaluateString(source, name, options);
     for (const auto& d : r.result.diagnostics) {
         if (d.severity == Severity::Error) ADD_FAILURE() << formatDiagnostic(d);
         if (d.severity == Severity::Warning)
@@ -63,4 +67,23 @@ TEST(IoLanguage, CStyleForNeedsItsCondition) {
     ASSERT_FALSE(r.ok());
     EXPECT_EQ(r.diagnostics.at(0).line, 1u);
     EXPECT_EQ(r.diagnostics.at(0).col, 12u);
+}
+
+// ---- use<> written in an included file (BOSL2's color.scad: use <builtins.scad>) ----
+
+TEST(IoLanguage, UseInAnIncludedFileResolvesFromThatFile) {
+    // main/part.scad includes ../lib/inc.scad, which uses <helper.scad>: the use is written in
+    // lib/, so lib/helper.scad is meant, not main/helper.scad beside the including file.
+    const auto root = std::filesystem::temp_directory_path() /
+                      ("csgray_io_language_use_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(root);
+    std::filesystem::create_directories(root / "main");
+    std::filesystem::create_directories(root / "lib");
+    std::ofstream(root / "lib/inc.scad") << "use <helper.scad>\n";
+    std::ofstream(root / "lib/helper.scad") << "function helper() = \"lib\";\n";
+    std::ofstream(root / "main/helper.scad") << "function helper() = \"main\";\n";
+    Outcome r =
+        run("include <../lib/inc.scad>\necho(helper());\n", (root / "main/part.scad").string());
+    EXPECT_EQ(r.echoes, Lines{"ECHO: \"lib\""});
+    std::filesystem::remove_all(root);
 }
