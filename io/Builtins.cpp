@@ -195,6 +195,37 @@ Value cross(Evaluator& e, const Args& a, Loc loc) {
     return ValueList{x, y, z};
 }
 
+// parent_module(n = 1): the name of the user module n levels up the module stack from the one
+// being instantiated (0: that one), as OpenSCAD 2021 (func.cc, builtin_parent_module): n is
+// truncated; a non-number is undef; a negative or too big n is undef with OpenSCAD's warning
+// (NaN and 1e10 count as negative, as 2021's x86 builds take them).
+Value parentModule(Evaluator& e, const Args& a, Loc loc) {
+    if (a.size() > 1) {
+        e.warn(loc, "parent_module() number of parameters does not match");
+        return Value();
+    }
+    double d = 1.0;
+    if (a.size() == 1) {
+        if (!a[0].value.isNumber()) return Value();
+        d = a[0].value.number();
+    }
+    const auto& stack = e.moduleStack();
+    // OpenSCAD converts to int: on x86, NaN and values out of int's range become INT_MIN.
+    double t = std::trunc(d);
+    if (!(t >= -2147483648.0 && t <= 2147483647.0)) t = -2147483648.0;
+    const std::string n = std::to_string(static_cast<long>(t));
+    if (t < 0) {
+        e.warn(loc, "Negative parent module index (" + n + ") not allowed");
+        return Value();
+    }
+    if (t >= static_cast<double>(stack.size())) {
+        e.warn(loc,
+               "Parent module index (" + n + ") greater than the number of modules on the stack");
+        return Value();
+    }
+    return std::string(stack[stack.size() - 1 - static_cast<size_t>(t)]);
+}
+
 const std::unordered_map<std::string, Evaluator::BuiltinFunction>& table() {
     static const std::unordered_map<std::string, Evaluator::BuiltinFunction> functions = {
         {"sin", UNARY(sinDegrees, "sin")},
@@ -302,6 +333,7 @@ const std::unordered_map<std::string, Evaluator::BuiltinFunction>& table() {
          }},
         {"rands", rands},
         {"search", builtinSearch},
+        {"parent_module", parentModule},
         {"is_undef",
          [](Evaluator&, const Args& a, Loc) -> Value {
              return a.size() == 1 && a[0].value.isUndef();

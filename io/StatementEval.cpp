@@ -281,12 +281,20 @@ Instance Evaluator::callUserModule(const ModuleDefStmt& def, const ContextPtr& d
                                    const InstantiationStmt& s, const ContextPtr& ctx,
                                    const GeomState& state) {
     DepthGuard guard(*this, s.loc, def.name);
+    // On the module stack from before its arguments are evaluated, as in OpenSCAD:
+    // m(parent_module(0)) passes "m".
+    struct StackEntry {
+        std::vector<std::string_view>& stack;
+        ~StackEntry() { stack.pop_back(); }
+    } entry{moduleStack_};
+    moduleStack_.push_back(def.name);
     ContextPtr m =
         bindParameters(def.params, evalArgs(s.args, ctx), definition, ctx, s.loc, def.name);
     m->isModuleCall = true;
     m->children = &s.children;
     m->childrenContext = ctx;
     m->set("$children", Value(static_cast<double>(s.children.instantiations.size())));
+    m->set("$parent_modules", Value(static_cast<double>(moduleStack_.size())));
     GeomState inner = state;
     inner.modulePath = childPath(state, def.name + "()");
     std::vector<csg::NodePtr> parts;

@@ -69,6 +69,73 @@ TEST(IoLanguage, CStyleForNeedsItsCondition) {
     EXPECT_EQ(r.diagnostics.at(0).col, 12u);
 }
 
+// ---- $parent_modules and parent_module(n) (BOSL2's utility.scad) ----
+
+TEST(IoLanguage, ParentModulesCountsTheUserModulesBeingInstantiated) {
+    // a() b(): b runs as a's child, while a is still on the stack; c() a() b() adds c.
+    // Built-in modules (translate, for) are not on the stack.
+    Outcome r =
+        run("module a() { echo(a = $parent_modules); children(); }\n"
+            "module b() echo(b = $parent_modules, p0 = parent_module(0), p1 = parent_module(1));\n"
+            "module c() a() b();\n"
+            "a() b();\n"
+            "c();\n"
+            "translate([1, 0, 0]) for (i = [0]) a();\n");
+    EXPECT_EQ(r.echoes, (Lines{"ECHO: a = 1", "ECHO: b = 2, p0 = \"b\", p1 = \"a\"", "ECHO: a = 2",
+                               "ECHO: b = 3, p0 = \"b\", p1 = \"a\"", "ECHO: a = 1"}));
+    EXPECT_TRUE(r.warnings.empty());
+}
+
+TEST(IoLanguage, ParentModuleDefaultsToOneAndTruncates) {
+    // parent_module() is parent_module(1); 1.7 truncates to 1; a string is undef, silently.
+    Outcome r =
+        run("module inner() echo(parent_module(), parent_module(1.7), parent_module(0.2), "
+            "parent_module(\"x\"));\n"
+            "module outer() inner();\n"
+            "outer();\n");
+    EXPECT_EQ(r.echoes, Lines{"ECHO: \"outer\", \"outer\", \"inner\", undef"});
+    EXPECT_TRUE(r.warnings.empty());
+}
+
+TEST(IoLanguage, ParentModuleSeesTheCalleeInItsArguments) {
+    // A module is on the stack before its arguments are evaluated, defaults and passed ones.
+    Outcome r =
+        run("module a(x = parent_module(0)) echo(x);\n"
+            "module b(y) echo(y);\n"
+            "a();\n"
+            "b(parent_module(0));\n");
+    EXPECT_EQ(r.echoes, (Lines{"ECHO: \"a\"", "ECHO: \"b\""}));
+    EXPECT_TRUE(r.warnings.empty());
+}
+
+TEST(IoLanguage, ParentModuleOutOfRangeWarnsAsOpenScadDoes) {
+    // OpenSCAD's warnings, word for word; NaN and 1e10 become INT_MIN when 2021 converts them
+    // to int on x86, so they are "negative". Functions do not push onto the stack.
+    Outcome r =
+        run("function f() = parent_module(1);\n"
+            "module m() echo(parent_module(-1), parent_module(1), f(), parent_module(0/0),\n"
+            "                parent_module(1e10), parent_module(0, 1));\n"
+            "m();\n"
+            "echo(parent_module(0));\n");
+    EXPECT_EQ(r.echoes, (Lines{"ECHO: undef, undef, undef, undef, undef, undef", "ECHO: undef"}));
+    // A call's diagnostics point at its '('.
+    EXPECT_EQ(
+        r.warnings,
+        (Lines{"2:30 Negative parent module index (-1) not allowed",
+               "2:49 Parent module index (1) greater than the number of modules on the stack",
+               "1:29 Parent module index (1) greater than the number of modules on the stack",
+               "2:72 Negative parent module index (-2147483648) not allowed",
+               "3:30 Negative parent module index (-2147483648) not allowed",
+               "3:51 parent_module() number of parameters does not match",
+               "5:19 Parent module index (0) greater than the number of modules on the stack"}));
+}
+
+TEST(IoLanguage, ParentModulesIsUnknownAtTheTopLevel) {
+    Outcome r = run("echo($parent_modules);");
+    EXPECT_EQ(r.echoes, Lines{"ECHO: undef"});
+    EXPECT_EQ(r.warnings.size(), 1u);
+}
+
 // ---- use<> written in an included file (BOSL2's color.scad: use <builtins.scad>) ----
 
 TEST(IoLanguage, UseInAnIncludedFileResolvesFromThatFile) {
