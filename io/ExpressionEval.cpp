@@ -510,6 +510,15 @@ Value Evaluator::eval(const Expr& e, const ContextPtr& ctx) {
                 if (k < 0 || k >= static_cast<double>(object.list().size())) return Value();
                 return object.list()[static_cast<size_t>(k)];
             }
+            if (object.isRange()) {
+                // OpenSCAD 2021 indexes a range's parts: [b:s:e][0] = b, [1] = s, [2] = e
+                // (BOSL2's is_range tests for them).
+                const Range& r = object.range();
+                return k == 0   ? Value(r.begin)
+                       : k == 1 ? Value(r.step)
+                       : k == 2 ? Value(r.end)
+                                : Value();
+            }
             if (object.isString()) {
                 // Index by code point, as OpenSCAD does.
                 const std::string& s = object.string();

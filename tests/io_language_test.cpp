@@ -154,3 +154,15 @@ TEST(IoLanguage, UseInAnIncludedFileResolvesFromThatFile) {
     EXPECT_EQ(r.echoes, Lines{"ECHO: \"lib\""});
     std::filesystem::remove_all(root);
 }
+
+// ---- indexing a range (BOSL2's is_range and valid_range) ----
+
+TEST(IoLanguage, RangeIndicesAreItsBeginStepAndEnd) {
+    // [b:s:e][0] = b, [1] = s, [2] = e; any other index is undef. The deprecated [5:1] is
+    // stored as [1:1:5]; indices truncate toward zero like a list's (-0.5 -> 0).
+    Outcome r =
+        run("r = [1:2:9]; echo(r[0], r[1], r[2], r[3], r[-1], r[1.9], r[-0.5]);\n"
+            "echo([0:0.5:2][1], is_list([0:1]), [5:1][0]);");
+    EXPECT_EQ(r.echoes, (Lines{"ECHO: 1, 2, 9, undef, undef, 2, 1", "ECHO: 0.5, false, 1"}));
+    EXPECT_EQ(r.warnings.size(), 1u);  // the deprecated [5:1]
+}
