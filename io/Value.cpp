@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "io/ExprPrint.h"
 #include "primitives/base/Tolerances.h"
 
 namespace io {
@@ -60,7 +61,7 @@ std::string formatNumber(double d) {
     return buffer;
 }
 
-static void quote(std::string& out, const std::string& s) {
+void appendQuoted(std::string& out, const std::string& s) {
     out += '"';
     for (char c : s) {
         switch (c) {
@@ -103,7 +104,7 @@ static void append(std::string& out, const Value& v, bool quoteStrings, WorkBudg
         case Value::Type::String:
             if (!budget.spend(v.string().size())) return;
             if (quoteStrings)
-                quote(out, v.string());
+                appendQuoted(out, v.string());
             else
                 out += v.string();
             break;
@@ -127,7 +128,9 @@ static void append(std::string& out, const Value& v, bool quoteStrings, WorkBudg
             break;
         }
         case Value::Type::Function:
-            out += "function";
+            // Its source, as OpenSCAD prints a function value: function(x) (x + 1).
+            appendFunctionLiteral(out, *v.function().literal);
+            budget.spend(out.size() - before);
             break;
     }
 }

@@ -166,3 +166,38 @@ TEST(IoLanguage, RangeIndicesAreItsBeginStepAndEnd) {
     EXPECT_EQ(r.echoes, (Lines{"ECHO: 1, 2, 9, undef, undef, 2, 1", "ECHO: 0.5, false, 1"}));
     EXPECT_EQ(r.warnings.size(), 1u);  // the deprecated [5:1]
 }
+
+// ---- a function value prints as its source (BOSL2's fnliterals tests compare str(f)) ----
+
+TEST(IoLanguage, FunctionValuesPrintAsOpenScadPrintsTheirExpressions) {
+    // OpenSCAD 2021's print(): binary and ternary operations in parentheses, unary minus and
+    // not without, unary plus dropped, numbers as echo shows them, strings quoted and escaped,
+    // a call of anything but a name with its callee in parentheses, a comprehension's for (one
+    // node a variable), if, each and a let over a comprehension wrapping what they govern.
+    Outcome r =
+        run("f1 = function(a, b = 2, c = [1, \"x\\\"y\", undef, true]) "
+            "-a + !b * c.x - c[1] ^ 2 % 3 / 4;\n"
+            "f2 = function() [for (i = [0:2:10], j = [1:3]) if (i > 1) i else j, each [1, 2], "
+            "let(q = 1) q];\n"
+            "f3 = function(x) let(y = x, z = 2) assert(y > 0, \"msg\") echo(\"hi\", v = y) "
+            "y == z && x != 1 || x <= 0 >= 1;\n"
+            "f4 = function(n) [for (i = 0, j = 1; i < n; i = i + 1, j = j * 2) j];\n"
+            "f5 = function(g) g(1)(2) + f1(a = 3)[0] + (function(q) q)(4) + +g - -g;\n"
+            "f6 = function(x) 1.23456789e10 + 1e-7 + 1000000 + [x:2] + [for (a = [1]) let(b = 2) "
+            "for (c = [3]) c] + [each for (i = [1]) i];\n"
+            "echo(f1); echo(f2); echo(f3); echo(f4); echo(f5); echo(f6);\n"
+            "s = str(function(x) \"q\"); echo(len(s), s == \"function(x) \\\"q\\\"\");\n");
+    EXPECT_EQ(
+        r.echoes,
+        (Lines{"ECHO: function(a, b = 2, c = [1, \"x\\\"y\", undef, true]) ((-a + (!b * c.x)) - "
+               "(((c[1] ^ 2) % 3) / 4))",
+               "ECHO: function() [for(i = [0 : 2 : 10]) (for(j = [1 : 3]) (if((i > 1)) (i) else "
+               "(j))), each ([1, 2]), let(q = 1) q]",
+               "ECHO: function(x) let(y = x, z = 2) assert((y > 0), \"msg\") echo(\"hi\", v = y) "
+               "(((y == z) && (x != 1)) || ((x <= 0) >= 1))",
+               "ECHO: function(n) [for(i = 0, j = 1;(i < n);i = (i + 1), j = (j * 2)) j]",
+               "ECHO: function(g) (((((g(1))(2) + f1(a = 3)[0]) + (function(q) q)(4)) + g) - -g)",
+               "ECHO: function(x) (((((1.23457e+10 + 1e-7) + 1e+6) + [x : 2]) + [for(a = [1]) "
+               "(let(b = 2) (for(c = [3]) (c)))]) + [each (for(i = [1]) (i))])",
+               "ECHO: 15, true"}));
+}
