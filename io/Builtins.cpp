@@ -33,20 +33,18 @@ Value unary(Evaluator& e, const Args& a, Loc loc, const char* name) {
     return F(*x);
 }
 
-constexpr double kDegreesPerRadian = 180.0 / std::numbers::pi;
-
 double tanDegrees(double x) {
     const double c = cosDegrees(x);
     return c == 0.0 ? (sinDegrees(x) > 0 ? INFINITY : -INFINITY) : sinDegrees(x) / c;
 }
 double asinDegrees(double x) {
-    return std::asin(x) * kDegreesPerRadian;
+    return openscadAsinDegrees(x);
 }
 double acosDegrees(double x) {
-    return std::acos(x) * kDegreesPerRadian;
+    return openscadAcosDegrees(x);
 }
 double atanDegrees(double x) {
-    return std::atan(x) * kDegreesPerRadian;
+    return openscadAtanDegrees(x);
 }
 double sign(double x) {
     return x < 0 ? -1.0 : x > 0 ? 1.0 : 0.0;
@@ -238,7 +236,7 @@ const std::unordered_map<std::string, Evaluator::BuiltinFunction>& table() {
          [](Evaluator& e, const Args& a, Loc l) -> Value {
              auto y = number(a, 0), x = number(a, 1);
              if (!y || !x) return badArgument(e, l, "atan2");
-             return std::atan2(*y, *x) * kDegreesPerRadian;
+             return openscadAtan2Degrees(*y, *x);
          }},
         {"sqrt", UNARY(sqrtOf, "sqrt")},
         {"exp", UNARY(expOf, "exp")},

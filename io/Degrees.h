@@ -39,5 +39,14 @@ inline double cosDegrees(double degrees) {
 // which is a change of its own.
 double openscadSinDegrees(double degrees);
 double openscadCosDegrees(double degrees);
+// The rest of degree_trig.cc, which the language's tan() does not use (see above) but the
+// inverse functions need: tan exact at 0, 30, 45, 60 and 90 degrees; asin, acos, atan and
+// atan2 in degrees, snapped to a whole degree as OpenSCAD 2021 does (acos(-0.5) is 120,
+// not 120.00000000000001; BOSL2's tests compare them exactly).
+double openscadTanDegrees(double degrees);
+double openscadAsinDegrees(double x);
+double openscadAcosDegrees(double x);
+double openscadAtanDegrees(double x);
+double openscadAtan2Degrees(double y, double x);
 
 }  // namespace io

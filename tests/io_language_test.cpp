@@ -201,3 +201,19 @@ TEST(IoLanguage, FunctionValuesPrintAsOpenScadPrintsTheirExpressions) {
                "(let(b = 2) (for(c = [3]) (c)))]) + [each (for(i = [1]) (i))])",
                "ECHO: 15, true"}));
 }
+
+// ---- inverse trigonometry snaps to whole degrees (BOSL2's f_acos and friends) ----
+
+TEST(IoLanguage, InverseTrigonometryIsExactAtWholeDegrees) {
+    // OpenSCAD 2021's degree_trig.cc: asin, acos and atan round to the nearest whole degree
+    // when sin, cos or tan of it (exact at 30, 45, 60 and 90) give the argument back exactly;
+    // atan2 when within 3e-14 of it. acos(-0.5) in radians times 180/pi is 120.00000000000001.
+    // atan(1/sqrt(3)) stays off: 1/sqrt(3) is not tan(30)'s constant 0.57735026918962573.
+    Outcome r =
+        run("echo(acos(-0.5) == 120, acos(0.5) == 60, asin(0.5) == 30, asin(-0.5) == -30, "
+            "atan(sqrt(3)) == 60, asin(sqrt(2) / 2) == 45, acos(sqrt(3) / 2) == 30, "
+            "atan2(1, sqrt(3)) == 30, atan2(-1, -1) == -135, atan(1 / sqrt(3)) == 30);\n"
+            "echo(acos(0.51) - 59.336170257614036, atan(1 / 0), atan2(0, -1), acos(2));");
+    EXPECT_EQ(r.echoes, (Lines{"ECHO: true, true, true, true, true, true, true, true, true, false",
+                               "ECHO: 0, 90, 180, nan"}));
+}
