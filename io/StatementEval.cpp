@@ -274,7 +274,9 @@ Instance Evaluator::instantiateCall(const InstantiationStmt& s, const ContextPtr
         }
     }
     if (const BuiltinModule* b = findBuiltinModule(name)) return (*b)(*this, s, ctx, state);
-    fail(s.loc, "unknown module '" + name + "'");
+    // OpenSCAD warns and goes on (MCAD's regular_shapes.scad calls a module it never defines).
+    warn(s.loc, "Ignoring unknown module '" + name + "'");
+    return std::nullopt;
 }
 
 Instance Evaluator::callUserModule(const ModuleDefStmt& def, const ContextPtr& definition,
