@@ -435,21 +435,30 @@ void Evaluator::evalElement(const Expr& e, const ContextPtr& ctx, ValueList& out
             return;
         }
         case ExprKind::EachElement: {
+            // each splices a value into the list: a list's elements, a range's numbers, a
+            // string's characters; undef adds nothing, any other value itself.
             const auto& f = static_cast<const EachElementExpr&>(e);
-            if (f.value->kind >= ExprKind::ForElement) {
-                evalElement(*f.value, ctx, out);  // each over a comprehension: flatten it
+            const auto splice = [&](const Value& v) {
+                if (v.isUndef()) return;
+                if (!v.isVector() && !v.isRange() && !v.isString()) {
+                    out.push_back(v);
+                    return;
+                }
+                forEachItem(v, e.loc, [&](const Value& item) {
+                    out.push_back(item);
+                    return true;
+                });
+            };
+            if (f.value->kind < ExprKind::ForElement) {
+                splice(eval(*f.value, ctx));
                 return;
             }
-            const Value v = eval(*f.value, ctx);
-            if (v.isUndef()) return;
-            if (!v.isVector() && !v.isRange() && !v.isString()) {
-                out.push_back(v);
-                return;
-            }
-            forEachItem(v, e.loc, [&](const Value& item) {
-                out.push_back(item);
-                return true;
-            });
+            // Over a comprehension, each value it yields is spliced, as OpenSCAD 2021 does
+            // (LcEach::evalRecur): [each for (i = [1:2]) [i, i]] is [1, 1, 2, 2], and BOSL2's
+            // vnf_vertex_array collects its faces with `each let(...) faces`.
+            ValueList items;
+            evalElement(*f.value, ctx, items);
+            for (const Value& v : items) splice(v);
             return;
         }
         default:

@@ -217,3 +217,18 @@ TEST(IoLanguage, InverseTrigonometryIsExactAtWholeDegrees) {
     EXPECT_EQ(r.echoes, (Lines{"ECHO: true, true, true, true, true, true, true, true, true, false",
                                "ECHO: 0, 90, 180, nan"}));
 }
+
+// ---- each over a comprehension splices every value it yields (BOSL2's vnf_vertex_array) ----
+
+TEST(IoLanguage, EachOverAComprehensionSplicesEachValueItYields) {
+    // each for (...) v yields v's items, not v: [1, 1, 2, 2]. `each let(...) a` is each of a's
+    // value (a let over a plain expression). each if (c) v splices v. A value that is not a
+    // list, range or string is kept; undef adds nothing.
+    Outcome r =
+        run("echo([each for (i = [1:2]) [i, i]]);\n"
+            "echo([for (i = [1:2]) each let(a = [i, i]) a]);\n"
+            "echo([each let(b = 2) for (i = [1:2]) [i, b]], [each if (true) [1, [2]]]);\n"
+            "echo([each for (i = [0:2]) i == 1 ? undef : i == 2 ? \"xy\" : [0:1]]);\n");
+    EXPECT_EQ(r.echoes, (Lines{"ECHO: [1, 1, 2, 2]", "ECHO: [1, 1, 2, 2]",
+                               "ECHO: [1, 2, 2, 2], [1, [2]]", "ECHO: [0, 1, \"x\", \"y\"]"}));
+}
