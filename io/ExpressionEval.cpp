@@ -413,10 +413,12 @@ void Evaluator::evalElement(const Expr& e, const ContextPtr& ctx, ValueList& out
                 spend(e.loc);
                 if (!eval(*f.condition, c).truthy()) break;
                 evalElement(*f.body, c, out);
-                // The update sees the previous values; all names update together.
+                // The update is sequential, as OpenSCAD 2021 evaluates it: each assignment
+                // sees the ones before it (for (i = 0, j = 0; ...; i = i + 1, j = i) makes
+                // j the new i), and a name it introduces stays for the following iterations.
                 ContextPtr next = Context::make(ctx, ctx, nullptr);
                 next->variables = c->variables;
-                for (const Argument& a : f.update) next->set(a.name, eval(*a.value, c));
+                for (const Argument& a : f.update) next->set(a.name, eval(*a.value, next));
                 c = std::move(next);
             }
             return;

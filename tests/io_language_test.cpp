@@ -232,3 +232,15 @@ TEST(IoLanguage, EachOverAComprehensionSplicesEachValueItYields) {
     EXPECT_EQ(r.echoes, (Lines{"ECHO: [1, 1, 2, 2]", "ECHO: [1, 1, 2, 2]",
                                "ECHO: [1, 2, 2, 2], [1, [2]]", "ECHO: [0, 1, \"x\", \"y\"]"}));
 }
+
+// ---- a C-style for's update is sequential (BOSL2's path_sweep: v1 = ..., c1 = v1 * v1) ----
+
+TEST(IoLanguage, CStyleForUpdateAssignsInOrder) {
+    // j = i sees the new i: [[0, 0], [1, 1], [2, 2]]. A name first assigned in the update
+    // (k) is there for the condition and body of the next iterations.
+    Outcome r =
+        run("echo([for (i = 0, j = 0; i < 3; i = i + 1, j = i) [i, j]]);\n"
+            "echo([for (i = 0; i < 2; k = i, i = k + 1) i]);\n");
+    EXPECT_EQ(r.echoes, (Lines{"ECHO: [[0, 0], [1, 1], [2, 2]]", "ECHO: [0, 1]"}));
+    EXPECT_TRUE(r.warnings.empty());
+}
