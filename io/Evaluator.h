@@ -129,7 +129,9 @@ public:
 
     // ---- expressions (ExpressionEval.cpp) ----
     Value eval(const Expr& e, const ContextPtr& ctx);
-    Value lookupVariable(const std::string& name, const ContextPtr& ctx, Loc loc);
+    // The variable's value; undef with a warning when no scope has it, or silently.
+    Value lookupVariable(const std::string& name, const ContextPtr& ctx, Loc loc,
+                         bool silent = false);
     ArgValues evalArgs(const Arguments& args, const ContextPtr& ctx);
     Value callFunctionExpr(const CallExpr& call, const ContextPtr& ctx);
     void warn(Loc loc, std::string message);

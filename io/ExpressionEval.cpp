@@ -63,12 +63,13 @@ std::string Evaluator::printed(const Value& v, bool quoted, Loc loc) {
     return text;
 }
 
-Value Evaluator::lookupVariable(const std::string& name, const ContextPtr& ctx, Loc loc) {
+Value Evaluator::lookupVariable(const std::string& name, const ContextPtr& ctx, Loc loc,
+                                bool silent) {
     const bool dynamic = !name.empty() && name[0] == '$';
     for (const Context* c = ctx.get(); c;
          c = dynamic ? c->dynamicParent.get() : c->lexicalParent.get())
         if (const Value* v = c->findLocal(name)) return *v;
-    warn(loc, "ignoring unknown variable '" + name + "'");
+    if (!silent) warn(loc, "ignoring unknown variable '" + name + "'");
     return Value();
 }
 

@@ -112,6 +112,13 @@ Value Evaluator::callFunctionExpr(const CallExpr& call, const ContextPtr& ctx) {
         name = &static_cast<const IdentifierExpr&>(*call.callee).name;
         user = findFunction(*name, ctx);
         if (!user) {
+            // is_undef(name) looks name up without the unknown-variable warning, as OpenSCAD
+            // 2021 does (func.cc, builtin_is_undef): BOSL2 asks is_undef($slop).
+            if (*name == "is_undef" && call.args.size() == 1 &&
+                call.args[0].value->kind == ExprKind::Identifier) {
+                const auto& variable = static_cast<const IdentifierExpr&>(*call.args[0].value);
+                return lookupVariable(variable.name, ctx, variable.loc, true).isUndef();
+            }
             if (const BuiltinFunction* b = findBuiltinFunction(*name))
                 return (*b)(*this, evalArgs(call.args, ctx), call.loc);
             fail(call.loc, "unknown function '" + *name + "'");

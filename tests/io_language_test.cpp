@@ -244,3 +244,13 @@ TEST(IoLanguage, CStyleForUpdateAssignsInOrder) {
     EXPECT_EQ(r.echoes, (Lines{"ECHO: [[0, 0], [1, 1], [2, 2]]", "ECHO: [0, 1]"}));
     EXPECT_TRUE(r.warnings.empty());
 }
+
+// ---- is_undef(name) and a range of non-numbers are silent (BOSL2's get_slop, is_range) ----
+
+TEST(IoLanguage, IsUndefOfAnUnknownNameDoesNotWarn) {
+    // is_undef looks a bare name up silently; any other argument is evaluated as usual.
+    Outcome r = run("echo(is_undef($slop), is_undef(nothing), is_undef(nothing + 1));");
+    EXPECT_EQ(r.echoes, Lines{"ECHO: true, true, true"});
+    EXPECT_EQ(r.warnings.size(), 2u);  // `nothing` unknown, then undef + 1
+    EXPECT_EQ(r.warnings.at(0), "1:51 ignoring unknown variable 'nothing'");
+}
