@@ -359,10 +359,8 @@ Value Evaluator::evalRange(const RangeExpr& e, const ContextPtr& ctx) {
     const Value begin = eval(*e.begin, ctx);
     const Value step = e.step ? eval(*e.step, ctx) : Value(1.0);
     const Value end = eval(*e.end, ctx);
-    if (!begin.isNumber() || !step.isNumber() || !end.isNumber()) {
-        warn(e.loc, "range bounds and step must be numbers");
-        return Value();
-    }
+    // Not numbers: undef, silently, as in OpenSCAD 2021 (BOSL2's is_range tests [3:4:"a"]).
+    if (!begin.isNumber() || !step.isNumber() || !end.isNumber()) return Value();
     Range r{begin.number(), step.number(), end.number()};
     if (!e.step && r.begin > r.end) {
         // OpenSCAD's deprecated [5:1] form counts up from the smaller end.

@@ -254,3 +254,9 @@ TEST(IoLanguage, IsUndefOfAnUnknownNameDoesNotWarn) {
     EXPECT_EQ(r.warnings.size(), 2u);  // `nothing` unknown, then undef + 1
     EXPECT_EQ(r.warnings.at(0), "1:51 ignoring unknown variable 'nothing'");
 }
+
+TEST(IoLanguage, ARangeOfNonNumbersIsUndefWithoutAWarning) {
+    Outcome r = run("echo([\"a\":1:2], [1:undef], [3:4:\"a\"]);");
+    EXPECT_EQ(r.echoes, Lines{"ECHO: undef, undef, undef"});
+    EXPECT_TRUE(r.warnings.empty());
+}
