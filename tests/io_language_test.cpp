@@ -260,3 +260,19 @@ TEST(IoLanguage, ARangeOfNonNumbersIsUndefWithoutAWarning) {
     EXPECT_EQ(r.echoes, Lines{"ECHO: undef, undef, undef"});
     EXPECT_TRUE(r.warnings.empty());
 }
+
+// ---- ranges compare as OpenSCAD 2021 compares them (BOSL2's typeof and is_nan) ----
+
+TEST(IoLanguage, RangesAreEqualWhenTheyCountAlikeFromTheSameBeginAndStep) {
+    // As many values, then the same begin and step; the end is not compared. Empty ranges are
+    // all equal, a NaN one included, so BOSL2's is_nan(x) = x != x is false for [0:nan:inf].
+    // A zero step or an infinite end counts without bound; an infinite step counts one.
+    Outcome r =
+        run("n = 0 / 0; i = 1 / 0;\n"
+            "echo([0:2:4] == [0:2:5], [0:1:2.5] == [0:1:2], [0:1:-1] == [5:1:3], "
+            "[0:n:1] == [2:1:1], [0:n:i] != [0:n:i]);\n"
+            "echo([0:1:0] == [0:5:0], [0:1:2] == [0:1:3], [0:0:1] == [5:1:3], [0:i:5] == [0:i:7], "
+            "[0:1:i] == [0:1:5]);\n");
+    EXPECT_EQ(r.echoes, (Lines{"ECHO: true, true, true, true, false",
+                               "ECHO: false, false, false, true, false"}));
+}
