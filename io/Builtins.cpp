@@ -2,7 +2,6 @@
 // wrong type return undef with a warning, as OpenSCAD does.
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <unordered_map>
 
 #include "io/Degrees.h"
@@ -33,19 +32,6 @@ Value unary(Evaluator& e, const Args& a, Loc loc, const char* name) {
     return F(*x);
 }
 
-double tanDegrees(double x) {
-    const double c = cosDegrees(x);
-    return c == 0.0 ? (sinDegrees(x) > 0 ? INFINITY : -INFINITY) : sinDegrees(x) / c;
-}
-double asinDegrees(double x) {
-    return openscadAsinDegrees(x);
-}
-double acosDegrees(double x) {
-    return openscadAcosDegrees(x);
-}
-double atanDegrees(double x) {
-    return openscadAtanDegrees(x);
-}
 double sign(double x) {
     return x < 0 ? -1.0 : x > 0 ? 1.0 : 0.0;
 }
@@ -226,12 +212,14 @@ Value parentModule(Evaluator& e, const Args& a, Loc loc) {
 
 const std::unordered_map<std::string, Evaluator::BuiltinFunction>& table() {
     static const std::unordered_map<std::string, Evaluator::BuiltinFunction> functions = {
-        {"sin", UNARY(sinDegrees, "sin")},
-        {"cos", UNARY(cosDegrees, "cos")},
-        {"tan", UNARY(tanDegrees, "tan")},
-        {"asin", UNARY(asinDegrees, "asin")},
-        {"acos", UNARY(acosDegrees, "acos")},
-        {"atan", UNARY(atanDegrees, "atan")},
+        // OpenSCAD 2021's own degree trigonometry, bit for bit (io/Degrees.h): sin(45) is
+        // sqrt(1/2) and tan(30) sqrt(1/3) exactly, as BOSL2's tests expect.
+        {"sin", UNARY(openscadSinDegrees, "sin")},
+        {"cos", UNARY(openscadCosDegrees, "cos")},
+        {"tan", UNARY(openscadTanDegrees, "tan")},
+        {"asin", UNARY(openscadAsinDegrees, "asin")},
+        {"acos", UNARY(openscadAcosDegrees, "acos")},
+        {"atan", UNARY(openscadAtanDegrees, "atan")},
         {"atan2",
          [](Evaluator& e, const Args& a, Loc l) -> Value {
              auto y = number(a, 0), x = number(a, 1);

@@ -276,3 +276,16 @@ TEST(IoLanguage, RangesAreEqualWhenTheyCountAlikeFromTheSameBeginAndStep) {
     EXPECT_EQ(r.echoes, (Lines{"ECHO: true, true, true, true, false",
                                "ECHO: false, false, false, true, false"}));
 }
+
+// ---- sin, cos and tan are OpenSCAD 2021's, exact at 30, 45, 60 and 90 degrees ----
+
+TEST(IoLanguage, TrigonometryIsOpenScadsDegreeTrigonometry) {
+    // degree_trig.cc returns its constants at those angles: sin(45) is the double nearest
+    // sqrt(1/2) (sin(pi / 4) is an ulp below it), tan(30) is sqrt(1/3)'s double (1 / sqrt(3)
+    // is an ulp above it). BOSL2's glued_circles() counts arc segments from such values.
+    Outcome r =
+        run("echo(sin(45) == sqrt(0.5), cos(45) == sqrt(0.5), sin(60) == sqrt(3) / 2, "
+            "tan(60) == sqrt(3), tan(30) == sqrt(1 / 3), tan(30) == 1 / sqrt(3), "
+            "sin(-135) == -sqrt(0.5), tan(135), tan(-180), tan(90), tan(270));");
+    EXPECT_EQ(r.echoes, Lines{"ECHO: true, true, true, true, true, false, true, -1, 0, inf, -inf"});
+}
