@@ -289,3 +289,18 @@ TEST(IoLanguage, TrigonometryIsOpenScadsDegreeTrigonometry) {
             "sin(-135) == -sqrt(0.5), tan(135), tan(-180), tan(90), tan(270));");
     EXPECT_EQ(r.echoes, Lines{"ECHO: true, true, true, true, true, false, true, -1, 0, inf, -inf"});
 }
+
+// ---- a parameter declared twice takes the argument given to either (BOSL2's masks) ----
+
+TEST(IoLanguage, AParameterDeclaredTwiceTakesTheArgumentGivenToEither) {
+    // OpenSCAD 2021 sets every default, in order, and then the arguments: with no argument
+    // the last default wins; an argument, by name or by either position, wins over both.
+    Outcome r =
+        run("module m(a, r, b, r) echo(a = a, r = r, b = b);\n"
+            "m(1, 2, 3, 4); m(r = 5); m(1, 2);\n"
+            "function f(x, y = 2, x = 3) = [x, y];\n"
+            "echo(f(), f(1), f(x = 7), f(1, 2, 4));\n");
+    EXPECT_EQ(r.echoes,
+              (Lines{"ECHO: a = 1, r = 4, b = 3", "ECHO: a = undef, r = 5, b = undef",
+                     "ECHO: a = 1, r = 2, b = undef", "ECHO: [3, 2], [1, 2], [7, 2], [4, 2]"}));
+}
