@@ -65,7 +65,11 @@ std::string Evaluator::printed(const Value& v, bool quoted, Loc loc) {
 
 Value Evaluator::lookupVariable(const std::string& name, const ContextPtr& ctx, Loc loc,
                                 bool silent) {
-    const bool dynamic = !name.empty() && name[0] == '$';
+    // $-names are dynamic, except $children, which OpenSCAD 2021 resolves lexically: a
+    // block of children sees the $children of the module it is written in, not of the one
+    // that instantiates it, and a function sees none (BOSL2's regular_polyhedron asks for it
+    // inside translate() { ... }, which BOSL2 redefines as a module of its own).
+    const bool dynamic = !name.empty() && name[0] == '$' && name != "$children";
     for (const Context* c = ctx.get(); c;
          c = dynamic ? c->dynamicParent.get() : c->lexicalParent.get())
         if (const Value* v = c->findLocal(name)) return *v;

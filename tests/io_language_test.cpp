@@ -304,3 +304,23 @@ TEST(IoLanguage, AParameterDeclaredTwiceTakesTheArgumentGivenToEither) {
               (Lines{"ECHO: a = 1, r = 4, b = 3", "ECHO: a = undef, r = 5, b = undef",
                      "ECHO: a = 1, r = 2, b = undef", "ECHO: [3, 2], [1, 2], [7, 2], [4, 2]"}));
 }
+
+// ---- $children is lexical (BOSL2's regular_polyhedron inside its own translate()) ----
+
+TEST(IoLanguage, ChildrenCountIsTheWritingModulesNotTheInstantiatingOnes) {
+    // A block of children sees the $children of the module it is written in: outer() has 0
+    // (inner() has 1, the block) and user() 1 through two pass()es; a function sees none.
+    // Other $-variables stay dynamic: $parent_modules in inner's children is inner's count.
+    Outcome r =
+        run("module inner() children();\n"
+            "module outer() inner() echo(c = $children, p = $parent_modules);\n"
+            "outer();\n"
+            "module pass() children();\n"
+            "module user() pass() pass() echo(u = $children);\n"
+            "user() cube();\n"
+            "function f() = $children;\n"
+            "module m() echo(f = f());\n"
+            "m() cube();\n");
+    EXPECT_EQ(r.echoes, (Lines{"ECHO: c = 0, p = 2", "ECHO: u = 1", "ECHO: f = undef"}));
+    EXPECT_EQ(r.warnings, Lines{"7:16 ignoring unknown variable '$children'"});
+}
