@@ -2,7 +2,6 @@
 // wrong type return undef with a warning, as OpenSCAD does.
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <unordered_map>
 
 #include "io/Degrees.h"
@@ -33,21 +32,6 @@ Value unary(Evaluator& e, const Args& a, Loc loc, const char* name) {
     return F(*x);
 }
 
-constexpr double kDegreesPerRadian = 180.0 / std::numbers::pi;
-
-double tanDegrees(double x) {
-    const double c = cosDegrees(x);
-    return c == 0.0 ? (sinDegrees(x) > 0 ? INFINITY : -INFINITY) : sinDegrees(x) / c;
-}
-double asinDegrees(double x) {
-    return std::asin(x) * kDegreesPerRadian;
-}
-double acosDegrees(double x) {
-    return std::acos(x) * kDegreesPerRadian;
-}
-double atanDegrees(double x) {
-    return std::atan(x) * kDegreesPerRadian;
-}
 double sign(double x) {
     return x < 0 ? -1.0 : x > 0 ? 1.0 : 0.0;
 }
@@ -195,19 +179,52 @@ Value cross(Evaluator& e, const Args& a, Loc loc) {
     return ValueList{x, y, z};
 }
 
+// parent_module(n = 1): the name of the user module n levels up the module stack from the one
+// being instantiated (0: that one), as OpenSCAD 2021 (func.cc, builtin_parent_module): n is
+// truncated; a non-number is undef; a negative or too big n is undef with OpenSCAD's warning
+// (NaN and 1e10 count as negative, as 2021's x86 builds take them).
+Value parentModule(Evaluator& e, const Args& a, Loc loc) {
+    if (a.size() > 1) {
+        e.warn(loc, "parent_module() number of parameters does not match");
+        return Value();
+    }
+    double d = 1.0;
+    if (a.size() == 1) {
+        if (!a[0].value.isNumber()) return Value();
+        d = a[0].value.number();
+    }
+    const auto& stack = e.moduleStack();
+    // OpenSCAD converts to int: on x86, NaN and values out of int's range become INT_MIN.
+    double t = std::trunc(d);
+    if (!(t >= -2147483648.0 && t <= 2147483647.0)) t = -2147483648.0;
+    const std::string n = std::to_string(static_cast<long>(t));
+    if (t < 0) {
+        e.warn(loc, "Negative parent module index (" + n + ") not allowed");
+        return Value();
+    }
+    if (t >= static_cast<double>(stack.size())) {
+        e.warn(loc,
+               "Parent module index (" + n + ") greater than the number of modules on the stack");
+        return Value();
+    }
+    return std::string(stack[stack.size() - 1 - static_cast<size_t>(t)]);
+}
+
 const std::unordered_map<std::string, Evaluator::BuiltinFunction>& table() {
     static const std::unordered_map<std::string, Evaluator::BuiltinFunction> functions = {
-        {"sin", UNARY(sinDegrees, "sin")},
-        {"cos", UNARY(cosDegrees, "cos")},
-        {"tan", UNARY(tanDegrees, "tan")},
-        {"asin", UNARY(asinDegrees, "asin")},
-        {"acos", UNARY(acosDegrees, "acos")},
-        {"atan", UNARY(atanDegrees, "atan")},
+        // OpenSCAD 2021's own degree trigonometry, bit for bit (io/Degrees.h): sin(45) is
+        // sqrt(1/2) and tan(30) sqrt(1/3) exactly, as BOSL2's tests expect.
+        {"sin", UNARY(openscadSinDegrees, "sin")},
+        {"cos", UNARY(openscadCosDegrees, "cos")},
+        {"tan", UNARY(openscadTanDegrees, "tan")},
+        {"asin", UNARY(openscadAsinDegrees, "asin")},
+        {"acos", UNARY(openscadAcosDegrees, "acos")},
+        {"atan", UNARY(openscadAtanDegrees, "atan")},
         {"atan2",
          [](Evaluator& e, const Args& a, Loc l) -> Value {
              auto y = number(a, 0), x = number(a, 1);
              if (!y || !x) return badArgument(e, l, "atan2");
-             return std::atan2(*y, *x) * kDegreesPerRadian;
+             return openscadAtan2Degrees(*y, *x);
          }},
         {"sqrt", UNARY(sqrtOf, "sqrt")},
         {"exp", UNARY(expOf, "exp")},
@@ -302,6 +319,7 @@ const std::unordered_map<std::string, Evaluator::BuiltinFunction>& table() {
          }},
         {"rands", rands},
         {"search", builtinSearch},
+        {"parent_module", parentModule},
         {"is_undef",
          [](Evaluator&, const Args& a, Loc) -> Value {
              return a.size() == 1 && a[0].value.isUndef();

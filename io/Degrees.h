@@ -34,10 +34,19 @@ inline double cosDegrees(double degrees) {
 // multiples of 30, 45, 60 and 90 degrees, otherwise sin or cos of the angle folded into
 // [0, 45] and converted with one multiplication by the rounded pi/180. Faceting (io/Faceting.h)
 // places OpenSCAD's vertices with these, so a faceted solid's vertices are OpenSCAD's doubles.
-// The language's sin(), cos() and rotate() still use the pair above: moving them to these
+// The language's sin(), cos() and tan() use these (BOSL2 builds its geometry with them and
+// its tests compare to OpenSCAD's doubles); rotate() still uses the pair above: moving it
 // changes rotations by 45 and 60 degrees by an ulp, i.e. the outputs of parts that have them,
 // which is a change of its own.
 double openscadSinDegrees(double degrees);
 double openscadCosDegrees(double degrees);
+// The rest of degree_trig.cc: tan exact at 0, 30, 45, 60 and 90 degrees; asin, acos, atan and
+// atan2 in degrees, snapped to a whole degree as OpenSCAD 2021 does (acos(-0.5) is 120,
+// not 120.00000000000001; BOSL2's tests compare them exactly).
+double openscadTanDegrees(double degrees);
+double openscadAsinDegrees(double x);
+double openscadAcosDegrees(double x);
+double openscadAtanDegrees(double x);
+double openscadAtan2Degrees(double y, double x);
 
 }  // namespace io

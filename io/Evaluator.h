@@ -129,7 +129,9 @@ public:
 
     // ---- expressions (ExpressionEval.cpp) ----
     Value eval(const Expr& e, const ContextPtr& ctx);
-    Value lookupVariable(const std::string& name, const ContextPtr& ctx, Loc loc);
+    // The variable's value; undef with a warning when no scope has it, or silently.
+    Value lookupVariable(const std::string& name, const ContextPtr& ctx, Loc loc,
+                         bool silent = false);
     ArgValues evalArgs(const Arguments& args, const ContextPtr& ctx);
     Value callFunctionExpr(const CallExpr& call, const ContextPtr& ctx);
     void warn(Loc loc, std::string message);
@@ -144,6 +146,10 @@ public:
 
     // The echo line of a list of arguments: "ECHO: a = 1, 2".
     void echo(const ArgValues& args);
+
+    // The names of the user modules being instantiated, outermost first: OpenSCAD's stack
+    // behind $parent_modules and parent_module(n) (built-in modules are not on it).
+    const std::vector<std::string_view>& moduleStack() const { return moduleStack_; }
 
 private:
     // ---- expression helpers ----
@@ -251,7 +257,8 @@ private:
     const EvaluateOptions& options_;
     std::mt19937 random_{0};
     uint32_t depth_ = 0;
-    uint32_t hullDepth_ = 0;  // hull()s whose children are being evaluated
+    std::vector<std::string_view> moduleStack_;  // see moduleStack()
+    uint32_t hullDepth_ = 0;                     // hull()s whose children are being evaluated
     uint32_t warnings_ = 0;
     uint64_t steps_ = 0;
     const char* stackTop_ = nullptr;

@@ -63,12 +63,17 @@ std::string Evaluator::printed(const Value& v, bool quoted, Loc loc) {
     return text;
 }
 
-Value Evaluator::lookupVariable(const std::string& name, const ContextPtr& ctx, Loc loc) {
-    const bool dynamic = !name.empty() && name[0] == '$';
+Value Evaluator::lookupVariable(const std::string& name, const ContextPtr& ctx, Loc loc,
+                                bool silent) {
+    // $-names are dynamic, except $children, which OpenSCAD 2021 resolves lexically: a
+    // block of children sees the $children of the module it is written in, not of the one
+    // that instantiates it, and a function sees none (BOSL2's regular_polyhedron asks for it
+    // inside translate() { ... }, which BOSL2 redefines as a module of its own).
+    const bool dynamic = !name.empty() && name[0] == '$' && name != "$children";
     for (const Context* c = ctx.get(); c;
          c = dynamic ? c->dynamicParent.get() : c->lexicalParent.get())
         if (const Value* v = c->findLocal(name)) return *v;
-    warn(loc, "ignoring unknown variable '" + name + "'");
+    if (!silent) warn(loc, "ignoring unknown variable '" + name + "'");
     return Value();
 }
 
@@ -358,10 +363,8 @@ Value Evaluator::evalRange(const RangeExpr& e, const ContextPtr& ctx) {
     const Value begin = eval(*e.begin, ctx);
     const Value step = e.step ? eval(*e.step, ctx) : Value(1.0);
     const Value end = eval(*e.end, ctx);
-    if (!begin.isNumber() || !step.isNumber() || !end.isNumber()) {
-        warn(e.loc, "range bounds and step must be numbers");
-        return Value();
-    }
+    // Not numbers: undef, silently, as in OpenSCAD 2021 (BOSL2's is_range tests [3:4:"a"]).
+    if (!begin.isNumber() || !step.isNumber() || !end.isNumber()) return Value();
     Range r{begin.number(), step.number(), end.number()};
     if (!e.step && r.begin > r.end) {
         // OpenSCAD's deprecated [5:1] form counts up from the smaller end.
@@ -413,10 +416,12 @@ void Evaluator::evalElement(const Expr& e, const ContextPtr& ctx, ValueList& out
                 spend(e.loc);
                 if (!eval(*f.condition, c).truthy()) break;
                 evalElement(*f.body, c, out);
-                // The update sees the previous values; all names update together.
+                // The update is sequential, as OpenSCAD 2021 evaluates it: each assignment
+                // sees the ones before it (for (i = 0, j = 0; ...; i = i + 1, j = i) makes
+                // j the new i), and a name it introduces stays for the following iterations.
                 ContextPtr next = Context::make(ctx, ctx, nullptr);
                 next->variables = c->variables;
-                for (const Argument& a : f.update) next->set(a.name, eval(*a.value, c));
+                for (const Argument& a : f.update) next->set(a.name, eval(*a.value, next));
                 c = std::move(next);
             }
             return;
@@ -435,21 +440,30 @@ void Evaluator::evalElement(const Expr& e, const ContextPtr& ctx, ValueList& out
             return;
         }
         case ExprKind::EachElement: {
+            // each splices a value into the list: a list's elements, a range's numbers, a
+            // string's characters; undef adds nothing, any other value itself.
             const auto& f = static_cast<const EachElementExpr&>(e);
-            if (f.value->kind >= ExprKind::ForElement) {
-                evalElement(*f.value, ctx, out);  // each over a comprehension: flatten it
+            const auto splice = [&](const Value& v) {
+                if (v.isUndef()) return;
+                if (!v.isVector() && !v.isRange() && !v.isString()) {
+                    out.push_back(v);
+                    return;
+                }
+                forEachItem(v, e.loc, [&](const Value& item) {
+                    out.push_back(item);
+                    return true;
+                });
+            };
+            if (f.value->kind < ExprKind::ForElement) {
+                splice(eval(*f.value, ctx));
                 return;
             }
-            const Value v = eval(*f.value, ctx);
-            if (v.isUndef()) return;
-            if (!v.isVector() && !v.isRange() && !v.isString()) {
-                out.push_back(v);
-                return;
-            }
-            forEachItem(v, e.loc, [&](const Value& item) {
-                out.push_back(item);
-                return true;
-            });
+            // Over a comprehension, each value it yields is spliced, as OpenSCAD 2021 does
+            // (LcEach::evalRecur): [each for (i = [1:2]) [i, i]] is [1, 1, 2, 2], and BOSL2's
+            // vnf_vertex_array collects its faces with `each let(...) faces`.
+            ValueList items;
+            evalElement(*f.value, ctx, items);
+            for (const Value& v : items) splice(v);
             return;
         }
         default:
@@ -509,6 +523,15 @@ Value Evaluator::eval(const Expr& e, const ContextPtr& ctx) {
             if (object.isVector()) {
                 if (k < 0 || k >= static_cast<double>(object.list().size())) return Value();
                 return object.list()[static_cast<size_t>(k)];
+            }
+            if (object.isRange()) {
+                // OpenSCAD 2021 indexes a range's parts: [b:s:e][0] = b, [1] = s, [2] = e
+                // (BOSL2's is_range tests for them).
+                const Range& r = object.range();
+                return k == 0   ? Value(r.begin)
+                       : k == 1 ? Value(r.step)
+                       : k == 2 ? Value(r.end)
+                                : Value();
             }
             if (object.isString()) {
                 // Index by code point, as OpenSCAD does.

@@ -19,6 +19,10 @@ constexpr double kDegreesToRadians = 0.017453292519943295769;
 // sqrt(3) / 2 as degree_trig.h's literal M_SQRT3_4, and sqrt(1/2) as <cmath>'s M_SQRT1_2.
 constexpr double kSqrt3Over2 = 0.86602540378443859659;
 constexpr double kSqrtHalf = 0.70710678118654752440;
+// tan(60) and tan(30) as degree_trig.h's M_SQRT3 and M_SQRT1_3; 180 / pi as its M_RAD2DEG.
+constexpr double kSqrt3 = 1.73205080756887719318;
+constexpr double kSqrtThird = 0.57735026918962573106;
+constexpr double kRadiansToDegrees = 57.2957795130823208767;
 // Beyond 2^52 degrees an angle has no fractional degrees left; degree_trig.cc gives NaN there.
 constexpr double kHugeDegrees = double(int64_t(1) << 26) * 360.0 * double(int64_t(1) << 26);
 
@@ -73,6 +77,61 @@ double openscadCosDegrees(double degrees) {
         x = std::cos(x * kDegreesToRadians);
     }
     return oppose ? -x : x;
+}
+
+double openscadTanDegrees(double degrees) {
+    // Reduced to [0, 180) by whole half turns; their parity signs the exact 0 and infinity.
+    const double cycles = std::floor(degrees / 180.0);
+    double x = degrees;
+    if (!(x < 180.0 && x >= 0.0)) {
+        if (!(x < kHugeDegrees && x > -kHugeDegrees))
+            return std::numeric_limits<double>::quiet_NaN();
+        x -= 180.0 * cycles;
+    }
+    const bool even = std::fmod(cycles, 2.0) == 0.0;
+    const bool oppose = x > 90.0;
+    if (oppose) x = 180.0 - x;
+    if (x == 0.0) {
+        x = even ? 0.0 : -0.0;
+    } else if (x == 30.0) {
+        x = kSqrtThird;
+    } else if (x == 45.0) {
+        x = 1.0;
+    } else if (x == 60.0) {
+        x = kSqrt3;
+    } else if (x == 90.0) {
+        x = even ? std::numeric_limits<double>::infinity()
+                 : -std::numeric_limits<double>::infinity();
+    } else {
+        x = std::tan(x * kDegreesToRadians);
+    }
+    return oppose ? -x : x;
+}
+
+// The inverse functions round to a whole degree when the forward function of that degree gives
+// the argument back exactly (atan2: when within 3e-14 of it), so that acos(-0.5) is 120.
+double openscadAsinDegrees(double x) {
+    const double degrees = std::asin(x) * kRadiansToDegrees;
+    const double whole = std::round(degrees);
+    return openscadSinDegrees(whole) == x ? whole : degrees;
+}
+
+double openscadAcosDegrees(double x) {
+    const double degrees = std::acos(x) * kRadiansToDegrees;
+    const double whole = std::round(degrees);
+    return openscadCosDegrees(whole) == x ? whole : degrees;
+}
+
+double openscadAtanDegrees(double x) {
+    const double degrees = std::atan(x) * kRadiansToDegrees;
+    const double whole = std::round(degrees);
+    return openscadTanDegrees(whole) == x ? whole : degrees;
+}
+
+double openscadAtan2Degrees(double y, double x) {
+    const double degrees = std::atan2(y, x) * kRadiansToDegrees;
+    const double whole = std::round(degrees);
+    return std::fabs(degrees - whole) < 3.0e-14 ? whole : degrees;
 }
 
 const char* curveModeName(CurveMode mode) {

@@ -1,6 +1,8 @@
 // Calling functions: parameter binding with positional, named and default arguments, and
 // tail calls run as a loop (as OpenSCAD does), so f(n) = n <= 0 ? a : f(n - 1, ...) may
 // recurse a million times without growing the C++ stack.
+#include <bit>
+
 #include "io/Evaluator.h"
 
 namespace io {
@@ -73,9 +75,19 @@ ContextPtr Evaluator::bindParameters(const Parameters& params, const ArgValues& 
         }
     }
     (void)loc;
+    // Whether an argument went to another parameter of the same name: a name may be declared
+    // twice (BOSL2's rounding_edge_mask has r twice), and OpenSCAD 2021 sets all defaults
+    // before the arguments, so a given argument wins over the other slot's default.
+    auto nameBound = [&](size_t k) {
+        for (uint64_t bits = boundBits; bits != 0; bits &= bits - 1)
+            if (params[size_t(std::countr_zero(bits))].name == params[k].name) return true;
+        for (size_t j = 64; j < params.size(); ++j)
+            if (boundMore[j] && params[j].name == params[k].name) return true;
+        return false;
+    };
     // Defaults see the parameters bound before them.
     for (size_t k = 0; k < params.size(); ++k)
-        if (!isBound(k))
+        if (!isBound(k) && !nameBound(k))
             c->set(params[k].name,
                    params[k].defaultValue ? eval(*params[k].defaultValue, c) : Value());
     return c;
@@ -112,6 +124,13 @@ Value Evaluator::callFunctionExpr(const CallExpr& call, const ContextPtr& ctx) {
         name = &static_cast<const IdentifierExpr&>(*call.callee).name;
         user = findFunction(*name, ctx);
         if (!user) {
+            // is_undef(name) looks name up without the unknown-variable warning, as OpenSCAD
+            // 2021 does (func.cc, builtin_is_undef): BOSL2 asks is_undef($slop).
+            if (*name == "is_undef" && call.args.size() == 1 &&
+                call.args[0].value->kind == ExprKind::Identifier) {
+                const auto& variable = static_cast<const IdentifierExpr&>(*call.args[0].value);
+                return lookupVariable(variable.name, ctx, variable.loc, true).isUndef();
+            }
             if (const BuiltinFunction* b = findBuiltinFunction(*name))
                 return (*b)(*this, evalArgs(call.args, ctx), call.loc);
             fail(call.loc, "unknown function '" + *name + "'");

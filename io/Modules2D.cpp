@@ -279,6 +279,9 @@ Instance rotateExtrudeModule(Evaluator& e, const InstantiationStmt& s, const Con
         zlo = std::min(zlo, box.lo.y), zhi = std::max(zhi, box.hi.y);
     };
     scan(shape->get());
+    // A profile with no height (BOSL2's bottle adapter revolves a polygon of zero thickness)
+    // or on the axis sweeps no volume: the empty solid, as OpenSCAD makes nothing of it.
+    if (!(zhi > zlo) || !(rmax > 0.0)) return csg::NodePtr();
     csg::NodePtr profile = *shape;
     if (mirrored) profile = transformed2D(glm::scale(csg::Mat4(1.0), csg::Vec3(-1, 1, 1)), profile);
     csg::NodePtr solid;

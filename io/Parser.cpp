@@ -340,10 +340,11 @@ private:
         return args;
     }
 
-    // name = expr, ... (let, for): every entry must be named.
+    // name = expr, ... (let, for): every entry must be named. The list may be empty, and a
+    // ';' ends it too: the parts of a C-style for, `for (; cond; )`, may be empty.
     Arguments parseAssignments(Tok closer) {
         Arguments args;
-        while (cur_.kind != closer) {
+        while (cur_.kind != closer && cur_.kind != Tok::Semicolon) {
             Argument a;
             a.loc = cur_.loc;
             a.name = expectIdentifier("in an assignment list");

@@ -9,7 +9,9 @@
 //   list: each element is searched on its own like a number; with num_returns_per_match = 1
 //       the result is one index per element ([] for an element not found), otherwise one list
 //       of indices per element.
-// OpenSCAD's console note "search term not found" is not repeated as a diagnostic.
+// OpenSCAD's warnings, word for word: "search term not found" for a character of a string
+// found in no entry of a table that is not a string, and "Invalid entry in search vector" for
+// an entry without the searched column (the search then gives []).
 #include <cmath>
 
 #include "io/Evaluator.h"
@@ -101,26 +103,29 @@ Value builtinSearch(Evaluator& e, const ArgValues& a, Loc loc) {
 
     if (find.isString()) {
         const auto characters = codePointsOf(find.string());
-        // Each character of find against keys, one key per table entry.
-        auto searchCharacters = [&](const auto& keys) {
+        // Each character of find against keys, one key per table entry. Against a table of
+        // lists (or anything but a string), a character found nowhere is OpenSCAD's warning.
+        auto searchCharacters = [&](const auto& keys, bool warnNotFound) {
             for (std::string_view c : characters) {
                 e.spend(loc, keys.size());
                 for (size_t j = 0; j < keys.size(); ++j)
                     if (keys[j] == c && !collect.add(j)) break;
+                if (warnNotFound && collect.found() == 0)
+                    e.warn(loc, "search term not found: \"" + std::string(c) + "\"");
                 collect.finish();
             }
             return e.makeList(std::move(out), loc);
         };
-        if (table.isString()) return searchCharacters(codePointsOf(table.string()));
+        if (table.isString()) return searchCharacters(codePointsOf(table.string()), false);
         // Against a table of lists: the first character of each entry's column as str()
         // would print it. An entry without that column ends the search with [].
         std::vector<std::string> firsts;
         for (size_t j = 0; j < entries.size(); ++j) {
             const Value& entry = entries[j];
             if (!entry.isVector() || entry.list().size() <= column) {
-                e.warn(loc, "search(): invalid entry at index " + std::to_string(j) +
-                                " (it needs " + std::to_string(column + 1) +
-                                " values): " + entry.brief());
+                e.warn(loc, "Invalid entry in search vector at index " + std::to_string(j) +
+                                ", required number of values in the entry: " +
+                                std::to_string(column + 1) + ". Invalid entry: " + entry.brief());
                 return ValueList{};
             }
             WorkBudget firstCharacters{8};  // enough to print the first character
@@ -128,7 +133,7 @@ Value builtinSearch(Evaluator& e, const ArgValues& a, Loc loc) {
             const auto cps = codePointsOf(text);
             firsts.emplace_back(cps.empty() ? std::string() : std::string(cps[0]));
         }
-        return searchCharacters(firsts);
+        return searchCharacters(firsts, true);
     }
 
     if (find.isVector()) {
@@ -153,8 +158,7 @@ Value builtinSearch(Evaluator& e, const ArgValues& a, Loc loc) {
         }
         return e.makeList(std::move(out), loc);
     }
-    e.warn(loc, std::string("search() cannot search for a ") + find.typeName() +
-                    "; expected a number, string or list");
+    // Anything else (undef, a bool, a range, a function) is undef, silently, as in OpenSCAD.
     return Value();
 }
 

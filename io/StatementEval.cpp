@@ -47,7 +47,8 @@ Evaluator::~Evaluator() {
 
 void Evaluator::loadUses(const ParsedFile& file, const ContextPtr& fileContext) {
     for (const auto& [written, loc] : file.uses) {
-        const auto path = sources_.resolve(written, file.fileIndex);
+        // From the file the use<> is written in, which an included file's is not.
+        const auto path = sources_.resolve(written, loc.file);
         const std::string key = std::filesystem::weakly_canonical(path).string();
         auto known = usedFileContexts_.find(key);
         if (known != usedFileContexts_.end()) {
@@ -273,19 +274,29 @@ Instance Evaluator::instantiateCall(const InstantiationStmt& s, const ContextPtr
         }
     }
     if (const BuiltinModule* b = findBuiltinModule(name)) return (*b)(*this, s, ctx, state);
-    fail(s.loc, "unknown module '" + name + "'");
+    // OpenSCAD warns and goes on (MCAD's regular_shapes.scad calls a module it never defines).
+    warn(s.loc, "Ignoring unknown module '" + name + "'");
+    return std::nullopt;
 }
 
 Instance Evaluator::callUserModule(const ModuleDefStmt& def, const ContextPtr& definition,
                                    const InstantiationStmt& s, const ContextPtr& ctx,
                                    const GeomState& state) {
     DepthGuard guard(*this, s.loc, def.name);
+    // On the module stack from before its arguments are evaluated, as in OpenSCAD:
+    // m(parent_module(0)) passes "m".
+    struct StackEntry {
+        std::vector<std::string_view>& stack;
+        ~StackEntry() { stack.pop_back(); }
+    } entry{moduleStack_};
+    moduleStack_.push_back(def.name);
     ContextPtr m =
         bindParameters(def.params, evalArgs(s.args, ctx), definition, ctx, s.loc, def.name);
     m->isModuleCall = true;
     m->children = &s.children;
     m->childrenContext = ctx;
     m->set("$children", Value(static_cast<double>(s.children.instantiations.size())));
+    m->set("$parent_modules", Value(static_cast<double>(moduleStack_.size())));
     GeomState inner = state;
     inner.modulePath = childPath(state, def.name + "()");
     std::vector<csg::NodePtr> parts;

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "io/ExprPrint.h"
 #include "primitives/base/Tolerances.h"
 
 namespace io {
@@ -60,7 +61,7 @@ std::string formatNumber(double d) {
     return buffer;
 }
 
-static void quote(std::string& out, const std::string& s) {
+void appendQuoted(std::string& out, const std::string& s) {
     out += '"';
     for (char c : s) {
         switch (c) {
@@ -103,7 +104,7 @@ static void append(std::string& out, const Value& v, bool quoteStrings, WorkBudg
         case Value::Type::String:
             if (!budget.spend(v.string().size())) return;
             if (quoteStrings)
-                quote(out, v.string());
+                appendQuoted(out, v.string());
             else
                 out += v.string();
             break;
@@ -127,7 +128,9 @@ static void append(std::string& out, const Value& v, bool quoteStrings, WorkBudg
             break;
         }
         case Value::Type::Function:
-            out += "function";
+            // Its source, as OpenSCAD prints a function value: function(x) (x + 1).
+            appendFunctionLiteral(out, *v.function().literal);
+            budget.spend(out.size() - before);
             break;
     }
 }
@@ -164,6 +167,26 @@ std::string Value::brief(size_t maxChars) const {
     return out;
 }
 
+// How many values OpenSCAD 2021 says a range has (RangeType::numValues), for comparing ranges:
+// none when a part is NaN or the step points away from the end, one when begin == end or the
+// step is infinite, "unbounded" (infinity here) for an infinite end or a zero step.
+static double openscadRangeSize(const Range& r) {
+    if (std::isnan(r.begin) || std::isnan(r.step) || std::isnan(r.end)) return 0.0;
+    if (r.step < 0 ? r.begin < r.end : r.begin > r.end) return 0.0;
+    if (r.begin == r.end || std::isinf(r.step)) return 1.0;
+    if (std::isinf(r.begin) || std::isinf(r.end) || r.step == 0.0) return INFINITY;
+    return r.count();
+}
+
+// OpenSCAD 2021's range equality: as many values, and then (unless there are none) the same
+// begin and step; the end itself is not compared ([0:2:4] == [0:2:5]), and two empty ranges
+// are equal whatever their parts, NaN included (BOSL2's is_nan(x), x != x, relies on it).
+static bool rangesEqual(const Range& a, const Range& b) {
+    const double n = openscadRangeSize(a);
+    if (n != openscadRangeSize(b)) return false;
+    return n == 0.0 || (a.begin == b.begin && a.step == b.step);
+}
+
 bool Value::equals(const Value& other, WorkBudget& budget) const {
     if (!budget.spend()) return false;
     if (type() != other.type()) return false;
@@ -184,8 +207,7 @@ bool Value::equals(const Value& other, WorkBudget& budget) const {
             return true;
         }
         case Type::Range:
-            return range().begin == other.range().begin && range().step == other.range().step &&
-                   range().end == other.range().end;
+            return rangesEqual(range(), other.range());
         case Type::Function:
             return &function() == &other.function();
     }

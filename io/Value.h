@@ -119,5 +119,7 @@ private:
 // OpenSCAD's number format: %g with 6 significant digits and a short exponent
 // (1e+6, 1.23457e-7); -0 prints as 0.
 std::string formatNumber(double d);
+// Appends s in double quotes with OpenSCAD's escapes (\" \\ \n \t \r), as echo() shows it.
+void appendQuoted(std::string& out, const std::string& s);
 
 }  // namespace io

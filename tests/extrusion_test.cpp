@@ -179,6 +179,23 @@ TEST(Extrusion, RevolvedRectangleAndWedgeByHand) {
                 {1, 0, 0}, {{3, 4}, {6, 7}}, 1e-14);
 }
 
+// A profile of no height sweeps no volume, faceted or not: the empty solid, which a difference
+// subtracts without effect (BOSL2's bottle_adapter_neck_to_neck revolves such a polygon with
+// $fn = 8; the faceted revolution's bounding box was an error).
+TEST(Extrusion, RevolvedFlatProfileIsEmpty) {
+    for (const char* fn : {"", "$fn = 8; "}) {
+        const std::string flat =
+            std::string(fn) + "rotate_extrude() polygon([[0, 0], [10.7, 0], [10.7, 0], [0, 0]]);";
+        const io::EvaluateResult r = evaluate(flat);
+        ASSERT_TRUE(r.ok()) << fn << diagnosticsOf(r);
+        EXPECT_EQ(r.model->root, nullptr) << fn;
+        const csg::Scene cut =
+            compiled(std::string(fn) + "difference() { cube(2, center = true); " +
+                     "rotate_extrude() polygon([[0, 0], [3, 0], [3, 0]]); }");
+        expectSpans(cut, {0, 0, -5}, {0, 0, 1}, {{4, 6}}, 1e-14);
+    }
+}
+
 // scale = 0: a pyramid with its apex at (0, 0, 10); the section at height z is the square of
 // side 2 (1 - z/10) about the axis.
 TEST(Extrusion, ScaledToAnApexByHand) {

@@ -69,10 +69,15 @@ TEST(IoDiagnostics, SyntaxErrors) {
 }
 
 TEST(IoDiagnostics, UnknownNames) {
-    EXPECT_EQ(firstError("cube();\n  gear(5);"), "2:3: unknown module 'gear'");
     EXPECT_EQ(firstError("x = 1 + teeth(3);"), "1:14: unknown function 'teeth'");
-    // Unknown variables are OpenSCAD warnings: undef, and the part still loads.
+    // Unknown variables and modules are OpenSCAD warnings: undef or nothing, and the part
+    // still loads (OpenSCAD 2021: "WARNING: Ignoring unknown module 'gear'").
     EXPECT_TRUE(evaluate("cube(size = nothing);").ok());
+    const EvaluateResult r = evaluate("cube();\n  gear(5) sphere();");
+    ASSERT_TRUE(r.ok());
+    ASSERT_EQ(r.diagnostics.size(), 1u);
+    EXPECT_EQ(formatDiagnostic(r.diagnostics[0]),
+              "part.scad:2:3: warning: Ignoring unknown module 'gear'");
 }
 
 TEST(IoDiagnostics, WrongArgumentsShowTheExpectedForm) {

@@ -335,13 +335,20 @@ TEST(IoEval, SearchInTables) {
 }
 
 TEST(IoEval, SearchBadArgumentsWarnAndGiveUndefOrEmpty) {
-    Outcome r = run("echo(search(1), search(true, [true]), search(\"a\", [\"abc\", [\"a\"]]));");
+    // As OpenSCAD 2021: a bool (or undef, a range, a function) to search for is undef without
+    // a warning; a table entry lacking the column, and a character of a string found in no
+    // entry of a table of lists, are its warnings, word for word.
+    Outcome r = run(
+        "echo(search(1), search(true, [true]), search(\"a\", [\"abc\", [\"a\"]]), "
+        "search(\"ab\", [[\"a\", 1]]), search(\"xb\", \"abc\"));");
     ASSERT_TRUE(r.result.ok());
-    EXPECT_EQ(r.echoes.at(0), "ECHO: undef, undef, []");
+    EXPECT_EQ(r.echoes.at(0), "ECHO: undef, undef, [], [0], [1]");
     ASSERT_EQ(r.result.diagnostics.size(), 3u);
     EXPECT_NE(r.result.diagnostics[0].message.find("at least 2 arguments"), std::string::npos);
-    EXPECT_NE(r.result.diagnostics[1].message.find("cannot search for a bool"), std::string::npos);
-    EXPECT_NE(r.result.diagnostics[2].message.find("invalid entry at index 0"), std::string::npos);
+    EXPECT_EQ(r.result.diagnostics[1].message,
+              "Invalid entry in search vector at index 0, required number of values in the "
+              "entry: 1. Invalid entry: \"abc\"");
+    EXPECT_EQ(r.result.diagnostics[2].message, "search term not found: \"b\"");
 }
 
 TEST(IoEval, FunctionLiteralsAndClosures) {
