@@ -248,7 +248,20 @@ TEST(Tessellate, BoxIsExactWithSharpCorners) {
     EXPECT_TRUE(c.topo.closedManifold());
     EXPECT_NEAR(c.volume, 2.0 * 1.0 * 1.5, 1e-9);
     EXPECT_LT(c.result.error.max, 1e-9);
-    EXPECT_EQ(c.result.passes, 1);
+    // A box is a polyhedron: its exact boundary, two triangles a face, and no grid pass.
+    EXPECT_TRUE(c.result.exact);
+    EXPECT_EQ(c.result.mesh.triangles.size(), 12u);
+    EXPECT_EQ(c.result.passes, 0);
+}
+
+// The grid alone keeps a box's corners sharp too (dual contouring's QEF), in one pass.
+TEST(Tessellate, GridBoxIsExactWithSharpCorners) {
+    const Scene scene = Scene::compile(leaf(Box{Vec3(0.1, 0.2, 0.3), Vec3(2.1, 1.2, 1.8)}));
+    const TessellateResult r = tessellate(scene, {.tolerance = 0.01, .exactPolyhedra = false});
+    EXPECT_TRUE(checkTopology(r.mesh).closedManifold());
+    EXPECT_NEAR(signedVolume(r.mesh), 2.0 * 1.0 * 1.5, 1e-9);
+    EXPECT_LT(r.error.max, 1e-9);
+    EXPECT_EQ(r.passes, 1);
 }
 
 TEST(Simplify, BoxFacesCollapseToAFewTrianglesAndStayExact) {
