@@ -244,8 +244,10 @@ void boundaryPieces(const Scene& scene, const std::vector<Face>& faces, const Bo
     for (Polygon& piece : pieces) {
         if (glm::length(newellNormal(piece)) <= eps * eps) continue;
         const Vec3 middle = centroidOf(piece);
-        const std::span<const Span> spans =
-            scene.spans(Ray{middle, f.n, -kInfinity, kInfinity}, ctx);
+        // Only the span ends near t = 0 matter: a short stretch of the line lets the bounds
+        // skip every leaf it does not come near (the merge is exact on any stretch).
+        const double reach = tol::kPolyBoundaryClassifyReach * eps;
+        const std::span<const Span> spans = scene.spans(Ray{middle, f.n, -reach, reach}, ctx);
         // The crossing of the face's own plane is at t = 0; a span end there on this very face
         // is the boundary. Entering along n means the part lies ahead: the outside is behind.
         int facing = 0;

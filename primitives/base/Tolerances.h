@@ -190,6 +190,11 @@ inline constexpr double kPolyBoundaryWeldRel = 1e-9;
 // angle of 1.4e-6 rad; the line where faces that close to parallel meet is ill-conditioned,
 // while OpenSCAD's coplanar faces (a cube on a cube) have equal normals to a few ulps.
 inline constexpr double kPolyBoundaryParallelCos = 1e-12;
+// A piece is classified on the stretch of its line within this many on-plane distances
+// (kPolyBoundaryOnPlaneRel) of the piece (unit: multiples of that distance). Why: the span end
+// on the piece's own face is at t = 0 to rounding (~1e-16 of the size), far inside 1e-7 of the
+// size, while a stretch that short is missed by the bounds of every leaf not within it.
+inline constexpr double kPolyBoundaryClassifyReach = 1e3;
 
 // ... and only when every sampled normal in the block lies within this angle of their mean
 // (unit: radians, 8 degrees). Two normals of a block then differ by at most 16 degrees, below
