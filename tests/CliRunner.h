@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "TextFiles.h"
+
 namespace cli {
 
 namespace fs = std::filesystem;
@@ -25,21 +27,11 @@ struct RunResult {
     std::string err;  // stderr
 };
 
-inline std::string readFile(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using csg::testing::readFile;
+using csg::testing::shellQuote;
 
 inline void writeFile(const fs::path& path, const std::string& text) {
     std::ofstream(path, std::ios::binary) << text;
-}
-
-inline std::string shellQuote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
 }
 
 inline fs::path samplePath(const std::string& name) {

@@ -19,19 +19,14 @@
 #include "io/Evaluate.h"
 #include "io/mesh/MeshFile.h"
 #include "tests/MissingTool.h"
+#include "tests/PartHelpers.h"
 #include "tests/TempDir.h"
 
 namespace {
 
-using csg::TriangleMesh;
+using csg::testing::compiled;
 
-csg::Scene compiled(const std::string& text) {
-    const io::EvaluateResult r = io::evaluateString(text, "part.scad", {});
-    std::string all;
-    for (const io::Diagnostic& d : r.diagnostics) all += io::formatDiagnostic(d) + "\n";
-    EXPECT_TRUE(r.ok()) << all;
-    return r.ok() ? csg::Scene::compile(r.model->root) : csg::Scene();
-}
+using csg::TriangleMesh;
 
 // The exact boundary, checked closed, outward and free of self-intersections.
 TriangleMesh exactMesh(const csg::Scene& scene) {

@@ -20,24 +20,16 @@
 #include "csg/Volume.h"
 #include "io/Evaluate.h"
 #include "tests/SeededRng.h"
+#include "tests/PartHelpers.h"
 
 namespace {
 
+using csg::testing::evaluate;
+using csg::testing::diagnosticsOf;
+using csg::testing::compiled;
+
 using csg::Vec3;
 constexpr double kPi = std::numbers::pi;
-
-io::EvaluateResult evaluate(const std::string& text,
-                            io::CurveMode curves = io::CurveMode::Auto) {
-    io::EvaluateOptions options;
-    options.curves = curves;
-    return io::evaluateString(text, "part.scad", options);
-}
-
-std::string diagnosticsOf(const io::EvaluateResult& r) {
-    std::string all;
-    for (const io::Diagnostic& d : r.diagnostics) all += io::formatDiagnostic(d) + "\n";
-    return all;
-}
 
 struct Interval {
     double in, out;
@@ -50,12 +42,6 @@ std::vector<Interval> spansOf(const csg::Scene& scene, Vec3 o, Vec3 d) {
     std::vector<Interval> out;
     for (const csg::Span& s : scene.spans(ray, ctx)) out.push_back({s.in.t, s.out.t});
     return out;
-}
-
-csg::Scene compiled(const std::string& text, io::CurveMode curves = io::CurveMode::Auto) {
-    const io::EvaluateResult r = evaluate(text, curves);
-    EXPECT_TRUE(r.ok()) << diagnosticsOf(r);
-    return csg::Scene::compile(r.model->root);
 }
 
 void expectSpans(const csg::Scene& scene, Vec3 o, Vec3 d, std::vector<Interval> expected,

@@ -27,8 +27,12 @@
 #include "tests/SeededRng.h"
 #include "tests/TempDir.h"
 #include "tests/TreeOracle.h"
+#include "tests/PartHelpers.h"
 
 namespace {
+
+using csg::testing::evaluate;
+using csg::testing::diagnosticsOf;
 
 using csg::ConvexPolytope;
 using csg::Vec3;
@@ -37,18 +41,6 @@ using io::CurveMode;
 const double kCos30 = std::sqrt(3.0) / 2.0;
 
 // ---- helpers ----
-
-io::EvaluateResult evaluate(const std::string& text, CurveMode curves) {
-    io::EvaluateOptions options;
-    options.curves = curves;
-    return io::evaluateString(text, "part.scad", options);
-}
-
-std::string diagnosticsOf(const io::EvaluateResult& r) {
-    std::string all;
-    for (const io::Diagnostic& d : r.diagnostics) all += io::formatDiagnostic(d) + "\n";
-    return all;
-}
 
 // The leaves of a tree, depth first.
 void collectLeaves(const csg::Node* node, std::vector<const csg::Node*>& out) {

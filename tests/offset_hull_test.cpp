@@ -24,29 +24,16 @@
 #include "csg/Scene.h"
 #include "io/Evaluate.h"
 #include "tests/SeededRng.h"
+#include "tests/PartHelpers.h"
 
 namespace {
 
+using csg::testing::evaluate;
+using csg::testing::diagnosticsOf;
+using csg::testing::compiled;
+
 using csg::Vec2;
 using csg::Vec3;
-
-io::EvaluateResult evaluate(const std::string& text, io::CurveMode curves) {
-    io::EvaluateOptions options;
-    options.curves = curves;
-    return io::evaluateString(text, "part.scad", options);
-}
-
-std::string diagnosticsOf(const io::EvaluateResult& r) {
-    std::string all;
-    for (const io::Diagnostic& d : r.diagnostics) all += io::formatDiagnostic(d) + "\n";
-    return all;
-}
-
-csg::Scene compiled(const std::string& text, io::CurveMode curves = io::CurveMode::Auto) {
-    const io::EvaluateResult r = evaluate(text, curves);
-    EXPECT_TRUE(r.ok()) << diagnosticsOf(r);
-    return csg::Scene::compile(r.model->root);
-}
 
 struct Interval {
     double in, out;

@@ -23,25 +23,17 @@
 #include "csg/Volume.h"
 #include "io/Evaluate.h"
 #include "io/HeightmapModule.h"
+#include "tests/PartHelpers.h"
 
 namespace {
+
+using csg::testing::evaluate;
+using csg::testing::diagnosticsOf;
+using csg::testing::compiled;
 
 using csg::Vec2;
 using csg::Vec3;
 constexpr double kPi = std::numbers::pi;
-
-io::EvaluateResult evaluate(const std::string& text, io::CurveMode curves = io::CurveMode::Auto,
-                            const std::string& name = "part.scad") {
-    io::EvaluateOptions options;
-    options.curves = curves;
-    return io::evaluateString(text, name, options);
-}
-
-std::string diagnosticsOf(const io::EvaluateResult& r) {
-    std::string all;
-    for (const io::Diagnostic& d : r.diagnostics) all += io::formatDiagnostic(d) + "\n";
-    return all;
-}
 
 // The projection's outline (the part must be one 2-D leaf).
 const csg::Extrusion* shapeOf(const io::EvaluateResult& r) {
@@ -82,13 +74,6 @@ std::vector<Interval> spansOf(const csg::Scene& scene, Vec3 o, Vec3 d) {
     std::vector<Interval> out;
     for (const csg::Span& s : scene.spans(ray, ctx)) out.push_back({s.in.t, s.out.t});
     return out;
-}
-
-csg::Scene compiled(const std::string& text, io::CurveMode curves = io::CurveMode::Auto,
-                    const std::string& name = "part.scad") {
-    const io::EvaluateResult r = evaluate(text, curves, name);
-    EXPECT_TRUE(r.ok()) << diagnosticsOf(r);
-    return csg::Scene::compile(r.ok() ? r.model->root : nullptr);
 }
 
 void expectSpans(const csg::Scene& scene, Vec3 o, Vec3 d, std::vector<Interval> expected,

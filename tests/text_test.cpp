@@ -31,8 +31,15 @@
 #include "io/TextLayout.h"
 #include "io/TextModule.h"
 #include "tests/TempDir.h"
+#include "tests/PartHelpers.h"
+#include "tests/TextFiles.h"
 
 namespace {
+
+using csg::testing::evaluate;
+using csg::testing::diagnosticsOf;
+using csg::testing::readFile;
+using csg::testing::shellQuote;
 
 using csg::Vec2;
 using csg::Vec3;
@@ -47,19 +54,6 @@ const char* const kLiberationSans =
 // OpenSCAD 2021's scale: FreeType's char size 1e5/64 pt at 100 dpi gives an em of
 // 1e5 * 100/72 outline units.
 constexpr double kEmUnits = 1e5 * 100.0 / 72.0;
-
-std::string readFile(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-std::string shellQuote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
 
 bool haveOpenScad() {
     return std::system("command -v openscad >/dev/null 2>&1") == 0;
@@ -106,18 +100,6 @@ private:
 };
 
 // ---- csgray's side ----
-
-io::EvaluateResult evaluate(const std::string& source, CurveMode curves = CurveMode::Auto) {
-    io::EvaluateOptions options;
-    options.curves = curves;
-    return io::evaluateString(source, "part.scad", options);
-}
-
-std::string diagnosticsOf(const io::EvaluateResult& r) {
-    std::string all;
-    for (const io::Diagnostic& d : r.diagnostics) all += io::formatDiagnostic(d) + "\n";
-    return all;
-}
 
 void collectLeaves(const csg::Node* node, std::vector<const csg::Extrusion*>& out) {
     if (!node) return;

@@ -28,8 +28,15 @@
 #include "tests/CountingNew.h"
 #include "tests/SeededRng.h"
 #include "tests/TempDir.h"
+#include "tests/PartHelpers.h"
+#include "tests/TextFiles.h"
 
 namespace {
+
+using csg::testing::evaluate;
+using csg::testing::diagnosticsOf;
+using csg::testing::readFile;
+using csg::testing::shellQuote;
 
 using csg::Extrusion;
 using csg::Outline;
@@ -40,32 +47,6 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = kPi / 180.0;
 
 // ---- helpers ----
-
-std::string readFile(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-std::string shellQuote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
-io::EvaluateResult evaluate(const std::string& text,
-                            io::CurveMode curves = io::CurveMode::Auto) {
-    io::EvaluateOptions options;
-    options.curves = curves;
-    return io::evaluateString(text, "part.scad", options);
-}
-
-std::string diagnosticsOf(const io::EvaluateResult& r) {
-    std::string all;
-    for (const io::Diagnostic& d : r.diagnostics) all += io::formatDiagnostic(d) + "\n";
-    return all;
-}
 
 std::shared_ptr<const Outline> loop(const std::vector<Vec2>& points) {
     auto outline = std::make_shared<Outline>();
