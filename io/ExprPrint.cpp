@@ -6,7 +6,29 @@ namespace io {
 
 namespace {
 
-const char* opText(BinaryOp op) {
+// "a = 1, 2": OpenSCAD's AssignmentList printing (a name only where one is given).
+void appendArguments(std::string& out, const Arguments& args) {
+    for (size_t i = 0; i < args.size(); ++i) {
+        if (i > 0) out += ", ";
+        if (!args[i].name.empty()) out += args[i].name + " = ";
+        appendExpr(out, *args[i].value);
+    }
+}
+
+bool isComprehension(const Expr& e) {
+    return e.kind >= ExprKind::ForElement;
+}
+
+// body, in parentheses: how OpenSCAD's comprehension nodes print what they wrap.
+void appendWrapped(std::string& out, const Expr& body) {
+    out += '(';
+    appendExpr(out, body);
+    out += ')';
+}
+
+}  // namespace
+
+const char* binaryOpSymbol(BinaryOp op) {
     switch (op) {
         case BinaryOp::Add:
             return "+";
@@ -39,28 +61,6 @@ const char* opText(BinaryOp op) {
     }
     return "?";
 }
-
-// "a = 1, 2": OpenSCAD's AssignmentList printing (a name only where one is given).
-void appendArguments(std::string& out, const Arguments& args) {
-    for (size_t i = 0; i < args.size(); ++i) {
-        if (i > 0) out += ", ";
-        if (!args[i].name.empty()) out += args[i].name + " = ";
-        appendExpr(out, *args[i].value);
-    }
-}
-
-bool isComprehension(const Expr& e) {
-    return e.kind >= ExprKind::ForElement;
-}
-
-// body, in parentheses: how OpenSCAD's comprehension nodes print what they wrap.
-void appendWrapped(std::string& out, const Expr& body) {
-    out += '(';
-    appendExpr(out, body);
-    out += ')';
-}
-
-}  // namespace
 
 void appendFunctionLiteral(std::string& out, const FunctionLiteralExpr& f) {
     out += "function(";
@@ -129,7 +129,7 @@ void appendExpr(std::string& out, const Expr& e) {
             out += '(';
             appendExpr(out, *b.left);
             out += ' ';
-            out += opText(b.op);
+            out += binaryOpSymbol(b.op);
             out += ' ';
             appendExpr(out, *b.right);
             out += ')';

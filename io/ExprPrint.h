@@ -11,6 +11,9 @@
 
 namespace io {
 
+// The operator as written: "+", "<=", "&&" and so on.
+const char* binaryOpSymbol(BinaryOp op);
+
 // Appends e as OpenSCAD prints it.
 void appendExpr(std::string& out, const Expr& e);
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "io/Evaluator.h"
+#include "io/ExprPrint.h"
 
 namespace io {
 
@@ -263,40 +264,6 @@ static std::optional<int> compare(const Value& a, const Value& b, WorkBudget& w)
     }
 }
 
-static const char* opSymbol(BinaryOp op) {
-    switch (op) {
-        case BinaryOp::Add:
-            return "+";
-        case BinaryOp::Subtract:
-            return "-";
-        case BinaryOp::Multiply:
-            return "*";
-        case BinaryOp::Divide:
-            return "/";
-        case BinaryOp::Modulo:
-            return "%";
-        case BinaryOp::Power:
-            return "^";
-        case BinaryOp::Less:
-            return "<";
-        case BinaryOp::LessEqual:
-            return "<=";
-        case BinaryOp::Greater:
-            return ">";
-        case BinaryOp::GreaterEqual:
-            return ">=";
-        case BinaryOp::Equal:
-            return "==";
-        case BinaryOp::NotEqual:
-            return "!=";
-        case BinaryOp::And:
-            return "&&";
-        case BinaryOp::Or:
-            return "||";
-    }
-    return "?";
-}
-
 Value Evaluator::evalBinary(const BinaryExpr& e, const ContextPtr& ctx) {
     if (e.op == BinaryOp::And) return eval(*e.left, ctx).truthy() && eval(*e.right, ctx).truthy();
     if (e.op == BinaryOp::Or) return eval(*e.left, ctx).truthy() || eval(*e.right, ctx).truthy();
@@ -319,7 +286,7 @@ Value Evaluator::evalBinary(const BinaryExpr& e, const ContextPtr& ctx) {
             if (!c) {
                 if (!(a.isNumber() && b.isNumber()))  // NaN compares silently false
                     warn(e.loc, std::string("undefined operation (") + a.typeName() + " " +
-                                    opSymbol(e.op) + " " + b.typeName() + ")");
+                                    binaryOpSymbol(e.op) + " " + b.typeName() + ")");
                 return a.isNumber() && b.isNumber() ? Value(false) : Value();
             }
             switch (e.op) {
@@ -338,7 +305,7 @@ Value Evaluator::evalBinary(const BinaryExpr& e, const ContextPtr& ctx) {
             settle(w, e.loc);
             if (r.isUndef())
                 warn(e.loc, std::string("undefined operation (") + a.typeName() + " " +
-                                opSymbol(e.op) + " " + b.typeName() + ")");
+                                binaryOpSymbol(e.op) + " " + b.typeName() + ")");
             return r;
         }
     }
