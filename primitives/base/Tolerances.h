@@ -172,6 +172,21 @@ inline constexpr double kMeshReferenceRadius = 0.05;
 // measure-and-refine loop still measures the result.
 inline constexpr double kOctreeFlatFraction = 0.25;
 
+// ... and only when every sampled normal in the block lies within this angle of their mean
+// (unit: radians, 8 degrees). Two normals of a block then differ by at most 16 degrees, below
+// kCreaseAngle's 20: no face of a merged block carries a crease vertex, and a crease (a box
+// edge, a rim) never merges.
+inline constexpr double kOctreeConeAngle = 0.1396;
+
+// A fan triangle of dual contouring at a merged octree block's vertex, where the crossing lies
+// on the block's own smooth patch, must face within this of the exact normal at the crossing
+// (unit: cosine, 30 degrees); else the ring is fanned from another of its vertices, or the block
+// is split up again. A merged block's triangles lie within its narrow normal cone
+// (kOctreeConeAngle) plus the curvature over its neighbours; one turned further is a fold (the
+// block's vertex sits where the surface does not cross the face it shares with a neighbour) or
+// a crease that the export's shading would split (kShadingCreaseDegrees) on a smooth surface.
+inline constexpr double kOctreeFanTurnCos = 0.866;
+
 // The exact boundary of an all-polyhedral part (csg/mesh/PolyhedralBoundary.h). A vertex within
 // this fraction of the part's size (max(1, diagonal, largest |coordinate|)) of a cutting plane
 // lies on it (unit: relative). Why: the planes and the cut points come from a few products and
@@ -195,21 +210,6 @@ inline constexpr double kPolyBoundaryParallelCos = 1e-12;
 // on the piece's own face is at t = 0 to rounding (~1e-16 of the size), far inside 1e-7 of the
 // size, while a stretch that short is missed by the bounds of every leaf not within it.
 inline constexpr double kPolyBoundaryClassifyReach = 1e3;
-
-// ... and only when every sampled normal in the block lies within this angle of their mean
-// (unit: radians, 8 degrees). Two normals of a block then differ by at most 16 degrees, below
-// kCreaseAngle's 20: no face of a merged block carries a crease vertex, and a crease (a box
-// edge, a rim) never merges.
-inline constexpr double kOctreeConeAngle = 0.1396;
-
-// A fan triangle of dual contouring at a merged octree block's vertex, where the crossing lies
-// on the block's own smooth patch, must face within this of the exact normal at the crossing
-// (unit: cosine, 30 degrees); else the ring is fanned from another of its vertices, or the block
-// is split up again. A merged block's triangles lie within its narrow normal cone
-// (kOctreeConeAngle) plus the curvature over its neighbours; one turned further is a fold (the
-// block's vertex sits where the surface does not cross the face it shares with a neighbour) or
-// a crease that the export's shading would split (kShadingCreaseDegrees) on a smooth surface.
-inline constexpr double kOctreeFanTurnCos = 0.866;
 
 // Meshing refines its grid until the *sampled* mesh-surface distance is within this fraction
 // of the tolerance (unit: relative). Samples (vertices, centroids, edge midpoints, a grid of
