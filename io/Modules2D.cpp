@@ -95,8 +95,8 @@ Instance circleModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr
 
 Instance polygonModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                        const GeomState& state) {
-    BoundArgs b = bindArgs(e, s, ctx, {"points", "paths", "convexity"},
-                           "polygon(points, paths, convexity)");
+    BoundArgs b =
+        bindArgs(e, s, ctx, {"points", "paths", "convexity"}, "polygon(points, paths, convexity)");
     if (!b.given(0) || !b[0].isVector()) b.bad(e, 0, "a list of [x, y] points");
     const ValueList& list = b[0].list();
     std::vector<Vec2> points;
@@ -161,10 +161,10 @@ Instance legacyDxfShape(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
 Instance linearExtrudeModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                              const GeomState& state) {
     // OpenSCAD 2021's parameter order; a leading unnamed number is the height.
-    BoundArgs b = bindArgs(e, s, ctx,
-                           {"file", "layer", "height", "origin", "scale", "center", "twist",
-                            "slices", "convexity"},
-                           "linear_extrude(height, center, convexity, twist, slices, scale)");
+    BoundArgs b = bindArgs(
+        e, s, ctx,
+        {"file", "layer", "height", "origin", "scale", "center", "twist", "slices", "convexity"},
+        "linear_extrude(height, center, convexity, twist, slices, scale)");
     const bool fromFile = b.given(0) && b[0].isString();
     double height = 100.0;
     if (b.given(2))
@@ -194,9 +194,8 @@ Instance linearExtrudeModule(Evaluator& e, const InstantiationStmt& s, const Con
     if (!shape || !*shape) return shape;
     if (!(height > 0.0)) return csg::NodePtr();
     const double z0 = center ? -0.5 * height : 0.0;
-    return liftLeaves(*shape, [&](const Extrusion& leaf) {
-        return leaf.linear(z0, z0 + height, scale, twist);
-    });
+    return liftLeaves(
+        *shape, [&](const Extrusion& leaf) { return leaf.linear(z0, z0 + height, scale, twist); });
 }
 
 namespace {

@@ -64,16 +64,11 @@ const std::map<std::string, double> kSlicedByOpenScad = {
 // Examples OpenSCAD takes more than ~25 s to export here (CGAL's exact booleans), measured
 // with `time openscad -o x.stl`: compared by scripts/compare-examples.sh, not by default.
 const std::map<std::string, std::string> kSlowInOpenScad = {
-    {"Basics/CSG-modules.scad", "93 s"},
-    {"Basics/logo_and_text.scad", "over 300 s"},
-    {"Basics/projection.scad", "55 s"},
-    {"Basics/rotate_extrude.scad", "128 s"},
-    {"Functions/functions.scad", "68 s"},
-    {"Old/example006.scad", "105 s"},
-    {"Advanced/surface_image.scad", "39 s"},
-    {"Basics/logo.scad", "95 s"},
-    {"Old/example019.scad", "49 s"},
-    {"Old/example024.scad", "140 s"},
+    {"Basics/CSG-modules.scad", "93 s"},      {"Basics/logo_and_text.scad", "over 300 s"},
+    {"Basics/projection.scad", "55 s"},       {"Basics/rotate_extrude.scad", "128 s"},
+    {"Functions/functions.scad", "68 s"},     {"Old/example006.scad", "105 s"},
+    {"Advanced/surface_image.scad", "39 s"},  {"Basics/logo.scad", "95 s"},
+    {"Old/example019.scad", "49 s"},          {"Old/example024.scad", "140 s"},
     {"Parametric/candleStand.scad", "103 s"},
 };
 
@@ -140,8 +135,8 @@ TEST_P(OpenScadExample, LoadsAndLiesOnOpenScadsMesh) {
     if (const auto it = kSlowToLoad.find(name); it != kSlowToLoad.end())
         GTEST_SKIP() << "csgray is too slow to load it: " << it->second;
     cli::ScratchDir dir;
-    const cli::RunResult info = cli::runCsgray({"info", path.string(), "--curves", "openscad"},
-                                               dir.path());
+    const cli::RunResult info =
+        cli::runCsgray({"info", path.string(), "--curves", "openscad"}, dir.path());
     if (const auto it = kNotLoadingYet.find(name); it != kNotLoadingYet.end()) {
         EXPECT_NE(info.exitCode, 0) << name << " loads now: remove it from kNotLoadingYet";
         GTEST_SKIP() << "does not load yet: " << it->second;

@@ -14,19 +14,19 @@
 
 #include <nlohmann/json.hpp>
 
-#include "MissingTool.h"
 #include "CliRunner.h"
+#include "MissingTool.h"
 #include "csg/Scene.h"
 #include "csg/Volume.h"
 #include "io/Evaluate.h"
-#include "tests/SeededRng.h"
 #include "tests/PartHelpers.h"
+#include "tests/SeededRng.h"
 
 namespace {
 
-using csg::testing::evaluate;
-using csg::testing::diagnosticsOf;
 using csg::testing::compiled;
+using csg::testing::diagnosticsOf;
+using csg::testing::evaluate;
 
 using csg::Vec3;
 constexpr double kPi = std::numbers::pi;
@@ -47,9 +47,8 @@ std::vector<Interval> spansOf(const csg::Scene& scene, Vec3 o, Vec3 d) {
 void expectSpans(const csg::Scene& scene, Vec3 o, Vec3 d, std::vector<Interval> expected,
                  double tol) {
     const auto got = spansOf(scene, o, d);
-    ASSERT_EQ(got.size(), expected.size())
-        << "ray from " << o.x << "," << o.y << "," << o.z << " along " << d.x << "," << d.y
-        << "," << d.z;
+    ASSERT_EQ(got.size(), expected.size()) << "ray from " << o.x << "," << o.y << "," << o.z
+                                           << " along " << d.x << "," << d.y << "," << d.z;
     for (size_t i = 0; i < got.size(); ++i) {
         EXPECT_NEAR(got[i].in, expected[i].in, tol) << "span " << i;
         EXPECT_NEAR(got[i].out, expected[i].out, tol) << "span " << i;
@@ -72,16 +71,16 @@ TEST(Extrusion, SquarePrismByHand) {
 
 // A disc with a square hole: 2-D difference before the extrusion.
 TEST(Extrusion, TwoDimensionalBooleansByHand) {
-    const csg::Scene scene = compiled(
-        "linear_extrude(1) difference() { circle(2); square(2, center = true); }");
+    const csg::Scene scene =
+        compiled("linear_extrude(1) difference() { circle(2); square(2, center = true); }");
     // Along x at y = 0: the disc [-2, 2] minus the hole [-1, 1].
     expectSpans(scene, {-5, 0, 0.5}, {1, 0, 0}, {{3, 4}, {6, 7}}, 1e-14);
     // Along x at y = 1.5 (above the hole): the chord of the circle, +-sqrt(4 - 2.25).
     const double half = std::sqrt(4.0 - 2.25);
     expectSpans(scene, {-5, 1.5, 0.5}, {1, 0, 0}, {{5 - half, 5 + half}}, 1e-14);
     // Intersection and a transform in 2-D.
-    const csg::Scene lens = compiled(
-        "linear_extrude(1) intersection() { circle(1); translate([1, 0]) circle(1); }");
+    const csg::Scene lens =
+        compiled("linear_extrude(1) intersection() { circle(1); translate([1, 0]) circle(1); }");
     // Along y at x = 0.5: both circles give +-sqrt(1 - 0.25).
     const double h = std::sqrt(0.75);
     expectSpans(lens, {0.5, -5, 0.5}, {0, 1, 0}, {{5 - h, 5 + h}}, 1e-14);
@@ -127,7 +126,7 @@ TEST(Extrusion, RevolvedCircleIsTheTorus) {
     for (int i = 0; i < 2000; ++i) {
         const Vec3 o(rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-3, 3));
         Vec3 d(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
-        if (i % 4 == 0) d.z = 0.0;  // level lines: r(t) turns back at its nearest point
+        if (i % 4 == 0) d.z = 0.0;          // level lines: r(t) turns back at its nearest point
         if (i % 7 == 0) d = Vec3(0, 0, 1);  // along the axis direction
         if (glm::length(d) < 0.1) continue;
         const auto a = spansOf(revolved, o, d), b = spansOf(torus, o, d);
@@ -226,8 +225,7 @@ TEST(Extrusion, VolumesInClosedForm) {
         {"linear_extrude(2) circle(1);", kPi * 2},
         // Pappus: 2 pi R A with R the profile's centroid radius.
         {"rotate_extrude() translate([2, 0]) circle(1);", 2 * kPi * 2 * kPi},
-        {"rotate_extrude(angle = 90) translate([1, 0]) square([1, 2]);",
-         0.25 * 2 * kPi * 1.5 * 2},
+        {"rotate_extrude(angle = 90) translate([1, 0]) square([1, 2]);", 0.25 * 2 * kPi * 1.5 * 2},
     };
     for (const Case& c : cases) {
         const double v = csg::volume(compiled(c.part), 1024);
@@ -256,8 +254,8 @@ TEST(Extrusion, SpansAgreeWithInsideOnRandomLines) {
         int checked = 0;
         for (int i = 0; i < 300; ++i) {
             const Vec3 o(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-1, 2));
-            const Vec3 d = glm::normalize(
-                Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)));
+            const Vec3 d =
+                glm::normalize(Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)));
             const auto spans = spansOf(scene, o, d);
             for (const Interval& s : spans) {
                 if (s.out - s.in < 1e-6) continue;
@@ -296,8 +294,8 @@ TEST(Extrusion, DimensionRules) {
     EXPECT_FALSE(r.model->root);
     // A transform of a 2-D shape flattens it only when its x-y part does: scale([2, 2, 0])
     // doubles a square (OpenSCAD 2021 exports the 2 x 2 x 1 box), scale([2, 0]) drops it.
-    expectSpans(compiled("linear_extrude(1) scale([2, 2, 0]) square(1);"), {-5, 1, 0.5},
-                {1, 0, 0}, {{5, 7}}, 1e-14);
+    expectSpans(compiled("linear_extrude(1) scale([2, 2, 0]) square(1);"), {-5, 1, 0.5}, {1, 0, 0},
+                {{5, 7}}, 1e-14);
     r = evaluate("linear_extrude(1) scale([2, 0]) square(1);");
     ASSERT_TRUE(r.ok());
     EXPECT_NE(diagnosticsOf(r).find("no area and are dropped"), std::string::npos);
@@ -357,8 +355,8 @@ TEST(Extrusion, TwoDimensionalPartOnTheCommandLine) {
     EXPECT_EQ(exported.exitCode, 1);
     EXPECT_NE(exported.err.find("not a 3-D object"), std::string::npos) << exported.err;
     EXPECT_FALSE(std::filesystem::exists(glb));
-    const cli::RunResult solid = cli::runCsgray({"info", cli::samplePath("vase.scad").string()},
-                                                dir.path());
+    const cli::RunResult solid =
+        cli::runCsgray({"info", cli::samplePath("vase.scad").string()}, dir.path());
     ASSERT_EQ(solid.exitCode, 0) << solid.err;
     EXPECT_EQ(nlohmann::json::parse(solid.out)["dimensions"].get<int>(), 3);
 }

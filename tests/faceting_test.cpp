@@ -16,23 +16,23 @@
 #include <functional>
 #include <numbers>
 
-#include "MissingTool.h"
 #include "CliRunner.h"
+#include "MissingTool.h"
 #include "csg/Scene.h"
 #include "io/Degrees.h"
 #include "io/Evaluate.h"
 #include "io/Faceting.h"
 #include "primitives/ConvexPolytope.h"
 #include "tests/CountingNew.h"
+#include "tests/PartHelpers.h"
 #include "tests/SeededRng.h"
 #include "tests/TempDir.h"
 #include "tests/TreeOracle.h"
-#include "tests/PartHelpers.h"
 
 namespace {
 
-using csg::testing::evaluate;
 using csg::testing::diagnosticsOf;
+using csg::testing::evaluate;
 
 using csg::ConvexPolytope;
 using csg::Vec3;

@@ -338,9 +338,9 @@ TEST(IoEval, SearchBadArgumentsWarnAndGiveUndefOrEmpty) {
     // As OpenSCAD 2021: a bool (or undef, a range, a function) to search for is undef without
     // a warning; a table entry lacking the column, and a character of a string found in no
     // entry of a table of lists, are its warnings, word for word.
-    Outcome r = run(
-        "echo(search(1), search(true, [true]), search(\"a\", [\"abc\", [\"a\"]]), "
-        "search(\"ab\", [[\"a\", 1]]), search(\"xb\", \"abc\"));");
+    Outcome r =
+        run("echo(search(1), search(true, [true]), search(\"a\", [\"abc\", [\"a\"]]), "
+            "search(\"ab\", [[\"a\", 1]]), search(\"xb\", \"abc\"));");
     ASSERT_TRUE(r.result.ok());
     EXPECT_EQ(r.echoes.at(0), "ECHO: undef, undef, [], [0], [1]");
     ASSERT_EQ(r.result.diagnostics.size(), 3u);
