@@ -1,11 +1,13 @@
 // The part-language helpers the tests share: a part's text evaluated under a curve mode (as
-// `csgray --curves` would), its diagnostics as text, and its compiled scene (an evaluation
-// error fails the calling test, with the diagnostics).
+// `csgray --curves` would), its diagnostics as text, its compiled scene (an evaluation error
+// fails the calling test, with the diagnostics), and the spans of a whole line through it
+// checked against spans derived by hand.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "csg/Scene.h"
 #include "io/Diagnostic.h"
@@ -32,6 +34,35 @@ inline csg::Scene compiled(const std::string& text, io::CurveMode curves = io::C
     const io::EvaluateResult r = evaluate(text, curves, name);
     EXPECT_TRUE(r.ok()) << diagnosticsOf(r);
     return csg::Scene::compile(r.ok() ? r.model->root : nullptr);
+}
+
+struct Interval {
+    double in, out;
+};
+
+// The spans of the whole line o + t d through the scene's solid; dropTouches leaves out the
+// zero-length spans of a line that only touches it.
+inline std::vector<Interval> spansOf(const csg::Scene& scene, Vec3 o, Vec3 d,
+                                     bool dropTouches = false) {
+    csg::QueryContext ctx;
+    const csg::Ray ray{o, d, -csg::kInfinity, csg::kInfinity};
+    std::vector<Interval> out;
+    for (const csg::Span& s : scene.spans(ray, ctx))
+        if (!dropTouches || s.out.t > s.in.t) out.push_back({s.in.t, s.out.t});
+    return out;
+}
+
+// The line's spans are expected, in order, each end within tol.
+inline void expectSpans(const csg::Scene& scene, Vec3 o, Vec3 d,
+                        const std::vector<Interval>& expected, double tol,
+                        bool dropTouches = false) {
+    const auto got = spansOf(scene, o, d, dropTouches);
+    ASSERT_EQ(got.size(), expected.size()) << "ray from " << o.x << "," << o.y << "," << o.z
+                                           << " along " << d.x << "," << d.y << "," << d.z;
+    for (size_t i = 0; i < got.size(); ++i) {
+        EXPECT_NEAR(got[i].in, expected[i].in, tol) << "span " << i;
+        EXPECT_NEAR(got[i].out, expected[i].out, tol) << "span " << i;
+    }
 }
 
 }  // namespace csg::testing

@@ -19,51 +19,36 @@
 
 #include <nlohmann/json.hpp>
 
-#include "MissingTool.h"
 #include "CliRunner.h"
+#include "MissingTool.h"
 #include "csg/Scene.h"
 #include "io/Evaluate.h"
-#include "tests/SeededRng.h"
 #include "tests/PartHelpers.h"
+#include "tests/SeededRng.h"
 
 namespace {
 
-using csg::testing::evaluate;
-using csg::testing::diagnosticsOf;
 using csg::testing::compiled;
+using csg::testing::diagnosticsOf;
+using csg::testing::evaluate;
+using csg::testing::Interval;
 
 using csg::Vec2;
 using csg::Vec3;
 
-struct Interval {
-    double in, out;
-};
-
-// The spans of the whole line o + t d, without the zero-length ones of tangent lines.
-std::vector<Interval> spansOf(const csg::Scene& scene, Vec3 o, Vec3 d) {
-    csg::QueryContext ctx;
-    const csg::Ray ray{o, d, -csg::kInfinity, csg::kInfinity};
-    std::vector<Interval> out;
-    for (const csg::Span& s : scene.spans(ray, ctx))
-        if (s.out.t > s.in.t) out.push_back({s.in.t, s.out.t});
-    return out;
+// Lines here may touch a rounded offset's arcs: their zero-length spans are left out.
+std::vector<Interval> solidSpans(const csg::Scene& scene, Vec3 o, Vec3 d) {
+    return csg::testing::spansOf(scene, o, d, true);
 }
-
-void expectSpans(const csg::Scene& scene, Vec3 o, Vec3 d, std::vector<Interval> expected,
-                 double tol) {
-    const auto got = spansOf(scene, o, d);
-    ASSERT_EQ(got.size(), expected.size()) << "ray from " << o.x << "," << o.y << "," << o.z
-                                           << " along " << d.x << "," << d.y << "," << d.z;
-    for (size_t i = 0; i < got.size(); ++i) {
-        EXPECT_NEAR(got[i].in, expected[i].in, tol) << "span " << i;
-        EXPECT_NEAR(got[i].out, expected[i].out, tol) << "span " << i;
-    }
+void expectSolidSpans(const csg::Scene& scene, Vec3 o, Vec3 d,
+                      const std::vector<Interval>& expected, double tol) {
+    csg::testing::expectSpans(scene, o, d, expected, tol, true);
 }
 
 // Along x at height y through a 2-D part extruded to z in [0, 1]: the spans in x.
 void expectRow(const csg::Scene& scene, double y, std::vector<Interval> xs, double tol) {
     for (Interval& i : xs) i.in += 100.0, i.out += 100.0;
-    expectSpans(scene, {-100.0, y, 0.5}, {1, 0, 0}, xs, tol);
+    expectSolidSpans(scene, {-100.0, y, 0.5}, {1, 0, 0}, xs, tol);
 }
 
 // offset(r = 1) of square(2): the square grown by 1 with quarter circles of radius 1 about its
@@ -79,7 +64,7 @@ TEST(Offset, RoundedSquareByHand) {
     expectRow(scene, 3.001, {}, 0.0);
     // Diagonally through the corner circle about (0, 0): x = y = t - 5 from -1/sqrt 2.
     const double c = std::sqrt(0.5);
-    expectSpans(scene, {-5, -5, 0.5}, {1, 1, 0}, {{5 - c, 7 + c}}, 1e-12);
+    expectSolidSpans(scene, {-5, -5, 0.5}, {1, 1, 0}, {{5 - c, 7 + c}}, 1e-12);
     // r is the first positional argument; no argument at all is r = 1.
     expectRow(compiled("linear_extrude(1) offset(1) square(2);"), 2.5,
               {{-std::sqrt(0.75), 2 + std::sqrt(0.75)}}, 1e-12);
@@ -105,8 +90,8 @@ TEST(Offset, NegativeRadiusByHand) {
     }
     expectRow(shrunk, 1.1, {{0.25, 0.75}}, 1e-12);
     // A shape narrower than twice |r| vanishes.
-    EXPECT_TRUE(spansOf(compiled("linear_extrude(1) offset(r = -1) square([10, 1.9]);"),
-                        {5, 0.95, -5}, {0, 0, 1})
+    EXPECT_TRUE(solidSpans(compiled("linear_extrude(1) offset(r = -1) square([10, 1.9]);"),
+                           {5, 0.95, -5}, {0, 0, 1})
                     .empty());
 }
 
@@ -114,7 +99,7 @@ TEST(Offset, NegativeRadiusByHand) {
 TEST(Offset, DeltaKeepsCornersSharp) {
     const csg::Scene grown = compiled("linear_extrude(1) offset(delta = 1) square(2);");
     expectRow(grown, 2.9, {{-1, 3}}, 1e-12);
-    expectSpans(grown, {-5, -5, 0.5}, {1, 1, 0}, {{4, 8}}, 1e-12);
+    expectSolidSpans(grown, {-5, -5, 0.5}, {1, 1, 0}, {{4, 8}}, 1e-12);
     // A triangle's 45 degree corner: the miter point lies 1 / sin(22.5 deg) from the vertex
     // along the bisector. Triangle (0,0), (10,0), (0,10): its corner at (10, 0) moves to
     // (10 + 1 + sqrt 2, -1) (where y = -1 meets x + y = 10 + sqrt 2).
@@ -180,8 +165,8 @@ TEST(Offset, NestedOffsetsByHand) {
         "union() { square(10); translate([12, 0]) square(10); }");
     expectRow(closed, 5.0, {{0, 22}}, 1e-9);
     const double notch = 3.0 - std::sqrt(8.0);
-    expectSpans(closed, {11, -5, 0.5}, {0, 1, 0}, {{5 + notch, 15 - notch}}, 1e-9);
-    expectSpans(closed, {0.5, -5, 0.5}, {0, 1, 0}, {{5, 15}}, 1e-9);
+    expectSolidSpans(closed, {11, -5, 0.5}, {0, 1, 0}, {{5 + notch, 15 - notch}}, 1e-9);
+    expectSolidSpans(closed, {0.5, -5, 0.5}, {0, 1, 0}, {{5, 15}}, 1e-9);
 }
 
 // Distances for the membership oracle.
@@ -210,7 +195,7 @@ double polygonBoundaryDistance(Vec2 p, const std::vector<Vec2>& poly) {
 
 // Whether the part's solid contains (x, y, 0.5): a vertical line's spans.
 bool partContains(const csg::Scene& scene, Vec2 p) {
-    for (const Interval& s : spansOf(scene, {p.x, p.y, -5}, {0, 0, 1}))
+    for (const Interval& s : solidSpans(scene, {p.x, p.y, -5}, {0, 0, 1}))
         if (s.in <= 5.5 && s.out >= 5.5) return true;
     return false;
 }
@@ -287,15 +272,15 @@ TEST(Offset, FacetedIsClippersPolygon) {
 TEST(Hull, TwoCirclesByHand) {
     const csg::Scene stadium =
         compiled("linear_extrude(1) hull() { circle(1); translate([5, 0]) circle(1); }");
-    expectSpans(stadium, {2.5, -5, 0.5}, {0, 1, 0}, {{4, 6}}, 1e-12);
-    expectSpans(stadium, {-0.5, -5, 0.5}, {0, 1, 0}, {{5 - std::sqrt(0.75), 5 + std::sqrt(0.75)}},
-                1e-12);
+    expectSolidSpans(stadium, {2.5, -5, 0.5}, {0, 1, 0}, {{4, 6}}, 1e-12);
+    expectSolidSpans(stadium, {-0.5, -5, 0.5}, {0, 1, 0},
+                     {{5 - std::sqrt(0.75), 5 + std::sqrt(0.75)}}, 1e-12);
     expectRow(stadium, 0.5, {{-std::sqrt(0.75), 5 + std::sqrt(0.75)}}, 1e-12);
     const csg::Scene cone =
         compiled("linear_extrude(1) hull() { circle(2); translate([10, 0]) circle(3); }");
     for (double x : {0.0, 5.0, 9.0}) {
         const double y = (2 + 0.1 * x) / std::sqrt(0.99);
-        expectSpans(cone, {x, -10, 0.5}, {0, 1, 0}, {{10 - y, 10 + y}}, 1e-12);
+        expectSolidSpans(cone, {x, -10, 0.5}, {0, 1, 0}, {{10 - y, 10 + y}}, 1e-12);
     }
     // Beyond the tangent points, the circles themselves.
     expectRow(cone, 0.1, {{-std::sqrt(4 - 0.01), 10 + std::sqrt(9 - 0.01)}}, 1e-12);
@@ -303,8 +288,8 @@ TEST(Hull, TwoCirclesByHand) {
     const csg::Scene hexagons = compiled(
         "linear_extrude(1) hull() { circle(1, $fn = 6); translate([5, 0]) circle(1, $fn = 6); }");
     expectRow(hexagons, 0.0, {{-1, 6}}, 1e-12);
-    expectSpans(hexagons, {2.5, -5, 0.5}, {0, 1, 0}, {{5 - std::sqrt(0.75), 5 + std::sqrt(0.75)}},
-                1e-12);
+    expectSolidSpans(hexagons, {2.5, -5, 0.5}, {0, 1, 0},
+                     {{5 - std::sqrt(0.75), 5 + std::sqrt(0.75)}}, 1e-12);
 }
 
 // Seeded random circles and squares: points against the hull of densely sampled points of
@@ -394,7 +379,7 @@ TEST(Hull, TwoDimensionalDifference) {
 // hull() of solids: the hull of their faceted vertices.
 TEST(Hull, SolidsByHand) {
     const csg::Scene boxes = compiled("hull() { cube(1); translate([4, 0, 0]) cube(1); }");
-    expectSpans(boxes, {-5, 0.5, 0.5}, {1, 0, 0}, {{5, 10}}, 1e-12);
+    expectSolidSpans(boxes, {-5, 0.5, 0.5}, {1, 0, 0}, {{5, 10}}, 1e-12);
     // A cube and a sphere with $fn = 4: its rings at polar 45 and 135 degrees, of radius
     // c = cos 45 at heights 5 +- c, vertices on the axes' directions. The hull's face over the
     // cube's top edge x = 1, z = 1 runs to the vertex (c, 0, 5 + c): x = 1 - k (z - 1),
@@ -402,15 +387,15 @@ TEST(Hull, SolidsByHand) {
     const double c = std::sqrt(0.5), k = (1 - c) / (4 + c);
     const csg::Scene capsule =
         compiled("hull() { cube(2, center = true); translate([0, 0, 5]) sphere(1, $fn = 4); }");
-    expectSpans(capsule, {0, 0, -10}, {0, 0, 1}, {{9, 15 + c}}, 1e-12);
+    expectSolidSpans(capsule, {0, 0, -10}, {0, 0, 1}, {{9, 15 + c}}, 1e-12);
     const double x = 1 - 2 * k;  // at z = 3
-    expectSpans(capsule, {-10, 0, 3}, {1, 0, 0}, {{10 - x, 10 + x}}, 1e-12);
+    expectSolidSpans(capsule, {-10, 0, 3}, {1, 0, 0}, {{10 - x, 10 + x}}, 1e-12);
     // An exact sphere is hulled as OpenSCAD facets it: r = 1 has 5 fragments, so its equator
     // has a vertex at (1, 0, 0) and an edge at x = cos 144 deg on the other side.
     const csg::Scene spheres =
         compiled("hull() { sphere(1); translate([3, 0, 0]) sphere(1); }", io::CurveMode::Exact);
-    expectSpans(spheres, {-5, 0, 0}, {1, 0, 0}, {{5 + std::cos(144 * std::numbers::pi / 180), 9}},
-                1e-12);
+    expectSolidSpans(spheres, {-5, 0, 0}, {1, 0, 0},
+                     {{5 + std::cos(144 * std::numbers::pi / 180), 9}}, 1e-12);
 }
 
 // A CSG result's vertices, not its leaves': a cube with a corner cube removed is hulled to the
@@ -419,12 +404,12 @@ TEST(Hull, SolidsByHand) {
 TEST(Hull, VerticesOfTheResult) {
     const csg::Scene cut =
         compiled("hull() difference() { cube(10); translate([5, 5, 5]) cube(10); }");
-    expectSpans(cut, {0, 0, 0}, {1, 1, 1}, {{0, 25.0 / 3.0}}, 1e-9);
+    expectSolidSpans(cut, {0, 0, 0}, {1, 1, 1}, {{0, 25.0 / 3.0}}, 1e-9);
     const csg::Scene slabs = compiled(
         "hull() intersection() { cube([10, 100, 100]); cube([100, 10, 100]); "
         "cube([100, 100, 10]); }");
-    expectSpans(slabs, {-5, -5, -5}, {1, 1, 1}, {{5, 15}}, 1e-9);
-    expectSpans(slabs, {-5, 5, 5}, {1, 0, 0}, {{5, 15}}, 1e-9);
+    expectSolidSpans(slabs, {-5, -5, -5}, {1, 1, 1}, {{5, 15}}, 1e-9);
+    expectSolidSpans(slabs, {-5, 5, 5}, {1, 0, 0}, {{5, 15}}, 1e-9);
 }
 
 TEST(OffsetHull, Diagnostics) {

@@ -27,9 +27,12 @@
 
 namespace {
 
-using csg::testing::evaluate;
-using csg::testing::diagnosticsOf;
 using csg::testing::compiled;
+using csg::testing::diagnosticsOf;
+using csg::testing::evaluate;
+using csg::testing::expectSpans;
+using csg::testing::Interval;
+using csg::testing::spansOf;
 
 using csg::Vec2;
 using csg::Vec3;
@@ -62,29 +65,6 @@ double projectedArea(const std::string& part, io::CurveMode curves = io::CurveMo
     }
     EXPECT_STREQ(e->shape, "projection");
     return areaOf(*e->outline);
-}
-
-struct Interval {
-    double in, out;
-};
-
-std::vector<Interval> spansOf(const csg::Scene& scene, Vec3 o, Vec3 d) {
-    csg::QueryContext ctx;
-    const csg::Ray ray{o, d, -csg::kInfinity, csg::kInfinity};
-    std::vector<Interval> out;
-    for (const csg::Span& s : scene.spans(ray, ctx)) out.push_back({s.in.t, s.out.t});
-    return out;
-}
-
-void expectSpans(const csg::Scene& scene, Vec3 o, Vec3 d, std::vector<Interval> expected,
-                 double tol) {
-    const auto got = spansOf(scene, o, d);
-    ASSERT_EQ(got.size(), expected.size()) << "ray from " << o.x << "," << o.y << "," << o.z
-                                           << " along " << d.x << "," << d.y << "," << d.z;
-    for (size_t i = 0; i < got.size(); ++i) {
-        EXPECT_NEAR(got[i].in, expected[i].in, tol) << "span " << i;
-        EXPECT_NEAR(got[i].out, expected[i].out, tol) << "span " << i;
-    }
 }
 
 // ---- projection(cut = true) ----
