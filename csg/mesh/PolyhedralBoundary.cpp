@@ -66,10 +66,20 @@ void addFace(const Mat4& m, const Polygon& local, uint32_t leaf, uint16_t id,
     out.push_back(std::move(f));
 }
 
+// Whether this method takes the leaf: a box, a polytope or a polygon mesh whose span ends name
+// each triangle (Polyhedron::kFaceIds).
+bool polyhedralLeaf(const Primitive& p) {
+    if (std::holds_alternative<Box>(p)) return true;
+    if (const auto* poly = std::get_if<ConvexPolytope>(&p)) return poly->data != nullptr;
+    const auto* mesh = std::get_if<Polyhedron>(&p);
+    return mesh && mesh->data && mesh->data->triangles.size() <= Polyhedron::kFaceIds;
+}
+
 // The faces of one leaf, with the face ids its spans report; false when it is not a polyhedron
 // this method takes.
 bool leafFaces(const Scene& scene, uint32_t leaf, std::vector<Face>& out) {
     const Primitive& p = scene.leafPrimitive(leaf);
+    if (!polyhedralLeaf(p)) return false;
     const Mat4& m = scene.leafWorldFromLocal(leaf);
     if (const auto* box = std::get_if<Box>(&p)) {
         // Face 2a is the low side of axis a, 2a + 1 the high side (Box.h).
@@ -89,7 +99,6 @@ bool leafFaces(const Scene& scene, uint32_t leaf, std::vector<Face>& out) {
         return true;
     }
     if (const auto* poly = std::get_if<ConvexPolytope>(&p)) {
-        if (!poly->data) return false;
         const ConvexPolytopeData& d = *poly->data;
         // Face f is plane f (ConvexPolytope.h).
         for (size_t f = 0; f + 1 < d.faceStarts.size(); ++f) {
@@ -101,8 +110,6 @@ bool leafFaces(const Scene& scene, uint32_t leaf, std::vector<Face>& out) {
         return true;
     }
     if (const auto* mesh = std::get_if<Polyhedron>(&p)) {
-        // A span end names its triangle by index only below kFaceIds triangles.
-        if (!mesh->data || mesh->data->triangles.size() > Polyhedron::kFaceIds) return false;
         const PolyhedronData& d = *mesh->data;
         for (size_t t = 0; t < d.triangles.size(); ++t) {
             const auto& tri = d.triangles[t];
@@ -389,14 +396,8 @@ void triangulateConvex(const std::vector<Vec3>& positions, std::vector<uint32_t>
 }  // namespace
 
 bool allLeavesPolyhedral(const Scene& scene) {
-    for (uint32_t leaf = 0; leaf < scene.leafCount(); ++leaf) {
-        const Primitive& p = scene.leafPrimitive(leaf);
-        const auto* mesh = std::get_if<Polyhedron>(&p);
-        const bool ok =
-            std::holds_alternative<Box>(p) || std::holds_alternative<ConvexPolytope>(p) ||
-            (mesh && mesh->data && mesh->data->triangles.size() <= Polyhedron::kFaceIds);
-        if (!ok) return false;
-    }
+    for (uint32_t leaf = 0; leaf < scene.leafCount(); ++leaf)
+        if (!polyhedralLeaf(scene.leafPrimitive(leaf))) return false;
     return true;
 }
 
