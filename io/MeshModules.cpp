@@ -17,8 +17,8 @@ namespace {
 constexpr const char* kPolyhedronForm =
     "polyhedron(points = [[x, y, z], ...], faces = [[i, j, k, ...], ...], convexity = 1)";
 constexpr const char* kImportForm =
-    "import(file = \"part.stl\" | \"part.off\" | \"part.obj\" | \"drawing.dxf\", layer, "
-    "convexity = 1, origin = [x, y], scale = 1)";
+    "import(file = \"part.stl\" | \"part.off\" | \"part.obj\" | \"part.3mf\" | \"drawing.dxf\", "
+    "layer, convexity = 1, origin = [x, y], scale = 1)";
 // Out-of-range indices warned about one by one (as OpenSCAD does) before a summary.
 constexpr uint64_t kMaxIndexWarnings = 10;
 
@@ -153,12 +153,13 @@ Instance importModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr
 
     // The type by the lower-cased extension, as OpenSCAD decides it.
     const io::MeshFormat format = meshFormatOf(written);
-    if (format != MeshFormat::Stl && format != MeshFormat::Off && format != MeshFormat::Obj) {
+    if (format != MeshFormat::Stl && format != MeshFormat::Off && format != MeshFormat::Obj &&
+        format != MeshFormat::ThreeMf) {
         std::string ext = std::filesystem::path(written).extension().string();
         std::transform(ext.begin(), ext.end(), ext.begin(),
                        [](unsigned char c) { return char(std::tolower(c)); });
-        const bool openscadKnows = ext == ".amf" || ext == ".3mf" || ext == ".svg" ||
-                                   ext == ".nef3" || ext == ".glb" || ext == ".gltf";
+        const bool openscadKnows =
+            ext == ".amf" || ext == ".svg" || ext == ".nef3" || ext == ".glb" || ext == ".gltf";
         e.fail(b.loc(0), "import(): " +
                              std::string(openscadKnows ? "importing " + ext +
                                                              " files is not supported by csgray"

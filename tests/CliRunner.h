@@ -29,10 +29,7 @@ struct RunResult {
 
 using csg::testing::readFile;
 using csg::testing::shellQuote;
-
-inline void writeFile(const fs::path& path, const std::string& text) {
-    std::ofstream(path, std::ios::binary) << text;
-}
+using csg::testing::writeFile;
 
 inline fs::path samplePath(const std::string& name) {
     return fs::path(CSGRAY_SAMPLES) / name;

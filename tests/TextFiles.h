@@ -1,4 +1,4 @@
-// Files and shell words for the tests that run programs: a whole file as bytes, and a string
+// Files and shell words for the tests: a whole file as bytes, read or written, and a string
 // quoted for sh so that any character survives.
 #pragma once
 
@@ -14,6 +14,10 @@ inline std::string readFile(const std::filesystem::path& path) {
     std::ostringstream s;
     s << in.rdbuf();
     return s.str();
+}
+
+inline void writeFile(const std::filesystem::path& path, const std::string& bytes) {
+    std::ofstream(path, std::ios::binary) << bytes;
 }
 
 inline std::string shellQuote(const std::string& s) {

@@ -172,11 +172,91 @@ TEST(CliMesh, ObjAndGltfRoundTrip) {
     validatorAccepts(dir.path() / "b.gltf", why);  // skipped (why) without the validator
 }
 
+// The triangles of an ASCII STL (its facets), as OpenSCAD writes it.
+size_t asciiStlFacets(const fs::path& stl) {
+    const std::string text = readFile(stl);
+    size_t n = 0;
+    for (size_t at = text.find("facet normal"); at != std::string::npos;
+         at = text.find("facet normal", at + 1))
+        ++n;
+    return n;
+}
+
+// The triangle count `csgray export` reports on stderr ("FILE: N triangles").
+size_t exportedTriangles(const std::string& err) {
+    const size_t at = err.find(" triangles");
+    if (at == std::string::npos) return 0;
+    const size_t start = err.rfind(' ', at - 1) + 1;
+    return size_t(std::stoull(err.substr(start, at - start)));
+}
+
+TEST(CliMesh, StlAnd3mfExportsCompareAndOpenScadReadsThem) {
+    ScratchDir dir;
+    const std::string part = samplePath("bracket.scad").string();
+    const std::vector<std::vector<std::string>> exports = {
+        {"b.stl"}, {"a.stl", "--ascii"}, {"b.3mf"}};
+    size_t triangles = 0;
+    for (const auto& e : exports) {
+        SCOPED_TRACE(e[0]);
+        const fs::path out = dir.path() / e[0];
+        std::vector<std::string> args = {"export", part, "-o", out.string(), "--tolerance", "0.2"};
+        args.insert(args.end(), e.begin() + 1, e.end());
+        const RunResult r = runCsgray(args, dir.path());
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        triangles = exportedTriangles(r.err);
+        ASSERT_GT(triangles, 0u) << r.err;
+        const RunResult c = runCsgray(
+            {"compare", part, out.string(), "--tolerance", "0.2", "--samples", "128"}, dir.path());
+        EXPECT_EQ(c.exitCode, 0) << c.out << c.err;
+        EXPECT_NE(c.out.find("closed manifold, outward"), std::string::npos) << c.out;
+    }
+    EXPECT_EQ(readFile(dir.path() / "a.stl").rfind("solid", 0), 0u);
+    EXPECT_EQ(readFile(dir.path() / "b.stl").size(), 84 + 50 * triangles);
+    EXPECT_EQ(runCsgray({"export", part, "-o", "x.glb", "--ascii"}, dir.path()).exitCode, 2);
+
+    if (std::system("openscad --version >/dev/null 2>&1") != 0)
+        SKIP_OR_FAIL_IN_CI("openscad is not installed");
+    // OpenSCAD imports each file (its own STL and 3MF readers, lib3mf for 3MF) and writes the
+    // same triangles back, within the tolerance of the part.
+    for (const auto& e : exports) {
+        SCOPED_TRACE(e[0]);
+        const fs::path scad = dir.path() / ("import_" + e[0] + ".scad");
+        const fs::path back = dir.path() / ("openscad_" + e[0] + ".stl");
+        writeFile(scad, "import(\"" + (dir.path() / e[0]).string() + "\");\n");
+        const std::string command = "openscad -o " + shellQuote(back.string()) + " " +
+                                    shellQuote(scad.string()) + " >/dev/null 2>&1";
+        ASSERT_EQ(std::system(command.c_str()), 0) << command;
+        EXPECT_EQ(asciiStlFacets(back), triangles);
+        const RunResult c = runCsgray(
+            {"compare", part, back.string(), "--tolerance", "0.2", "--samples", "128"}, dir.path());
+        EXPECT_EQ(c.exitCode, 0) << c.out << c.err;
+    }
+    // csgray reads OpenSCAD's 3MF (lib3mf's ZIP64 package) as the same mesh as its STL.
+    double volume[2];
+    const char* names[2] = {"openscad.3mf", "openscad.stl"};
+    for (int i = 0; i < 2; ++i) {
+        const fs::path out = dir.path() / names[i];
+        const std::string command =
+            "openscad -o " + shellQuote(out.string()) + " " + shellQuote(part) + " >/dev/null 2>&1";
+        ASSERT_EQ(std::system(command.c_str()), 0) << command;
+        const RunResult c = runCsgray(
+            {"compare", part, out.string(), "--json", "--samples", "64", "--tolerance", "1"},
+            dir.path());
+        ASSERT_FALSE(c.out.empty()) << c.err;
+        const nlohmann::json j = nlohmann::json::parse(c.out);
+        EXPECT_TRUE(j["topology"]["closedManifold"].get<bool>()) << names[i] << c.out;
+        volume[i] = j["volume"]["mesh"].get<double>();
+    }
+    // OpenSCAD writes STL coordinates to 6 significant digits (11.7634) and 3MF ones to 6
+    // decimals: the two volumes differ by that rounding, well below 1e-5 of the part's.
+    EXPECT_NEAR(volume[0], volume[1], 1e-5 * volume[1]);
+}
+
 TEST(CliMesh, EmptyPartGivesAValidEmptyFileAndAWarning) {
     ScratchDir dir;
     const fs::path part = dir.path() / "empty.scad";
     writeFile(part, "difference() { cube(1); cube(3, center = true); }\n");
-    for (const char* name : {"e.glb", "e.obj", "e.gltf"}) {
+    for (const char* name : {"e.glb", "e.obj", "e.gltf", "e.stl", "e.3mf"}) {
         const fs::path out = dir.path() / name;
         const RunResult r = runCsgray({"export", part.string(), "-o", out.string()}, dir.path());
         EXPECT_EQ(r.exitCode, 0) << r.err;

@@ -213,6 +213,22 @@ TEST(PolyhedronIo, ImportsStlOffObjBesideTheirScadFile) {
     EXPECT_NE(firstOf(r, Severity::Warning).find("found in document root"), std::string::npos);
 }
 
+// A 3MF as OpenSCAD writes it (lib3mf: a ZIP64 package), imported as the solid it holds.
+TEST(PolyhedronIo, ImportsOpenScadsThreeMf) {
+    if (std::system("openscad --version >/dev/null 2>&1") != 0)
+        SKIP_OR_FAIL_IN_CI("openscad (2021.01, Debian's) is not installed");
+    csg::testing::TempDir dir("csgray_import_3mf");
+    writeFile(dir.path / "cube.scad", "cube(1);\n");
+    const std::string command =
+        "cd '" + dir.path.string() + "' && openscad -o parts/cube.3mf cube.scad >/dev/null 2>&1";
+    std::filesystem::create_directories(dir.path / "parts");
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    writeFile(dir.path / "main.scad", "import(\"parts/cube.3mf\");\n");
+    const EvaluateResult r = evaluateFile(dir.path / "main.scad");
+    expectUnitCube(compiled(r));
+    EXPECT_TRUE(r.diagnostics.empty()) << firstOf(r, Severity::Warning);
+}
+
 TEST(PolyhedronIo, MissingAndMalformedFilesAreErrorsAtTheImport) {
     csg::testing::TempDir dir("csgray_import_errors");
     writeFile(dir.path / "main.scad", "cube(1);\ntranslate([2, 0, 0]) import(\"nothere.stl\");\n");

@@ -17,6 +17,7 @@ MeshFormat meshFormatOf(const std::filesystem::path& file) {
     if (ext == ".obj") return MeshFormat::Obj;
     if (ext == ".stl") return MeshFormat::Stl;
     if (ext == ".off") return MeshFormat::Off;
+    if (ext == ".3mf") return MeshFormat::ThreeMf;
     if (ext == ".glb") return MeshFormat::Glb;
     if (ext == ".gltf") return MeshFormat::Gltf;
     return MeshFormat::Unknown;
@@ -24,11 +25,12 @@ MeshFormat meshFormatOf(const std::filesystem::path& file) {
 
 std::optional<std::string> writeMesh(const std::filesystem::path& file,
                                      const csg::TriangleMesh& mesh,
-                                     const std::vector<Material>& materials) {
+                                     const std::vector<Material>& materials,
+                                     const MeshWriteOptions& options) {
     // Every format gets the same promise: nothing but a closed, consistently oriented
     // 2-manifold is written (a second check of dual contouring and simplification).
     const MeshFormat format = meshFormatOf(file);
-    if (format != MeshFormat::Unknown && format != MeshFormat::Stl) {
+    if (format != MeshFormat::Unknown && format != MeshFormat::Off) {
         const csg::MeshTopology topo = csg::checkTopology(mesh);
         if (!topo.closedManifold())
             return "the mesh is not a closed oriented manifold (" +
@@ -46,18 +48,21 @@ std::optional<std::string> writeMesh(const std::filesystem::path& file,
         case MeshFormat::Gltf:
             return detail::writeGltf(file, mesh, materials, false);
         case MeshFormat::Stl:
+            return detail::writeStl(file, mesh, options.asciiStl);
+        case MeshFormat::ThreeMf:
+            return detail::write3mf(file, mesh, materials);
         case MeshFormat::Off:
         case MeshFormat::Unknown:
             break;
     }
-    return "cannot write this format (use .glb, .gltf or .obj)";
+    return "cannot write this format (use .glb, .gltf, .obj, .stl or .3mf)";
 }
 
 namespace {
 
 const char* const kUnknownMeshFormat =
-    "unknown mesh format (expected .obj, .stl, .off, .glb or .gltf)";
-const char* const kNotPolygonFormat = "unknown mesh format (expected .stl, .off or .obj)";
+    "unknown mesh format (expected .obj, .stl, .off, .3mf, .glb or .gltf)";
+const char* const kNotPolygonFormat = "unknown mesh format (expected .stl, .off, .obj or .3mf)";
 
 // The file's bytes, or the failure as a result of type R.
 template <class R>
@@ -114,6 +119,7 @@ MeshReadResult parseMesh(std::string_view bytes, MeshFormat format,
         case MeshFormat::Obj:
         case MeshFormat::Stl:
         case MeshFormat::Off:
+        case MeshFormat::ThreeMf:
             result = fanned(parsePolygonMesh(bytes, format));
             break;
         case MeshFormat::Glb:
@@ -132,7 +138,8 @@ MeshReadResult parseMesh(std::string_view bytes, MeshFormat format,
 
 PolygonMeshReadResult readPolygonMesh(const std::filesystem::path& file) {
     const MeshFormat format = meshFormatOf(file);
-    if (format != MeshFormat::Obj && format != MeshFormat::Stl && format != MeshFormat::Off) {
+    if (format != MeshFormat::Obj && format != MeshFormat::Stl && format != MeshFormat::Off &&
+        format != MeshFormat::ThreeMf) {
         PolygonMeshReadResult result;
         result.error = kNotPolygonFormat;
         return result;
@@ -150,6 +157,8 @@ PolygonMeshReadResult parsePolygonMesh(std::string_view bytes, MeshFormat format
             return detail::parseStl(bytes);
         case MeshFormat::Off:
             return detail::parseOff(bytes);
+        case MeshFormat::ThreeMf:
+            return detail::parse3mf(bytes);
         default:
             break;
     }

@@ -23,7 +23,8 @@ static_assert(csg::tol::kSelfIntersectionContactRel == 1e-6);
 const char* const kCompareHelp =
     "usage: csgray compare PART MESH [options]\n"
     "\n"
-    "Compares a mesh (OBJ, STL, GLB or glTF) with the part's exact surface and prints the\n"
+    "Compares a mesh (OBJ, STL, OFF, 3MF, GLB or glTF) with the part's exact surface and prints "
+    "the\n"
     "figures on stdout: mesh volume (divergence theorem) against the part's (span\n"
     "integration); the one-sided distances mesh->surface (every vertex, triangle centroid and\n"
     "edge midpoint, measured along lines through it: the mesh normal, the axes, the\n"
@@ -86,7 +87,7 @@ int compareCommand(std::span<const std::string> args) {
     if (meshFile.empty()) throw UsageError("compare: the MESH file is required");
     if (io::meshFormatOf(meshFile) == io::MeshFormat::Unknown)
         throw UsageError("compare: cannot tell the format of '" + meshFile +
-                         "' (use .obj, .stl, .glb or .gltf)");
+                         "' (use .obj, .stl, .off, .3mf, .glb or .gltf)");
 
     Report report(common.jsonDiagnostics);
     LoadedPart part;

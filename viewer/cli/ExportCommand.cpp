@@ -15,7 +15,7 @@ namespace viewer {
 namespace {
 
 const char* const kExportHelp =
-    "usage: csgray export PART -o OUT.glb|OUT.gltf|OUT.obj [options]\n"
+    "usage: csgray export PART -o OUT.glb|OUT.gltf|OUT.obj|OUT.stl|OUT.3mf [options]\n"
     "\n"
     "A part whose every leaf is a polyhedron (cube, polyhedron(), an import, or a cylinder\n"
     "or sphere faceted by $fn or --curves openscad) is a polyhedron itself: its mesh\n"
@@ -31,11 +31,14 @@ const char* const kExportHelp =
     "tolerance, and measured again (skipped when nothing is left).\n"
     "Normals are split along creases sharper than 40 degrees (box edges shade flat, curved\n"
     "faces smooth). GLB/glTF: one primitive per material, Y-up (the Z-up part is rotated at\n"
-    "the root node). The file is written atomically; an empty part gives an empty file and\n"
+    "the root node). STL: binary unless --ascii, one facet per triangle. 3MF: one object in\n"
+    "millimetres, the part's colours as base materials. Every format holds the same float\n"
+    "vertices. The file is written atomically; an empty part gives an empty file and\n"
     "a warning. A one-line summary goes to stderr.\n"
     "\n"
     "options:\n"
     "  -o FILE            the mesh file; the format follows the extension\n"
+    "  --ascii            STL as text (default: binary)\n"
     "  --tolerance T      largest mesh-surface distance in part units (default: 1/500 of\n"
     "                     the bounding box diagonal)\n"
     "  --max-cells N      cap on the grid's cells (default 16777216); when it binds, the\n"
@@ -59,6 +62,7 @@ int exportCommand(std::span<const std::string> args) {
     CommonOptions common;
     std::string output;
     csg::TessellateOptions options;
+    io::MeshWriteOptions writeOptions;
     bool quiet = false, verbose = false;
     ArgCursor cursor(args);
     while (!cursor.done()) {
@@ -74,6 +78,8 @@ int exportCommand(std::span<const std::string> args) {
             options.adaptive = false;
         } else if (cursor.flag("--octree")) {
             options.adaptive = true;
+        } else if (cursor.flag("--ascii")) {
+            writeOptions.asciiStl = true;
         } else if (cursor.flag("--grid")) {
             options.exactPolyhedra = false;
         } else if (cursor.flag("--no-simplify")) {
@@ -94,12 +100,14 @@ int exportCommand(std::span<const std::string> args) {
         return kExitOk;
     }
     requirePart(common, "export");
-    if (output.empty()) throw UsageError("export: -o OUT.glb|OUT.gltf|OUT.obj is required");
+    if (output.empty())
+        throw UsageError("export: -o OUT.glb|OUT.gltf|OUT.obj|OUT.stl|OUT.3mf is required");
     const io::MeshFormat format = io::meshFormatOf(output);
-    if (format != io::MeshFormat::Glb && format != io::MeshFormat::Gltf &&
-        format != io::MeshFormat::Obj)
+    if (format == io::MeshFormat::Unknown || format == io::MeshFormat::Off)
         throw UsageError("export: cannot tell the format of '" + output +
-                         "' (use .glb, .gltf or .obj)");
+                         "' (use .glb, .gltf, .obj, .stl or .3mf)");
+    if (writeOptions.asciiStl && format != io::MeshFormat::Stl)
+        throw UsageError("export: --ascii applies to .stl output only");
 
     Report report(common.jsonDiagnostics);
     LoadedPart part;
@@ -152,7 +160,7 @@ int exportCommand(std::span<const std::string> args) {
 
     // Write it.
     const auto writeStart = std::chrono::steady_clock::now();
-    if (auto error = io::writeMesh(output, result.mesh, part.model.materials)) {
+    if (auto error = io::writeMesh(output, result.mesh, part.model.materials, writeOptions)) {
         report.error(output, *error);
         return kExitIo;
     }
