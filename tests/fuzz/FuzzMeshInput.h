@@ -19,8 +19,8 @@ namespace fuzz {
 
 inline void readMeshInput(std::string_view bytes) {
     using io::MeshFormat;
-    for (const MeshFormat format :
-         {MeshFormat::Obj, MeshFormat::Stl, MeshFormat::Off, MeshFormat::Glb, MeshFormat::Gltf}) {
+    for (const MeshFormat format : {MeshFormat::Obj, MeshFormat::Stl, MeshFormat::Off,
+                                    MeshFormat::ThreeMf, MeshFormat::Glb, MeshFormat::Gltf}) {
         // A directory that does not exist: a glTF's external buffers are not read from disk.
         const io::MeshReadResult r = io::parseMesh(bytes, format, "/nonexistent/csgray-fuzz");
         // A mesh exactly when there is no error; a column only with a line.
@@ -44,7 +44,8 @@ inline void readMeshInput(std::string_view bytes) {
                                     csg::tol::kMeshCoordinateMax)))
             std::abort();
     }
-    for (const MeshFormat format : {MeshFormat::Obj, MeshFormat::Stl, MeshFormat::Off}) {
+    for (const MeshFormat format :
+         {MeshFormat::Obj, MeshFormat::Stl, MeshFormat::Off, MeshFormat::ThreeMf}) {
         io::PolygonMeshReadResult r = io::parsePolygonMesh(bytes, format);
         if (r.mesh.has_value() == !r.error.empty()) std::abort();
         if (!r.mesh) continue;
