@@ -594,6 +594,7 @@ const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {
         {"rotate_extrude", rotateExtrudeModule},
         {"offset", offsetModule},
         {"hull", hullModule},
+        {"minkowski", minkowskiModule},
         {"projection", projectionModule},
         {"resize", resizeModule},
         {"union", unionModule},
@@ -612,7 +613,6 @@ const std::unordered_map<std::string, Evaluator::BuiltinModule>& table() {
         {"light", light},
         {"background", background},
         // OpenSCAD modules with no exact ray-cast counterpart yet: an error, never a skip.
-        {"minkowski", unsupported},
         {"roof", unsupported},
         {"child", unsupported},
     };

@@ -1,8 +1,9 @@
-// offset() and hull(): shapes derived from their children (io/Offset.cpp, io/Hull.cpp; the
-// geometry is csg/derived/'s).
+// offset(), hull() and minkowski(): shapes derived from their children (io/Offset.cpp,
+// io/Hull.cpp, io/Minkowski.cpp; the geometry is csg/derived/'s).
 #pragma once
 
 #include "io/Evaluator.h"
+#include "io/Faceting.h"
 
 namespace io {
 
@@ -17,5 +18,16 @@ Instance offsetModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr
 // of the children's result, curved solids faceted as OpenSCAD's).
 Instance hullModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                     const GeomState& state);
+
+// minkowski() of solids (io/Minkowski.cpp): exact with an exact sphere, else OpenSCAD's sum
+// of the faceted children.
+Instance minkowskiModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
+                         const GeomState& state);
+
+// The points a leaf stands for in a 3-D hull or Minkowski sum, in its own frame: a polyhedral
+// leaf's vertices; a sphere, cylinder, torus or extrusion faceted as OpenSCAD facets it with
+// settings; false (nothing appended) for a leaf that has none (a twisted extrusion, a patch).
+bool facetedLeafPoints(const csg::Primitive& p, const FragmentSettings& settings,
+                       std::vector<csg::Vec3>& out);
 
 }  // namespace io

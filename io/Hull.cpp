@@ -43,8 +43,10 @@ void facetSegment(const csg::Segment2& s, const FragmentSettings& settings, doub
     if (sweep < 2.0 * csg::kPi) out.push_back(s.finish());
 }
 
-// A leaf's hull points in its own frame; false for a primitive that has none.
-bool leafPoints(const csg::Primitive& p, const FragmentSettings& settings, std::vector<Vec3>& out) {
+}  // namespace
+
+bool facetedLeafPoints(const csg::Primitive& p, const FragmentSettings& settings,
+                       std::vector<Vec3>& out) {
     if (csg::polyhedralLeafPoints(p, out)) return true;
     // A half-space has no vertices; in an intersection (a faceted rotate_extrude's wedge) its
     // plane still makes corners (csg/derived/Hull3D.h).
@@ -109,6 +111,8 @@ bool leafPoints(const csg::Primitive& p, const FragmentSettings& settings, std::
     return true;
 }
 
+namespace {
+
 Instance hull2D(Evaluator& e, const InstantiationStmt& s, const csg::NodePtr& shape,
                 const csg::Tags& tags) {
     csg::HullSites sites;
@@ -125,7 +129,7 @@ Instance hull3D(Evaluator& e, const InstantiationStmt& s, const csg::NodePtr& so
     const char* missing = nullptr;
     const csg::HullPoints points =
         csg::hullPointsOf(*solid, [&](const csg::Primitive& p, std::vector<Vec3>& out) {
-            if (leafPoints(p, settings, out)) return true;
+            if (facetedLeafPoints(p, settings, out)) return true;
             if (!missing) missing = csg::primitiveName(p);
             return false;
         });

@@ -211,6 +211,22 @@ inline constexpr double kPolyBoundaryParallelCos = 1e-12;
 // size, while a stretch that short is missed by the bounds of every leaf not within it.
 inline constexpr double kPolyBoundaryClassifyReach = 1e3;
 
+// minkowski() with an exact ball (csg/derived/Minkowski3D.h) puts no cylinder along an edge whose
+// two triangles' unit normals have a dot product within this of 1 (unit: 1 - cos). Why: the
+// edge's two prisms leave out only a sliver r a^2 / 8 thick for a bend of a radians, here
+// 1.25e-10 r; the exact boundary's coplanar pieces differ in normal by a few ulps, far below.
+inline constexpr double kMinkowskiFlatEdgeCos = 1e-9;
+// ... and takes a mesh as convex when no vertex is farther than this fraction of its size
+// above any of its triangles' planes (unit: relative). Why: the vertices of a convex mesh made
+// by trigonometry (a BOSL2 spheroid) lie on their faces' planes to ~1e-15 of the size; a
+// mesh dented by less than 1e-9 of its size is convex to every printer and every tolerance.
+inline constexpr double kMinkowskiConvexRel = 1e-9;
+// ... and sums with a sphere exactly when its transform keeps it a ball: the lengths of the
+// matrix's axes agree, and their dot products vanish, to this fraction of their squares
+// (unit: relative). Why: rotations built from OpenSCAD's sin and cos are orthogonal to ~1e-16;
+// an ellipsoid within 1e-12 of a ball is that ball to every tolerance downstream.
+inline constexpr double kBallTransformRel = 1e-12;
+
 // Meshing refines its grid until the *sampled* mesh-surface distance is within this fraction
 // of the tolerance (unit: relative). Samples (vertices, centroids, edge midpoints, a grid of
 // surface points) find the maximum to within ~10-20% on the samples; 0.8 leaves that margin so

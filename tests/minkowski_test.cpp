@@ -1,0 +1,159 @@
+// minkowski() of solids (io/Minkowski.cpp, csg/derived/Minkowski3D.h): boxes summed by hand, the
+// exact rounded box against its closed-form volume and its corner ball, a non-convex operand
+// (a frame) summed with a box and with a ball, OpenSCAD 2021's own sums of faceted solids
+// against csgray's, and the cases csgray refuses with their reason.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "MissingTool.h"
+#include "PartHelpers.h"
+#include "TempDir.h"
+#include "TextFiles.h"
+#include "csg/Volume.h"
+
+namespace {
+
+using csg::Vec3;
+using csg::testing::compiled;
+using csg::testing::diagnosticsOf;
+using csg::testing::evaluate;
+using csg::testing::expectSpans;
+
+constexpr double kPi = 3.14159265358979323846;
+
+TEST(Minkowski, BoxesAddTheirSides) {
+    const csg::Scene scene = compiled("minkowski() { cube([2, 3, 4]); cube(1); }");
+    expectSpans(scene, {0.5, 0.5, -10}, {0, 0, 1}, {{10, 15}}, 1e-12);
+    expectSpans(scene, {-10, 1, 1}, {1, 0, 0}, {{10, 13}}, 1e-12);
+    expectSpans(scene, {1, -10, 1}, {0, 1, 0}, {{10, 14}}, 1e-12);
+    // Three children fold left to right; an empty child is skipped; one child is itself.
+    const csg::Scene three = compiled(
+        "minkowski() { cube(1); cube(1); difference() { cube(1); cube(3, center = true); } "
+        "cube(2); }");
+    expectSpans(three, {0.5, 0.5, -10}, {0, 0, 1}, {{10, 14}}, 1e-12);
+    expectSpans(compiled("minkowski() cube(2);"), {1, 1, -10}, {0, 0, 1}, {{10, 12}}, 0.0);
+}
+
+TEST(Minkowski, ConvexPolyhedraAreSummedWhole) {
+    // The octahedron |x| + |y| + |z| <= 1 as a polyhedron, plus itself: the octahedron of
+    // radius 2 (one hull: a convex mesh is a convex piece, not a non-convex part).
+    const std::string octahedron =
+        "polyhedron([[1,0,0],[-1,0,0],[0,1,0],[0,-1,0],[0,0,1],[0,0,-1]], "
+        "[[0,2,4],[2,1,4],[1,3,4],[3,0,4],[2,0,5],[1,2,5],[3,1,5],[0,3,5]]);";
+    const csg::Scene scene = compiled("minkowski() { " + octahedron + octahedron + " }");
+    EXPECT_EQ(scene.leafCount(), 1u);
+    expectSpans(scene, {-5, 0, 0}, {1, 0, 0}, {{3, 7}}, 1e-12);
+    expectSpans(scene, {-5, 0.5, 0.5}, {1, 0, 0}, {{4, 6}}, 1e-12);
+}
+
+TEST(Minkowski, ExactBallRoundsABoxWithNoFacets) {
+    // The box [-1, 1]^3 rounded by a ball of radius 1 (no $fn: the ball stays exact).
+    const csg::Scene scene = compiled("minkowski() { cube(2, center = true); sphere(1); }");
+    // Along a diagonal the surface is the corner ball's: at sqrt(3) + 1 from the centre.
+    const Vec3 d = glm::normalize(Vec3(1, 1, 1));
+    const double reach = std::sqrt(3.0) + 1.0;
+    expectSpans(scene, Vec3(0.0), d, {{-reach, reach}}, 1e-12);
+    // Across an edge (x = y = 1 + cos 45, z = 0) the surface is the edge cylinder's.
+    const Vec3 e = glm::normalize(Vec3(1, 1, 0));
+    expectSpans(scene, Vec3(0.0), e, {{-(std::sqrt(2.0) + 1), std::sqrt(2.0) + 1}}, 1e-12);
+    // Through a face: the prism's, at 2.
+    expectSpans(scene, Vec3(0.3, 0.2, -5), {0, 0, 1}, {{3, 7}}, 1e-12);
+    // Its volume: the box, six slabs, twelve quarter cylinders, eight eighth balls.
+    const double a = 2.0, r = 1.0;
+    const double exact =
+        a * a * a + 6 * a * a * r + 3 * kPi * r * r * a + 4.0 / 3.0 * kPi * r * r * r;
+    EXPECT_NEAR(csg::volume(scene, 1024), exact, 2e-4 * exact);
+}
+
+TEST(Minkowski, NonConvexFrameWithABoxAndWithABall) {
+    // A 4 x 4 x 4 block with a 2 x 2 hole along z, summed with a 0.5 cube: the block grows to
+    // 4.5 and the hole shrinks to 1.5 (from x = 1.5 to 3).
+    const std::string frame = "difference() { cube(4); translate([1, 1, -1]) cube([2, 2, 6]); }";
+    const csg::Scene boxed = compiled("minkowski() { " + frame + " cube(0.5); }");
+    expectSpans(boxed, {2.25, 2.25, -5}, {0, 0, 1}, {}, 0.0);
+    expectSpans(boxed, {1.4, 2.25, -5}, {0, 0, 1}, {{5, 9.5}}, 1e-12);
+    expectSpans(boxed, {-5, 2.25, 2}, {1, 0, 0}, {{5, 6.5}, {8, 9.5}}, 1e-12);
+    // 900 x 900 lines over [0, 4.5]^2: every edge of the silhouette lies between cells, so
+    // the quadrature is exact.
+    EXPECT_NEAR(csg::volume(boxed, 900), 4.5 * 4.5 * 4.5 - 1.5 * 1.5 * 4.5, 1e-9);
+    // The same frame rounded by a ball of radius 0.5: the hole's walls move in by 0.5 and its
+    // edges stay sharp (they are concave); the outside rounds.
+    const csg::Scene rounded = compiled("minkowski() { " + frame + " sphere(0.5); }");
+    expectSpans(rounded, {2, 2, -5}, {0, 0, 1}, {}, 0.0);
+    // At x = 1.45 the line passes 0.45 beyond the hole's top and bottom edges (x = 1), whose
+    // cylinders of radius 0.5 reach sqrt(0.5^2 - 0.45^2) past z = 0 and z = 4.
+    const double past = std::sqrt(0.5 * 0.5 - 0.45 * 0.45);
+    expectSpans(rounded, {1.45, 2, -5}, {0, 0, 1}, {{5 - past, 9 + past}}, 1e-12);
+    expectSpans(rounded, {-5, 2, 2}, {1, 0, 0}, {{4.5, 6.5}, {7.5, 9.5}}, 1e-12);
+    // The outer corner (4, 4, 4) is rounded by the corner ball.
+    const Vec3 d = glm::normalize(Vec3(1, 1, 1));
+    const auto spans = csg::testing::spansOf(rounded, Vec3(4.0) - 2.0 * d, d);
+    ASSERT_FALSE(spans.empty());
+    EXPECT_NEAR(spans.back().out, 2.5, 1e-12);
+}
+
+TEST(Minkowski, FacetedSumsAreOpenScadsPolyhedra) {
+    // With $fn the curves are OpenSCAD's polyhedra, and so is their sum. OpenSCAD 2021's own
+    // mesh of each part, imported, must give the same spans on lines in general position
+    // (its STL has 6 significant digits: ends agree to 1e-4 on these 5-unit parts).
+    if (std::system("openscad --version >/dev/null 2>&1") != 0)
+        SKIP_OR_FAIL_IN_CI("openscad (2021.01, Debian's) is not installed");
+    const std::string parts[] = {
+        "minkowski() { cube([3, 2, 1]); sphere(1, $fn = 8); }",
+        "minkowski() { cylinder(r = 2, h = 1, $fn = 6); rotate([30, 20, 10]) cube(1); }",
+        "minkowski() { difference() { cube(4); translate([1, 1, -1]) cube([2, 2, 6]); } "
+        "cylinder(r = 0.5, h = 0.5, $fn = 8); }",
+    };
+    csg::testing::TempDir dir("csgray_minkowski");
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    for (const std::string& part : parts) {
+        SCOPED_TRACE(part);
+        const std::filesystem::path scad = dir.path / "part.scad", stl = dir.path / "part.stl";
+        csg::testing::writeFile(scad, part + "\n");
+        const std::string command =
+            "openscad -o '" + stl.string() + "' '" + scad.string() + "' >/dev/null 2>&1";
+        ASSERT_EQ(std::system(command.c_str()), 0) << command;
+        const csg::Scene ours = compiled(part);
+        const csg::Scene theirs = compiled("import(\"" + stl.string() + "\");");
+        const csg::Bounds3 box = ours.bounds();
+        const Vec3 middle = 0.5 * (box.lo + box.hi), half = 0.5 * (box.hi - box.lo);
+        int compared = 0;
+        for (int i = 0; i < 200; ++i) {
+            const Vec3 o = middle + half * Vec3(unit(random), unit(random), unit(random));
+            const Vec3 d = glm::normalize(Vec3(unit(random), unit(random), unit(random)));
+            const auto expected = csg::testing::spansOf(theirs, o, d, true);
+            std::vector<csg::testing::Interval> spans = csg::testing::spansOf(ours, o, d, true);
+            ASSERT_EQ(spans.size(), expected.size()) << "line " << i;
+            for (size_t k = 0; k < spans.size(); ++k) {
+                EXPECT_NEAR(spans[k].in, expected[k].in, 1e-4) << "line " << i;
+                EXPECT_NEAR(spans[k].out, expected[k].out, 1e-4) << "line " << i;
+            }
+            compared += !spans.empty();
+        }
+        EXPECT_GT(compared, 50);  // most lines cross the part
+    }
+}
+
+TEST(Minkowski, RefusesWhatItCannotSumWithTheReason) {
+    const auto twoConcave = evaluate(
+        "minkowski() { difference() { cube(4); cube(2); } difference() { cube(3); cube(1); } }");
+    EXPECT_FALSE(twoConcave.ok());
+    EXPECT_NE(diagnosticsOf(twoConcave)
+                  .find("part.scad:1:1: error: minkowski(): csgray sums a "
+                        "non-convex solid"),
+              std::string::npos)
+        << diagnosticsOf(twoConcave);
+    const auto flat = evaluate("minkowski() { square(2); circle(1); }");
+    EXPECT_FALSE(flat.ok());
+    EXPECT_NE(diagnosticsOf(flat).find("minkowski() of 2-D shapes is not supported"),
+              std::string::npos)
+        << diagnosticsOf(flat);
+}
+
+}  // namespace
