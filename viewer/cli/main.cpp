@@ -15,7 +15,9 @@
 #include "viewer/cli/InfoCommand.h"
 #include "viewer/cli/ProbeCommand.h"
 #include "viewer/cli/RenderCommand.h"
+#include "viewer/cli/Report.h"
 #include "viewer/cli/ViewCommand.h"
+#include "viewer/cli/dist/Ranks.h"
 
 namespace {
 
@@ -76,6 +78,9 @@ int usageError(const std::string& message, std::string_view command) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // MPI starts here, before any thread, when mpirun or srun started this process.
+    const viewer::dist::Ranks& ranks = viewer::dist::Ranks::job();
+    if (!ranks.root()) viewer::Report::showErrorsOnly();
     const std::vector<std::string> args(argv + 1, argv + argc);
     if (args.empty()) {
         std::fputs(topHelp().c_str(), stderr);
