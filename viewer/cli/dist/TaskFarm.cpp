@@ -1,15 +1,19 @@
 // Notation: a request goes from a worker rank to rank 0 (tag kRequest) and carries the results
-// of its last batch; the answer (tag kBatch) is the next batch, empty when the farm is over.
-// Both are one MPI_BYTE message: a u32 count, then per item a u64 id, a u64 size and the bytes.
+// of a finished batch; the answer (tag kBatch) is the next batch, empty when there is no more
+// work; the worker's last request (kFinal) carries its last results and gets no answer. Both
+// are one MPI_BYTE message: a u32 header, a u32 count, then per item a u64 id, a u64 size and
+// the bytes.
 #include "viewer/cli/dist/TaskFarm.h"
 
 #include <mpi.h>
 
 #include <chrono>
+#include <condition_variable>
 #include <csignal>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <deque>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -21,6 +25,8 @@ namespace viewer::dist {
 namespace {
 
 constexpr int kRequest = 1, kBatch = 2;
+// A request's header is the asking rank's thread count (it gets two tasks per thread), or this.
+constexpr uint32_t kFinal = UINT32_MAX;
 // Rank 0's serving thread polls for requests this often when there are none: a blocking
 // receive would spin a core of Open MPI's progress engine that the workers need.
 constexpr std::chrono::microseconds kPollInterval{200};
@@ -117,18 +123,20 @@ void runRoot(const Ranks& ranks, TaskSource& source, int threads, const TaskWork
             std::this_thread::sleep_for(kPollInterval);
             continue;
         }
-        uint32_t theirThreads = 0;
-        std::vector<Item> results = unpack(receive(status), theirThreads);
+        uint32_t header = 0;
+        std::vector<Item> results = unpack(receive(status), header);
         std::vector<Item> batch;
         {
             std::lock_guard<std::mutex> hold(lock);
             for (Item& r : results) source.finished(r.id, std::move(r.bytes));
             Task task;
-            for (uint32_t i = 0; i < 2 * theirThreads && source.next(task); ++i)
+            for (uint32_t i = 0; header != kFinal && i < 2 * header && source.next(task); ++i)
                 batch.push_back({task.id, std::move(task.input)});
         }
-        if (batch.empty()) --serving;
-        send(pack(0, batch), status.MPI_SOURCE, kBatch);
+        if (header == kFinal)
+            --serving;
+        else
+            send(pack(0, batch), status.MPI_SOURCE, kBatch);
     }
     for (std::thread& t : pool) t.join();
 }
@@ -142,27 +150,88 @@ uint64_t tasksBeforeKill(const Ranks& ranks) {
     return std::strtoull(value, nullptr, 10);
 }
 
-// Any other rank: ask, work the batch off on the threads, send the results with the next ask.
+// Any other rank: `threads` workers take tasks from a local queue while the main thread keeps
+// the queue fed. It asks rank 0 for a batch as soon as fewer tasks than threads are waiting (so
+// the round trip hides behind the work), sends the results finished so far with each request,
+// and otherwise polls and sleeps, which also keeps MPI's transfers moving. The last request
+// (kFinal) carries the last results and wants no answer.
 void runWorker(const Ranks& ranks, int threads, const TaskWork& work) {
-    const uint64_t killAfter = tasksBeforeKill(ranks);
-    uint64_t finished = 0;
+    std::mutex lock;
+    std::condition_variable ready;
+    std::deque<Item> queue;
     std::vector<Item> results;
+    int working = 0;  // tasks taken from the queue and not yet finished
+    uint64_t finished = 0;
+    bool over = false;
+
+    auto workLocally = [&](int worker) {
+        std::unique_lock<std::mutex> hold(lock);
+        for (;;) {
+            ready.wait(hold, [&] { return over || !queue.empty(); });
+            if (queue.empty()) return;
+            const Task task{queue.front().id, std::move(queue.front().bytes)};
+            queue.pop_front();
+            ++working;
+            hold.unlock();
+            Item result{task.id, {}};
+            work(worker, task, result.bytes);
+            hold.lock();
+            results.push_back(std::move(result));
+            --working;
+            ++finished;
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int w = 0; w < threads; ++w) pool.emplace_back(workLocally, w);
+
+    const uint64_t killAfter = tasksBeforeKill(ranks);
+    std::string outgoing;  // the request in flight; MPI reads it until the Isend completes
+    MPI_Request sending = MPI_REQUEST_NULL;
+    auto request = [&](uint32_t header, std::vector<Item>&& done) {
+        MPI_Wait(&sending, MPI_STATUS_IGNORE);
+        outgoing = pack(header, done);
+        MPI_Isend(outgoing.data(), int(outgoing.size()), MPI_BYTE, 0, kRequest, MPI_COMM_WORLD,
+                  &sending);
+    };
+    bool asked = false, noMore = false;
     for (;;) {
-        if (finished >= killAfter) std::raise(SIGKILL);
-        send(pack(uint32_t(threads), results), 0, kRequest);
+        bool idle = true;
+        {
+            std::unique_lock<std::mutex> hold(lock);
+            if (finished >= killAfter) std::raise(SIGKILL);
+            if (noMore && queue.empty() && working == 0) break;
+            if (!asked && !noMore && queue.size() < size_t(threads)) {
+                std::vector<Item> done = std::move(results);
+                results.clear();
+                hold.unlock();
+                request(uint32_t(threads), std::move(done));
+                asked = true;
+                idle = false;
+            }
+        }
+        int arrived = 0;
         MPI_Status status;
-        MPI_Probe(0, kBatch, MPI_COMM_WORLD, &status);
-        uint32_t unused = 0;
-        std::vector<Item> batch = unpack(receive(status), unused);
-        if (batch.empty()) return;
-        results.assign(batch.size(), Item{});
-        csg::parallelFor(batch.size(), threads, [&](int worker, uint64_t i) {
-            const Task task{batch[i].id, std::move(batch[i].bytes)};
-            results[i].id = task.id;
-            work(worker, task, results[i].bytes);
-        });
-        finished += batch.size();
+        if (asked) MPI_Iprobe(0, kBatch, MPI_COMM_WORLD, &arrived, &status);
+        if (arrived) {
+            uint32_t unused = 0;
+            std::vector<Item> batch = unpack(receive(status), unused);
+            asked = false;
+            idle = false;
+            std::lock_guard<std::mutex> hold(lock);
+            noMore = batch.empty();
+            for (Item& item : batch) queue.push_back(std::move(item));
+            ready.notify_all();
+        }
+        if (idle) std::this_thread::sleep_for(kPollInterval);
     }
+    {
+        std::lock_guard<std::mutex> hold(lock);
+        over = true;
+        ready.notify_all();
+    }
+    for (std::thread& t : pool) t.join();
+    request(kFinal, std::move(results));
+    MPI_Wait(&sending, MPI_STATUS_IGNORE);
 }
 
 }  // namespace

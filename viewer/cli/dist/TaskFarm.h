@@ -3,10 +3,11 @@
 // tasks and receives every result, so it alone writes the output, in whatever order it likes
 // (the pixels of a tile, the lines of a ray block, do not depend on where they were made).
 //
-// Rank 0's threads take one task at a time; every other rank asks for a batch (two per thread),
-// works it off on its threads and sends the results back with its next request. Rank 0's main
-// thread serves those requests and otherwise sleeps. Alone (no mpirun) the farm is only rank
-// 0's threads: no MPI call is made.
+// Rank 0's threads take one task at a time; every other rank asks for batches (two tasks per
+// thread) before its threads run out of work and sends its results back with its next request.
+// The main thread of each rank does all the MPI calls (MPI_THREAD_FUNNELED), polling and
+// sleeping in between, while the rank's worker threads compute. Alone (no mpirun) the farm is only
+// rank 0's threads: no MPI call is made.
 #pragma once
 
 #include <cstdint>
