@@ -1,9 +1,12 @@
 #include "viewer/cli/dist/Ranks.h"
 
-#include <mpi.h>
+#include <dlfcn.h>
 
+#include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <initializer_list>
+#include <string>
 
 namespace viewer::dist {
 
@@ -15,23 +18,46 @@ bool launchedByMpi() {
     return false;
 }
 
+// Where csgray_mpi.so is: CSGRAY_MPI_MODULE when set, else beside the executable (the build
+// tree) or where `cmake --install` puts it relative to bin/ (CSGRAY_MPI_MODULE_FROM_BIN).
+std::string modulePath() {
+    if (const char* path = std::getenv("CSGRAY_MPI_MODULE")) return path;
+    std::error_code error;
+    const std::filesystem::path bin =
+        std::filesystem::read_symlink("/proc/self/exe", error).parent_path();
+    for (const std::filesystem::path& path :
+         {bin / "csgray_mpi.so", bin / CSGRAY_MPI_MODULE_FROM_BIN / "csgray_mpi.so"})
+        if (std::filesystem::exists(path, error)) return path.lexically_normal().string();
+    return (bin / CSGRAY_MPI_MODULE_FROM_BIN / "csgray_mpi.so").lexically_normal().string();
+}
+
+const CsgrayMpiCalls* loaded = nullptr;
+
 void finalizeAtExit() {
-    int finalized = 0;
-    MPI_Finalized(&finalized);
-    if (!finalized) MPI_Finalize();
+    loaded->finalize();
 }
 
 }  // namespace
 
 Ranks::Ranks() {
     if (!launchedByMpi()) return;
-    // Only the main thread calls MPI (TaskFarm's serving loop and the collectives), while
-    // worker threads render: FUNNELED is all csgray needs.
-    int provided = 0;
-    if (MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS) return;
-    mpi_ = true;
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+    // RTLD_GLOBAL: Open MPI loads its own components, which look for libmpi's symbols there.
+    const std::string path = modulePath();
+    void* module = dlopen(path.c_str(), RTLD_NOW | RTLD_GLOBAL);
+    const auto entry =
+        module ? reinterpret_cast<CsgrayMpiCallsFunction>(dlsym(module, "csgrayMpiCalls"))
+               : nullptr;
+    if (!entry) {
+        std::fprintf(stderr, "csgray: error: started by an MPI launcher, but cannot load %s: %s\n",
+                     path.c_str(), dlerror());
+        std::exit(1);
+    }
+    const CsgrayMpiCalls* calls = entry();
+    if (calls->init(&rank_, &size_) != 0) {
+        std::fprintf(stderr, "csgray: error: MPI_Init failed\n");
+        std::exit(1);
+    }
+    calls_ = loaded = calls;
     std::atexit(finalizeAtExit);
 }
 
@@ -41,22 +67,16 @@ Ranks& Ranks::job() {
 }
 
 bool Ranks::allOk(bool ok) const {
-    if (!mpi_) return ok;
-    int mine = ok ? 1 : 0, all = 0;
-    MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-    return all == 1;
+    if (!calls_) return ok;
+    return calls_->allMin(ok ? 1 : 0) == 1;
 }
 
 void Ranks::sumToRoot(unsigned long long* values, int n) const {
-    if (!mpi_ || size_ == 1) return;
-    if (root())
-        MPI_Reduce(MPI_IN_PLACE, values, n, MPI_UNSIGNED_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
-    else
-        MPI_Reduce(values, nullptr, n, MPI_UNSIGNED_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
+    if (calls_ && size_ > 1) calls_->sumToRoot(values, n, root() ? 1 : 0);
 }
 
 void Ranks::abort(int code) const {
-    if (mpi_) MPI_Abort(MPI_COMM_WORLD, code);
+    if (calls_) calls_->abort(code);
     std::exit(code);
 }
 

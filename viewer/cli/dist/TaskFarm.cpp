@@ -5,8 +5,6 @@
 // the bytes.
 #include "viewer/cli/dist/TaskFarm.h"
 
-#include <mpi.h>
-
 #include <chrono>
 #include <condition_variable>
 #include <csignal>
@@ -75,17 +73,11 @@ std::vector<Item> unpack(const std::string& in, uint32_t& header) {
     return items;
 }
 
-void send(const std::string& message, int to, int tag) {
-    MPI_Send(message.data(), int(message.size()), MPI_BYTE, to, tag, MPI_COMM_WORLD);
-}
-
-std::string receive(const MPI_Status& probed) {
-    int size = 0;
-    MPI_Get_count(&probed, MPI_BYTE, &size);
-    std::string message(size_t(size), '\0');
-    MPI_Recv(message.data(), size, MPI_BYTE, probed.MPI_SOURCE, probed.MPI_TAG, MPI_COMM_WORLD,
-             MPI_STATUS_IGNORE);
-    return message;
+// Receives a message that poll or probe found.
+std::string receive(const CsgrayMpiCalls& mpi, const CsgrayMpiMessage& message) {
+    std::string bytes(size_t(message.bytes), '\0');
+    mpi.receive(&message, bytes.data());
+    return bytes;
 }
 
 // Rank 0: `threads` workers taking one task at a time, and (with other ranks) the main thread
@@ -114,17 +106,16 @@ void runRoot(const Ranks& ranks, TaskSource& source, int threads, const TaskWork
     std::vector<std::thread> pool;
     for (int w = 0; w < threads; ++w) pool.emplace_back(workLocally, w);
 
+    const CsgrayMpiCalls& mpi = ranks.calls();
     int serving = ranks.size() - 1;  // ranks not yet told that the farm is over
     while (serving > 0) {
-        int arrived = 0;
-        MPI_Status status;
-        MPI_Iprobe(MPI_ANY_SOURCE, kRequest, MPI_COMM_WORLD, &arrived, &status);
-        if (!arrived) {
+        CsgrayMpiMessage message;
+        if (!mpi.poll(-1, kRequest, &message)) {
             std::this_thread::sleep_for(kPollInterval);
             continue;
         }
         uint32_t header = 0;
-        std::vector<Item> results = unpack(receive(status), header);
+        std::vector<Item> results = unpack(receive(mpi, message), header);
         std::vector<Item> batch;
         {
             std::lock_guard<std::mutex> hold(lock);
@@ -135,8 +126,10 @@ void runRoot(const Ranks& ranks, TaskSource& source, int threads, const TaskWork
         }
         if (header == kFinal)
             --serving;
-        else
-            send(pack(0, batch), status.MPI_SOURCE, kBatch);
+        else {
+            const std::string reply = pack(0, batch);
+            mpi.send(reply.data(), int(reply.size()), message.source, kBatch);
+        }
     }
     for (std::thread& t : pool) t.join();
 }
@@ -185,13 +178,13 @@ void runWorker(const Ranks& ranks, int threads, const TaskWork& work) {
     for (int w = 0; w < threads; ++w) pool.emplace_back(workLocally, w);
 
     const uint64_t killAfter = tasksBeforeKill(ranks);
-    std::string outgoing;  // the request in flight; MPI reads it until the Isend completes
-    MPI_Request sending = MPI_REQUEST_NULL;
+    const CsgrayMpiCalls& mpi = ranks.calls();
+    std::string outgoing;  // the request in flight; MPI reads it until the send completes
+    void* sending = nullptr;
     auto request = [&](uint32_t header, std::vector<Item>&& done) {
-        MPI_Wait(&sending, MPI_STATUS_IGNORE);
+        mpi.wait(sending);
         outgoing = pack(header, done);
-        MPI_Isend(outgoing.data(), int(outgoing.size()), MPI_BYTE, 0, kRequest, MPI_COMM_WORLD,
-                  &sending);
+        sending = mpi.startSend(outgoing.data(), int(outgoing.size()), 0, kRequest);
     };
     bool asked = false, noMore = false;
     for (;;) {
@@ -209,12 +202,10 @@ void runWorker(const Ranks& ranks, int threads, const TaskWork& work) {
                 idle = false;
             }
         }
-        int arrived = 0;
-        MPI_Status status;
-        if (asked) MPI_Iprobe(0, kBatch, MPI_COMM_WORLD, &arrived, &status);
-        if (arrived) {
+        CsgrayMpiMessage message;
+        if (asked && mpi.poll(0, kBatch, &message)) {
             uint32_t unused = 0;
-            std::vector<Item> batch = unpack(receive(status), unused);
+            std::vector<Item> batch = unpack(receive(mpi, message), unused);
             asked = false;
             idle = false;
             std::lock_guard<std::mutex> hold(lock);
@@ -231,7 +222,7 @@ void runWorker(const Ranks& ranks, int threads, const TaskWork& work) {
     }
     for (std::thread& t : pool) t.join();
     request(kFinal, std::move(results));
-    MPI_Wait(&sending, MPI_STATUS_IGNORE);
+    mpi.wait(sending);
 }
 
 }  // namespace
