@@ -190,4 +190,33 @@ TEST(CliMpi, AnimationFramesMatchOneProcess) {
     EXPECT_FALSE(fs::exists(dir / "one00001.png"));
 }
 
+// Frames: a job whose last rank dies after its first frame fails, leaves only whole frame files
+// and the journal; --resume renders the frames that are missing, the same bytes as alone.
+TEST(CliMpi, KilledAnimationResumes) {
+    ScratchDir dir;
+    const fs::path part = dir / "spin.scad";
+    cli::writeFile(part, "rotate([0, 0, $t * 90]) cube([20, 8, 4], center = true);\n");
+    const auto args = [&](const fs::path& out) {
+        return std::vector<std::string>{"render",  part.string(), "-o",        out.string(),
+                                        "--size",  "96x72",       "--animate", "6",
+                                        "--quiet", "--threads",   "1",         "--resume"};
+    };
+    ASSERT_EQ(run("", args(dir / "alone.png"), dir.path()).exitCode, 0);
+    const Outcome killed =
+        run("env CSGRAY_TEST_KILL_AFTER_TASKS=1 " + mpirun(3, "CSGRAY_TEST_KILL_AFTER_TASKS"),
+            args(dir / "ranks.png"), dir.path());
+    EXPECT_NE(killed.exitCode, 0) << killed.err;
+    EXPECT_TRUE(fs::exists(dir / "ranks.png.journal"));
+    const Outcome resumed = run("", args(dir / "ranks.png"), dir.path());
+    ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+    for (int f = 0; f < 6; ++f) {
+        const std::string digits = "0000" + std::to_string(f);
+        EXPECT_TRUE(readFile(dir / ("alone" + digits + ".png")) ==
+                    readFile(dir / ("ranks" + digits + ".png")))
+            << "frame " << f;
+    }
+    EXPECT_FALSE(fs::exists(dir / "ranks.png.journal"));
+    EXPECT_FALSE(fs::exists(dir / "alone.png.journal"));
+}
+
 }  // namespace

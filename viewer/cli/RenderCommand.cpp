@@ -383,13 +383,17 @@ int renderAnimation(const RenderOptions& o, const dist::Ranks& ranks) {
         one.quiet = true;
         return renderStill(one, nullptr);
     };
+    const auto written = [&](int frame) {
+        std::error_code error;
+        return std::filesystem::exists(frameFileName(o.output, frame), error);
+    };
     Report report(o.common.jsonDiagnostics);
     render::ProgressMeter progress(render::ProgressMeter::styleFor(o.quiet || !ranks.root()));
     ResumeJournal resume;
     resume.path = dist::journalPathFor(o.output);
     resume.key = jobKey(o);
     const int code =
-        renderFramesOnRanks(ranks, frames, renderFrame,
+        renderFramesOnRanks(ranks, frames, renderFrame, written,
                             o.resume && ranks.root() ? &resume : nullptr, &progress, report);
     if (code == kExitOk && resume.journal.isOpen()) resume.journal.remove();
     return code;

@@ -162,15 +162,17 @@ private:
 }  // namespace
 
 int renderFramesOnRanks(const dist::Ranks& ranks, const std::vector<int>& frames,
-                        const std::function<int(int frame)>& renderFrame, ResumeJournal* resume,
+                        const std::function<int(int frame)>& renderFrame,
+                        const std::function<bool(int frame)>& written, ResumeJournal* resume,
                         render::ProgressMeter* progress, Report& report) {
     std::unique_ptr<FrameSource> source;
     if (ranks.root()) {
         std::set<int> done;
         if (resume) {
             const std::string error =
-                resume->journal.open(resume->path, resume->key,
-                                     [&](uint64_t id, std::string_view) { done.insert(int(id)); });
+                resume->journal.open(resume->path, resume->key, [&](uint64_t id, std::string_view) {
+                    if (written(int(id))) done.insert(int(id));
+                });
             if (!error.empty()) {
                 report.error(resume->path.string(), error);
                 ranks.abort(kExitIo);

@@ -37,10 +37,12 @@ int renderTilesOnRanks(const dist::Ranks& ranks, const csg::Scene& scene,
                        render::RenderResult& result, Report& report);
 
 // Runs renderFrame(frame) (which writes its own file) for each frame of `frames` on some rank,
-// one frame per rank at a time; rank 0 records finished frames in journal (when given) and
-// skips those it already holds. Returns kExitOk or the first failing frame's exit code.
+// one frame per rank at a time; rank 0 records finished frames in the journal (when given) and
+// skips those it holds whose file is still there (written(frame)). Returns kExitOk or the first
+// failing frame's exit code.
 int renderFramesOnRanks(const dist::Ranks& ranks, const std::vector<int>& frames,
-                        const std::function<int(int frame)>& renderFrame, ResumeJournal* resume,
+                        const std::function<int(int frame)>& renderFrame,
+                        const std::function<bool(int frame)>& written, ResumeJournal* resume,
                         render::ProgressMeter* progress, Report& report);
 
 }  // namespace viewer
