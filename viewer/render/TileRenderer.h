@@ -4,6 +4,7 @@
 #pragma once
 
 #include <atomic>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -81,7 +82,7 @@ private:
     const RenderCamera& camera_;
     ImageSettings settings_;
     int tilesX_, tilesY_;
-    std::vector<Worker*> workers_;
+    std::vector<std::unique_ptr<Worker>> workers_;
 };
 
 // The sub-pixel position of sample (sx, sy) of an N x N grid in pixel (x, y), in [0, 1)^2:
