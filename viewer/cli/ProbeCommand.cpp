@@ -102,6 +102,7 @@ int probeRaysFromFile(const ProbeOptions& o, const ProbeJson& probe, Report& rep
 int probeCommand(std::span<const std::string> args) {
     const ProbeOptions o = parseProbeOptions(args);
     if (o.common.help) {
+        if (!dist::Ranks::job().root()) return kExitOk;  // under mpirun: once, by rank 0
         std::fputs(kProbeHelp, stdout);
         std::fputs(kCommonOptionsHelp, stdout);
         return kExitOk;

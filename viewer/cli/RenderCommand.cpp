@@ -427,6 +427,7 @@ int runPreview(const RenderOptions& o) {
 int renderCommand(std::span<const std::string> args) {
     const RenderOptions o = parseRenderOptions(args);
     if (o.common.help) {
+        if (!dist::Ranks::job().root()) return kExitOk;  // under mpirun: once, by rank 0
         std::fputs(kRenderHelp, stdout);
         std::fputs(kCommonOptionsHelp, stdout);
         return kExitOk;
