@@ -135,8 +135,9 @@ void runRoot(const Ranks& ranks, TaskSource& source, int threads, const TaskWork
 }
 
 // The fault the tests inject (tests/cli_mpi_test.cpp): CSGRAY_TEST_KILL_AFTER_TASKS=K makes the
-// job's last rank kill itself with SIGKILL once it has finished K tasks, as a node that dies
-// midway would. Never set outside the tests; costs one getenv per farm.
+// job's last rank kill itself with SIGKILL once it has finished K tasks (or, if it gets fewer,
+// when it is told there are no more), as a node that dies midway would. Never set outside the
+// tests; costs one getenv per farm.
 uint64_t tasksBeforeKill(const Ranks& ranks) {
     const char* value = std::getenv("CSGRAY_TEST_KILL_AFTER_TASKS");
     if (!value || ranks.rank() != ranks.size() - 1) return UINT64_MAX;
@@ -191,7 +192,8 @@ void runWorker(const Ranks& ranks, int threads, const TaskWork& work) {
         bool idle = true;
         {
             std::unique_lock<std::mutex> hold(lock);
-            if (finished >= killAfter) std::raise(SIGKILL);
+            // (A rank that got fewer tasks dies when told there are no more: the job fails.)
+            if (finished >= killAfter || (noMore && killAfter != UINT64_MAX)) std::raise(SIGKILL);
             if (noMore && queue.empty() && working == 0) break;
             if (!asked && !noMore && queue.size() < size_t(threads)) {
                 std::vector<Item> done = std::move(results);
