@@ -327,8 +327,10 @@ int renderStill(const RenderOptions& o, const dist::Ranks* ranks) {
     render::RenderResult result;
     ResumeJournal resume;
     if (ranks) {
-        resume.path = dist::journalPathFor(o.output);
-        resume.key = jobKey(o);
+        if (o.resume && root) {
+            resume.path = dist::journalPathFor(o.output);
+            resume.key = jobKey(o);
+        }
         const int code = renderTilesOnRanks(*ranks, part.scene, plan, rays, image,
                                             o.resume && root ? &resume : nullptr, &progress,
                                             &interrupted, result, report);
