@@ -107,7 +107,7 @@ void runRoot(const Ranks& ranks, TaskSource& source, int threads, const TaskWork
     for (int w = 0; w < threads; ++w) pool.emplace_back(workLocally, w);
 
     const CsgrayMpiCalls& mpi = ranks.calls();
-    int serving = ranks.size() - 1;  // ranks not yet told that the farm is over
+    int serving = ranks.size() - 1;  // worker ranks whose final request has not come yet
     while (serving > 0) {
         CsgrayMpiMessage message;
         if (!mpi.poll(-1, kRequest, &message)) {
@@ -124,9 +124,9 @@ void runRoot(const Ranks& ranks, TaskSource& source, int threads, const TaskWork
             for (uint32_t i = 0; header != kFinal && i < 2 * header && source.next(task); ++i)
                 batch.push_back({task.id, std::move(task.input)});
         }
-        if (header == kFinal)
+        if (header == kFinal) {
             --serving;
-        else {
+        } else {
             const std::string reply = pack(0, batch);
             mpi.send(reply.data(), int(reply.size()), message.source, kBatch);
         }
