@@ -37,6 +37,8 @@ struct EvaluateOptions {
     // What cylinder() and sphere() become: OpenSCAD's polyhedra or exact quadrics (--curves;
     // see CurveMode in io/Faceting.h).
     CurveMode curves = CurveMode::Auto;
+    // $t, OpenSCAD's animation time in [0, 1): frame / frames under --animate (render --frames).
+    double time = 0.0;
 };
 
 struct EvaluateResult {

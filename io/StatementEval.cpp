@@ -16,7 +16,7 @@ Evaluator::Evaluator(SourceFiles& sources, Model& model, std::vector<Diagnostic>
     root_->set("$fn", Value(0.0));
     root_->set("$fa", Value(12.0));
     root_->set("$fs", Value(2.0));
-    root_->set("$t", Value(0.0));
+    root_->set("$t", Value(options.time));
     root_->set("$preview", Value(false));
     root_->set("$vpr", Value(ValueList{55.0, 0.0, 25.0}));
     root_->set("$vpt", Value(ValueList{0.0, 0.0, 0.0}));

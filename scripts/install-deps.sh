@@ -24,6 +24,7 @@ packages=(
     libboost-dev          # Boost.Multiprecision: 50-digit references (tests, csgray bench accuracy)
     openscad              # CLI tests: samples load in OpenSCAD and round-trip through its .csg
     openscad-mcad         # MCAD, the library OpenSCAD's examples and users include (use <MCAD/...>)
+    libopenmpi-dev openmpi-bin  # MPI: csgray under mpirun/srun (viewer/cli/dist/), its tests' mpirun
 )
 
 # cli_mesh_test runs the Khronos glTF validator (npm gltf-validator) under Node. Any Node with

@@ -31,6 +31,7 @@ struct CommonOptions {
     bool jsonDiagnostics = false;                              // --diagnostics=json
     io::CurveMode curves = io::CurveMode::Auto;                // --curves
     bool help = false;                                         // --help or -h
+    double time = 0.0;  // $t (render --frames sets it per frame; no option of its own)
 };
 
 // Walks the arguments of one subcommand (argv after the subcommand's name).

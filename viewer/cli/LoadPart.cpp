@@ -24,6 +24,7 @@ int loadPart(const CommonOptions& options, Report& report, LoadedPart& part) {
     io::EvaluateOptions evaluateOptions;
     evaluateOptions.defines = options.defines;
     evaluateOptions.curves = options.curves;
+    evaluateOptions.time = options.time;
     evaluateOptions.echo = [&report](const std::string& line) { report.echo(line); };
     io::EvaluateResult result = io::evaluateFile(options.part, evaluateOptions);
     report.addAll(result.diagnostics);
@@ -42,11 +43,11 @@ int loadPart(const CommonOptions& options, Report& report, LoadedPart& part) {
 int requireSolids(const LoadedPart& part, Report& report, std::string_view command) {
     if (part.model.twoD) {
         const uint32_t tag = part.model.root ? part.model.root->tags.source : 0;
-        report.add(io::diagnosticAt(
-            part.model, tag, io::Severity::Error,
-            std::string(command) + ": the top level object is not a 3-D object, as OpenSCAD "
-                                   "says: a 2-D part has no volume to mesh or measure "
-                                   "(extrude it with linear_extrude or rotate_extrude)"));
+        report.add(io::diagnosticAt(part.model, tag, io::Severity::Error,
+                                    std::string(command) +
+                                        ": the top level object is not a 3-D object, as OpenSCAD "
+                                        "says: a 2-D part has no volume to mesh or measure "
+                                        "(extrude it with linear_extrude or rotate_extrude)"));
         return kExitBadModel;
     }
     for (uint32_t leaf = 0; leaf < part.scene.leafCount(); ++leaf) {

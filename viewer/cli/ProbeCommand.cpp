@@ -10,6 +10,7 @@
 #include "viewer/cli/LoadPart.h"
 #include "viewer/cli/ProbeJson.h"
 #include "viewer/cli/RayBatch.h"
+#include "viewer/cli/dist/Ranks.h"
 
 namespace viewer {
 
@@ -31,7 +32,10 @@ const char* const kProbeHelp =
     "  --dir X,Y,Z            the ray's direction (any non-zero length)\n"
     "  --rays FILE            many rays, one per line \"ox oy oz dx dy dz\" (- reads stdin);\n"
     "                         prints one JSON line per ray, in input order\n"
-    "  --threads N            threads for --rays (default: all cores)\n";
+    "  --threads N            threads for --rays (default: all cores)\n"
+    "\n"
+    "Under mpirun or srun the --rays are spread over the ranks (each with --threads threads)\n"
+    "and rank 0 prints every line in input order: the same output as one process.\n";
 
 struct ProbeOptions {
     CommonOptions common;
@@ -71,17 +75,25 @@ ProbeOptions parseProbeOptions(std::span<const std::string> args) {
     return o;
 }
 
-int probeRaysFromFile(const ProbeOptions& o, const ProbeJson& probe, Report& report) {
+// Under mpirun the rays are sharded over the ranks; only rank 0 opens the file (or reads stdin,
+// which mpirun gives to rank 0 alone) and prints.
+int probeRaysFromFile(const ProbeOptions& o, const ProbeJson& probe, Report& report,
+                      const dist::Ranks& ranks) {
     const bool fromStdin = *o.rays == "-";
-    std::FILE* input = fromStdin ? stdin : std::fopen(o.rays->c_str(), "rb");
-    if (!input) {
-        report.error(*o.rays, std::string("cannot open the rays file: ") + std::strerror(errno));
-        return kExitIo;
+    std::FILE* input = nullptr;
+    if (ranks.root()) {
+        input = fromStdin ? stdin : std::fopen(o.rays->c_str(), "rb");
+        if (!input)
+            report.error(*o.rays,
+                         std::string("cannot open the rays file: ") + std::strerror(errno));
     }
+    if (!ranks.allOk(!ranks.root() || input)) return ranks.root() ? kExitIo : kExitOk;
     const int threads = csg::resolveThreads(o.threads);
+    const std::string name = fromStdin ? "<stdin>" : *o.rays;
     const RayBatchResult result =
-        probeRayBatch(input, fromStdin ? "<stdin>" : *o.rays, probe, threads, report);
-    if (!fromStdin) std::fclose(input);
+        ranks.mpi() ? probeRayBatchOnRanks(ranks, input, name, probe, threads, report)
+                    : probeRayBatch(input, name, probe, threads, report);
+    if (input && !fromStdin) std::fclose(input);
     return result.exitCode;
 }
 
@@ -90,16 +102,20 @@ int probeRaysFromFile(const ProbeOptions& o, const ProbeJson& probe, Report& rep
 int probeCommand(std::span<const std::string> args) {
     const ProbeOptions o = parseProbeOptions(args);
     if (o.common.help) {
+        if (!dist::Ranks::job().root()) return kExitOk;  // under mpirun: once, by rank 0
         std::fputs(kProbeHelp, stdout);
         std::fputs(kCommonOptionsHelp, stdout);
         return kExitOk;
     }
     Report report(o.common.jsonDiagnostics);
     LoadedPart part;
-    if (const int code = loadPart(o.common, report, part); code != kExitOk) return code;
+    const dist::Ranks& ranks = dist::Ranks::job();
+    const int loaded = loadPart(o.common, report, part);
+    if (!ranks.allOk(loaded == kExitOk)) return loaded != kExitOk ? loaded : kExitBadModel;
 
     const ProbeJson probe(part.model, part.scene);
-    if (o.rays) return probeRaysFromFile(o, probe, report);
+    if (o.rays) return probeRaysFromFile(o, probe, report, ranks);
+    if (!ranks.root()) return kExitOk;  // one ray: rank 0 answers it
 
     std::string out;
     csg::QueryContext ctx;

@@ -4,11 +4,14 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <map>
+#include <memory>
 #include <string_view>
 #include <vector>
 
 #include "primitives/base/ParallelFor.h"
 #include "viewer/cli/Cli.h"
+#include "viewer/cli/dist/TaskFarm.h"
 
 namespace viewer {
 
@@ -18,6 +21,9 @@ namespace {
 // small enough that a block's output (up to ~1.5 KB per ray) stays around ten megabytes.
 constexpr size_t kBlockRays = 1 << 13;
 constexpr size_t kReadChunk = 1 << 20;
+// Rays per task of the MPI farm: a task's output (up to ~1.5 MB) is one message, and a few
+// tasks per thread keep the ranks balanced however the rays' costs vary.
+constexpr size_t kTaskRays = 1 << 10;
 
 struct RayInput {
     csg::Vec3 origin;
@@ -50,6 +56,64 @@ const char* parseRayLine(std::string_view line, RayInput& ray) {
     ray.dir = d / length;
     return "";
 }
+
+// The rays of the input, one at a time, in order: whole lines are parsed out of large reads.
+class RayReader {
+public:
+    enum class Got { Ray, End, BadLine, ReadError };
+
+    RayReader(std::FILE* input) : input_(input), chunk_(kReadChunk) {}
+
+    Got next(RayInput& ray) {
+        for (;;) {
+            const size_t nl = buffer_.find('\n', start_);
+            if (nl == std::string::npos) {
+                if (atEof_) return Got::End;
+                if (!refill()) return Got::ReadError;
+                continue;
+            }
+            ++lineNumber_;
+            const std::string_view line(buffer_.data() + start_, nl - start_);
+            start_ = nl + 1;
+            const size_t first = line.find_first_not_of(" \t\r");
+            if (first == std::string_view::npos || line[first] == '#') continue;
+            if (const char* problem = parseRayLine(line, ray); *problem) {
+                problem_ = problem;
+                column_ = uint32_t(first + 1);
+                return Got::BadLine;
+            }
+            return Got::Ray;
+        }
+    }
+
+    // Where the bad line is and what is wrong with it (after Got::BadLine).
+    uint32_t lineNumber() const { return lineNumber_; }
+    uint32_t column() const { return column_; }
+    const char* problem() const { return problem_; }
+
+private:
+    // Reads the next chunk after the unread rest; a last line without '\n' gets one.
+    bool refill() {
+        buffer_.erase(0, start_);
+        start_ = 0;
+        const size_t got = std::fread(chunk_.data(), 1, chunk_.size(), input_);
+        if (got < chunk_.size()) {
+            if (std::ferror(input_)) return false;
+            atEof_ = true;
+        }
+        buffer_.append(chunk_.data(), got);
+        if (atEof_ && !buffer_.empty() && buffer_.back() != '\n') buffer_ += '\n';
+        return true;
+    }
+
+    std::FILE* input_;
+    std::vector<char> chunk_;
+    std::string buffer_;  // unread input: whole lines are consumed, a partial one is kept
+    size_t start_ = 0;
+    bool atEof_ = false;
+    uint32_t lineNumber_ = 0, column_ = 0;
+    const char* problem_ = "";
+};
 
 class BlockRunner {
 public:
@@ -106,47 +170,119 @@ RayBatchResult probeRayBatch(std::FILE* input, const std::string& inputName, con
         return true;
     };
 
-    std::string buffer;  // unread input: whole lines are consumed, a partial one is kept
-    std::vector<char> chunk(kReadChunk);
-    uint32_t lineNumber = 0;
-    bool atEof = false;
-    while (!atEof) {
-        const size_t got = std::fread(chunk.data(), 1, chunk.size(), input);
-        if (got < chunk.size()) {
-            if (std::ferror(input)) {
-                flush();
-                report.error(inputName, std::string("cannot read: ") + std::strerror(errno));
-                result.exitCode = kExitIo;
-                return result;
-            }
-            atEof = true;
+    RayReader reader(input);
+    RayInput ray;
+    for (;;) {
+        const RayReader::Got got = reader.next(ray);
+        if (got == RayReader::Got::End) break;
+        if (got == RayReader::Got::ReadError) {
+            flush();
+            report.error(inputName, std::string("cannot read: ") + std::strerror(errno));
+            result.exitCode = kExitIo;
+            return result;
         }
-        buffer.append(chunk.data(), got);
-        if (atEof && !buffer.empty() && buffer.back() != '\n') buffer += '\n';
-
-        size_t start = 0;
-        for (size_t nl; (nl = buffer.find('\n', start)) != std::string::npos; start = nl + 1) {
-            ++lineNumber;
-            std::string_view line(buffer.data() + start, nl - start);
-            const size_t first = line.find_first_not_of(" \t\r");
-            if (first == std::string_view::npos || line[first] == '#') continue;
-            RayInput ray;
-            if (const char* problem = parseRayLine(line, ray); *problem) {
-                if (!flush()) return result;
-                report.add(io::Diagnostic{inputName, lineNumber, uint32_t(first + 1),
-                                          io::Severity::Error, problem});
-                result.exitCode = kExitBadModel;
-                return result;
-            }
-            block.push_back(ray);
-            if (block.size() == kBlockRays && !flush()) return result;
+        if (got == RayReader::Got::BadLine) {
+            if (!flush()) return result;
+            report.add(io::Diagnostic{inputName, reader.lineNumber(), reader.column(),
+                                      io::Severity::Error, reader.problem()});
+            result.exitCode = kExitBadModel;
+            return result;
         }
-        buffer.erase(0, start);
+        block.push_back(ray);
+        if (block.size() == kBlockRays && !flush()) return result;
     }
     flush();
     if (result.exitCode == kExitOk && std::fflush(stdout) != 0) {
         report.stdoutFailed();
         result.exitCode = kExitIo;
+    }
+    return result;
+}
+
+namespace {
+
+// Rank 0's rays: read in tasks of kTaskRays, their lines written in input order as they come
+// back (a task that arrives early waits in `waiting_` for the ones before it).
+class RaySource : public dist::TaskSource {
+public:
+    RaySource(std::FILE* input) : reader_(input) {}
+
+    bool next(dist::Task& task) override {
+        if (stopped_) return false;
+        task.input.clear();
+        RayInput ray;
+        size_t rays = 0;
+        while (rays < kTaskRays) {
+            got_ = reader_.next(ray);
+            if (got_ != RayReader::Got::Ray) {
+                if (got_ == RayReader::Got::ReadError) readErrno_ = errno;
+                stopped_ = true;
+                break;
+            }
+            task.input.append(reinterpret_cast<const char*>(&ray), sizeof ray);
+            ++rays;
+        }
+        if (rays == 0) return false;
+        task.id = tasks_++;
+        rays_ += rays;
+        return true;
+    }
+
+    void finished(uint64_t id, std::string&& lines) override {
+        waiting_.emplace(id, std::move(lines));
+        for (auto first = waiting_.begin(); first != waiting_.end() && first->first == written_;
+             first = waiting_.erase(first), ++written_) {
+            if (writeFailed_) continue;
+            const std::string& text = first->second;
+            if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size()) {
+                writeErrno_ = errno;
+                writeFailed_ = stopped_ = true;
+            }
+        }
+    }
+
+    RayReader reader_;
+    RayReader::Got got_ = RayReader::Got::Ray;
+    bool stopped_ = false, writeFailed_ = false;
+    int readErrno_ = 0, writeErrno_ = 0;
+    uint64_t tasks_ = 0, written_ = 0, rays_ = 0;
+    std::map<uint64_t, std::string> waiting_;
+};
+
+}  // namespace
+
+RayBatchResult probeRayBatchOnRanks(const dist::Ranks& ranks, std::FILE* input,
+                                    const std::string& inputName, const ProbeJson& probe,
+                                    int threads, Report& report) {
+    std::unique_ptr<RaySource> source;
+    if (ranks.root()) source = std::make_unique<RaySource>(input);
+    std::vector<csg::WorkerSlot<csg::QueryContext>> contexts(static_cast<size_t>(threads));
+    dist::runFarm(ranks, source.get(), threads,
+                  [&](int worker, const dist::Task& task, std::string& lines) {
+                      csg::QueryContext& ctx = contexts[size_t(worker)].value;
+                      const size_t count = task.input.size() / sizeof(RayInput);
+                      for (size_t i = 0; i < count; ++i) {
+                          RayInput ray;
+                          std::memcpy(&ray, task.input.data() + i * sizeof ray, sizeof ray);
+                          probe.append(lines, ray.origin, ray.dir, ctx);
+                          lines += '\n';
+                      }
+                  });
+    RayBatchResult result;
+    if (!ranks.root()) return result;
+    result.rays = source->rays_;
+    if (source->writeFailed_ || std::fflush(stdout) != 0) {
+        if (source->writeFailed_) errno = source->writeErrno_;
+        report.stdoutFailed();
+        result.exitCode = kExitIo;
+    } else if (source->got_ == RayReader::Got::ReadError) {
+        report.error(inputName, std::string("cannot read: ") + std::strerror(source->readErrno_));
+        result.exitCode = kExitIo;
+    } else if (source->got_ == RayReader::Got::BadLine) {
+        const RayReader& r = source->reader_;
+        report.add(io::Diagnostic{inputName, r.lineNumber(), r.column(), io::Severity::Error,
+                                  r.problem()});
+        result.exitCode = kExitBadModel;
     }
     return result;
 }

@@ -14,6 +14,7 @@
 
 #include "viewer/cli/ProbeJson.h"
 #include "viewer/cli/Report.h"
+#include "viewer/cli/dist/Ranks.h"
 
 namespace viewer {
 
@@ -25,5 +26,12 @@ struct RayBatchResult {
 // inputName labels diagnostics ("<stdin>" for -). threads >= 1.
 RayBatchResult probeRayBatch(std::FILE* input, const std::string& inputName, const ProbeJson& probe,
                              int threads, Report& report);
+
+// The same on every rank of an MPI job: rank 0 reads input (others pass null) and hands out
+// blocks of rays dynamically; it prints every ray's line in input order, as probeRayBatch does.
+// The result counts only on rank 0.
+RayBatchResult probeRayBatchOnRanks(const dist::Ranks& ranks, std::FILE* input,
+                                    const std::string& inputName, const ProbeJson& probe,
+                                    int threads, Report& report);
 
 }  // namespace viewer

@@ -2,6 +2,9 @@
 // From the command line to files: load and compile the part, frame the camera, derive the
 // effects plan, render the tiles, write the image (and --stats) atomically. Ctrl-C at any
 // point before the image is written stops the command with nothing written.
+// Under mpirun (or with --resume) the tiles, or an animation's frames, go through RenderFarm:
+// rank 0 hands them out to every rank and writes the image; the bytes are those of a single
+// process.
 #include "viewer/cli/RenderCommand.h"
 
 #include <algorithm>
@@ -10,6 +13,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -19,7 +24,10 @@
 #include "primitives/base/ParallelFor.h"
 #include "viewer/cli/Cli.h"
 #include "viewer/cli/LoadPart.h"
+#include "viewer/cli/RenderFarm.h"
 #include "viewer/cli/Report.h"
+#include "viewer/cli/dist/Journal.h"
+#include "viewer/cli/dist/Ranks.h"
 #include "viewer/render/EffectsPlan.h"
 #include "viewer/render/ImageOutput.h"
 #include "viewer/render/Interrupt.h"
@@ -55,7 +63,19 @@ constexpr const char* kRenderHelp =
     "  --max-depth N          at most N reflection/refraction bounces (default 10)\n"
     "  --stats FILE.json      rays by kind, query work, time per phase and the plan\n"
     "  --quiet                no progress on stderr\n"
-    "  --preview              a quick headlight look instead (PNG only)\n";
+    "  --preview              a quick headlight look instead (PNG only)\n"
+    "  --frames A:B           OpenSCAD's animation: frames A to B (both included) of\n"
+    "                         --animate N steps, $t = frame / N as `openscad --animate N`\n"
+    "                         steps it (N defaults to B + 1); frame f is written to OUT with\n"
+    "                         f in 5 digits before the extension (out.png: out00007.png)\n"
+    "  --animate N            N animation steps (alone: all N frames, as OpenSCAD's option)\n"
+    "  --resume               keep a journal of finished tiles (frames) in OUT.journal; a job\n"
+    "                         run again with the same options does only what is missing\n"
+    "\n"
+    "Under mpirun or srun (`mpirun -np 4 csgray render ...`) the tiles, or the frames, are\n"
+    "spread over the ranks (each with --threads threads) and rank 0 writes the files: the\n"
+    "same bytes as one process makes. Every rank reads the part; files must be on a file\n"
+    "system every rank sees.\n";
 
 struct RenderOptions {
     CommonOptions common;
@@ -68,6 +88,10 @@ struct RenderOptions {
     std::string statsFile;  // --stats; empty: none
     bool quiet = false;
     bool preview = false;  // --preview
+    bool resume = false;   // --resume
+    // --frames A:B (both included) of `animate` steps; none: one still image at $t = 0.
+    std::optional<std::pair<int, int>> frames;
+    int animate = 0;  // --animate N; 0: B + 1
 };
 
 // Each image format's --format name, which is also its file extension.
@@ -191,6 +215,22 @@ RenderOptions parseRenderOptions(std::span<const std::string> args) {
             o.statsFile = *stats;
         } else if (auto f = cursor.option("--format")) {
             format = *f;
+        } else if (auto frames = cursor.option("--frames")) {
+            const size_t colon = frames->find(':');
+            if (colon == std::string::npos)
+                throw UsageError("--frames expects A:B (first and last frame), got '" + *frames +
+                                 "'");
+            const auto frame = [&](std::string_view text) {
+                return text == "0" ? 0 : parsePositiveInt(text, "--frames", 99999);
+            };
+            o.frames = {frame(std::string_view(*frames).substr(0, colon)),
+                        frame(std::string_view(*frames).substr(colon + 1))};
+            if (o.frames->first > o.frames->second)
+                throw UsageError("--frames A:B needs A <= B, got '" + *frames + "'");
+        } else if (auto animate = cursor.option("--animate")) {
+            o.animate = parsePositiveInt(*animate, "--animate", 100000);
+        } else if (cursor.flag("--resume")) {
+            o.resume = true;
         } else if (cursor.flag("--no-shadows")) {
             o.plan.shadows = false;
         } else if (cursor.flag("--quiet") || cursor.flag("-q")) {
@@ -217,21 +257,55 @@ RenderOptions parseRenderOptions(std::span<const std::string> args) {
     }
     if (int64_t(o.width) * o.height > int64_t(1) << 28)
         throw UsageError("--size: at most 2^28 pixels");
+    if (o.animate > 0 && !o.frames) o.frames = {0, o.animate - 1};
+    if (o.frames) {
+        if (o.animate == 0) o.animate = o.frames->second + 1;
+        if (o.frames->second >= o.animate)
+            throw UsageError("--frames: the last frame of --animate " + std::to_string(o.animate) +
+                             " is " + std::to_string(o.animate - 1));
+        if (!o.statsFile.empty()) throw UsageError("--stats is for one image, not --frames");
+        if (o.preview) throw UsageError("--preview renders one image, not --frames");
+    }
     return o;
 }
 
-// The Whitted render; returns the exit code (kExitInterrupted after Ctrl-C).
-int runWhitted(const RenderOptions& o) {
+// What decides a render's bytes, hashed: a --resume journal made for another part, size or
+// option is not taken for this job's. The part's own text counts (files it includes do not).
+std::string jobKey(const RenderOptions& o) {
+    std::string text = "render\n" + o.common.part + "\n";
+    for (const auto& [name, value] : o.common.defines) text += "-D" + name + "=" + value + "\n";
+    char line[256];
+    std::snprintf(line, sizeof line, "%d %d %d %d %d %a %d %d %d %d %d\n", int(o.common.curves),
+                  o.width, o.height, o.samplesPerAxis, int(o.format), o.plan.minWeight,
+                  o.plan.maxDepth, int(o.plan.shadows), o.frames ? o.frames->first : -1,
+                  o.frames ? o.frames->second : -1, o.animate);
+    text += line;
+    std::ifstream part(o.common.part, std::ios::binary);
+    text.append(std::istreambuf_iterator<char>(part), std::istreambuf_iterator<char>());
+    std::snprintf(line, sizeof line, "%016llx", (unsigned long long)dist::fnv1a(text));
+    return line;
+}
+
+// One Whitted image; returns the exit code (kExitInterrupted after Ctrl-C). With ranks, every
+// rank of the job runs this together and the tiles go through the farm (rank 0 writes the
+// image); without, this process renders it alone on its threads.
+int renderStill(const RenderOptions& o, const dist::Ranks* ranks) {
     render::InterruptGuard interruptGuard;
     const std::atomic<bool>& interrupted = render::interruptRequested();
     PhaseSeconds seconds;
+    const bool root = !ranks || ranks->root();
 
     Report report(o.common.jsonDiagnostics);
     LoadedPart part;
     auto start = Clock::now();
-    if (const int code = loadPart(o.common, report, part); code != kExitOk) return code;
+    const int loaded = loadPart(o.common, report, part);
+    if (ranks && !ranks->allOk(loaded == kExitOk)) {
+        if (loaded == kExitOk && root) report.error(o.common.part, "another rank cannot load it");
+        return loaded != kExitOk ? loaded : kExitBadModel;
+    }
+    if (loaded != kExitOk) return loaded;
     seconds.load = secondsSince(start);
-    if (interrupted) return render::kExitInterrupted;
+    if (interrupted && !ranks) return render::kExitInterrupted;
 
     start = Clock::now();
     const double aspect = double(o.width) / double(o.height);
@@ -248,18 +322,31 @@ int runWhitted(const RenderOptions& o) {
     image.threads = csg::resolveThreads(o.threads);
     image.store = render::pixelStoreFor(o.format);
     start = Clock::now();
-    render::ProgressMeter progress(render::ProgressMeter::styleFor(o.quiet));
-    const render::RenderResult result =
-        render::renderImage(part.scene, plan, render::RenderCamera(camera, o.width, o.height),
-                            image, &interrupted, &progress);
+    render::ProgressMeter progress(render::ProgressMeter::styleFor(o.quiet || !root));
+    const render::RenderCamera rays(camera, o.width, o.height);
+    render::RenderResult result;
+    ResumeJournal resume;
+    if (ranks) {
+        if (o.resume && root) {
+            resume.path = dist::journalPathFor(o.output);
+            resume.key = jobKey(o);
+        }
+        const int code = renderTilesOnRanks(*ranks, part.scene, plan, rays, image,
+                                            o.resume && root ? &resume : nullptr, &progress,
+                                            &interrupted, result, report);
+        if (!root || code != kExitOk) return code;
+    } else {
+        result = render::renderImage(part.scene, plan, rays, image, &interrupted, &progress);
+        if (result.interrupted || interrupted) return render::kExitInterrupted;
+    }
     seconds.render = secondsSince(start);
-    if (result.interrupted || interrupted) return render::kExitInterrupted;
 
     start = Clock::now();
     if (const std::string error = render::writeImage(o.output, o.format, result); !error.empty()) {
         report.error(o.output, error);
         return kExitIo;
     }
+    if (resume.journal.isOpen()) resume.journal.remove();
     seconds.write = secondsSince(start);
 
     if (!o.statsFile.empty()) {
@@ -270,6 +357,55 @@ int runWhitted(const RenderOptions& o) {
         }
     }
     return kExitOk;
+}
+
+// OpenSCAD's name for frame f of an animation written to output: f in five digits before the
+// extension (openscad.cc, cmdline: out.png gives out00000.png, out00001.png, ...).
+std::string frameFileName(const std::string& output, int frame) {
+    std::filesystem::path path(output);
+    const std::filesystem::path extension = path.extension();
+    path.replace_extension();
+    char digits[16];
+    std::snprintf(digits, sizeof digits, "%05d", frame);
+    path += digits;
+    path += extension;
+    return path.string();
+}
+
+// --frames: each frame a whole image at $t = frame / animate (OpenSCAD's step), rendered alone
+// by one rank on its threads and written by that rank; rank 0 hands the frames out.
+int renderAnimation(const RenderOptions& o, const dist::Ranks& ranks) {
+    std::vector<int> frames;
+    for (int f = o.frames->first; f <= o.frames->second; ++f) frames.push_back(f);
+    const auto renderFrame = [&](int frame) {
+        RenderOptions one = o;
+        one.frames.reset();
+        one.common.time = frame * (1.0 / o.animate);  // OpenSCAD's expression, bit for bit
+        one.output = frameFileName(o.output, frame);
+        one.quiet = true;
+        return renderStill(one, nullptr);
+    };
+    const auto written = [&](int frame) {
+        std::error_code error;
+        return std::filesystem::exists(frameFileName(o.output, frame), error);
+    };
+    Report report(o.common.jsonDiagnostics);
+    render::ProgressMeter progress(render::ProgressMeter::styleFor(o.quiet || !ranks.root()));
+    ResumeJournal resume;
+    resume.path = dist::journalPathFor(o.output);
+    resume.key = jobKey(o);
+    const int code =
+        renderFramesOnRanks(ranks, frames, renderFrame, written,
+                            o.resume && ranks.root() ? &resume : nullptr, &progress, report);
+    if (code == kExitOk && resume.journal.isOpen()) resume.journal.remove();
+    return code;
+}
+
+int runWhitted(const RenderOptions& o) {
+    const dist::Ranks& ranks = dist::Ranks::job();
+    if (o.frames) return renderAnimation(o, ranks);
+    // Alone and without a journal, the plain threaded render of before.
+    return renderStill(o, ranks.mpi() || o.resume ? &ranks : nullptr);
 }
 
 // --preview keeps the quick headlight look (one ray per pixel, no shadows or secondary rays)
@@ -293,6 +429,7 @@ int runPreview(const RenderOptions& o) {
 int renderCommand(std::span<const std::string> args) {
     const RenderOptions o = parseRenderOptions(args);
     if (o.common.help) {
+        if (!dist::Ranks::job().root()) return kExitOk;  // under mpirun: once, by rank 0
         std::fputs(kRenderHelp, stdout);
         std::fputs(kCommonOptionsHelp, stdout);
         return kExitOk;

@@ -8,6 +8,7 @@ namespace viewer {
 
 void Report::add(io::Diagnostic diagnostic) {
     diagnostics_.push_back(diagnostic);
+    if (errorsOnly_ && diagnostic.severity != io::Severity::Error) return;
     if (json_) {
         collected_.push_back(std::move(diagnostic));
         return;
@@ -36,6 +37,7 @@ bool Report::writeStdout(const std::string& text) {
 }
 
 void Report::echo(const std::string& line) {
+    if (errorsOnly_) return;
     if (json_) {
         collected_.push_back(io::Diagnostic{"", 0, 0, io::Severity::Note, line});
         return;

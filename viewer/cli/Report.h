@@ -33,7 +33,12 @@ public:
     // that also shows them elsewhere (the view's title and which files it watches).
     const std::vector<io::Diagnostic>& diagnostics() const { return diagnostics_; }
 
+    // On every MPI rank but rank 0: print errors only, since rank 0 prints the same part's
+    // warnings and echo() lines once for the job (process-wide, set before any Report).
+    static void showErrorsOnly() { errorsOnly_ = true; }
+
 private:
+    static inline bool errorsOnly_ = false;
     bool json_;
     bool finished_ = false;
     std::vector<io::Diagnostic> collected_;  // JSON mode: diagnostics and echo notes

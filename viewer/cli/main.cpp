@@ -15,7 +15,9 @@
 #include "viewer/cli/InfoCommand.h"
 #include "viewer/cli/ProbeCommand.h"
 #include "viewer/cli/RenderCommand.h"
+#include "viewer/cli/Report.h"
 #include "viewer/cli/ViewCommand.h"
+#include "viewer/cli/dist/Ranks.h"
 
 namespace {
 
@@ -25,13 +27,15 @@ struct Command {
     std::string_view name;
     std::string_view summary;                       // one line of `csgray --help`
     int (*run)(std::span<const std::string> args);  // args after the name; returns the exit code
+    bool distributed = false;  // under mpirun every rank runs it; else rank 0 alone does
 };
 
 constexpr Command kCommands[] = {
-    {"probe", "the spans of one ray or many rays through a part, as JSON", viewer::probeCommand},
+    {"probe", "the spans of one ray or many rays through a part, as JSON", viewer::probeCommand,
+     true},
     {"info", "node counts, bounds and the evaluated CSG tree of a part, as JSON",
      viewer::infoCommand},
-    {"render", "a part to a PNG image", viewer::renderCommand},
+    {"render", "a part to a PNG image", viewer::renderCommand, true},
     {"export", "a part to a mesh (GLB, glTF, OBJ) within a distance tolerance",
      viewer::exportCommand},
     {"compare", "a mesh against the part's exact surface: distances, volume, topology",
@@ -76,6 +80,9 @@ int usageError(const std::string& message, std::string_view command) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // MPI starts here, before any thread, when mpirun or srun started this process.
+    const viewer::dist::Ranks& ranks = viewer::dist::Ranks::job();
+    if (!ranks.root()) viewer::Report::showErrorsOnly();
     const std::vector<std::string> args(argv + 1, argv + argc);
     if (args.empty()) {
         std::fputs(topHelp().c_str(), stderr);
@@ -88,10 +95,15 @@ int main(int argc, char** argv) {
     }
     const std::span<const std::string> rest(args.begin() + 1, args.end());
     try {
-        for (const Command& c : kCommands)
-            if (c.name == command) return c.run(rest);
+        for (const Command& c : kCommands) {
+            if (c.name != command) continue;
+            // A command that does not spread its work (export, info, ...) runs once per job.
+            if (!c.distributed && !ranks.root()) return viewer::kExitOk;
+            return c.run(rest);
+        }
         return usageError("unknown command '" + command + "'", "");
     } catch (const viewer::UsageError& e) {
+        if (!ranks.root()) return viewer::kExitUsage;  // every rank sees it; rank 0 says it
         return usageError(e.what(), command);
     } catch (const std::bad_alloc&) {
         std::fputs("csgray: error: out of memory\n", stderr);

@@ -1,5 +1,7 @@
 #include "viewer/render/TileRenderer.h"
 
+#include <cstring>
+
 #include "primitives/base/ParallelFor.h"
 #include "viewer/render/ImageOutput.h"
 #include "viewer/render/Tracer.h"
@@ -42,32 +44,87 @@ void samplePosition(int x, int y, int sx, int sy, int n, double& u, double& v) {
     v = (sy + unitFromBits(mix(h))) / n;
 }
 
-RenderResult renderImage(const csg::Scene& scene, const EffectsPlan& plan,
-                         const RenderCamera& camera, const ImageSettings& settings,
-                         const std::atomic<bool>* cancel, ProgressMeter* progress) {
+namespace {
+
+// Where traceTile puts a tile's pixels: floats row by row (row y of the tile at
+// floats + y * floatStride); for an Srgb8 image the floats are scratch and each row is also
+// encoded to bytes + y * byteStride.
+struct TileOut {
+    float* floats;
+    size_t floatStride;
+    uint8_t* bytes;  // null: keep the floats
+    size_t byteStride;
+};
+
+struct TileBox {
+    int x0, y0, x1, y1;
+};
+
+TileBox tileBox(int index, int tilesX, int tile, int width, int height) {
+    const int x0 = (index % tilesX) * tile, y0 = (index / tilesX) * tile;
+    return {x0, y0, std::min(x0 + tile, width), std::min(y0 + tile, height)};
+}
+
+void traceTile(Tracer& tracer, const RenderCamera& camera, int n, const TileBox& box,
+               const TileOut& out) {
+    const double sampleWeight = 1.0 / double(n * n);
+    for (int y = box.y0; y < box.y1; ++y) {
+        float* row = out.floats + size_t(y - box.y0) * out.floatStride;
+        for (int x = box.x0; x < box.x1; ++x) {
+            csg::Vec3 sum(0.0);
+            for (int sy = 0; sy < n; ++sy) {
+                for (int sx = 0; sx < n; ++sx) {
+                    double u, v;
+                    samplePosition(x, y, sx, sy, n, u, v);
+                    sum += tracer.tracePrimary(camera.ray(x + u, y + v));
+                }
+            }
+            float* px = row + size_t(x - box.x0) * 3;
+            for (int c = 0; c < 3; ++c) px[c] = float(sum[c] * sampleWeight);
+        }
+        if (out.bytes)
+            encodeSrgb(row, size_t(box.x1 - box.x0) * 3,
+                       out.bytes + size_t(y - box.y0) * out.byteStride);
+    }
+}
+
+RenderResult blankImage(const ImageSettings& settings) {
     RenderResult result;
-    const int width = settings.width, height = settings.height;
-    const bool srgb = settings.store == PixelStore::Srgb8;
     // Every pixel is written before the image is used (an interrupted render's image is not);
     // resize's zero fill of fresh memory costs nothing measurable next to the render
     // (bench/README.md, image buffers on plain vectors).
-    const size_t channels = size_t(width) * size_t(height) * 3;
-    if (srgb) {
-        result.srgb.width = width;
-        result.srgb.height = height;
+    const size_t channels = size_t(settings.width) * size_t(settings.height) * 3;
+    if (settings.store == PixelStore::Srgb8) {
+        result.srgb.width = settings.width;
+        result.srgb.height = settings.height;
         result.srgb.pixels.resize(channels);
     } else {
-        result.image.width = width;
-        result.image.height = height;
+        result.image.width = settings.width;
+        result.image.height = settings.height;
         result.image.rgb.resize(channels);
     }
+    return result;
+}
 
+void addTracerCounts(const Tracer& tracer, RenderResult& result) {
+    result.rays += tracer.rays;
+    result.queries.rays += tracer.context.stats.rays;
+    result.queries.nodeVisits += tracer.context.stats.nodeVisits;
+    result.queries.primitiveTests += tracer.context.stats.primitiveTests;
+}
+
+}  // namespace
+
+RenderResult renderImage(const csg::Scene& scene, const EffectsPlan& plan,
+                         const RenderCamera& camera, const ImageSettings& settings,
+                         const std::atomic<bool>* cancel, ProgressMeter* progress) {
+    RenderResult result = blankImage(settings);
+    const int width = settings.width, height = settings.height;
+    const bool srgb = settings.store == PixelStore::Srgb8;
     const int tile = settings.tileSize;
     const int tilesX = (width + tile - 1) / tile;
     const int tilesY = (height + tile - 1) / tile;
     const int tileCount = tilesX * tilesY;
-    const int n = settings.samplesPerAxis;
-    const double sampleWeight = 1.0 / double(n * n);
 
     std::vector<csg::WorkerSlot<Worker>> workers;
     workers.reserve(size_t(settings.threads));
@@ -79,43 +136,96 @@ RenderResult renderImage(const csg::Scene& scene, const EffectsPlan& plan,
         uint64_t(tileCount), settings.threads,
         [&](int worker, uint64_t index) {
             Worker& own = workers[size_t(worker)].value;
-            const int x0 = int(index % tilesX) * tile, y0 = int(index / tilesX) * tile;
-            const int x1 = std::min(x0 + tile, width), y1 = std::min(y0 + tile, height);
-            for (int y = y0; y < y1; ++y) {
-                float* row = srgb ? &own.tileFloats[size_t(y - y0) * size_t(tile) * 3]
-                                  : &result.image.rgb[(size_t(y) * size_t(width) + x0) * 3];
-                for (int x = x0; x < x1; ++x) {
-                    csg::Vec3 sum(0.0);
-                    for (int sy = 0; sy < n; ++sy) {
-                        for (int sx = 0; sx < n; ++sx) {
-                            double u, v;
-                            samplePosition(x, y, sx, sy, n, u, v);
-                            sum += own.tracer.tracePrimary(camera.ray(x + u, y + v));
-                        }
-                    }
-                    float* px = row + size_t(x - x0) * 3;
-                    for (int c = 0; c < 3; ++c) px[c] = float(sum[c] * sampleWeight);
-                }
-                if (srgb) encodeSrgb(row, size_t(x1 - x0) * 3, result.srgb.row(y) + size_t(x0) * 3);
-            }
+            const TileBox box = tileBox(int(index), tilesX, tile, width, height);
+            const TileOut out =
+                srgb ? TileOut{own.tileFloats.data(), size_t(tile) * 3,
+                               result.srgb.row(box.y0) + size_t(box.x0) * 3, size_t(width) * 3}
+                     : TileOut{&result.image.rgb[(size_t(box.y0) * size_t(width) + box.x0) * 3],
+                               size_t(width) * 3, nullptr, 0};
+            traceTile(own.tracer, camera, settings.samplesPerAxis, box, out);
             const int done = tilesDone.fetch_add(1, std::memory_order_relaxed) + 1;
             // Worker 0 is the calling thread, the only one that may touch the meter.
             if (progress && worker == 0) progress->update(uint64_t(done), uint64_t(tileCount));
         },
         cancel);
 
-    for (const csg::WorkerSlot<Worker>& w : workers) {
-        const Tracer& tracer = w.value.tracer;
-        result.rays += tracer.rays;
-        result.queries.rays += tracer.context.stats.rays;
-        result.queries.nodeVisits += tracer.context.stats.nodeVisits;
-        result.queries.primitiveTests += tracer.context.stats.primitiveTests;
-    }
+    for (const csg::WorkerSlot<Worker>& w : workers) addTracerCounts(w.value.tracer, result);
     // A cancelled run leaves tiles undone (parallelFor starts none after it sees the flag).
     result.interrupted = tilesDone.load() < tileCount;
     if (progress)
         progress->finish(uint64_t(tilesDone.load()), uint64_t(tileCount), result.interrupted);
     return result;
+}
+
+struct alignas(64) TileSet::Worker {
+    Worker(const csg::Scene& scene, const EffectsPlan& plan, size_t tileChannels)
+        : tracer(scene, plan), tileFloats(tileChannels) {}
+    Tracer tracer;
+    std::vector<float> tileFloats;
+};
+
+TileSet::TileSet(const csg::Scene& scene, const EffectsPlan& plan, const RenderCamera& camera,
+                 const ImageSettings& settings)
+    : camera_(camera),
+      settings_(settings),
+      tilesX_((settings.width + settings.tileSize - 1) / settings.tileSize),
+      tilesY_((settings.height + settings.tileSize - 1) / settings.tileSize) {
+    const size_t tileChannels = size_t(settings.tileSize) * size_t(settings.tileSize) * 3;
+    // Worker is alignas(64), as WorkerSlot: its counters, written per ray, share no cache line.
+    for (int t = 0; t < settings.threads; ++t)
+        workers_.push_back(std::make_unique<Worker>(scene, plan, tileChannels));
+}
+
+TileSet::~TileSet() = default;
+
+size_t TileSet::tileBytes(int index) const {
+    const TileBox box =
+        tileBox(index, tilesX_, settings_.tileSize, settings_.width, settings_.height);
+    const size_t channels = size_t(box.x1 - box.x0) * size_t(box.y1 - box.y0) * 3;
+    return settings_.store == PixelStore::Srgb8 ? channels : channels * sizeof(float);
+}
+
+void TileSet::render(int worker, int index, std::string& pixels) {
+    Worker& own = *workers_[size_t(worker)];
+    const TileBox box =
+        tileBox(index, tilesX_, settings_.tileSize, settings_.width, settings_.height);
+    const size_t rowChannels = size_t(box.x1 - box.x0) * 3;
+    pixels.resize(tileBytes(index));
+    if (settings_.store == PixelStore::Srgb8) {
+        traceTile(own.tracer, camera_, settings_.samplesPerAxis, box,
+                  {own.tileFloats.data(), rowChannels, reinterpret_cast<uint8_t*>(pixels.data()),
+                   rowChannels});
+    } else {
+        // The floats straight into the string's bytes: own.tileFloats is aligned for them.
+        traceTile(own.tracer, camera_, settings_.samplesPerAxis, box,
+                  {own.tileFloats.data(), rowChannels, nullptr, 0});
+        std::memcpy(pixels.data(), own.tileFloats.data(), pixels.size());
+    }
+}
+
+RenderResult TileSet::blankResult() const {
+    return blankImage(settings_);
+}
+
+bool TileSet::place(int index, std::string_view pixels, RenderResult& image) const {
+    if (index < 0 || index >= count() || pixels.size() != tileBytes(index)) return false;
+    const TileBox box =
+        tileBox(index, tilesX_, settings_.tileSize, settings_.width, settings_.height);
+    const size_t rowChannels = size_t(box.x1 - box.x0) * 3;
+    for (int y = box.y0; y < box.y1; ++y) {
+        const size_t at = (size_t(y) * size_t(settings_.width) + size_t(box.x0)) * 3;
+        const size_t from = size_t(y - box.y0) * rowChannels;
+        if (settings_.store == PixelStore::Srgb8)
+            std::memcpy(&image.srgb.pixels[at], pixels.data() + from, rowChannels);
+        else
+            std::memcpy(&image.image.rgb[at], pixels.data() + from * sizeof(float),
+                        rowChannels * sizeof(float));
+    }
+    return true;
+}
+
+void TileSet::addCounts(RenderResult& result) const {
+    for (const std::unique_ptr<Worker>& w : workers_) addTracerCounts(w->tracer, result);
 }
 
 }  // namespace viewer::render

@@ -4,6 +4,9 @@
 #pragma once
 
 #include <atomic>
+#include <memory>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "csg/Scene.h"
@@ -47,6 +50,40 @@ struct RenderResult {
 RenderResult renderImage(const csg::Scene& scene, const EffectsPlan& plan,
                          const RenderCamera& camera, const ImageSettings& settings,
                          const std::atomic<bool>* cancel, ProgressMeter* progress);
+
+// The same image's tiles one at a time, for a caller that hands them out itself (csgray's MPI
+// ranks, the --resume journal): a tile's pixels are those renderImage makes, wherever and in
+// whatever order it is rendered, so an image put together from tiles is byte-identical.
+class TileSet {
+public:
+    // settings.threads workers, each with its own Tracer.
+    TileSet(const csg::Scene& scene, const EffectsPlan& plan, const RenderCamera& camera,
+            const ImageSettings& settings);
+    ~TileSet();
+    TileSet(const TileSet&) = delete;
+    TileSet& operator=(const TileSet&) = delete;
+
+    int count() const { return tilesX_ * tilesY_; }
+    // The bytes render() makes for tile index: its pixels row by row, 3 bytes (Srgb8) or 3
+    // floats (LinearFloat) each.
+    size_t tileBytes(int index) const;
+    // Renders tile index (in [0, count())) on worker's Tracer (worker in [0, threads)); only
+    // one thread may use a worker at a time.
+    void render(int worker, int index, std::string& pixels);
+    // An image of the settings' size and store whose pixels are all still to be placed.
+    RenderResult blankResult() const;
+    // Copies pixels made by render(index) into image; false if they have the wrong size.
+    bool place(int index, std::string_view pixels, RenderResult& image) const;
+    // This process's ray and query counts so far, summed over its workers.
+    void addCounts(RenderResult& result) const;
+
+private:
+    struct Worker;
+    const RenderCamera& camera_;
+    ImageSettings settings_;
+    int tilesX_, tilesY_;
+    std::vector<std::unique_ptr<Worker>> workers_;
+};
 
 // The sub-pixel position of sample (sx, sy) of an N x N grid in pixel (x, y), in [0, 1)^2:
 // the stratum's centre when N = 1, else a deterministic hash-jittered point in its stratum.
