@@ -36,7 +36,7 @@ constexpr Command kCommands[] = {
     {"info", "node counts, bounds and the evaluated CSG tree of a part, as JSON",
      viewer::infoCommand},
     {"render", "a part to a PNG image", viewer::renderCommand, true},
-    {"export", "a part to a mesh (GLB, glTF, OBJ) within a distance tolerance",
+    {"export", "a part to a mesh (GLB, glTF, OBJ, STL, 3MF) within a distance tolerance",
      viewer::exportCommand},
     {"compare", "a mesh against the part's exact surface: distances, volume, topology",
      viewer::compareCommand},
