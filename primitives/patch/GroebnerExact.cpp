@@ -26,11 +26,11 @@ using UPoly = std::vector<Q>;  // ascending in u, no trailing zero (empty: the z
 
 constexpr int kRows = Bivariate::kMaxDegreeV + 1;
 // Bits below the binary point of the dyadic grid: a double's 53 bits at exponent >= -90 (the
-// slack 1e-9 is ~2^-30) and ~160 levels of halving below it.
-constexpr int kGridBits = 256;
-// Each root u is refined to an interval this many bits wide below 1 before v is read from it:
-// far below double resolution, so the rounded u is the double nearest the root (to an ulp)
-// and v, a rational function of u, is not degraded by u's error.
+// slack 1e-9 is ~2^-30) and up to ~420 levels of halving below it (the refinement of u).
+constexpr int kGridBits = 512;
+// Each root u is refined to an interval this many bits wide below 1 before v is read from it
+// (more where v is ill-conditioned in u: Step 5): far below double resolution, so the rounded
+// u is the double nearest the root (to an ulp).
 constexpr int kRefineBits = 110;
 
 // An element of the basis: integer coefficients, primitive (content 1, positive leading
@@ -92,7 +92,8 @@ void reduce(ZPoly& f, const std::vector<ZPoly>& G, const std::vector<Monomial>& 
     Z a, k, g;
     for (int j = kRows - 1; j >= 0; --j)
         for (int i = int(f.row[j].size()) - 1; i >= 0; --i) {
-            if (sgn(f.row[j][i]) == 0) continue;
+            // (a step's makePrimitive trims the row: it may now end below i)
+            if (i >= int(f.row[j].size()) || sgn(f.row[j][i]) == 0) continue;
             for (int e : use) {
                 if (!lt[e].divides({i, j})) continue;
                 const Z& lc = G[e].row[lt[e].v][lt[e].u];
@@ -636,6 +637,18 @@ int intersectByExactGroebner(const BezierPatch& patch, const Vec3& o, const Vec3
     // The shape basis when it can be proved; else Buchberger (exact either way).
     std::vector<ZPoly> basis;
     stats.shapeBasis = shapeBasis(f1, f2, basis);
+    if (!stats.shapeBasis && degU == degV) {
+        // Equal degrees: either order is the method's. A patch with a pole (an edge collapsed
+        // to a point, as on the teapot's lid and bottom) has solutions at infinity in one
+        // order, which the shape basis' proof cannot exclude, and often none in the other:
+        // try it before Buchberger (~100x slower).
+        ZPoly g1 = planeEquation(patch, o, n[0], true), g2 = planeEquation(patch, o, n[1], true);
+        if (shapeBasis(g1, g2, basis)) {
+            stats.shapeBasis = stats.swapped = true;
+            f1 = std::move(g1);
+            f2 = std::move(g2);
+        }
+    }
     if (stats.shapeBasis) stats.basisSize = 2;
     const bool ok = stats.shapeBasis || reducedBasis(f1, f2, basis, stats);
     if (statsOut) *statsOut = stats;
@@ -670,9 +683,8 @@ int intersectByExactGroebner(const BezierPatch& patch, const Vec3& o, const Vec3
     // Step 5: each root refined by exact bisection to kRefineBits, then v from the first basis
     // element whose leading coefficient (in v) does not vanish at the root (Kalkbrener: it
     // generates the ideal specialized there), then t.
-    const Z width = Z(1) << (kGridBits - kRefineBits);
-    int count = 0;
-    for (RootInterval& r : roots) {
+    auto refine = [&](RootInterval& r, int bits) {
+        const Z width = Z(1) << (kGridBits - bits);
         while (!r.exact && r.b - r.a > width) {
             const Z m = (r.a + r.b) / 2;
             const int s = signAt(p, m);
@@ -685,7 +697,11 @@ int intersectByExactGroebner(const BezierPatch& patch, const Vec3& o, const Vec3
                 r.b = m;
             }
         }
-        const Q u = r.exact ? gridValue(r.a) : gridValue((r.a + r.b) / 2);
+    };
+    int count = 0;
+    for (RootInterval& r : roots) {
+        int bits = kRefineBits;
+        refine(r, bits);
         const ZPoly* pick = &basis.back();
         // (The shape basis' e v - c has e coprime to g0, proved: it is the element.)
         for (size_t e = 1; e < basis.size() && !stats.shapeBasis; ++e) {
@@ -704,6 +720,21 @@ int intersectByExactGroebner(const BezierPatch& patch, const Vec3& o, const Vec3
             }
         }
         const int dv = leading(*pick).v;
+        // v = -c0(u) / c1(u) is a rational function of u whose derivative can be huge (roots of
+        // the eliminant clustered or near infinity: ~1e28 on teapot rays): refine u until v at
+        // both ends of its interval agrees to 2^-64, so v is right to double precision.
+        while (dv == 1 && !r.exact && bits + 40 < kGridBits - 8) {
+            const Q va = -evaluate(toQ(pick->row[0]), gridValue(r.a)) /
+                         evaluate(toQ(pick->row[1]), gridValue(r.a));
+            const Q vb = -evaluate(toQ(pick->row[0]), gridValue(r.b)) /
+                         evaluate(toQ(pick->row[1]), gridValue(r.b));
+            Q gap = abs(va - vb);
+            mpq_mul_2exp(gap.get_mpq_t(), gap.get_mpq_t(), 64);
+            if (gap <= 1) break;
+            bits += 40;
+            refine(r, bits);
+        }
+        const Q u = r.exact ? gridValue(r.a) : gridValue((r.a + r.b) / 2);
         std::array<Q, kRows> c;
         for (int j = 0; j <= dv; ++j) c[j] = evaluate(toQ(pick->row[j]), u);
         double vs[kRows];
