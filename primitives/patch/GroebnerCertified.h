@@ -23,7 +23,8 @@ int intersectByCertifiedGroebner(const BezierPatch& patch, const Vec3& o, const 
                                  PatchCrossings& out, CertifiedGroebnerStats* stats = nullptr);
 
 // Process-wide counts of the passes that answered intersectByCertifiedGroebner (relaxed
-// atomics, touched only by this method: a render with method="groebner" reports them).
+// atomics, touched only by this method), for a caller that wants totals over a render;
+// nothing prints them yet (patch_bench counts per call, CertifiedGroebnerStats).
 struct GroebnerPassCounts {
     uint64_t certified = 0, exact = 0;
 };
