@@ -1,17 +1,22 @@
 // The Groebner-basis method in exact arithmetic (issue 23): every double of the patch and the
 // ray is a rational, so the basis of {F1, F2} is computed over Q (GMP rationals) and no
-// threshold decides what is zero. Then the eliminant's real roots in [0, 1] (widened by
-// tol::kPatchParamSlack) are isolated exactly (Descartes' rule on exact Bernstein coefficients
-// of its square-free part), refined by exact bisection far below double resolution, v is read
-// from the basis element Kalkbrener's theorem names at that root, and t from the patch point.
-// Exact means: the crossings reported are those of the double ray with the double patch, each
-// once (a tangent crossing too), (u, v) rounded to double from ~110-bit values.
+// threshold decides what is zero. The basis is read off the Bezout resultant and proved
+// equal to the ideal's (the shape basis {g0(u), e(u) v - c(u)}: F1, F2 vanish modulo it and
+// deg g0 reaches the Bezout bound); where that proof fails (crossings at infinity, as on
+// patches with a pole) Buchberger's algorithm runs over Z. Then the eliminant's real roots in
+// [0, 1] (widened by tol::kPatchParamSlack) are isolated exactly (Descartes' rule on exact
+// Bernstein coefficients of its square-free part), refined by exact bisection until u is known
+// to 110 bits and v(u) to double precision, v is read from the basis element Kalkbrener's
+// theorem names at that root, and t from the patch point. Exact means: the crossings reported
+// are those of the double ray with the double patch, each once (a tangent crossing too),
+// (u, v) rounded to double.
 //
 // Plane choice: F_k = n_k . (S(u, v) - o) with n_1 = e_a x d, n_2 = e_b x d (a, b the axes
 // other than d's largest component): their components are d's own doubles, so the planes meet
 // exactly in the line o + t d (RayPlanes' unit normals would be rounded).
-// Cost: heap and GMP per ray, 0.1-10 ms (bench/reports/patches.md): a reference and the
-// fallback of the certified method (GroebnerCertified.h), not a per-pixel method.
+// Cost: heap and GMP per ray, 2-10 ms with the shape basis, 0.1-0.5 s with Buchberger
+// (bench/reports/patches.md): a reference and the fallback of the certified method
+// (GroebnerCertified.h), not a per-pixel method.
 #pragma once
 
 #include "primitives/patch/BezierPatch.h"
