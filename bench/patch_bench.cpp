@@ -3,7 +3,8 @@
 // algebraic methods, the u-polynomial's degree and the Groebner basis size per ray. A plain
 // program (no Google Benchmark): it prints tables, not timings of one call.
 //
-//   patch_bench [--rays N]      N rays per class (default 1000)
+//   patch_bench [--rays N]      N rays per class (default 1000); the bidegree table uses
+//                               N / 5 rays per bidegree (at least 20)
 //
 // Rays of the teapot class go through a random point of one patch's control-point box, from
 // outside it (as PatchSet calls a method only for a patch whose box the ray meets).
@@ -25,10 +26,13 @@
 #include <string>
 #include <vector>
 
+#include "bench/ArticleGroebner.h"
 #include "io/Diagnostic.h"
 #include "io/Evaluate.h"
 #include "primitives/PatchSet.h"
 #include "primitives/patch/Groebner.h"
+#include "primitives/patch/GroebnerCertified.h"
+#include "primitives/patch/GroebnerExact.h"
 #include "primitives/patch/Intersect.h"
 #include "primitives/patch/Resultant.h"
 #include "tests/PatchReference.h"
@@ -48,7 +52,7 @@ struct Method {
     int (*run)(const BezierPatch&, const Vec3&, const Vec3&, PatchCrossings&);
 };
 
-int groebnerRaw(const BezierPatch& p, const Vec3& o, const Vec3& d, PatchCrossings& out) {
+int groebnerFloatRaw(const BezierPatch& p, const Vec3& o, const Vec3& d, PatchCrossings& out) {
     return intersectByGroebner(p, o, d, out, nullptr,
                                AlgebraOptions{tol::kGroebnerSmallRel, false});
 }
@@ -56,27 +60,22 @@ int resultantRaw(const BezierPatch& p, const Vec3& o, const Vec3& d, PatchCrossi
     return intersectByResultant(p, o, d, out, nullptr,
                                 AlgebraOptions{tol::kGroebnerSmallRel, false});
 }
-int groebner(const BezierPatch& p, const Vec3& o, const Vec3& d, PatchCrossings& out) {
-    return intersectByGroebner(p, o, d, out);
-}
-int resultant(const BezierPatch& p, const Vec3& o, const Vec3& d, PatchCrossings& out) {
-    return intersectByResultant(p, o, d, out);
-}
-int clip(const BezierPatch& p, const Vec3& o, const Vec3& d, PatchCrossings& out) {
-    return intersectPatch(PatchMethod::Clip, p, o, d, out);
-}
-int newton(const BezierPatch& p, const Vec3& o, const Vec3& d, PatchCrossings& out) {
-    return intersectPatch(PatchMethod::Newton, p, o, d, out);
+template <PatchMethod M>
+int byMethod(const BezierPatch& p, const Vec3& o, const Vec3& d, PatchCrossings& out) {
+    return intersectPatch(M, p, o, d, out);
 }
 
+// "groebner" is the certified float pass with the exact fallback; "groebner-float" the
+// article's float method (with csgray's polish; "no polish": as the article has it).
 std::vector<Method> methods() {
-    std::vector<Method> m = {{"groebner", groebner},
-                             {"groebner (no polish)", groebnerRaw},
-                             {"resultant", resultant},
-                             {"resultant (no polish)", resultantRaw}};
-    m.push_back({"clip", clip});
-    m.push_back({"newton", newton});
-    return m;
+    return {{"groebner", byMethod<PatchMethod::Groebner>},
+            {"groebner-exact", byMethod<PatchMethod::GroebnerExact>},
+            {"groebner-float", byMethod<PatchMethod::GroebnerFloat>},
+            {"groebner-float (no polish)", groebnerFloatRaw},
+            {"resultant", byMethod<PatchMethod::Resultant>},
+            {"resultant (no polish)", resultantRaw},
+            {"clip", byMethod<PatchMethod::Clip>},
+            {"newton", byMethod<PatchMethod::Newton>}};
 }
 
 struct RefCrossing {
@@ -112,12 +111,12 @@ void runClass(const char* name, const std::vector<BezierPatch>& patches,
               const std::vector<Ray>& rays) {
     const std::vector<Method> ms = methods();
     std::printf("\n## %s: %zu rays over %zu patches\n\n", name, rays.size(), patches.size());
-    // Step 1: time each method alone over all rays (best of 3 passes).
+    // Step 1: time each method alone over all rays (median of 3 passes).
     std::vector<double> raysPerSecond(ms.size());
     std::vector<std::vector<std::vector<PatchCrossing>>> found(
         ms.size(), std::vector<std::vector<PatchCrossing>>(rays.size()));
     for (size_t m = 0; m < ms.size(); ++m) {
-        double best = 1e300;
+        std::vector<double> passes;
         for (int pass = 0; pass < 3; ++pass) {
             PatchCrossings out;
             long sink = 0;
@@ -125,10 +124,10 @@ void runClass(const char* name, const std::vector<BezierPatch>& patches,
             for (const Ray& r : rays) sink += ms[m].run(patches[r.patch], r.o, r.d, out);
             const double s =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            best = std::min(best, s);
+            passes.push_back(s);
             if (sink < 0) std::printf("?");
         }
-        raysPerSecond[m] = double(rays.size()) / best;
+        raysPerSecond[m] = double(rays.size()) / percentile(passes, 0.5);
         for (size_t i = 0; i < rays.size(); ++i) {
             PatchCrossings out;
             const int n = ms[m].run(patches[rays[i].patch], rays[i].o, rays[i].d, out);
@@ -146,12 +145,15 @@ void runClass(const char* name, const std::vector<BezierPatch>& patches,
     }
     std::printf("reference crossings: %zu\n\n", refTotal);
     std::printf(
-        "| method | rays/s | crossings | missed | spurious | median err | p99 err | max err |\n");
-    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
+        "| method | rays/s | correct rays | crossings | missed | spurious | median err | p99 err "
+        "| max err |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (size_t m = 0; m < ms.size(); ++m) {
         std::vector<double> errors;
-        int missed = 0, spurious = 0, total = 0;
+        int missed = 0, spurious = 0, total = 0, correct = 0;
         for (size_t i = 0; i < rays.size(); ++i) {
+            const int missedBefore = missed, spuriousBefore = spurious;
+            const size_t errorsBefore = errors.size();
             for (const PatchCrossing& c : found[m][i]) {
                 ++total;
                 const RefCrossing* best = nullptr;
@@ -171,19 +173,35 @@ void runClass(const char* name, const std::vector<BezierPatch>& patches,
                     hit = hit || (std::abs(r.u - c.u) < 1e-4 && std::abs(r.v - c.v) < 1e-4);
                 missed += !hit;
             }
+            // A correct ray: every reference crossing reported once, nothing else, t to 1e-9.
+            bool right = missed == missedBefore && spurious == spuriousBefore &&
+                         found[m][i].size() == refs[i].size();
+            for (size_t e = errorsBefore; e < errors.size() && right; ++e)
+                right = errors[e] <= 1e-9;
+            correct += right;
         }
-        std::printf("| %s | %.0f | %d | %d | %d | %.1e | %.1e | %.1e |\n", ms[m].name.c_str(),
-                    raysPerSecond[m], total, missed, spurious, percentile(errors, 0.5),
-                    percentile(errors, 0.99), errors.empty() ? 0.0 : percentile(errors, 1.0));
+        std::printf("| %s | %.0f | %.1f %% | %d | %d | %d | %.1e | %.1e | %.1e |\n",
+                    ms[m].name.c_str(), raysPerSecond[m], 100.0 * correct / double(rays.size()),
+                    total, missed, spurious, percentile(errors, 0.5), percentile(errors, 0.99),
+                    errors.empty() ? 0.0 : percentile(errors, 1.0));
     }
     // Step 3: the algebraic methods' per-ray figures.
     std::map<std::pair<int, int>, int> groebnerShape;
     std::map<int, int> rawSize, resultantDegree;
-    int breakdowns = 0, empties = 0;
+    std::map<std::pair<int, int>, int> exactShape;
+    int breakdowns = 0, empties = 0, certified = 0, exactEmpty = 0, buchberger = 0;
     for (const Ray& r : rays) {
         PatchCrossings out;
         GroebnerStats gs;
         ResultantStats rs;
+        CertifiedGroebnerStats cs;
+        ExactGroebnerStats es;
+        intersectByCertifiedGroebner(patches[r.patch], r.o, r.d, out, &cs);
+        intersectByExactGroebner(patches[r.patch], r.o, r.d, out, &es);
+        certified += cs.certified;
+        exactEmpty += es.empty;
+        buchberger += !es.shapeBasis && !es.empty;
+        if (!es.empty) ++exactShape[{es.basisSize, es.uDegree}];
         intersectByGroebner(patches[r.patch], r.o, r.d, out, &gs);
         intersectByResultant(patches[r.patch], r.o, r.d, out, &rs);
         if (gs.breakdown) {
@@ -204,6 +222,14 @@ void runClass(const char* name, const std::vector<BezierPatch>& patches,
     for (const auto& [k, n] : rawSize) std::printf("| %d | %d |\n", k, n);
     std::printf("\n| resultant u-degree | rays |\n|---:|---:|\n");
     for (const auto& [k, n] : resultantDegree) std::printf("| %d | %d |\n", k, n);
+    std::printf(
+        "\ngroebner (certified): float pass certified on %d of %zu rays, exact pass on %zu\n",
+        certified, rays.size(), rays.size() - size_t(certified));
+    std::printf(
+        "groebner-exact: %d empty (1 in G), basis by Buchberger (not the proved shape "
+        "basis) on %d\n| exact basis size | u-degree | rays |\n|---:|---:|---:|\n",
+        exactEmpty, buchberger);
+    for (const auto& [k, n] : exactShape) std::printf("| %d | %d | %d |\n", k.first, k.second, n);
 }
 
 // A random patch of bidegree (du, dv) in (u, v): monomial coefficients uniform in [-1, 1]
@@ -274,6 +300,162 @@ void breakdownTable(int count) {
                         100 * broken / count, 100 * empty / count);
         }
         std::printf(" %.0f |\n", raw.empty() ? 0.0 : percentile(raw, 0.5));
+    }
+}
+
+// True when a method's crossings on a ray are the reference's: each once, nothing else, t to
+// 1e-9 relative (the criterion of the "correct rays" column).
+bool correctRay(const std::vector<PatchCrossing>& found, const std::vector<RefCrossing>& ref) {
+    if (found.size() != ref.size()) return false;
+    for (const RefCrossing& r : ref) {
+        int matches = 0;
+        for (const PatchCrossing& c : found)
+            matches += std::abs(r.u - c.u) < 1e-4 && std::abs(r.v - c.v) < 1e-4 &&
+                       std::abs(c.t - r.t) <= 1e-9 * std::max(1.0, std::abs(r.t));
+        if (matches != 1) return false;
+    }
+    return true;
+}
+
+// Per bidegree of a random patch: each method's share of correct rays and its rays/s (median
+// of 3 passes), and how often the certified Groebner pass answered without the exact one.
+void bidegreeMethodTable(int count) {
+    std::mt19937_64 rng(78);
+    const std::vector<Method> ms = methods();
+    std::printf("\n## Correct rays and rays/s per method and bidegree\n\n");
+    std::printf(
+        "Random patches of bidegree (du, dv) (degree-elevated to bicubic in double), %d "
+        "rays each; cells: %% of rays answered right / rays per second (median of 3 "
+        "passes).\n\n| bidegree |",
+        count);
+    for (const Method& m : ms) std::printf(" %s |", m.name.c_str());
+    std::printf(" groebner: certified float pass |\n|---|");
+    for (size_t m = 0; m < ms.size(); ++m) std::printf("---:|");
+    std::printf("---:|\n");
+    const int shapes[][2] = {{1, 1}, {2, 1}, {1, 2}, {3, 1}, {1, 3},
+                             {2, 2}, {3, 2}, {2, 3}, {3, 3}};
+    for (const auto& shape : shapes) {
+        std::vector<BezierPatch> patches;
+        std::vector<Ray> rays;
+        for (int i = 0; i < count; ++i) {
+            patches.push_back(randomOfBidegree(rng, shape[0], shape[1]));
+            Ray r;
+            r.patch = i;
+            patchref::randomRay(rng, patches[i], r.o, r.d);
+            rays.push_back(r);
+        }
+        std::vector<std::vector<std::vector<PatchCrossing>>> found(
+            ms.size(), std::vector<std::vector<PatchCrossing>>(rays.size()));
+        std::vector<double> rate(ms.size());
+        for (size_t m = 0; m < ms.size(); ++m) {
+            std::vector<double> passes;
+            for (int pass = 0; pass < 3; ++pass) {
+                const auto start = std::chrono::steady_clock::now();
+                for (size_t i = 0; i < rays.size(); ++i) {
+                    PatchCrossings out;
+                    const int n = ms[m].run(patches[i], rays[i].o, rays[i].d, out);
+                    if (pass == 0) found[m][i].assign(out.begin(), out.begin() + n);
+                }
+                passes.push_back(
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                        .count());
+            }
+            rate[m] = double(rays.size()) / percentile(passes, 0.5);
+        }
+        std::vector<int> correct(ms.size());
+        int certified = 0;
+        for (size_t i = 0; i < rays.size(); ++i) {
+            std::vector<std::vector<PatchCrossing>> all;
+            for (size_t m = 0; m < ms.size(); ++m) all.push_back(found[m][i]);
+            const std::vector<RefCrossing> ref = reference(patches[i], rays[i], all);
+            for (size_t m = 0; m < ms.size(); ++m) correct[m] += correctRay(found[m][i], ref);
+            PatchCrossings out;
+            CertifiedGroebnerStats cs;
+            intersectByCertifiedGroebner(patches[i], rays[i].o, rays[i].d, out, &cs);
+            certified += cs.certified;
+        }
+        std::printf("| (%d, %d) |", shape[0], shape[1]);
+        for (size_t m = 0; m < ms.size(); ++m)
+            std::printf(" %.1f %% / %.0f |", 100.0 * correct[m] / count, rate[m]);
+        std::printf(" %.0f %% |\n", 100.0 * certified / count);
+    }
+}
+
+std::vector<Ray> raysThrough(std::mt19937_64& rng, const std::vector<BezierPatch>& patches,
+                             int count);
+
+// The article's table by its own counting (bench/ArticleGroebner.h): per patch, the
+// distribution over rays of Groebner()'s N (the "size"), the u-degree and the v-degree, in
+// the article's arithmetic (double, ZERO = 1e-9) and exactly (rationals, ZERO = 0), beside
+// csgray's exact method (reduced basis size / eliminant degree). Each article patch twice:
+// degree-elevated in double (its higher coefficients are 1e-17 residue of rounding 1/3) and
+// exactly (scaled by 9, tests/PatchReference.h exactArticlePatch).
+void articleTable(int count) {
+    std::mt19937_64 rng(1988);
+    std::printf(
+        "\n## The article's table by its own counting\n\n%d rays per patch. Cells: "
+        "value (rays); N is Groebner()'s return, \"no hit\" an F_N constant.\n\n",
+        count);
+    std::printf(
+        "| patch | arithmetic | size N | u-degree | v-degree | csgray exact: reduced "
+        "basis / u-degree |\n|---|---|---|---|---|---|\n");
+    auto cell = [](const std::map<int, int>& h) {
+        std::string s;
+        for (const auto& [k, n] : h)
+            s += (s.empty() ? "" : ", ") + (k == -1 ? std::string("none") : std::to_string(k)) +
+                 " (" + std::to_string(n) + ")";
+        return s;
+    };
+    struct Case {
+        std::string name;
+        BezierPatch patch;
+        bool exactToo;
+    };
+    std::vector<Case> cases;
+    const char* kinds[] = {"", "bilinear", "ruled quadratic", "ruled cubic"};
+    for (int kind = 1; kind <= 3; ++kind) {
+        cases.push_back({std::string("article ") + std::to_string(kind) + " (" + kinds[kind] +
+                             "), elevated in double",
+                         patchref::articlePatch(kind), true});
+        cases.push_back({std::string("article ") + std::to_string(kind) + " (" + kinds[kind] +
+                             "), elevated exactly",
+                         patchref::exactArticlePatch(kind), true});
+    }
+    cases.push_back({"random (2, 2)", randomOfBidegree(rng, 2, 2), false});
+    cases.push_back({"random (3, 3)", patchref::randomPatch(rng), false});
+    for (const Case& c : cases) {
+        std::vector<Ray> rays = raysThrough(rng, {c.patch}, count);
+        for (int exact = 0; exact <= (c.exactToo ? 1 : 0); ++exact) {
+            std::map<int, int> size, uDeg, vDeg, csgray;
+            int noHit = 0, overflow = 0;
+            for (const Ray& r : rays) {
+                const article::Counts k = exact ? article::run<mpq_class>(c.patch, r.o, r.d)
+                                                : article::run<double>(c.patch, r.o, r.d);
+                overflow += k.overflow;
+                if (k.overflow) continue;
+                ++size[k.size];
+                noHit += k.noHit;
+                if (!k.noHit) {
+                    ++uDeg[k.uDegree];
+                    ++vDeg[k.vDegree];
+                }
+                PatchCrossings out;
+                ExactGroebnerStats es;
+                intersectByExactGroebner(c.patch, r.o, r.d, out, &es);
+                ++csgray[es.empty ? -1 : 100 * es.basisSize + es.uDegree];
+            }
+            std::string ours;
+            for (const auto& [k, n] : csgray)
+                ours += (ours.empty() ? "" : ", ") +
+                        (k == -1 ? std::string("1 in G")
+                                 : std::to_string(k / 100) + " / " + std::to_string(k % 100)) +
+                        " (" + std::to_string(n) + ")";
+            std::printf("| %s | %s | %s%s%s | %s | %s | %s |\n", c.name.c_str(),
+                        exact ? "exact" : "double, ZERO 1e-9", cell(size).c_str(),
+                        noHit ? (", no hit on " + std::to_string(noHit)).c_str() : "",
+                        overflow ? (", overflow on " + std::to_string(overflow)).c_str() : "",
+                        cell(uDeg).c_str(), cell(vDeg).c_str(), ours.c_str());
+        }
     }
 }
 
@@ -350,6 +532,8 @@ int main(int argc, char** argv) {
     const std::vector<BezierPatch> teapot = patchesOf(CSGRAY_SOURCE_DIR "/samples/teapot.scad");
     if (!teapot.empty())
         runClass("Utah teapot (samples/teapot.scad)", teapot, raysThrough(rng, teapot, count));
+    articleTable(std::max(20, count / 10));
+    bidegreeMethodTable(std::max(20, count / 5));
     breakdownTable(std::max(20, count / 5));
     return 0;
 }

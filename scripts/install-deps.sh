@@ -22,6 +22,7 @@ packages=(
     libpolyclipping-dev   # Clipper 6.4: offset() as OpenSCAD 2021 computes it (csg/derived/)
     libqhull-dev          # qhull (reentrant libqhull_r): 3-D hull() (csg/derived/Hull3D.cpp)
     libboost-dev          # Boost.Multiprecision: 50-digit references (tests, csgray bench accuracy)
+    libgmp-dev            # GMP rationals (gmpxx.h): the exact Groebner basis (primitives/patch/GroebnerExact.cpp)
     openscad              # CLI tests: samples load in OpenSCAD and round-trip through its .csg
     openscad-mcad         # MCAD, the library OpenSCAD's examples and users include (use <MCAD/...>)
     libopenmpi-dev openmpi-bin  # MPI: csgray under mpirun/srun (viewer/cli/dist/), its tests' mpirun

@@ -35,7 +35,8 @@ inline BezierPatch fromMonomials(const std::array<std::array<Vec3, 4>, 4>& a) {
 // bilinear (twisted quadrilateral) patch; kind 2, ruled between two quadratic curves; kind 3,
 // ruled between two cubic curves. A line meets them 2, 4 and 6 times over C: the eliminant's
 // u-degree. Coefficients are fixed, dyadic, and chosen so that no special alignment occurs.
-inline BezierPatch articlePatch(int kind) {
+// articleMonomials gives the monomial coefficients a[k][l] of u^k v^l.
+inline std::array<std::array<Vec3, 4>, 4> articleMonomials(int kind) {
     std::array<std::array<Vec3, 4>, 4> a{};
     a[0][0] = Vec3(0.0, 0.0, 0.0);
     a[1][0] = Vec3(1.0, 0.125, 0.25);
@@ -49,7 +50,37 @@ inline BezierPatch articlePatch(int kind) {
         a[3][0] = Vec3(0.5, -0.25, 0.875);
         a[3][1] = Vec3(-0.125, 0.625, -0.375);
     }
-    return fromMonomials(a);
+    return a;
+}
+inline BezierPatch articlePatch(int kind) {
+    return fromMonomials(articleMonomials(kind));
+}
+
+// The patch of the monomial map a, degree-elevated exactly when every a[k][l] is 9 times a
+// dyadic number (the elevation divides by C(3, k) C(3, l) in {1, 3, 9}): each control point
+// is a sum of dyadic terms, so the patch has exactly the bidegree of a (fromMonomials rounds
+// 1/3, which leaves residue of 1e-17 in the higher coefficients).
+inline BezierPatch fromMonomialsExactly(const std::array<std::array<Vec3, 4>, 4>& a) {
+    static constexpr double C[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
+    BezierPatch p;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+            Vec3 s(0.0);
+            for (int k = 0; k <= i; ++k)
+                for (int l = 0; l <= j; ++l)
+                    s += (C[i][k] * C[j][l] * a[k][l]) / (C[3][k] * C[3][l]);
+            p.points[4 * i + j] = s;
+        }
+    return p;
+}
+
+// The article-style patch of the given kind scaled by 9 and elevated exactly: a patch of
+// exactly bidegree (kind, 1), for the exact methods.
+inline BezierPatch exactArticlePatch(int kind) {
+    std::array<std::array<Vec3, 4>, 4> a = articleMonomials(kind);
+    for (auto& row : a)
+        for (Vec3& c : row) c *= 9.0;
+    return fromMonomialsExactly(a);
 }
 
 // A patch with control points uniform in [-1, 1]^3 plus a gentle base surface, so that it is

@@ -11,8 +11,9 @@
 // needs 3 (standard monomials 1, u, v). Unreduced (GroebnerStats::rawBasisSize, what the
 // S-polynomial loop ends with): these patches are linear in v, so R2 is Euclid's algorithm on
 // the v-coefficients and ends in {v + a(u), e(u)}, whose leading terms are coprime, and the
-// loop adds nothing. The article's 3 counts an element of a bookkeeping its text available
-// here does not give (e.g. an input kept beside its reduction); we do not guess at it.
+// loop adds nothing. By the appendix's own counting (Groebner()'s return N, re-implemented in
+// bench/ArticleGroebner.h; bench/reports/patches.md) these patches give N = 1, 1, 1: the
+// article's 3/2/2 are not reproduced on them (its patches are not available).
 #include <gtest/gtest.h>
 
 #include <cmath>

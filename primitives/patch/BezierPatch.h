@@ -14,10 +14,14 @@ namespace csg {
 
 // How a ray meets a patch (the `method=` argument of bezier_patch in the language).
 enum class PatchMethod : uint8_t {
-    Groebner,   // the thesis' method: R2 reduction + S-polynomials to a polynomial in u
-    Resultant,  // Kajiya: Sylvester resultant in u (degree <= 18), gcd for v
-    Clip,       // Bezier clipping (Nishita et al.) + Newton polish: the practical default
-    Newton,     // subdivision to a flatness bound, then 2-D Newton
+    Groebner,       // the thesis' method, right on every ray: the float basis, certified by
+                    // interval arithmetic, else the exact one (GroebnerCertified.h)
+    Resultant,      // Kajiya: Sylvester resultant in u (degree <= 18), gcd for v
+    Clip,           // Bezier clipping (Nishita et al.) + Newton polish: the practical default
+    Newton,         // subdivision to a flatness bound, then 2-D Newton
+    GroebnerExact,  // the basis over Q (GMP) on every ray: the reference (GroebnerExact.h)
+    GroebnerFloat,  // the basis in doubles with the article's small-value rule, as the article
+                    // has it (Groebner.h): breaks down on general bicubic patches
 };
 
 // One point where a ray meets a patch.

@@ -13,10 +13,12 @@ namespace csg {
 int intersectPatch(PatchMethod method, const BezierPatch& patch, const Vec3& o, const Vec3& d,
                    PatchCrossings& out);
 
-// The language's name of a method ("groebner", "resultant", "clip", "newton") and back.
+// The language's name of a method ("groebner", "resultant", "clip", "newton",
+// "groebner-exact", "groebner-float") and back.
 const char* patchMethodName(PatchMethod method);
 std::optional<PatchMethod> patchMethodFromName(std::string_view name);
-inline constexpr PatchMethod kAllPatchMethods[] = {PatchMethod::Groebner, PatchMethod::Resultant,
-                                                   PatchMethod::Clip, PatchMethod::Newton};
+inline constexpr PatchMethod kAllPatchMethods[] = {
+    PatchMethod::Groebner, PatchMethod::Resultant,     PatchMethod::Clip,
+    PatchMethod::Newton,   PatchMethod::GroebnerExact, PatchMethod::GroebnerFloat};
 
 }  // namespace csg
