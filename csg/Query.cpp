@@ -104,6 +104,18 @@ struct SpanWalk {
         Vec3 o, d, invD;
     };
 
+    // The leaves solved in this query, one slot per leaf index modulo kSolvedSlots (a leaf
+    // evicts only a leaf of its own slot). A query meets a leaf twice when closest() falls back
+    // to the whole span list for a ray that starts inside an object (a refracted ray inside
+    // glass): the fallback walks the leaves closest() has just solved, and the torus of
+    // bench/scenes/torus_glass was solved twice for every such ray.
+    static constexpr uint32_t kSolvedSlots = 4;
+    struct Solved {
+        uint32_t leaf = kNoNode;
+        LocalSpans spans;
+    };
+    Solved solved[kSolvedSlots];
+
     // The ray in the leaf's frame: by a matrix into its frame group once per run of leaves of
     // that group (a part's leaves mostly share one), then by the leaf's exact axis permutation
     // (the reciprocal of -x is -(1 / x), so permuting 1 / d is exact); d keeps its length so t
@@ -131,10 +143,18 @@ struct SpanWalk {
             return 0;
         const double shift = std::isfinite(b0) ? b0 : (std::isfinite(b1) ? b1 : 0.0);
 
-        ++ctx.stats.primitiveTests;
-        LocalSpans local;
-        const Vec3 start = pointOnLine(o, d, shift);
-        std::visit([&](const auto& shape) { shape.spans(start, d, local); }, leaf.shape);
+        // The leaf's spans along the whole line depend on the ray only, not on [t0, t1]: a
+        // leaf met again in this query takes them from its slot instead of being solved again.
+        Solved& slot = solved[leafIndex % kSolvedSlots];
+        if (slot.leaf != leafIndex) {
+            ++ctx.stats.primitiveTests;
+            slot.leaf = leafIndex;
+            slot.spans.count = 0;
+            slot.spans.sheet = false;
+            const Vec3 start = pointOnLine(o, d, shift);
+            std::visit([&](const auto& shape) { shape.spans(start, d, slot.spans); }, leaf.shape);
+        }
+        const LocalSpans& local = slot.spans;
 
         // A sheet's crossings are zero-length spans by nature: clipped, never regularized away.
         const size_t base = top;
