@@ -20,12 +20,14 @@ double unitFromBits(uint64_t bits) {
     return double(bits >> 11) * 0x1.0p-53;  // [0, 1) with every value a multiple of 2^-53
 }
 
-// What one worker thread owns: its Tracer and, for an Srgb8 render, its tile's floats.
+// What one worker thread owns: its Tracer, for an Srgb8 render its tile's floats, and the
+// image-plane x of its tile's pixel centres.
 struct Worker {
-    Worker(const csg::Scene& scene, const EffectsPlan& plan, size_t tileChannels)
-        : tracer(scene, plan), tileFloats(tileChannels) {}
+    Worker(const csg::Scene& scene, const EffectsPlan& plan, size_t tileChannels, int tile)
+        : tracer(scene, plan), tileFloats(tileChannels), columnX(size_t(tile)) {}
     Tracer tracer;
     std::vector<float> tileFloats;  // rows of `tile` pixels
+    std::vector<double> columnX;    // RenderCamera::planeX(x + 0.5), x from the tile's left
 };
 
 }  // namespace
@@ -72,7 +74,7 @@ RenderResult renderImage(const csg::Scene& scene, const EffectsPlan& plan,
     std::vector<csg::WorkerSlot<Worker>> workers;
     workers.reserve(size_t(settings.threads));
     for (int t = 0; t < settings.threads; ++t)
-        workers.emplace_back(scene, plan, srgb ? size_t(tile) * size_t(tile) * 3 : 0);
+        workers.emplace_back(scene, plan, srgb ? size_t(tile) * size_t(tile) * 3 : 0, tile);
     std::atomic<int> tilesDone{0};
 
     csg::parallelFor(
@@ -81,16 +83,26 @@ RenderResult renderImage(const csg::Scene& scene, const EffectsPlan& plan,
             Worker& own = workers[size_t(worker)].value;
             const int x0 = int(index % tilesX) * tile, y0 = int(index / tilesX) * tile;
             const int x1 = std::min(x0 + tile, width), y1 = std::min(y0 + tile, height);
+            // One sample per pixel (n = 1) is camera.ray(x + 0.5, y + 0.5), its column's half
+            // computed once per tile and its row's once per row: the same values, the same rays.
+            if (n == 1)
+                for (int x = x0; x < x1; ++x) own.columnX[size_t(x - x0)] = camera.planeX(x + 0.5);
             for (int y = y0; y < y1; ++y) {
                 float* row = srgb ? &own.tileFloats[size_t(y - y0) * size_t(tile) * 3]
                                   : &result.image.rgb[(size_t(y) * size_t(width) + x0) * 3];
+                const double rowY = camera.planeY(y + 0.5);
                 for (int x = x0; x < x1; ++x) {
                     csg::Vec3 sum(0.0);
-                    for (int sy = 0; sy < n; ++sy) {
-                        for (int sx = 0; sx < n; ++sx) {
-                            double u, v;
-                            samplePosition(x, y, sx, sy, n, u, v);
-                            sum += own.tracer.tracePrimary(camera.ray(x + u, y + v));
+                    if (n == 1) {
+                        sum += own.tracer.tracePrimary(
+                            camera.rayThrough(own.columnX[size_t(x - x0)], rowY));
+                    } else {
+                        for (int sy = 0; sy < n; ++sy) {
+                            for (int sx = 0; sx < n; ++sx) {
+                                double u, v;
+                                samplePosition(x, y, sx, sy, n, u, v);
+                                sum += own.tracer.tracePrimary(camera.ray(x + u, y + v));
+                            }
                         }
                     }
                     float* px = row + size_t(x - x0) * 3;
