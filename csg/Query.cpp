@@ -110,6 +110,9 @@ struct SpanWalk {
     // glass): the fallback walks the leaves closest() has just solved, and the torus of
     // bench/scenes/torus_glass was solved twice for every such ray.
     static constexpr uint32_t kSolvedSlots = 4;
+    // Set by closest() while it evaluates a top-level object that is one leaf (see evalLeaf).
+    bool firstSpanOnly = false;
+    static constexpr double kFirstSpanSlacks = 1e3;
     struct Solved {
         uint32_t leaf = kNoNode;
         LocalSpans spans;
@@ -148,9 +151,20 @@ struct SpanWalk {
         Solved& slot = solved[leafIndex % kSolvedSlots];
         if (slot.leaf != leafIndex) {
             ++ctx.stats.primitiveTests;
-            slot.leaf = leafIndex;
+            // closest() on a leaf that is a whole object reads only the first span past t0
+            // (LocalSpans::firstOnly, with a thousand sliver slacks of margin); such a list is
+            // not whole, so it is not kept for another visit.
+            const bool firstOnly = firstSpanOnly && std::isfinite(b0) && std::isfinite(b1);
+            slot.leaf = firstOnly ? kNoNode : leafIndex;
             slot.spans.count = 0;
             slot.spans.sheet = false;
+            slot.spans.firstOnly = firstOnly;
+            if (firstOnly) {
+                slot.spans.from = t0 - shift;
+                slot.spans.margin =
+                    kFirstSpanSlacks *
+                    coincidenceSlack(originScale, std::abs(t0) + std::abs(b0), std::abs(b1));
+            }
             const Vec3 start = pointOnLine(o, d, shift);
             std::visit([&](const auto& shape) { shape.spans(start, d, slot.spans); }, leaf.shape);
         }
@@ -437,7 +451,9 @@ struct SpanWalk {
         if (root.boundsImplied || touches(root.bounds, ray.tmin, t1)) {
             forEachChild(root, ray.tmin, t1, [&](uint32_t child) {
                 const size_t base = top;
+                firstSpanOnly = scene.nodes_[child].kind == Op::Leaf;
                 const size_t n = evalShortcut(child, ray.tmin, t1, true);
+                firstSpanOnly = false;
                 if (n > 0) {
                     const Hit first = stack()[base].in;
                     top = base;

@@ -33,6 +33,15 @@ struct LocalSpans {
     // Set by a sheet (PatchSet with solid=false): every entry is a crossing, tIn == tOut.
     bool sheet = false;
 
+    // What the caller keeps of the list, set before spans() so that a primitive may skip work
+    // (it may also ignore it). With firstOnly, the caller clips the spans at `from` and reads
+    // only the first one left: an end before `from` may then be any value before `from`, and
+    // the spans after one whose part past `from` is longer than `margin` may be left out
+    // (margin covers the caller's sliver rule, so that span is the first one it keeps).
+    bool firstOnly = false;
+    double from = 0.0;
+    double margin = 0.0;
+
     void add(double tIn, uint16_t faceIn, double tOut, uint16_t faceOut) {
         assert(count < kCapacity && "a primitive produced more spans than LocalSpans holds");
         entries[count++] = {tIn, tOut, faceIn, faceOut};
