@@ -112,7 +112,7 @@ struct SpanWalk {
     static constexpr uint32_t kSolvedSlots = 4;
     // Set by closest() while it evaluates a top-level object that is one leaf (see evalLeaf).
     bool firstSpanOnly = false;
-    static constexpr double kFirstSpanSlacks = 1e3;
+    static constexpr double kFirstSpanSlacks = 1e3;  // LocalSpans::margin, in sliver slacks
     struct Solved {
         uint32_t leaf = kNoNode;
         LocalSpans spans;
@@ -148,23 +148,26 @@ struct SpanWalk {
 
         // The leaf's spans along the whole line depend on the ray only, not on [t0, t1]: a
         // leaf met again in this query takes them from its slot instead of being solved again.
+        // The spans are clipped at t0 (`from`, LocalSpans): a slot solved from no later than
+        // that serves. closest() on a leaf that is a whole object reads only its first span
+        // past t0 (firstOnly); such a list is not whole, so it is not kept for another visit.
+        // Margin: a thousand sliver slacks of the span ends the leaf's box allows.
+        const double from = t0 - shift;
         Solved& slot = solved[leafIndex % kSolvedSlots];
-        if (slot.leaf != leafIndex) {
+        if (slot.leaf != leafIndex || slot.spans.from > from) {
             ++ctx.stats.primitiveTests;
-            // closest() on a leaf that is a whole object reads only the first span past t0
-            // (LocalSpans::firstOnly, with a thousand sliver slacks of margin); such a list is
-            // not whole, so it is not kept for another visit.
-            const bool firstOnly = firstSpanOnly && std::isfinite(b0) && std::isfinite(b1);
+            const bool bounded = std::isfinite(b0) && std::isfinite(b1);
+            const bool firstOnly = firstSpanOnly && bounded;
             slot.leaf = firstOnly ? kNoNode : leafIndex;
             slot.spans.count = 0;
             slot.spans.sheet = false;
             slot.spans.firstOnly = firstOnly;
-            if (firstOnly) {
-                slot.spans.from = t0 - shift;
-                slot.spans.margin =
-                    kFirstSpanSlacks *
-                    coincidenceSlack(originScale, std::abs(t0) + std::abs(b0), std::abs(b1));
-            }
+            slot.spans.from = bounded ? from : -kInfinity;
+            slot.spans.margin =
+                bounded
+                    ? kFirstSpanSlacks *
+                          coincidenceSlack(originScale, std::abs(t0) + std::abs(b0), std::abs(b1))
+                    : 0.0;
             const Vec3 start = pointOnLine(o, d, shift);
             std::visit([&](const auto& shape) { shape.spans(start, d, slot.spans); }, leaf.shape);
         }
