@@ -110,7 +110,8 @@ struct SpanWalk {
     // glass): the fallback walks the leaves closest() has just solved, and the torus of
     // bench/scenes/torus_glass was solved twice for every such ray.
     static constexpr uint32_t kSolvedSlots = 4;
-    // Set by closest() while it evaluates a top-level object that is one leaf (see evalLeaf).
+    // Set while closest() evaluates a top-level object that is one leaf, and while any()
+    // evaluates a leaf: they read only its first span past t0 (see evalLeaf).
     bool firstSpanOnly = false;
     static constexpr double kFirstSpanSlacks = 1e3;  // LocalSpans::margin, in sliver slacks
     struct Solved {
@@ -415,8 +416,13 @@ struct SpanWalk {
                          [&](uint32_t child) { return !(found = any(child, t0, t1)); });
             return found;
         }
+        // A leaf's list is non-empty exactly when its first span past t0 that is longer than
+        // LocalSpans::margin, or one before it, survives the clipping at t1 (a later span
+        // starts past that one), so the first span is all it needs to solve (firstOnly).
         const size_t base = top;
+        firstSpanOnly = node.kind == Op::Leaf;
         const size_t n = evalShortcut(index, t0, t1, false);
+        firstSpanOnly = false;
         top = base;
         return n > 0;
     }
