@@ -104,6 +104,22 @@ struct SpanWalk {
         Vec3 o, d, invD;
     };
 
+    // The leaves solved in this query, one slot per leaf index modulo kSolvedSlots (a leaf
+    // evicts only a leaf of its own slot). A query meets a leaf twice when closest() falls back
+    // to the whole span list for a ray that starts inside an object (a refracted ray inside
+    // glass): the fallback walks the leaves closest() has just solved, and the torus of
+    // bench/scenes/torus_glass was solved twice for every such ray.
+    static constexpr uint32_t kSolvedSlots = 4;
+    // Set while closest() evaluates a top-level object that is one leaf, and while any()
+    // evaluates a leaf: they read only its first span past t0 (see evalLeaf).
+    bool firstSpanOnly = false;
+    static constexpr double kFirstSpanSlacks = 1e3;  // LocalSpans::margin, in sliver slacks
+    struct Solved {
+        uint32_t leaf = kNoNode;
+        LocalSpans spans;
+    };
+    Solved solved[kSolvedSlots];
+
     // The ray in the leaf's frame: by a matrix into its frame group once per run of leaves of
     // that group (a part's leaves mostly share one), then by the leaf's exact axis permutation
     // (the reciprocal of -x is -(1 / x), so permuting 1 / d is exact); d keeps its length so t
@@ -131,10 +147,32 @@ struct SpanWalk {
             return 0;
         const double shift = std::isfinite(b0) ? b0 : (std::isfinite(b1) ? b1 : 0.0);
 
-        ++ctx.stats.primitiveTests;
-        LocalSpans local;
-        const Vec3 start = pointOnLine(o, d, shift);
-        std::visit([&](const auto& shape) { shape.spans(start, d, local); }, leaf.shape);
+        // The leaf's spans along the whole line depend on the ray only, not on [t0, t1]: a
+        // leaf met again in this query takes them from its slot instead of being solved again.
+        // The spans are clipped at t0 (`from`, LocalSpans): a slot solved from no later than
+        // that serves. closest() on a leaf that is a whole object reads only its first span
+        // past t0 (firstOnly); such a list is not whole, so it is not kept for another visit.
+        // Margin: a thousand sliver slacks of the span ends the leaf's box allows.
+        const double from = t0 - shift;
+        Solved& slot = solved[leafIndex % kSolvedSlots];
+        if (slot.leaf != leafIndex || slot.spans.from > from) {
+            ++ctx.stats.primitiveTests;
+            const bool bounded = std::isfinite(b0) && std::isfinite(b1);
+            const bool firstOnly = firstSpanOnly && bounded;
+            slot.leaf = firstOnly ? kNoNode : leafIndex;
+            slot.spans.count = 0;
+            slot.spans.sheet = false;
+            slot.spans.firstOnly = firstOnly;
+            slot.spans.from = bounded ? from : -kInfinity;
+            slot.spans.margin =
+                bounded
+                    ? kFirstSpanSlacks *
+                          coincidenceSlack(originScale, std::abs(t0) + std::abs(b0), std::abs(b1))
+                    : 0.0;
+            const Vec3 start = pointOnLine(o, d, shift);
+            std::visit([&](const auto& shape) { shape.spans(start, d, slot.spans); }, leaf.shape);
+        }
+        const LocalSpans& local = slot.spans;
 
         // A sheet's crossings are zero-length spans by nature: clipped, never regularized away.
         const size_t base = top;
@@ -378,8 +416,13 @@ struct SpanWalk {
                          [&](uint32_t child) { return !(found = any(child, t0, t1)); });
             return found;
         }
+        // A leaf's list is non-empty exactly when its first span past t0 that is longer than
+        // LocalSpans::margin, or one before it, survives the clipping at t1 (a later span
+        // starts past that one), so the first span is all it needs to solve (firstOnly).
         const size_t base = top;
+        firstSpanOnly = node.kind == Op::Leaf;
         const size_t n = evalShortcut(index, t0, t1, false);
+        firstSpanOnly = false;
         top = base;
         return n > 0;
     }
@@ -417,7 +460,9 @@ struct SpanWalk {
         if (root.boundsImplied || touches(root.bounds, ray.tmin, t1)) {
             forEachChild(root, ray.tmin, t1, [&](uint32_t child) {
                 const size_t base = top;
+                firstSpanOnly = scene.nodes_[child].kind == Op::Leaf;
                 const size_t n = evalShortcut(child, ray.tmin, t1, true);
+                firstSpanOnly = false;
                 if (n > 0) {
                     const Hit first = stack()[base].in;
                     top = base;

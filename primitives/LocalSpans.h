@@ -33,6 +33,15 @@ struct LocalSpans {
     // Set by a sheet (PatchSet with solid=false): every entry is a crossing, tIn == tOut.
     bool sheet = false;
 
+    // What the caller keeps of the list, set before spans() so that a primitive may skip work
+    // (it may also ignore it). The caller clips the spans at `from`: an end that lies before
+    // from - margin may be given as any value before that. With firstOnly it reads only the
+    // first span left: the spans after one whose part past `from` is longer than `margin` may
+    // be left out (margin covers the caller's sliver rule, so that span is the first it keeps).
+    double from = -std::numeric_limits<double>::infinity();
+    double margin = 0.0;
+    bool firstOnly = false;
+
     void add(double tIn, uint16_t faceIn, double tOut, uint16_t faceOut) {
         assert(count < kCapacity && "a primitive produced more spans than LocalSpans holds");
         entries[count++] = {tIn, tOut, faceIn, faceOut};

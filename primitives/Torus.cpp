@@ -301,7 +301,11 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
     }
 
     // Step 5: one crossing in each monotone piece whose ends' signs differ; the first break
-    // is outside and so is the last, so crossings alternate entering and leaving.
+    // is outside and so is the last, so crossings alternate entering and leaving. No crossing
+    // is solved in a piece that ends before out.from - out.margin, where the caller clips
+    // (its place holds the piece's start, also before it: a reflected or refracted ray's tube
+    // behind it); with out.firstOnly, none after the first span that reaches past `from` by
+    // more than out.margin.
     double ends[4];
     int m = 0;
     const double polishBelow = 2.0 * r * tol::kTubeGrazingCos;
@@ -309,6 +313,13 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
         const Break& lo = breaks[k];
         const Break& hi = breaks[k + 1];
         if (lo.negative == hi.negative) continue;
+        if (out.firstOnly && m % 2 == 0 && m > 0 &&
+            tBase + ends[m - 1] - std::max(tBase + ends[m - 2], out.from) > out.margin)
+            break;
+        if (tBase + hi.s / len < out.from - out.margin) {
+            ends[m++] = lo.s / len;
+            continue;
+        }
         // Start from the root of G's Taylor quadratic at the end nearer zero (G'' is known
         // there), else from the secant through the ends' values, else from the middle.
         const Break& near = std::abs(lo.v.g) < std::abs(hi.v.g) ? lo : hi;

@@ -359,6 +359,116 @@ TEST(Refraction, TotalInternalReflectionKeepsTheRayInside) {
     EXPECT_NEAR(log.vertices[1].point.x, 1.0, 1e-12);
 }
 
+// ---- light through glass: shadow rays filtered by transmissive solids ----
+
+// A white plane z <= 0 (ambient 0, diffuse 1: a pixel is the light's cosine, nothing else),
+// seen straight down by an orthographic camera at z = 1 whose view is 4 x 4 units; pixel
+// (i, j) of an 8 x 8 image has its centre at x = -2 + (i + 0.5) / 2, y = 2 - (j + 0.5) / 2.
+// The light is at (0, 0, 100). What hangs between z = 2 and z = 4 over x < 0 is behind the
+// camera, so it is never seen, only crossed by shadow rays: a shadow ray from the plane at
+// x < 0 toward the light stays at x < 0, one from x > 0 at x > 0. So the left half of the
+// image (i < 4) is in the shadow of the slabs and the right half is not.
+constexpr int kShadowImage = 8;
+
+// Pixel (i, j) of a linear float render, i from the left, j from the top.
+csg::Vec3 pixel(const RenderResult& r, int i, int j) {
+    const float* p = &r.image.rgb[(size_t(j) * r.image.width + i) * 3];
+    return {p[0], p[1], p[2]};
+}
+
+std::string planeUnder(const std::string& slabs) {
+    return "camera(eye = [0, 0, 1], center = [0, 0, -9], up = [0, 1, 0], fov = 2 * atan(0.2), "
+           "projection = \"orthographic\");\n"
+           "light([0, 0, 100]);\n"
+           "material(color = [1, 1, 1], ambient = 0, diffuse = 1, specular = 0) "
+           "halfspace([0, 0, 1], 0);\n" +
+           slabs;
+}
+
+// A glass slab over x in [-10, 0], z in [z0, z0 + 1]: colour (sRGB) and transmit as given,
+// no light of its own.
+std::string glassSlab(double z0, const std::string& color, double transmit) {
+    return "material(color = " + color +
+           ", ambient = 0, diffuse = 0, specular = 0, transmit = " + std::to_string(transmit) +
+           ") translate([-10, -10, " + std::to_string(z0) + "]) cube([10, 20, 1]);\n";
+}
+
+// The sRGB decoding of IEC 61966-2-1, written out here rather than taken from the renderer.
+double linearFromSrgb(double c) {
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+// Renders the plane under `slabs` and the bare plane, and checks every shadowed pixel (the left
+// half) against the bare plane's times `transmission`, per channel, and the right half equal.
+void expectShadowIsTransmission(const std::string& slabs, const csg::Vec3& transmission) {
+    const Rendered bare = render(load(planeUnder("")), kShadowImage, kShadowImage);
+    const Rendered under = render(load(planeUnder(slabs)), kShadowImage, kShadowImage);
+    for (int j = 0; j < kShadowImage; ++j) {
+        for (int i = 0; i < kShadowImage; ++i) {
+            const csg::Vec3 lit = pixel(bare.result, i, j), seen = pixel(under.result, i, j);
+            ASSERT_GT(lit.r, 0.5) << "the bare plane is lit everywhere";
+            const csg::Vec3 want = i < kShadowImage / 2 ? transmission * lit : lit;
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(seen[c], want[c], 1e-6)
+                    << "pixel " << i << "," << j << " channel " << c;
+        }
+    }
+}
+
+TEST(LightThroughGlass, ShadowOfAGlassSlabIsItsTransmission) {
+    // White glass passes transmit of the light in every channel.
+    expectShadowIsTransmission(glassSlab(2, "[1, 1, 1]", 0.6), csg::Vec3(0.6));
+}
+
+TEST(LightThroughGlass, ColouredGlassFiltersEachChannelByItsColour) {
+    // POV-Ray's filter: the light is multiplied by transmit times the glass's linear colour.
+    const double t = 0.8;
+    expectShadowIsTransmission(glassSlab(2, "[1, 0.5, 0.2]", t),
+                               t * csg::Vec3(1.0, linearFromSrgb(0.5), linearFromSrgb(0.2)));
+}
+
+TEST(LightThroughGlass, AttenuatedOncePerSpanCrossed) {
+    // Two slabs apart: two spans, the transmission twice.
+    expectShadowIsTransmission(glassSlab(2, "[1, 1, 1]", 0.5) + glassSlab(3.5, "[1, 1, 1]", 0.5),
+                               csg::Vec3(0.25));
+    // Two slabs that touch are one solid, one span: once.
+    expectShadowIsTransmission(glassSlab(2, "[1, 1, 1]", 0.5) + glassSlab(3, "[1, 1, 1]", 0.5),
+                               csg::Vec3(0.5));
+}
+
+TEST(LightThroughGlass, OpaqueSolidsStillBlock) {
+    // An opaque slab, alone or beside a glass one on the same shadow ray, leaves no light.
+    const std::string opaque =
+        "material(color = [1, 1, 1], ambient = 0, diffuse = 1, specular = 0) "
+        "translate([-10, -10, 3.5]) cube([10, 20, 0.5]);\n";
+    expectShadowIsTransmission(opaque, csg::Vec3(0.0));
+    expectShadowIsTransmission(glassSlab(2, "[1, 1, 1]", 0.9) + opaque, csg::Vec3(0.0));
+}
+
+TEST(LightThroughGlass, PlanCountsOneShadowRayPerLitPointAndNoneWhereNothingOccludes) {
+    // Every pixel sees the plane and casts exactly one shadow ray toward the one light, glass
+    // or not in its way: filtering changes the light, not the rays.
+    const int n = kShadowImage;
+    for (const std::string& slab : {glassSlab(2, "[1, 1, 1]", 0.6),
+                                    std::string("translate([-10, -10, 2]) cube([10, 20, 1]);")}) {
+        const Rendered r = render(load(planeUnder(slab)), n, n);
+        EXPECT_TRUE(r.plan.shadowRays);
+        EXPECT_EQ(r.result.rays.primary, uint64_t(n * n));
+        EXPECT_EQ(r.result.rays.shadow, uint64_t(n * n));
+        EXPECT_EQ(r.result.rays.reflection, 0u);
+        EXPECT_EQ(r.result.rays.refraction, 0u);
+    }
+    // One convex glass solid cannot occlude its own lit side: no shadow rays, as for any convex
+    // scene, though it refracts.
+    const LoadedScene glass = load(
+        "light([3, -4, 5]); material(ambient = 0.1, diffuse = 0.5, transmit = 0.7) sphere(1);");
+    const Rendered r = render(glass, 32, 32);
+    EXPECT_TRUE(r.plan.convexScene);
+    EXPECT_FALSE(r.plan.shadowRays);
+    EXPECT_EQ(r.result.rays.shadow, 0u);
+    EXPECT_GT(r.result.rays.refraction, 0u);
+}
+
 // ---- output ----
 
 struct DecodedPng {
@@ -609,11 +719,6 @@ std::string topDownScene(const std::string& material) {
     return "camera(eye = [0, 0, 10], center = [0, 0, 0], up = [0, 1, 0], fov = 2 * atan(0.2), "
            "projection = \"orthographic\");\n" +
            material + " halfspace([0, 0, 1], 0);\n";
-}
-
-csg::Vec3 pixel(const RenderResult& r, int i, int j) {
-    const float* p = &r.image.rgb[(size_t(j) * r.image.width + i) * 3];
-    return {p[0], p[1], p[2]};
 }
 
 TEST(Patterns, CheckerHalfSpaceSeenFromAboveAlternatesByTheSquare) {

@@ -239,6 +239,61 @@ TEST(Torus, RandomLinesAgreeWithInside) {
     EXPECT_GT(checked, 900000);
 }
 
+// LocalSpans' hints (evalLeaf clips at `from`; closest() on a torus that is a whole object
+// reads only the first span left, firstOnly): past `from`, the hinted list is the whole one,
+// value for value, or with firstOnly a prefix of it that reaches at least to its first span
+// whose part past `from` is longer than the margin (all of it when none is). The oracle is the
+// same torus asked for the whole line.
+TEST(Torus, HintedListsArePrefixesOfTheWholeListPastFrom) {
+    Rng rng(2127);
+    int cut = 0, placeholders = 0;
+    for (double r : {0.25, 0.6, 1e-3}) {
+        const Torus torus{1.0, r};
+        const Bounds3 box = torus.bounds();
+        for (int i = 0; i < 20000; ++i) {
+            const Vec3 p = rng.inBox(box.lo, box.hi);
+            const Vec3 d = rng.unit();
+            const Vec3 o = p - 3.0 * d;
+            const double from = rng.uniform(0.0, 6.0);
+            const double margin = rng.chance(0.5) ? 1e-6 : 0.3 * r;
+            const bool firstOnly = rng.chance(0.5);
+            const LocalSpans whole = spansOf(torus, o, d);
+            LocalSpans hinted;
+            hinted.firstOnly = firstOnly;
+            hinted.from = from;
+            hinted.margin = margin;
+            torus.spans(o, d, hinted);
+            // Both lists clipped at `from`, as evalLeaf does.
+            const auto past = [&](const LocalSpans& s) {
+                std::vector<std::pair<double, double>> out;
+                for (int j = 0; j < s.count; ++j)
+                    if (s.entries[j].tOut >= from)
+                        out.push_back({std::max(s.entries[j].tIn, from), s.entries[j].tOut});
+                return out;
+            };
+            const auto w = past(whole), h = past(hinted);
+            ASSERT_LE(h.size(), w.size()) << "line " << i;
+            for (size_t j = 0; j < h.size(); ++j) {
+                ASSERT_EQ(h[j].first, w[j].first) << "r=" << r << " line " << i;
+                ASSERT_EQ(h[j].second, w[j].second) << "r=" << r << " line " << i;
+            }
+            size_t needed = w.size();
+            for (size_t j = 0; firstOnly && j < w.size(); ++j)
+                if (w[j].second - w[j].first > margin) {
+                    needed = j + 1;
+                    break;
+                }
+            ASSERT_GE(h.size(), needed) << "r=" << r << " line " << i;
+            cut += h.size() < w.size();
+            for (int j = 0; j < std::min(whole.count, hinted.count); ++j)
+                placeholders += whole.entries[j].tIn != hinted.entries[j].tIn;
+        }
+    }
+    // The hints must have saved work, or this test tests nothing.
+    EXPECT_GT(cut, 100);
+    EXPECT_GT(placeholders, 100);
+}
+
 TEST(Torus, NormalsAreUnitAndNeverNaN) {
     const Torus torus{1.0, 0.25};
     for (const Vec3& p : {Vec3(1.25, 0, 0), Vec3(0.75, 0, 0), Vec3(1, 0, 0.25), Vec3(0, 0, 0),

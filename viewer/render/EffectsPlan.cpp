@@ -97,13 +97,18 @@ EffectsPlan makeEffectsPlan(const SceneLook& look, const csg::Node* root, const 
         m.direct = lit && (s.diffuse > 0.0 || m.specular);
         m.reflection = s.reflect > 0.0 && settings.maxDepth > 0;
         m.refraction = s.transmit > 0.0 && settings.maxDepth > 0;
+        // Light reaches through glass whatever the ray tree's depth: the shadow ray is cast
+        // from the lit point, not from the glass.
+        if (s.transmit > 0.0) m.transmission = s.transmit * s.color;
         if (!m.used) continue;
+        plan.filteredShadows |= positive(m.transmission);
         plan.direct |= m.direct;
         plan.specular |= m.specular;
         plan.reflection |= m.reflection;
         plan.refraction |= m.refraction;
     }
     plan.shadowRays = plan.direct && anyShadowLight;
+    plan.filteredShadows &= plan.shadowRays;
     return plan;
 }
 
@@ -114,6 +119,7 @@ void writeEffectsPlan(csg::JsonWriter& json, const EffectsPlan& plan) {
     json.key("specular").value(plan.specular);
     json.key("reflection").value(plan.reflection);
     json.key("refraction").value(plan.refraction);
+    json.key("filteredShadows").value(plan.filteredShadows);
     json.key("convexScene").value(plan.convexScene);
     json.key("minWeight").value(plan.settings.minWeight);
     json.key("maxDepth").value(plan.settings.maxDepth);
@@ -141,6 +147,7 @@ void writeEffectsPlan(csg::JsonWriter& json, const EffectsPlan& plan) {
         json.key("specular").value(m.specular);
         json.key("reflection").value(m.reflection);
         json.key("refraction").value(m.refraction);
+        json.key("transmission").vec(m.transmission, 3);
         json.endObject();
     }
     json.endArray();

@@ -4,6 +4,9 @@
 //   shadow rays   only toward a light with shadows on (per light and globally), non-zero
 //                 radiance, and a scene that can occlude it: a single convex solid cannot
 //                 shadow its own lit side, so a convex scene casts none;
+//   filtering     only when a material in use transmits light: a shadow ray then reads the
+//                 spans it crosses (each one filters the light by its material's
+//                 transmission) instead of stopping at the first solid;
 //   direct light  only on materials with diffuse or specular > 0 (no lights: none at all);
 //   specular      only on materials with specular > 0;
 //   reflection    only from materials with reflect > 0;
@@ -47,6 +50,9 @@ struct PlannedMaterial {
     bool specular = false;    // the Blinn-Phong term
     bool reflection = false;  // mirror rays
     bool refraction = false;  // refracted rays (and total internal reflection)
+    // Linear RGB share of the light a shadow ray keeps for each span of this material it
+    // crosses: transmit times the colour (POV-Ray's filter); 0 for an opaque material.
+    csg::Vec3 transmission{0.0};
 };
 
 struct EffectsPlan {
@@ -61,6 +67,9 @@ struct EffectsPlan {
     // Summaries over the materials in use and the lights.
     bool shadowRays = false, direct = false, specular = false, reflection = false,
          refraction = false;
+    // Shadow rays are filtered (a material in use transmits light): they read the spans they
+    // cross, where an all-opaque scene asks only whether anything is in the way.
+    bool filteredShadows = false;
 
     // The material of a leaf's tag (an out-of-range tag reads as entry 0, like SceneLook).
     const PlannedMaterial& material(uint32_t tag) const {

@@ -69,12 +69,4 @@ RenderCamera::RenderCamera(const Camera& c, int width, int height)
     halfHeight_ = orthographic_ ? tanHalf * focusDistance_ : tanHalf;
 }
 
-csg::Ray RenderCamera::ray(double x, double y) const {
-    const double sx = (2.0 * x / width_ - 1.0) * halfHeight_ * aspect_;
-    const double sy = (1.0 - 2.0 * y / height_) * halfHeight_;
-    if (orthographic_)
-        return csg::Ray{eye_ + sx * right_ + sy * up_, forward_, 0.0, csg::kInfinity};
-    return csg::Ray{eye_, glm::normalize(forward_ + sx * right_ + sy * up_), 0.0, csg::kInfinity};
-}
-
 }  // namespace viewer::render

@@ -22,7 +22,19 @@ public:
 
     // The primary ray through image point (x, y): pixel units, origin at the top-left corner,
     // y down, so pixel (i, j) covers [i, i+1] x [j, j+1]. d is unit length, t in world units.
-    csg::Ray ray(double x, double y) const;
+    csg::Ray ray(double x, double y) const { return rayThrough(planeX(x), planeY(y)); }
+
+    // ray(x, y) in halves, for a caller that computes a column's or a row's half once (the
+    // renderer's tiles): the image-plane coordinates of x and of y, and the ray through the
+    // plane point (sx, sy). Inline, so the divisions left per ray are the normalization's.
+    double planeX(double x) const { return (2.0 * x / width_ - 1.0) * halfHeight_ * aspect_; }
+    double planeY(double y) const { return (1.0 - 2.0 * y / height_) * halfHeight_; }
+    csg::Ray rayThrough(double sx, double sy) const {
+        if (orthographic_)
+            return csg::Ray{eye_ + sx * right_ + sy * up_, forward_, 0.0, csg::kInfinity};
+        return csg::Ray{eye_, glm::normalize(forward_ + sx * right_ + sy * up_), 0.0,
+                        csg::kInfinity};
+    }
 
     const csg::Vec3& eye() const { return eye_; }
     const csg::Vec3& right() const { return right_; }

@@ -22,12 +22,14 @@ double unitFromBits(uint64_t bits) {
     return double(bits >> 11) * 0x1.0p-53;  // [0, 1) with every value a multiple of 2^-53
 }
 
-// What one worker thread owns: its Tracer and, for an Srgb8 render, its tile's floats.
-struct Worker {
-    Worker(const csg::Scene& scene, const EffectsPlan& plan, size_t tileChannels)
-        : tracer(scene, plan), tileFloats(tileChannels) {}
+// What one worker thread owns: its Tracer, for an Srgb8 render its tile's floats, and the
+// image-plane x of its tile's pixel centres.
+struct TileWorker {
+    TileWorker(const csg::Scene& scene, const EffectsPlan& plan, size_t tileChannels, int tile)
+        : tracer(scene, plan), tileFloats(tileChannels), columnX(size_t(tile)) {}
     Tracer tracer;
     std::vector<float> tileFloats;  // rows of `tile` pixels
+    std::vector<double> columnX;    // RenderCamera::planeX(x + 0.5), x from the tile's left
 };
 
 }  // namespace
@@ -65,18 +67,28 @@ TileBox tileBox(int index, int tilesX, int tile, int width, int height) {
     return {x0, y0, std::min(x0 + tile, width), std::min(y0 + tile, height)};
 }
 
+// columnX: scratch for the tile's width of image-plane x values.
 void traceTile(Tracer& tracer, const RenderCamera& camera, int n, const TileBox& box,
-               const TileOut& out) {
+               const TileOut& out, double* columnX) {
     const double sampleWeight = 1.0 / double(n * n);
+    // One sample per pixel (n = 1) is camera.ray(x + 0.5, y + 0.5), its column's half
+    // computed once per tile and its row's once per row: the same values, the same rays.
+    if (n == 1)
+        for (int x = box.x0; x < box.x1; ++x) columnX[x - box.x0] = camera.planeX(x + 0.5);
     for (int y = box.y0; y < box.y1; ++y) {
         float* row = out.floats + size_t(y - box.y0) * out.floatStride;
+        const double rowY = camera.planeY(y + 0.5);
         for (int x = box.x0; x < box.x1; ++x) {
             csg::Vec3 sum(0.0);
-            for (int sy = 0; sy < n; ++sy) {
-                for (int sx = 0; sx < n; ++sx) {
-                    double u, v;
-                    samplePosition(x, y, sx, sy, n, u, v);
-                    sum += tracer.tracePrimary(camera.ray(x + u, y + v));
+            if (n == 1) {
+                sum += tracer.tracePrimary(camera.rayThrough(columnX[x - box.x0], rowY));
+            } else {
+                for (int sy = 0; sy < n; ++sy) {
+                    for (int sx = 0; sx < n; ++sx) {
+                        double u, v;
+                        samplePosition(x, y, sx, sy, n, u, v);
+                        sum += tracer.tracePrimary(camera.ray(x + u, y + v));
+                    }
                 }
             }
             float* px = row + size_t(x - box.x0) * 3;
@@ -126,30 +138,30 @@ RenderResult renderImage(const csg::Scene& scene, const EffectsPlan& plan,
     const int tilesY = (height + tile - 1) / tile;
     const int tileCount = tilesX * tilesY;
 
-    std::vector<csg::WorkerSlot<Worker>> workers;
+    std::vector<csg::WorkerSlot<TileWorker>> workers;
     workers.reserve(size_t(settings.threads));
     for (int t = 0; t < settings.threads; ++t)
-        workers.emplace_back(scene, plan, srgb ? size_t(tile) * size_t(tile) * 3 : 0);
+        workers.emplace_back(scene, plan, srgb ? size_t(tile) * size_t(tile) * 3 : 0, tile);
     std::atomic<int> tilesDone{0};
 
     csg::parallelFor(
         uint64_t(tileCount), settings.threads,
         [&](int worker, uint64_t index) {
-            Worker& own = workers[size_t(worker)].value;
+            TileWorker& own = workers[size_t(worker)].value;
             const TileBox box = tileBox(int(index), tilesX, tile, width, height);
             const TileOut out =
                 srgb ? TileOut{own.tileFloats.data(), size_t(tile) * 3,
                                result.srgb.row(box.y0) + size_t(box.x0) * 3, size_t(width) * 3}
                      : TileOut{&result.image.rgb[(size_t(box.y0) * size_t(width) + box.x0) * 3],
                                size_t(width) * 3, nullptr, 0};
-            traceTile(own.tracer, camera, settings.samplesPerAxis, box, out);
+            traceTile(own.tracer, camera, settings.samplesPerAxis, box, out, own.columnX.data());
             const int done = tilesDone.fetch_add(1, std::memory_order_relaxed) + 1;
             // Worker 0 is the calling thread, the only one that may touch the meter.
             if (progress && worker == 0) progress->update(uint64_t(done), uint64_t(tileCount));
         },
         cancel);
 
-    for (const csg::WorkerSlot<Worker>& w : workers) addTracerCounts(w.value.tracer, result);
+    for (const csg::WorkerSlot<TileWorker>& w : workers) addTracerCounts(w.value.tracer, result);
     // A cancelled run leaves tiles undone (parallelFor starts none after it sees the flag).
     result.interrupted = tilesDone.load() < tileCount;
     if (progress)
@@ -157,11 +169,8 @@ RenderResult renderImage(const csg::Scene& scene, const EffectsPlan& plan,
     return result;
 }
 
-struct alignas(64) TileSet::Worker {
-    Worker(const csg::Scene& scene, const EffectsPlan& plan, size_t tileChannels)
-        : tracer(scene, plan), tileFloats(tileChannels) {}
-    Tracer tracer;
-    std::vector<float> tileFloats;
+struct alignas(64) TileSet::Worker : TileWorker {
+    using TileWorker::TileWorker;
 };
 
 TileSet::TileSet(const csg::Scene& scene, const EffectsPlan& plan, const RenderCamera& camera,
@@ -173,7 +182,7 @@ TileSet::TileSet(const csg::Scene& scene, const EffectsPlan& plan, const RenderC
     const size_t tileChannels = size_t(settings.tileSize) * size_t(settings.tileSize) * 3;
     // Worker is alignas(64), as WorkerSlot: its counters, written per ray, share no cache line.
     for (int t = 0; t < settings.threads; ++t)
-        workers_.push_back(std::make_unique<Worker>(scene, plan, tileChannels));
+        workers_.push_back(std::make_unique<Worker>(scene, plan, tileChannels, settings.tileSize));
 }
 
 TileSet::~TileSet() = default;
@@ -194,11 +203,12 @@ void TileSet::render(int worker, int index, std::string& pixels) {
     if (settings_.store == PixelStore::Srgb8) {
         traceTile(own.tracer, camera_, settings_.samplesPerAxis, box,
                   {own.tileFloats.data(), rowChannels, reinterpret_cast<uint8_t*>(pixels.data()),
-                   rowChannels});
+                   rowChannels},
+                  own.columnX.data());
     } else {
         // The floats straight into the string's bytes: own.tileFloats is aligned for them.
         traceTile(own.tracer, camera_, settings_.samplesPerAxis, box,
-                  {own.tileFloats.data(), rowChannels, nullptr, 0});
+                  {own.tileFloats.data(), rowChannels, nullptr, 0}, own.columnX.data());
         std::memcpy(pixels.data(), own.tileFloats.data(), pixels.size());
     }
 }

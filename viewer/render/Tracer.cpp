@@ -7,6 +7,14 @@
 
 namespace viewer::render {
 
+namespace {
+
+bool positive(const csg::Vec3& c) {
+    return c.r > 0.0 || c.g > 0.0 || c.b > 0.0;
+}
+
+}  // namespace
+
 csg::Vec3 Tracer::tracePrimary(const csg::Ray& ray) {
     ++rays.primary;
     return trace(ray, RayKind::Primary, 0, 1.0);
@@ -79,6 +87,20 @@ csg::Vec3 Tracer::patternColor(const ShadingMaterial& s, const csg::SurfacePoint
     return sampleTexture(plan_.textures[size_t(s.texture)], uv, s.inverseScale);
 }
 
+csg::Vec3 Tracer::lightThrough(const csg::Ray& shadow) {
+    csg::Vec3 through(1.0);
+    for (const csg::Span& span : scene_.spans(shadow, context)) {
+        // The regularized union's span: its material is the one the ray enters by (or leaves
+        // by, when it starts inside); a span that either end makes opaque blocks, so an opaque
+        // solid that cuts into glass is not seen through.
+        const PlannedMaterial& in = plan_.material(scene_.leafTags(span.in.leaf).material);
+        const PlannedMaterial& out = plan_.material(scene_.leafTags(span.out.leaf).material);
+        if (!positive(in.transmission) || !positive(out.transmission)) return csg::Vec3(0.0);
+        through *= span.in.isSurface() ? in.transmission : out.transmission;
+    }
+    return through;
+}
+
 csg::Vec3 Tracer::directLight(const PlannedMaterial& m, const csg::Vec3& albedo,
                               const csg::Vec3& point, const csg::Vec3& pointError,
                               const csg::Vec3& n, const csg::Vec3& view) {
@@ -89,13 +111,20 @@ csg::Vec3 Tracer::directLight(const PlannedMaterial& m, const csg::Vec3& albedo,
         const csg::Vec3 toLight = light.position - point;
         const double nDotL = glm::dot(n, toLight);
         if (nDotL <= 0.0) continue;  // the light is behind the surface
+        csg::Vec3 radiance = light.radiance;
         if (light.shadowRays) {
             // t runs from the offset origin (0) to the light (1): tmax is the light itself,
             // and occluded() computes no point or normal.
             const csg::Vec3 origin = offsetRayOrigin(point, pointError, n, toLight);
             const csg::Ray shadow{origin, light.position - origin, 0.0, 1.0};
             ++rays.shadow;
-            if (scene_.occluded(shadow, context, occluders_[i])) continue;
+            if (plan_.filteredShadows) {
+                const csg::Vec3 through = lightThrough(shadow);
+                if (!positive(through)) continue;
+                radiance *= through;
+            } else if (scene_.occluded(shadow, context, occluders_[i])) {
+                continue;
+            }
         }
         const double distance = glm::length(toLight);
         const csg::Vec3 l = toLight / distance;
@@ -106,7 +135,7 @@ csg::Vec3 Tracer::directLight(const PlannedMaterial& m, const csg::Vec3& albedo,
             const double nDotH = glm::dot(n, h);
             if (nDotH > 0.0) term += csg::Vec3(s.specular * highlight(nDotH, s));
         }
-        sum += light.radiance * term;
+        sum += radiance * term;
     }
     return sum;
 }

@@ -7,8 +7,12 @@
 // d . normal > 0. That is how refraction knows its side: a ray inside a glass part that was
 // cut by a difference leaves through the cut face, whose normal points into the cut.
 //
-// Whitted's simplifications, kept on purpose: every solid is opaque to shadow rays (glass
-// included), reflect and transmit are constant weights (no Fresnel term), the medium outside
+// Light through glass: a shadow ray is stopped only by an opaque solid. Each span of a
+// transmissive one that it crosses filters the light by the material's transmission (transmit
+// times its colour, per channel, as POV-Ray's filter), once per span, without bending it.
+//
+// Whitted's simplifications, kept on purpose: reflect and transmit are constant weights (no
+// Fresnel term), a shadow ray through glass goes straight (no caustics), the medium outside
 // every solid is air (ior 1), and a colour's alpha is not transparency (use transmit).
 //
 // One Tracer per thread: it owns the thread's QueryContext and ray counters. The per-ray path
@@ -60,6 +64,9 @@ private:
     // The colour of a patterned material at a hit of `leaf` (Pattern.h's planar maps).
     csg::Vec3 patternColor(const ShadingMaterial& s, const csg::SurfacePoint& surface,
                            uint32_t leaf);
+    // The share of the light (linear RGB) that reaches the end of a shadow ray through the
+    // spans it crosses: 0 at the first opaque span.
+    csg::Vec3 lightThrough(const csg::Ray& shadow);
 
     const csg::Scene& scene_;
     const EffectsPlan& plan_;
