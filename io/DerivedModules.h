@@ -2,6 +2,7 @@
 // io/Hull.cpp, io/Minkowski.cpp; the geometry is csg/derived/'s).
 #pragma once
 
+#include "csg/derived/Offset2D.h"
 #include "io/Evaluator.h"
 #include "io/Faceting.h"
 
@@ -10,9 +11,14 @@ namespace io {
 // offset(r | delta, chamfer = false) of 2-D children (../shared/OPENSCAD.md section 2): exact
 // (lines and arcs of the result's boundary grown or shrunk, csg/derived/Offset2D.h), or, where
 // the curve mode facets a circle of radius |r| with the call's $fn, $fa, $fs, OpenSCAD 2021's
-// Clipper offset of the polygons (csg/derived/ClipperOffset2D.h).
+// Clipper offset of the polygons (csg/derived/Clipper2D.h).
 Instance offsetModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                       const GeomState& state);
+
+// The exact offset of a 2-D shape: the shape with the band its boundary sweeps (lines and arcs,
+// csg/derived/Offset2D.h) added (distance > 0) or cut away (< 0).
+csg::NodePtr exactOffset(Evaluator& e, Loc loc, const csg::NodePtr& shape, double distance,
+                         csg::OffsetJoin join, const csg::Tags& tags);
 
 // hull() of 2-D children (exact: tangents to arcs) or 3-D children (qhull over the vertices
 // of the children's result, curved solids faceted as OpenSCAD's).

@@ -11,9 +11,14 @@
 //     non-convex parts are not summed yet: an error that says so.
 // Curves that are still exact (curve mode auto without $fn) are faceted with minkowski()'s own
 // $fn, $fa, $fs, as hull() facets them.
+// Of 2-D shapes: with an exact circle (circle() the curve mode keeps exact, under a transform
+// that keeps it round) the exact offset of the other shape by its radius (lines and arcs,
+// io/Offset.cpp), moved by its centre; otherwise OpenSCAD's Clipper sum of the polygons
+// (csg/derived/Clipper2D.h), on its 2^-16 grid.
 #include <cmath>
 
 #include "csg/Scene.h"
+#include "csg/derived/Clipper2D.h"
 #include "csg/derived/Hull3D.h"
 #include "csg/derived/Minkowski3D.h"
 #include "csg/mesh/PolyhedralBoundary.h"
@@ -51,6 +56,72 @@ std::optional<Ball> ballOf(const csg::Node& node) {
     }
     if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0) return std::nullopt;
     return Ball{Vec3(m[3]), sphere->radius * scale};
+}
+
+struct Disc {
+    csg::Vec2 center;
+    double radius;
+};
+
+// The node as a disc in its parent's frame: a leaf whose outline is one whole circle, under
+// a rotation, uniform scale and translation of the plane.
+std::optional<Disc> discOf(const csg::Node& node) {
+    const auto* x = std::get_if<csg::Extrusion>(&node.primitive);
+    if (node.op != csg::Op::Leaf || !x || x->kind != csg::Extrusion::Kind::Plane || !x->outline ||
+        x->outline->segments.size() != 1)
+        return std::nullopt;
+    const csg::Segment2& arc = x->outline->segments.front();
+    if (arc.kind != csg::Segment2::Kind::Arc || arc.th1 - arc.th0 < 2.0 * csg::kPi)
+        return std::nullopt;
+    const csg::Vec2 a = arc.p[2], b = arc.p[3];
+    const double r = glm::length(a);
+    if (std::abs(glm::length(b) - r) > csg::tol::kBallTransformRel * r ||
+        std::abs(glm::dot(a, b)) > csg::tol::kBallTransformRel * r * r)
+        return std::nullopt;
+    const Mat4& m = node.parentFromNode;
+    const csg::Vec2 mx(m[0][0], m[0][1]), my(m[1][0], m[1][1]);
+    const double scale = glm::length(mx);
+    if (std::abs(glm::length(my) - scale) > csg::tol::kBallTransformRel * scale ||
+        std::abs(glm::dot(mx, my)) > csg::tol::kBallTransformRel * scale * scale)
+        return std::nullopt;
+    const csg::Vec2 c = arc.p[1];
+    return Disc{mx * c.x + my * c.y + csg::Vec2(m[3][0], m[3][1]), r * scale};
+}
+
+Mat4 translation(const Vec3& t) {
+    Mat4 m(1.0);
+    m[3] = glm::dvec4(t, 1.0);
+    return m;
+}
+
+// a ⊕ b of 2-D shapes (see the head of this file).
+NodePtr sum2D(Evaluator& e, const InstantiationStmt& s, const NodePtr& a, const NodePtr& b,
+              const csg::Tags& tags) {
+    const std::optional<Disc> discA = discOf(*a), discB = discOf(*b);
+    if (discA && discB) {
+        csg::Outline circle;
+        const double r = discA->radius + discB->radius;
+        circle.segments.push_back(csg::Segment2::arc(discA->center + discB->center,
+                                                     csg::Vec2(r, 0.0), csg::Vec2(0.0, r), 0.0,
+                                                     2.0 * csg::kPi));
+        return csg::leaf(
+            csg::Extrusion::plane(std::make_shared<csg::Outline>(std::move(circle)), "minkowski"),
+            tags);
+    }
+    if (discA || discB) {
+        const Disc& disc = discB ? *discB : *discA;
+        const NodePtr grown =
+            exactOffset(e, s.loc, discB ? a : b, disc.radius, csg::OffsetJoin::Round, tags);
+        return csg::transformed(translation(Vec3(disc.center, 0.0)), grown);
+    }
+    std::string error;
+    std::optional<csg::Outline> outline = csg::clipperMinkowski(*a, *b, error);
+    if (!outline) e.fail(s.loc, "minkowski(): " + error);
+    e.spend(s.loc, outline->segments.size());
+    if (outline->segments.empty()) return NodePtr();
+    return csg::leaf(
+        csg::Extrusion::plane(std::make_shared<csg::Outline>(std::move(*outline)), "minkowski"),
+        tags);
 }
 
 class Summer {
@@ -104,12 +175,6 @@ private:
         std::vector<General> general;  // each with a boundary: empty parts are left out
         bool empty() const { return pieces.empty() && general.empty(); }
     };
-
-    static Mat4 translation(const Vec3& t) {
-        Mat4 m(1.0);
-        m[3] = glm::dvec4(t, 1.0);
-        return m;
-    }
 
     // A straight linear_extrude (no twist, one scale for x and y: a frustum of a pyramid over
     // its section) of a single loop that turns one way is convex.
@@ -312,8 +377,12 @@ Instance minkowskiModule(Evaluator& e, const InstantiationStmt& s, const Context
     std::erase(parts, nullptr);  // empty children are skipped, as OpenSCAD skips them
     if (parts.empty()) return NodePtr();
     if (parts.size() == 1) return parts.front();
-    if (dimensionOf(parts.front()) == 2)
-        e.fail(s.loc, "minkowski() of 2-D shapes is not supported by csgray yet");
+    if (dimensionOf(parts.front()) == 2) {
+        NodePtr result = parts.front();
+        for (size_t i = 1; i < parts.size() && result; ++i)
+            result = sum2D(e, s, result, parts[i], tags);
+        return result;
+    }
     Summer summer(e, s, settings, tags);
     NodePtr result = parts.front();
     for (size_t i = 1; i < parts.size() && result; ++i) result = summer.sum(result, parts[i]);

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <memory>
 
-#include "csg/derived/ClipperOffset2D.h"
+#include "csg/derived/Clipper2D.h"
 #include "csg/derived/Offset2D.h"
 #include "io/BoundArgs.h"
 #include "io/Degrees.h"
@@ -75,17 +75,22 @@ Instance offsetModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr
         return offsetLeaf(std::move(*outline), tags);
     }
 
-    const csg::Region2D region(**children);
+    return exactOffset(e, s.loc, *children, distance, join, tags);
+}
+
+csg::NodePtr exactOffset(Evaluator& e, Loc loc, const csg::NodePtr& shape, double distance,
+                         csg::OffsetJoin join, const csg::Tags& tags) {
+    const csg::Region2D region(*shape);
     const csg::Boundary2D boundary = csg::boundaryOf(region);
     std::vector<csg::NodePtr> band;
     for (csg::Outline& chunk : csg::offsetBand(boundary, distance, join)) {
-        e.spend(s.loc, chunk.segments.size());
+        e.spend(loc, chunk.segments.size());
         band.push_back(offsetLeaf(std::move(chunk), tags));
     }
-    if (band.empty()) return children;
+    if (band.empty()) return shape;
     const csg::NodePtr bandNode = csg::uniteAll(band, tags);
-    return distance > 0.0 ? csg::unite(*children, bandNode, tags)
-                          : csg::subtract(*children, bandNode, tags);
+    return distance > 0.0 ? csg::unite(shape, bandNode, tags)
+                          : csg::subtract(shape, bandNode, tags);
 }
 
 }  // namespace io

@@ -1,7 +1,8 @@
-// minkowski() of solids (io/Minkowski.cpp, csg/derived/Minkowski3D.h): boxes summed by hand, the
-// exact rounded box against its closed-form volume and its corner ball, a non-convex operand
-// (a frame) summed with a box and with a ball, OpenSCAD 2021's own sums of faceted solids
-// against csgray's, and the cases csgray refuses with their reason.
+// minkowski() (io/Minkowski.cpp, csg/derived/Minkowski3D.h, csg/derived/Clipper2D.h): boxes
+// summed by hand, the exact rounded box against its closed-form volume and its corner ball, a
+// non-convex operand (a frame) summed with a box and with a ball, OpenSCAD 2021's own sums of
+// faceted solids and polygons against csgray's, the case csgray refuses with its reason; 2-D
+// shapes rounded by an exact circle and summed as Clipper sums them, by hand.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -98,9 +99,9 @@ TEST(Minkowski, NonConvexFrameWithABoxAndWithABall) {
 }
 
 TEST(Minkowski, FacetedSumsAreOpenScadsPolyhedra) {
-    // With $fn the curves are OpenSCAD's polyhedra, and so is their sum. OpenSCAD 2021's own
-    // mesh of each part, imported, must give the same spans on lines in general position
-    // (its STL has 6 significant digits: ends agree to 1e-4 on these 5-unit parts).
+    // With $fn the curves are OpenSCAD's polyhedra (polygons), and so is their sum. OpenSCAD 2021's
+    // own mesh of each part, imported, must give the same spans on lines in general position (its
+    // STL has 6 significant digits: ends agree to 1e-4 on these 5-unit parts).
     if (std::system("openscad --version >/dev/null 2>&1") != 0)
         SKIP_OR_FAIL_IN_CI("openscad (2021.01, Debian's) is not installed");
     const std::string parts[] = {
@@ -108,6 +109,10 @@ TEST(Minkowski, FacetedSumsAreOpenScadsPolyhedra) {
         "minkowski() { cylinder(r = 2, h = 1, $fn = 6); rotate([30, 20, 10]) cube(1); }",
         "minkowski() { difference() { cube(4); translate([1, 1, -1]) cube([2, 2, 6]); } "
         "cylinder(r = 0.5, h = 0.5, $fn = 8); }",
+        // 2-D: Clipper's sums, on its grid, extruded.
+        "linear_extrude(1) minkowski() { square([3, 2]); circle(1, $fn = 8); }",
+        "linear_extrude(1) minkowski() { polygon([[0,0],[4,0],[4,1],[1,1],[1,4],[0,4]]); "
+        "rotate(10) circle(0.5, $fn = 6); }",
     };
     csg::testing::TempDir dir("csgray_minkowski");
     std::mt19937 random(11);
@@ -149,11 +154,51 @@ TEST(Minkowski, RefusesWhatItCannotSumWithTheReason) {
                         "non-convex solid"),
               std::string::npos)
         << diagnosticsOf(twoConcave);
-    const auto flat = evaluate("minkowski() { square(2); circle(1); }");
-    EXPECT_FALSE(flat.ok());
-    EXPECT_NE(diagnosticsOf(flat).find("minkowski() of 2-D shapes is not supported"),
-              std::string::npos)
-        << diagnosticsOf(flat);
+}
+
+// Along x at height y through a 2-D part extruded to z in [0, 1]: the spans in x.
+void expectRow(const csg::Scene& scene, double y, std::vector<csg::testing::Interval> xs,
+               double tol) {
+    for (auto& i : xs) i.in += 100.0, i.out += 100.0;
+    expectSpans(scene, {-100.0, y, 0.5}, {1, 0, 0}, xs, tol, true);
+}
+
+TEST(Minkowski2D, ExactCircleRoundsAShape) {
+    // square(2) plus the circle of radius 1 about (5, 0): the square grown by 1 with round
+    // corners, moved by 5 in x. Above the top edge (2 < y < 3) the corner circles give
+    // x in [5 - h, 7 + h], h = sqrt(1 - (y - 2)^2).
+    const csg::Scene scene =
+        compiled("linear_extrude(1) minkowski() { square(2); translate([5, 0]) circle(1); }");
+    expectRow(scene, 1.0, {{4, 8}}, 1e-12);
+    for (double y : {2.25, 2.5, 2.9}) {
+        const double h = std::sqrt(1.0 - (y - 2) * (y - 2));
+        expectRow(scene, y, {{5 - h, 7 + h}}, 1e-12);
+    }
+    expectRow(scene, 3.001, {}, 0.0);
+    // Two circles make one of the summed radius about the summed centre.
+    const csg::Scene two = compiled(
+        "linear_extrude(1) minkowski() { translate([1, 0]) circle(1); circle(2, $fn = 0); }");
+    expectRow(two, 0.0, {{-2, 4}}, 1e-12);
+    expectRow(two, 2.0, {{1 - std::sqrt(5.0), 1 + std::sqrt(5.0)}}, 1e-12);
+}
+
+TEST(Minkowski2D, PolygonsAddAsOpenScadsClipperSum) {
+    // square(2) plus a square(1) turned 45 degrees about the origin (a diamond of half
+    // diagonal sqrt(2)/2): an octagon; across the middle it spans x in [-s, 2 + s].
+    const double s = std::sqrt(0.5);
+    const csg::Scene scene = compiled(
+        "linear_extrude(1) minkowski() { square(2); rotate(45) translate([-0.5, -0.5]) "
+        "square(1); }");
+    // On Clipper's 2^-16 grid (points truncated onto it).
+    expectRow(scene, 1.0, {{-s, 2 + s}}, 2.0 / 65536);
+    expectRow(scene, 2.0 + s - 0.1, {{-0.1, 2.1}}, 2.0 / 65536);  // the 45-degree sides
+    // An L (non-convex) plus a small square: the notch fills only where the square reaches.
+    const csg::Scene el = compiled(
+        "linear_extrude(1) minkowski() { polygon([[0,0],[4,0],[4,1],[1,1],[1,4],[0,4]]); "
+        "square(0.5); }");
+    expectRow(el, 1.25, {{0, 4.5}}, 1e-12);
+    expectRow(el, 1.75, {{0, 1.5}}, 1e-12);
+    expectRow(el, 4.25, {{0, 1.5}}, 1e-12);
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
-// offset() as OpenSCAD 2021 computes it, for parts whose curves are faceted as OpenSCAD's
-// (--curves openscad, or $fn on the offset): the shape's polygons on Clipper's integer grid
-// of 2^-16, offset by Clipper's ClipperOffset with OpenSCAD's join and arc tolerance, and
-// cleaned as OpenSCAD cleans every Clipper result. csgray keeps a 2-D shape as a tree
+// offset() and minkowski() of 2-D shapes as OpenSCAD 2021 computes them with Clipper, for
+// parts whose curves are faceted as OpenSCAD's (--curves openscad, or $fn): the shapes'
+// polygons on Clipper's integer grid of 2^-16, offset by Clipper's ClipperOffset with OpenSCAD's
+// join and arc tolerance, or summed as ClipperUtils::applyMinkowski sums them, and cleaned as
+// OpenSCAD cleans every Clipper result. csgray keeps a 2-D shape as a tree
 // (io/Shapes2D.h); OpenSCAD evaluates each node to polygons at once, so the tree is replayed
 // node by node (2021 src/GeometryEvaluator.cc, src/clipper-utils.cc):
 //   a leaf          its outlines, each point truncated onto the grid (x * 2^16 to an
@@ -40,5 +41,13 @@ struct ClipperOffsetSpec {
 // `error` set when Clipper refuses the input (coordinates beyond its range, about 7e13).
 std::optional<Outline> clipperOffset(const Node& shape, const ClipperOffsetSpec& spec,
                                      std::string& error);
+
+// minkowski() of 2-D shapes as OpenSCAD 2021's ClipperUtils::applyMinkowski: for every pair
+// of contours of a and b, Clipper's MinkowskiSum (the quads swept by one contour's edges along
+// the other's), plus every contour of each shape moved by the first point of every
+// counter-clockwise contour of the other (filling the insides), all united with the nonzero
+// rule. One even-odd outline of straight segments as clipperOffset's; nullopt and `error` set
+// when Clipper refuses the input.
+std::optional<Outline> clipperMinkowski(const Node& a, const Node& b, std::string& error);
 
 }  // namespace csg

@@ -1,4 +1,4 @@
-#include "csg/derived/ClipperOffset2D.h"
+#include "csg/derived/Clipper2D.h"
 
 #include <clipper.hpp>
 
@@ -100,25 +100,81 @@ private:
     double tolerance_;
 };
 
+// The largest coordinate of the shape's leaves (at least 1): the scale of its chord tolerance.
+double sizeOf(const Node& shape) {
+    double size = 1.0;
+    std::function<void(const Node&)> measure = [&](const Node& n) {
+        if (n.op == Op::Leaf) {
+            if (const auto* e = std::get_if<Extrusion>(&n.primitive); e && !e->box.empty())
+                size = std::max({size, std::abs(e->box.lo.x), std::abs(e->box.lo.y),
+                                 std::abs(e->box.hi.x), std::abs(e->box.hi.y)});
+            return;
+        }
+        if (n.left) measure(*n.left);
+        if (n.right) measure(*n.right);
+    };
+    measure(shape);
+    return size;
+}
+
+// The shape's polygons as OpenSCAD holds them (see the header).
+cl::Paths polygonsOf(const Node& shape) {
+    Replay replay(tol::kFlattenRel * sizeOf(shape));
+    return replay.paths(shape, glm::dmat2(1.0), Vec2(0.0));
+}
+
+// A Clipper result as one outline: outer curves counter-clockwise, holes clockwise, so
+// even-odd is exact.
+Outline outlineOf(const cl::PolyTree& tree) {
+    Outline out;
+    for (const cl::Path& path : cleaned(tree)) {
+        for (size_t i = 0; i < path.size(); ++i) {
+            const cl::IntPoint& p = path[i];
+            const cl::IntPoint& q = path[(i + 1) % path.size()];
+            out.segments.push_back(
+                Segment2::line(Vec2(double(p.X) / kScale, double(p.Y) / kScale),
+                               Vec2(double(q.X) / kScale, double(q.Y) / kScale)));
+        }
+    }
+    return out;
+}
+
+// Runs a Clipper computation, turning its exceptions into `error`.
+template <class F>
+std::optional<Outline> guarded(std::string& error, F&& compute) {
+    try {
+        return compute();
+    } catch (const std::exception& x) {
+        error = x.what();
+    } catch (...) {
+        // Clipper 6 throws a clipperException (or, before 6.2.2, a char*) on a range error.
+        error = "Clipper refused the polygons (coordinates beyond its range)";
+    }
+    return std::nullopt;
+}
+
+// OpenSCAD's fill_minkowski_insides: every path of a moved by the first point of each
+// counter-clockwise path of b.
+void fillInsides(const cl::Paths& a, const cl::Paths& b, cl::Paths& target) {
+    for (const cl::Path& bPath : b) {
+        if (bPath.empty() || !cl::Orientation(bPath)) continue;
+        const cl::IntPoint delta = bPath[0];
+        for (const cl::Path& path : a) {
+            target.push_back(path);
+            for (cl::IntPoint& p : target.back()) {
+                p.X += delta.X;
+                p.Y += delta.Y;
+            }
+        }
+    }
+}
+
 }  // namespace
 
 std::optional<Outline> clipperOffset(const Node& shape, const ClipperOffsetSpec& spec,
                                      std::string& error) {
-    try {
-        double size = 1.0;
-        std::function<void(const Node&)> measure = [&](const Node& n) {
-            if (n.op == Op::Leaf) {
-                if (const auto* e = std::get_if<Extrusion>(&n.primitive); e && !e->box.empty())
-                    size = std::max({size, std::abs(e->box.lo.x), std::abs(e->box.lo.y),
-                                     std::abs(e->box.hi.x), std::abs(e->box.hi.y)});
-                return;
-            }
-            if (n.left) measure(*n.left);
-            if (n.right) measure(*n.right);
-        };
-        measure(shape);
-        Replay replay(tol::kFlattenRel * size);
-        const cl::Paths input = replay.paths(shape, glm::dmat2(1.0), Vec2(0.0));
+    return guarded(error, [&] {
+        const cl::Paths input = polygonsOf(shape);
         cl::JoinType join = cl::jtRound;
         if (spec.join == OffsetJoin::Miter) join = cl::jtMiter;
         if (spec.join == OffsetJoin::Chamfer) join = cl::jtSquare;
@@ -127,24 +183,28 @@ std::optional<Outline> clipperOffset(const Node& shape, const ClipperOffsetSpec&
         offset.AddPaths(input, join, cl::etClosedPolygon);
         cl::PolyTree tree;
         offset.Execute(tree, spec.delta * kScale);
-        Outline out;  // outer curves counter-clockwise, holes clockwise: even-odd is exact
-        for (const cl::Path& path : cleaned(tree)) {
-            for (size_t i = 0; i < path.size(); ++i) {
-                const cl::IntPoint& p = path[i];
-                const cl::IntPoint& q = path[(i + 1) % path.size()];
-                out.segments.push_back(
-                    Segment2::line(Vec2(double(p.X) / kScale, double(p.Y) / kScale),
-                                   Vec2(double(q.X) / kScale, double(q.Y) / kScale)));
+        return outlineOf(tree);
+    });
+}
+
+std::optional<Outline> clipperMinkowski(const Node& a, const Node& b, std::string& error) {
+    return guarded(error, [&] {
+        const cl::Paths lhs = polygonsOf(a), rhs = polygonsOf(b);
+        cl::Paths terms;
+        for (const cl::Path& r : rhs)
+            for (const cl::Path& l : lhs) {
+                cl::Paths swept;
+                cl::MinkowskiSum(l, r, swept, true);
+                terms.insert(terms.end(), swept.begin(), swept.end());
             }
-        }
-        return out;
-    } catch (const std::exception& x) {
-        error = x.what();
-    } catch (...) {
-        // Clipper 6 throws a clipperException (or, before 6.2.2, a char*) on a range error.
-        error = "Clipper refused the polygons (coordinates beyond its range)";
-    }
-    return std::nullopt;
+        fillInsides(lhs, rhs, terms);
+        fillInsides(rhs, lhs, terms);
+        cl::Clipper clipper;
+        clipper.AddPaths(terms, cl::ptSubject, true);
+        cl::PolyTree tree;
+        clipper.Execute(cl::ctUnion, tree, cl::pftNonZero, cl::pftNonZero);
+        return outlineOf(tree);
+    });
 }
 
 }  // namespace csg
