@@ -88,12 +88,6 @@ std::optional<Disc> discOf(const csg::Node& node) {
     return Disc{mx * c.x + my * c.y + csg::Vec2(m[3][0], m[3][1]), r * scale};
 }
 
-Mat4 translation(const Vec3& t) {
-    Mat4 m(1.0);
-    m[3] = glm::dvec4(t, 1.0);
-    return m;
-}
-
 // a ⊕ b of 2-D shapes (see the head of this file).
 NodePtr sum2D(Evaluator& e, const InstantiationStmt& s, const NodePtr& a, const NodePtr& b,
               const csg::Tags& tags) {
@@ -112,7 +106,7 @@ NodePtr sum2D(Evaluator& e, const InstantiationStmt& s, const NodePtr& a, const 
         const Disc& disc = discB ? *discB : *discA;
         const NodePtr grown =
             exactOffset(e, s.loc, discB ? a : b, disc.radius, csg::OffsetJoin::Round, tags);
-        return csg::transformed(translation(Vec3(disc.center, 0.0)), grown);
+        return csg::transformed(glm::translate(Mat4(1.0), Vec3(disc.center, 0.0)), grown);
     }
     std::string error;
     std::optional<csg::Outline> outline = csg::clipperMinkowski(*a, *b, error);
@@ -135,7 +129,7 @@ public:
     NodePtr sum(const NodePtr& a, const NodePtr& b) {
         const std::optional<Ball> ballA = ballOf(*a), ballB = ballOf(*b);
         if (ballA && ballB)
-            return csg::transformed(translation(ballA->center + ballB->center),
+            return csg::transformed(glm::translate(Mat4(1.0), ballA->center + ballB->center),
                                     csg::leaf(csg::Sphere{ballA->radius + ballB->radius}, tags_));
         if (ballB) return withBall(a, b, *ballB);
         if (ballA) return withBall(b, a, *ballA);
@@ -336,7 +330,7 @@ private:
         for (const auto& [solid, boundary] : general.general) {
             for (const auto& piece : convex.pieces) {
                 e_.spend(s_.loc, boundary.triangles.size() * piece.size());
-                parts.push_back(csg::transformed(translation(piece.front()), solid));
+                parts.push_back(csg::transformed(glm::translate(Mat4(1.0), piece.front()), solid));
                 std::vector<NodePtr> hulls = csg::sumsOfBoundaryWithConvex(boundary, piece, tags_);
                 parts.insert(parts.end(), hulls.begin(), hulls.end());
             }
@@ -351,7 +345,7 @@ private:
         e_.spend(s_.loc, 4 * boundary.triangles.size());
         std::vector<NodePtr> parts =
             csg::sumsOfBoundaryWithBall(boundary, ball.center, ball.radius, tags_);
-        parts.push_back(csg::transformed(translation(ball.center), faceted));
+        parts.push_back(csg::transformed(glm::translate(Mat4(1.0), ball.center), faceted));
         return csg::uniteAll(parts, tags_);
     }
 

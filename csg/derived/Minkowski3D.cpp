@@ -28,12 +28,6 @@ Mat4 frameAlong(const Vec3& a, const Vec3& b) {
     return m;
 }
 
-Mat4 translation(const Vec3& t) {
-    Mat4 m(1.0);
-    m[3] = glm::dvec4(t, 1.0);
-    return m;
-}
-
 // The triangle's corners.
 std::array<Vec3, 3> cornersOf(const TriangleMesh& mesh, const std::array<uint32_t, 3>& t) {
     return {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
@@ -103,7 +97,8 @@ std::vector<NodePtr> sumsOfBoundaryWithBall(const TriangleMesh& boundary, const 
     }
     // A ball at every corner.
     for (const Vec3& p : boundary.positions)
-        leaves.push_back(transformed(translation(p + center), leaf(Sphere{radius}, tags)));
+        leaves.push_back(
+            transformed(glm::translate(Mat4(1.0), p + center), leaf(Sphere{radius}, tags)));
     return leaves;
 }
 
