@@ -55,6 +55,9 @@ TEST(Minkowski, ConvexPolyhedraAreSummedWhole) {
 TEST(Minkowski, ExactBallRoundsABoxWithNoFacets) {
     // The box [-1, 1]^3 rounded by a ball of radius 1 (no $fn: the ball stays exact).
     const csg::Scene scene = compiled("minkowski() { cube(2, center = true); sphere(1); }");
+    // The box, a prism on each of its 6 faces (one per face: no seam across a face), a
+    // cylinder on each of its 12 edges, a ball at each of its 8 corners.
+    EXPECT_EQ(scene.leafCount(), 1u + 6u + 12u + 8u);
     // Along a diagonal the surface is the corner ball's: at sqrt(3) + 1 from the centre.
     const Vec3 d = glm::normalize(Vec3(1, 1, 1));
     const double reach = std::sqrt(3.0) + 1.0;
