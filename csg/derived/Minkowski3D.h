@@ -34,8 +34,9 @@ std::optional<ConvexPolytope> hullOfSums(std::span<const Vec3> a, std::span<cons
 std::vector<NodePtr> sumsOfBoundaryWithConvex(const TriangleMesh& boundary,
                                               std::span<const Vec3> convex, Tags tags);
 
-// The leaves of ⋃_T (T ⊕ ball(c, r)) over boundary's triangles: prisms, edge cylinders and
-// corner balls, in boundary's frame. The caller adds P + c.
+// The leaves of ⋃_T (T ⊕ ball(c, r)) over boundary's triangles, in boundary's frame: a prism
+// per face (coplanar triangles joined across flat edges, one prism when the face is convex,
+// else one per triangle), edge cylinders and corner balls. The caller adds P + c.
 std::vector<NodePtr> sumsOfBoundaryWithBall(const TriangleMesh& boundary, const Vec3& center,
                                             double radius, Tags tags);
 
