@@ -48,12 +48,12 @@ void checkAndCharge(Evaluator& e, const InstantiationStmt& s, const FragmentSett
     e.spend(s.loc, kFacetSteps * 2 * faces);
 }
 
-csg::ConvexPolytope build(FacetedSolid solid, csg::ConvexPolytope::Origin origin) {
+}  // namespace
+
+csg::ConvexPolytope polytopeOf(FacetedSolid solid, csg::ConvexPolytope::Origin origin) {
     return csg::ConvexPolytope::fromFaces(std::move(solid.vertices), solid.faceVertices,
                                           solid.faceStarts, origin);
 }
-
-}  // namespace
 
 FragmentSettings unclampedFragmentSettings(Evaluator& e, const BoundArgs& b,
                                            const ContextPtr& ctx) {
@@ -90,7 +90,7 @@ std::optional<csg::ConvexPolytope> cylinderPolytope(Evaluator& e, const Instanti
                    [&] { return int64_t(csg::ConvexPolytope::kMaxPlanes) - caps; });
     // OpenSCAD's ends: z1 = 0 and z2 = h, or -h/2 and +h/2 centred.
     const double z1 = center ? -h / 2 : 0.0, z2 = center ? +h / 2 : h;
-    return build(facetedCylinder(r1, r2, z1, z2, n), {"cylinder", uint32_t(n), 0});
+    return polytopeOf(facetedCylinder(r1, r2, z1, z2, n), {"cylinder", uint32_t(n), 0});
 }
 
 std::optional<csg::ConvexPolytope> spherePolytope(Evaluator& e, const InstantiationStmt& s,
@@ -99,7 +99,7 @@ std::optional<csg::ConvexPolytope> spherePolytope(Evaluator& e, const Instantiat
     const int64_t n = fragments(r, settings);
     checkAndCharge(e, s, settings, n, facetedSphereFaceCount(n),
                    [] { return mostFragments(facetedSphereFaceCount); });
-    return build(facetedSphere(r, n), {"sphere", uint32_t(n), uint32_t(sphereRingCount(n))});
+    return polytopeOf(facetedSphere(r, n), {"sphere", uint32_t(n), uint32_t(sphereRingCount(n))});
 }
 
 }  // namespace io

@@ -20,8 +20,10 @@ FragmentSettings fragmentSettings(Evaluator& e, const BoundArgs& b, const Contex
 // The same read without clamping or warnings, as OpenSCAD's offset() and text() read them
 // (they are no primitives to OpenSCAD and hand $fa and $fs to their fragment counts as they
 // are).
-FragmentSettings unclampedFragmentSettings(Evaluator& e, const BoundArgs& b,
-                                           const ContextPtr& ctx);
+FragmentSettings unclampedFragmentSettings(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx);
+
+// A faceted solid as the convex polytope ray casts answer (origin: what describe() names).
+csg::ConvexPolytope polytopeOf(FacetedSolid solid, csg::ConvexPolytope::Origin origin = {});
 
 // The convex polyhedron OpenSCAD makes of cylinder(h, r1, r2, center), vertex for vertex, when
 // the curve mode facets it (see CurveMode); nullopt when the exact cylinder stays. The

@@ -15,6 +15,7 @@
 // that keeps it round) the exact offset of the other shape by its radius (lines and arcs,
 // io/Offset.cpp), moved by its centre; otherwise OpenSCAD's Clipper sum of the polygons
 // (csg/derived/Clipper2D.h), on its 2^-16 grid.
+#include <array>
 #include <cmath>
 
 #include "csg/Scene.h"
@@ -34,6 +35,21 @@ using csg::Mat4;
 using csg::NodePtr;
 using csg::Vec3;
 
+// The common length of axes that are pairwise orthogonal and equally long, to
+// tol::kBallTransformRel: the scale of a map that keeps a ball (a disc) round; else nothing.
+template <class V, size_t N>
+std::optional<double> roundScale(const std::array<V, N>& axes) {
+    const double scale = glm::length(axes[0]);
+    for (size_t i = 0; i < N; ++i) {
+        if (std::abs(glm::length(axes[i]) - scale) > csg::tol::kBallTransformRel * scale)
+            return std::nullopt;
+        for (size_t j = i + 1; j < N; ++j)
+            if (std::abs(glm::dot(axes[i], axes[j])) > csg::tol::kBallTransformRel * scale * scale)
+                return std::nullopt;
+    }
+    return scale;
+}
+
 struct Ball {
     Vec3 center;
     double radius;
@@ -45,17 +61,11 @@ std::optional<Ball> ballOf(const csg::Node& node) {
     const auto* sphere = std::get_if<csg::Sphere>(&node.primitive);
     if (node.op != csg::Op::Leaf || !sphere) return std::nullopt;
     const Mat4& m = node.parentFromNode;
-    const double scale = glm::length(Vec3(m[0]));
-    for (int i = 0; i < 3; ++i) {
-        if (std::abs(glm::length(Vec3(m[i])) - scale) > csg::tol::kBallTransformRel * scale)
-            return std::nullopt;
-        for (int j = i + 1; j < 3; ++j)
-            if (std::abs(glm::dot(Vec3(m[i]), Vec3(m[j]))) >
-                csg::tol::kBallTransformRel * scale * scale)
-                return std::nullopt;
-    }
     if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0) return std::nullopt;
-    return Ball{Vec3(m[3]), sphere->radius * scale};
+    const std::optional<double> scale =
+        roundScale(std::array<Vec3, 3>{Vec3(m[0]), Vec3(m[1]), Vec3(m[2])});
+    if (!scale) return std::nullopt;
+    return Ball{Vec3(m[3]), sphere->radius * *scale};
 }
 
 struct Disc {
@@ -73,19 +83,13 @@ std::optional<Disc> discOf(const csg::Node& node) {
     const csg::Segment2& arc = x->outline->segments.front();
     if (arc.kind != csg::Segment2::Kind::Arc || arc.th1 - arc.th0 < 2.0 * csg::kPi)
         return std::nullopt;
-    const csg::Vec2 a = arc.p[2], b = arc.p[3];
-    const double r = glm::length(a);
-    if (std::abs(glm::length(b) - r) > csg::tol::kBallTransformRel * r ||
-        std::abs(glm::dot(a, b)) > csg::tol::kBallTransformRel * r * r)
-        return std::nullopt;
     const Mat4& m = node.parentFromNode;
     const csg::Vec2 mx(m[0][0], m[0][1]), my(m[1][0], m[1][1]);
-    const double scale = glm::length(mx);
-    if (std::abs(glm::length(my) - scale) > csg::tol::kBallTransformRel * scale ||
-        std::abs(glm::dot(mx, my)) > csg::tol::kBallTransformRel * scale * scale)
-        return std::nullopt;
+    const std::optional<double> r = roundScale(std::array<csg::Vec2, 2>{arc.p[2], arc.p[3]});
+    const std::optional<double> scale = roundScale(std::array<csg::Vec2, 2>{mx, my});
+    if (!r || !scale) return std::nullopt;
     const csg::Vec2 c = arc.p[1];
-    return Disc{mx * c.x + my * c.y + csg::Vec2(m[3][0], m[3][1]), r * scale};
+    return Disc{mx * c.x + my * c.y + csg::Vec2(m[3][0], m[3][1]), *r * *scale};
 }
 
 // a ⊕ b of 2-D shapes (see the head of this file).
@@ -302,8 +306,7 @@ private:
         }
         if (!solid) return node;
         auto copy = std::make_shared<csg::Node>(*node);
-        copy->primitive = csg::ConvexPolytope::fromFaces(std::move(solid->vertices),
-                                                         solid->faceVertices, solid->faceStarts);
+        copy->primitive = polytopeOf(std::move(*solid));
         return copy;
     }
 

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "io/mesh/MeshFileDetail.h"
+#include "io/mesh/MeshTextScanner.h"
 #include "io/mesh/Zip.h"
 
 namespace io::detail {
@@ -23,14 +24,6 @@ using Transform = glm::dmat4;
 constexpr size_t kMaxExpandedVertices = 50'000'000;
 // Components may nest; deeper than this is taken for a cycle.
 constexpr int kMaxComponentDepth = 32;
-
-// Case-insensitive ASCII equality (package part names are case-insensitive).
-bool samePartName(std::string_view a, std::string_view b) {
-    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-               return std::tolower(static_cast<unsigned char>(x)) ==
-                      std::tolower(static_cast<unsigned char>(y));
-           });
-}
 
 // One XML tag at a time: its local name (any namespace prefix dropped), its attributes, and
 // whether it closes an element. Text, comments, processing instructions and declarations are
@@ -203,7 +196,7 @@ std::optional<double> unitScale(std::string_view unit) {
 // or the conventional one when there are none.
 std::string modelPartName(const std::vector<ZipEntry>& entries) {
     for (const ZipEntry& e : entries) {
-        if (!samePartName(e.name, "_rels/.rels")) continue;
+        if (!sameWord(e.name, "_rels/.rels")) continue;  // part names ignore case
         XmlScanner rels(e.bytes);
         XmlScanner::Tag tag;
         while (rels.next(tag)) {
@@ -362,9 +355,8 @@ PolygonMeshReadResult parse3mf(std::string_view bytes) {
         return result;
     }
     const std::string partName = modelPartName(zip.entries);
-    const auto part = std::find_if(zip.entries.begin(), zip.entries.end(), [&](const ZipEntry& e) {
-        return samePartName(e.name, partName);
-    });
+    const auto part = std::find_if(zip.entries.begin(), zip.entries.end(),
+                                   [&](const ZipEntry& e) { return sameWord(e.name, partName); });
     if (part == zip.entries.end()) {
         result.error = "3MF: the package has no model part '" + partName + "'";
         return result;
