@@ -1,7 +1,7 @@
 // The part-language helpers the tests share: a part's text evaluated under a curve mode (as
 // `csgray --curves` would), its diagnostics as text, its compiled scene (an evaluation error
 // fails the calling test, with the diagnostics), and the spans of a whole line through it
-// checked against spans derived by hand.
+// checked against spans derived by hand, and the rows of an extruded 2-D part.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -63,6 +63,13 @@ inline void expectSpans(const csg::Scene& scene, Vec3 o, Vec3 d,
         EXPECT_NEAR(got[i].in, expected[i].in, tol) << "span " << i;
         EXPECT_NEAR(got[i].out, expected[i].out, tol) << "span " << i;
     }
+}
+
+// Along x at height y through a 2-D part extruded to z in [0, 1]: the spans in x (zero-length
+// touches of arcs left out).
+inline void expectRow(const csg::Scene& scene, double y, std::vector<Interval> xs, double tol) {
+    for (Interval& i : xs) i.in += 100.0, i.out += 100.0;
+    expectSpans(scene, {-100.0, y, 0.5}, {1, 0, 0}, xs, tol, true);
 }
 
 }  // namespace csg::testing

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <random>
 
 #include "MissingTool.h"
@@ -23,9 +24,10 @@ using csg::Vec3;
 using csg::testing::compiled;
 using csg::testing::diagnosticsOf;
 using csg::testing::evaluate;
+using csg::testing::expectRow;
 using csg::testing::expectSpans;
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 
 TEST(Minkowski, BoxesAddTheirSides) {
     const csg::Scene scene = compiled("minkowski() { cube([2, 3, 4]); cube(1); }");
@@ -157,13 +159,6 @@ TEST(Minkowski, RefusesWhatItCannotSumWithTheReason) {
                         "non-convex solid"),
               std::string::npos)
         << diagnosticsOf(twoConcave);
-}
-
-// Along x at height y through a 2-D part extruded to z in [0, 1]: the spans in x.
-void expectRow(const csg::Scene& scene, double y, std::vector<csg::testing::Interval> xs,
-               double tol) {
-    for (auto& i : xs) i.in += 100.0, i.out += 100.0;
-    expectSpans(scene, {-100.0, y, 0.5}, {1, 0, 0}, xs, tol, true);
 }
 
 TEST(Minkowski2D, ExactCircleRoundsAShape) {

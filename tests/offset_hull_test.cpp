@@ -31,6 +31,7 @@ namespace {
 using csg::testing::compiled;
 using csg::testing::diagnosticsOf;
 using csg::testing::evaluate;
+using csg::testing::expectRow;
 using csg::testing::Interval;
 
 using csg::Vec2;
@@ -43,12 +44,6 @@ std::vector<Interval> solidSpans(const csg::Scene& scene, Vec3 o, Vec3 d) {
 void expectSolidSpans(const csg::Scene& scene, Vec3 o, Vec3 d,
                       const std::vector<Interval>& expected, double tol) {
     csg::testing::expectSpans(scene, o, d, expected, tol, true);
-}
-
-// Along x at height y through a 2-D part extruded to z in [0, 1]: the spans in x.
-void expectRow(const csg::Scene& scene, double y, std::vector<Interval> xs, double tol) {
-    for (Interval& i : xs) i.in += 100.0, i.out += 100.0;
-    expectSolidSpans(scene, {-100.0, y, 0.5}, {1, 0, 0}, xs, tol);
 }
 
 // offset(r = 1) of square(2): the square grown by 1 with quarter circles of radius 1 about its
