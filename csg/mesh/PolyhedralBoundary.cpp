@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <unordered_map>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "csg/mesh/BoxGrid.h"
+#include "csg/mesh/CoplanarMerge.h"
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/Simplify.h"
 #include "primitives/Box.h"
@@ -307,53 +309,66 @@ private:
 
 // Inserts into every edge the welded vertices that lie on it (within eps of the segment,
 // strictly between its ends), in order along it. Only edges no other piece runs the other way
-// can hold such a vertex, and only the ends of such edges can be one.
+// can hold such a vertex, and only the ends of such edges can be one: those "loose" vertices are
+// listed in a grid of cells about as large as the loose edges are long, so an edge looks only
+// at the loose vertices near it. Polygons are independent, so they are done on every worker.
 uint64_t closeTJunctions(const std::vector<Vec3>& positions,
-                         std::vector<std::vector<uint32_t>>& polygons, double eps) {
-    std::unordered_map<uint64_t, int> directed;
+                         std::vector<std::vector<uint32_t>>& polygons, double eps, int threads) {
     const auto key = [](uint32_t a, uint32_t b) { return (uint64_t(a) << 32) | b; };
+    std::vector<uint64_t> directed;
     for (const auto& poly : polygons)
-        for (size_t i = 0, k = poly.size(); i < k; ++i) ++directed[key(poly[i], poly[(i + 1) % k])];
+        for (size_t i = 0, k = poly.size(); i < k; ++i)
+            directed.push_back(key(poly[i], poly[(i + 1) % k]));
+    std::sort(directed.begin(), directed.end());
+    const auto paired = [&](uint32_t a, uint32_t b) {
+        return std::binary_search(directed.begin(), directed.end(), key(b, a));
+    };
     std::vector<uint32_t> loose;
+    double looseLength = 0.0;
     for (const auto& poly : polygons)
         for (size_t i = 0, k = poly.size(); i < k; ++i) {
             const uint32_t a = poly[i], b = poly[(i + 1) % k];
-            if (!directed.count(key(b, a))) loose.push_back(a), loose.push_back(b);
+            if (paired(a, b)) continue;
+            loose.push_back(a), loose.push_back(b);
+            looseLength += glm::distance(positions[a], positions[b]);
         }
+    if (loose.empty()) return 0;
+    const double cell = std::max(looseLength / double(loose.size()) * 2.0, 4.0 * eps);
     std::sort(loose.begin(), loose.end());
     loose.erase(std::unique(loose.begin(), loose.end()), loose.end());
-    if (loose.empty()) return 0;
-    // Sorted by x, so an edge looks only at the loose vertices within its x range.
-    std::sort(loose.begin(), loose.end(),
-              [&](uint32_t a, uint32_t b) { return positions[a].x < positions[b].x; });
-    uint64_t inserted = 0;
-    for (auto& poly : polygons) {
+    BoxGrid grid(positions[loose[0]], cell);
+    for (const uint32_t v : loose) grid.insert(v, Bounds3{positions[v], positions[v]});
+
+    std::atomic<uint64_t> inserted{0};
+    parallelFor(polygons.size(), threads, [&](int, uint64_t p) {
+        auto& poly = polygons[p];
         std::vector<uint32_t> out;
+        std::vector<std::pair<double, uint32_t>> on;
         for (size_t i = 0, k = poly.size(); i < k; ++i) {
             const uint32_t a = poly[i], b = poly[(i + 1) % k];
             out.push_back(a);
-            if (directed.count(key(b, a))) continue;
+            if (paired(a, b)) continue;
             const Vec3 pa = positions[a], pb = positions[b], e = pb - pa;
             const double length2 = glm::dot(e, e);
             if (!(length2 > 0.0)) continue;
-            const double xLo = std::min(pa.x, pb.x) - eps, xHi = std::max(pa.x, pb.x) + eps;
-            auto it = std::lower_bound(loose.begin(), loose.end(), xLo,
-                                       [&](uint32_t v, double x) { return positions[v].x < x; });
-            std::vector<std::pair<double, uint32_t>> on;
-            for (; it != loose.end() && positions[*it].x <= xHi; ++it) {
-                const uint32_t v = *it;
-                if (v == a || v == b) continue;
+            Bounds3 box{glm::min(pa, pb) - Vec3(eps), glm::max(pa, pb) + Vec3(eps)};
+            on.clear();
+            grid.forEachNear(box, [&](const BoxGrid::Entry& entry) {
+                const uint32_t v = entry.id;
+                if (v == a || v == b) return;
                 const Vec3 pv = positions[v];
                 const double s = glm::dot(pv - pa, e) / length2;
-                if (!(s > 0.0 && s < 1.0)) continue;
+                if (!(s > 0.0 && s < 1.0)) return;
                 if (glm::distance(pa + s * e, pv) <= eps) on.push_back({s, v});
-            }
+            });
+            // A vertex in several cells the box overlaps is met once per cell.
             std::sort(on.begin(), on.end());
+            on.erase(std::unique(on.begin(), on.end()), on.end());
             for (const auto& [s, v] : on) out.push_back(v);
             inserted += on.size();
         }
         poly.swap(out);
-    }
+    });
     return inserted;
 }
 
@@ -486,22 +501,36 @@ std::optional<TriangleMesh> polyhedralBoundary(const Scene& scene, int threads,
             ++s.kept;
         }
     }
-    s.tJunctions = closeTJunctions(welder.positions, polygons, weld);
+    s.tJunctions = closeTJunctions(welder.positions, polygons, weld, threads);
+    for (const auto& poly : polygons) s.trianglesBeforeMerge += poly.size() - 2;
+    s.assembleSeconds = lap();
+
+    // Step 4: the pieces of each face merged back and triangulated as one polygon with holes.
+    if (std::optional<TriangleMesh> merged =
+            mergeCoplanar(welder.positions, polygons, normals, materials, weld)) {
+        const bool closed = checkTopology(*merged).closedManifold();
+        s.mergeSeconds = lap();
+        if (closed) {
+            s.mergedBy = "faces";
+            return merged;
+        }
+    }
+    // Where a face touches itself at a vertex (its outline does not chain into loops), the
+    // pieces are triangulated one by one and the simplifier merges them.
     TriangleMesh mesh;
     mesh.positions = welder.positions;
     for (size_t i = 0; i < polygons.size(); ++i)
         triangulateConvex(mesh.positions, polygons[i], normals[i], weld, materials[i], mesh);
-    s.trianglesBeforeMerge = mesh.triangles.size();
-    s.assembleSeconds = lap();
     if (!checkTopology(mesh).closedManifold()) {
         s.declined = "the pieces do not close into a manifold";
         return std::nullopt;
     }
-    TriangleMesh merged = simplify(mesh, weld, nullptr, threads);
-    const bool closed = checkTopology(merged).closedManifold();
-    s.mergeSeconds = lap();
+    TriangleMesh simplified = simplify(mesh, weld, nullptr, threads);
+    const bool closed = checkTopology(simplified).closedManifold();
+    s.mergeSeconds += lap();
+    s.mergedBy = closed ? "the simplifier" : "nothing (the simplifier's result was not closed)";
     if (!closed) return mesh;
-    return merged;
+    return simplified;
 }
 
 }  // namespace csg

@@ -14,10 +14,12 @@
 //      on that very face (leaf and face id): the CSG merge then says that the piece bounds the
 //      part and which way it faces (a span's entry faces back along the line, its exit forward),
 //      and where faces of two leaves coincide it keeps exactly one of them.
-//   3. Vertices closer than tol::kPolyBoundaryWeldRel of the part's size are welded, a vertex
-//      that lies on another piece's edge is inserted into that edge (no T-junctions), and the
-//      pieces are triangulated; the simplifier then merges the pieces of one face again,
-//      moving no vertex off its plane by more than that weld distance.
+//   3. Vertices closer than tol::kPolyBoundaryWeldRel of the part's size are welded, and a vertex
+//      that lies on another piece's edge is inserted into that edge (no T-junctions).
+//   4. The pieces of each face are merged back into one polygon with holes, vertices on straight
+//      edges dropped, and triangulated by ear clipping (CoplanarMerge.h). Where a face's outline
+//      touches itself, the pieces are triangulated one by one and merged by the simplifier
+//      instead, moving no vertex off its plane by more than the weld distance.
 // The result must be a closed, consistently oriented manifold (MeshCheck.h); a part where it is
 // not (faces meeting in a way the cuts did not resolve) gets no mesh here and the caller falls
 // back to the grid.
@@ -40,6 +42,9 @@ struct PolyhedralBoundaryStats {
     // Wall seconds: cutting and classifying the faces; welding, closing T-junctions and
     // triangulating; merging the pieces of each face (the simplifier) and checking the result.
     double classifySeconds = 0.0, assembleSeconds = 0.0, mergeSeconds = 0.0;
+    // What merged the pieces of each face: "faces" (CoplanarMerge.h), "the simplifier" where a
+    // face's outline touches itself, or "nothing".
+    const char* mergedBy = "nothing";
     // Why no mesh was made (nullptr when one was): a leaf that is not a polyhedron, or a result
     // that is not a closed manifold.
     const char* declined = nullptr;

@@ -186,12 +186,12 @@ int exportCommand(std::span<const std::string> args) {
         std::fprintf(stderr,
                      "csgray: export: exact polyhedral boundary: %s; %llu faces cut into %llu "
                      "pieces, %llu on the boundary, %llu T-junctions closed, %llu triangles "
-                     "before merging; %.2f s cutting and classifying, %.2f s assembling, "
-                     "%.2f s merging\n",
+                     "before merging, merged by %s; %.2f s cutting and classifying, %.2f s "
+                     "assembling, %.2f s merging\n",
                      result.exact ? "made" : exact.declined, (unsigned long long)exact.faces,
                      (unsigned long long)exact.pieces, (unsigned long long)exact.kept,
                      (unsigned long long)exact.tJunctions,
-                     (unsigned long long)exact.trianglesBeforeMerge, exact.classifySeconds,
+                     (unsigned long long)exact.trianglesBeforeMerge, exact.mergedBy, exact.classifySeconds,
                      exact.assembleSeconds, exact.mergeSeconds);
     if (verbose && !quiet)
         std::fprintf(stderr, "csgray: export: writing %s (checks, crease normals) took %.2f s\n",
