@@ -94,10 +94,14 @@ DistanceStats meshToSurface(const Scene& scene, const TriangleMesh& mesh,
     const int workers = resolveThreads(options.threads);
     std::vector<Accumulator> acc(static_cast<size_t>(workers));
     std::vector<QueryContext> ctx(static_cast<size_t>(workers));
-    const uint64_t triangles = mesh.triangles.size(), vertices = mesh.positions.size();
+    // Each vertex is sampled from the first triangle that has it.
+    std::vector<uint32_t> owner(mesh.positions.size(), UINT32_MAX);
+    for (uint32_t t = uint32_t(mesh.triangles.size()); t-- > 0;)
+        for (const uint32_t v : mesh.triangles[t]) owner[v] = t;
+    const uint64_t triangles = mesh.triangles.size();
     constexpr uint64_t kChunk = 1024;
-    const uint64_t chunks = (triangles + vertices + kChunk - 1) / kChunk;
-    parallelFor(chunks, workers, [&](int w, uint64_t chunk) {
+    parallelFor((triangles + kChunk - 1) / kChunk, workers, [&](int w, uint64_t chunk) {
+        // The mesh point p, measured first along the normal n of its triangle.
         auto measureAt = [&](const Vec3& p, const Vec3& n) {
             const double d =
                 bestOfDirections(n, options.goodEnough, [&](const Vec3& dir, const Vec3& shift) {
@@ -105,25 +109,26 @@ DistanceStats meshToSurface(const Scene& scene, const TriangleMesh& mesh,
                 });
             acc[size_t(w)].add(p, d);
         };
-        for (uint64_t item = chunk * kChunk;
-             item < std::min((chunk + 1) * kChunk, triangles + vertices); ++item) {
-            if (item >= triangles) {
-                // A vertex, along its own normal (or any axis when the mesh has none).
-                const size_t v = size_t(item - triangles);
-                measureAt(mesh.positions[v],
-                          mesh.normals.empty() ? Vec3(0, 0, 1) : mesh.normals[v]);
-                continue;
-            }
-            const auto& tri = mesh.triangles[size_t(item)];
+        for (uint64_t t = chunk * kChunk; t < std::min((chunk + 1) * kChunk, triangles); ++t) {
+            const auto& tri = mesh.triangles[size_t(t)];
             const Vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]],
                        c = mesh.positions[tri[2]];
-            const Vec3 n = glm::cross(b - a, c - a);
-            measureAt((a + b + c) / 3.0, n);
-            // Each edge once: from the triangle that runs it from its lower index (a closed
-            // oriented mesh runs every edge once each way).
-            if (tri[0] < tri[1]) measureAt(0.5 * (a + b), n);
-            if (tri[1] < tri[2]) measureAt(0.5 * (b + c), n);
-            if (tri[2] < tri[0]) measureAt(0.5 * (c + a), n);
+            const Vec3 n = glm::cross(b - a, c - a), centroid = (a + b + c) / 3.0;
+            measureAt(centroid, n);
+            // Corners and edge midpoints lie on the part's edges when the mesh follows them, where
+            // a line may only graze the solid: they are sampled a hair inside the triangle (points
+            // of the mesh as much as the corners are).
+            const auto inset = [&](const Vec3& p) {
+                return p + tol::kDistanceSampleInset * (centroid - p);
+            };
+            for (int k = 0; k < 3; ++k) {
+                const uint32_t i = tri[size_t(k)], j = tri[size_t((k + 1) % 3)];
+                const Vec3 p = mesh.positions[i], q = mesh.positions[j];
+                if (owner[i] == t) measureAt(inset(p), n);
+                // Each edge once: from the triangle that runs it from its lower index (a closed
+                // oriented mesh runs every edge once each way).
+                if (i < j) measureAt(inset(0.5 * (p + q)), n);
+            }
         }
     });
     return merge(acc);

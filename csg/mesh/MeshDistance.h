@@ -37,9 +37,11 @@ struct DistanceOptions {
     int threads = 0;
 };
 
-// Mesh to surface: every vertex, every triangle's centroid and every edge's midpoint (once, from
-// the triangle that runs the edge from its lower vertex index; a boundary edge run the other
-// way is not sampled), measured first along the mesh normal there.
+// Mesh to surface: every triangle's centroid, every vertex (from the first triangle that has it)
+// and every edge's midpoint (once, from the triangle that runs the edge from its lower vertex
+// index; a boundary edge run the other way is not sampled), measured first along that
+// triangle's normal. Vertices and midpoints are sampled tol::kDistanceSampleInset of the way
+// towards the triangle's centroid: on the mesh, but off the part's edges the mesh may follow.
 DistanceStats meshToSurface(const Scene& scene, const TriangleMesh& mesh,
                             const DistanceOptions& options);
 

@@ -132,41 +132,146 @@ struct Cut {
     double uLo, uHi;
 };
 
-// Splits the pieces the cut's segment reaches by its plane; points within eps of the plane lie
-// on it (in both halves). A piece the segment does not reach stays whole: the cut is no border
-// there (the T-junctions this leaves within a face are closed later like any other).
+// Which side of the plane m . p = o the polygon lies on, points within eps of it being on both:
+// -1 wholly below (or on), +1 wholly above (or on), 0 across it, when lo and hi get its two
+// halves (each with the points on the plane).
+int splitPolygon(const Polygon& piece, const Vec3& m, double o, double eps, Polygon& lo,
+                 Polygon& hi) {
+    bool below = false, above = false;
+    for (const Vec3& v : piece) {
+        const double s = glm::dot(m, v) - o;
+        below = below || s < -eps;
+        above = above || s > eps;
+    }
+    if (!above) return -1;
+    if (!below) return 1;
+    lo.clear(), hi.clear();
+    for (size_t i = 0, k = piece.size(); i < k; ++i) {
+        const Vec3& a = piece[i];
+        const Vec3& b = piece[(i + 1) % k];
+        const double sa = glm::dot(m, a) - o, sb = glm::dot(m, b) - o;
+        if (sa <= eps) lo.push_back(a);
+        if (sa >= -eps) hi.push_back(a);
+        if ((sa < -eps && sb > eps) || (sa > eps && sb < -eps)) {
+            const Vec3 x = a + (b - a) * (sa / (sa - sb));
+            lo.push_back(x);
+            hi.push_back(x);
+        }
+    }
+    return 0;
+}
+
+// Splits the pieces the cut's segment reaches by its plane. A piece the segment does not reach
+// stays whole: the cut is no border there (the T-junctions this leaves within a face are closed
+// later like any other).
 void splitPieces(std::vector<Polygon>& pieces, const Cut& cut, double eps,
                  std::vector<Polygon>& scratch) {
     scratch.clear();
+    Polygon lo, hi;
     for (Polygon& piece : pieces) {
-        bool below = false, above = false;
         double uMin = kInfinity, uMax = -kInfinity;
         for (const Vec3& v : piece) {
-            const double s = glm::dot(cut.m, v) - cut.o;
-            below = below || s < -eps;
-            above = above || s > eps;
             const double along = glm::dot(cut.u, v);
             uMin = std::min(uMin, along), uMax = std::max(uMax, along);
         }
-        if (!(below && above) || uMax < cut.uLo - eps || uMin > cut.uHi + eps) {
+        if (uMax < cut.uLo - eps || uMin > cut.uHi + eps ||
+            splitPolygon(piece, cut.m, cut.o, eps, lo, hi) != 0) {
             scratch.push_back(std::move(piece));
             continue;
         }
-        Polygon lo, hi;
-        for (size_t i = 0, k = piece.size(); i < k; ++i) {
-            const Vec3& a = piece[i];
-            const Vec3& b = piece[(i + 1) % k];
-            const double sa = glm::dot(cut.m, a) - cut.o, sb = glm::dot(cut.m, b) - cut.o;
-            if (sa <= eps) lo.push_back(a);
-            if (sa >= -eps) hi.push_back(a);
-            if ((sa < -eps && sb > eps) || (sa > eps && sb < -eps)) {
-                const Vec3 x = a + (b - a) * (sa / (sa - sb));
-                lo.push_back(x);
-                hi.push_back(x);
-            }
+        if (lo.size() >= 3) scratch.push_back(lo);
+        if (hi.size() >= 3) scratch.push_back(hi);
+    }
+    pieces.swap(scratch);
+}
+
+// A half-space m . p <= o (m unit): a convex leaf's face, or its section by a face's plane (m
+// then in that plane).
+struct HalfPlane {
+    Vec3 m;
+    double o;
+};
+
+// A convex leaf (a box or a polytope) cuts the face f where its section by f's plane, a convex
+// polygon (the half-planes its face planes leave there), meets f: each piece that polygon's
+// interior meets is split into the part inside it and one part outside each of its edges, and
+// nothing else is cut. (Cut by the lines of the section's edges one by one, the parts outside
+// would be cut again by every later line: OpenSCAD's 64 x 32 sphere across a cube's face makes
+// ~64 pieces this way, thousands by lines.) planes: the leaf's faces, as world planes n . p = c.
+void cutByConvexLeaf(std::vector<Polygon>& pieces, const Face& f, const std::vector<HalfPlane>& planes,
+                     double eps, std::vector<HalfPlane>& section, std::vector<Polygon>& scratch) {
+    section.clear();
+    // The ball around f's corners decides most planes with one product: a plane that passes
+    // farther from its centre than its radius has f wholly on one side.
+    const Vec3 middle = centroidOf(f.corners);
+    double radius = 0.0;
+    for (const Vec3& v : f.corners) radius = std::max(radius, glm::distance(v, middle));
+    radius += eps;
+    for (const HalfPlane& g : planes) {
+        const double gap = glm::dot(g.m, middle) - g.o;
+        if (gap < -radius) continue;  // f lies inside this face's half-space
+        if (gap > radius) return;     // f lies outside it: the leaf misses f
+        const double cosine = glm::dot(f.n, g.m);
+        if (std::abs(cosine) > 1.0 - tol::kPolyBoundaryParallelCos) {
+            // Parallel: f's plane is outside this face's half-space (the leaf misses it), or
+            // inside or on it (no border in the plane).
+            if (glm::dot(g.m, f.corners[0]) - g.o > eps) return;
+            continue;
         }
-        if (lo.size() >= 3) scratch.push_back(std::move(lo));
-        if (hi.size() >= 3) scratch.push_back(std::move(hi));
+        const Vec3 m = g.m - cosine * f.n;
+        const double length = glm::length(m);
+        const HalfPlane h{m / length, (g.o - cosine * f.c) / length};
+        double lo = kInfinity, hi = -kInfinity;
+        for (const Vec3& v : f.corners) {
+            const double s = glm::dot(h.m, v) - h.o;
+            lo = std::min(lo, s), hi = std::max(hi, s);
+        }
+        if (lo >= -eps) return;     // f lies outside the section, or only touches it
+        if (hi <= eps) continue;    // f lies inside this half-plane
+        section.push_back(h);
+    }
+    if (section.empty()) return;  // f lies inside the section
+    // Only the half-planes that give an edge of the section within f cut: clipping f by every
+    // one in turn, those that take something off. (Many of a sphere's ~2 000 planes cross f
+    // outside the section; cutting by them would only split the parts outside it again.)
+    Polygon within = f.corners, lo, hi;
+    size_t kept = 0;
+    for (const HalfPlane& h : section) {
+        const int side = splitPolygon(within, h.m, h.o, eps, lo, hi);
+        if (side > 0 || (side == 0 && lo.size() < 3)) return;  // the section misses f
+        if (side == 0) within.swap(lo), section[kept++] = h;
+    }
+    section.resize(kept);
+    // A half-plane that took something off early may bound nothing once later ones have cut.
+    std::erase_if(section, [&](const HalfPlane& h) {
+        for (const Vec3& v : within)
+            if (std::abs(glm::dot(h.m, v) - h.o) <= eps) return false;
+        return true;
+    });
+    scratch.clear();
+    Polygon rest;
+    for (Polygon& piece : pieces) {
+        // Whether the section's interior meets the piece: what is left inside every half-plane.
+        rest = piece;
+        bool meets = true;
+        for (const HalfPlane& h : section) {
+            const int side = splitPolygon(rest, h.m, h.o, eps, lo, hi);
+            if (side > 0 || (side == 0 && lo.size() < 3)) {
+                meets = false;
+                break;
+            }
+            if (side == 0) rest.swap(lo);
+        }
+        if (!meets) {
+            scratch.push_back(std::move(piece));
+            continue;
+        }
+        for (const HalfPlane& h : section)
+            if (splitPolygon(piece, h.m, h.o, eps, lo, hi) == 0) {
+                if (hi.size() >= 3) scratch.push_back(hi);
+                piece.swap(lo);
+            }
+        scratch.push_back(std::move(piece));
     }
     pieces.swap(scratch);
 }
@@ -232,23 +337,53 @@ struct Piece {
     uint32_t material = 0;
 };
 
+// One worker's scratch for boundaryPieces, kept from face to face: the faces near the one being
+// cut are found once each by a stamp per face (the grid lists a face once per cell).
+struct CutScratch {
+    std::vector<uint32_t> stamp;
+    uint32_t current = 0;
+    std::vector<uint32_t> near, convexLeaves;
+    std::vector<Cut> cuts;
+    std::vector<HalfPlane> section;
+    std::vector<Polygon> pieces, split;
+};
+
 // Step 1 and 2 for one face.
+// convexPlanes: per leaf, its face planes when it is convex (a box or a polytope), else none.
 void boundaryPieces(const Scene& scene, const std::vector<Face>& faces, const BoxGrid& grid,
-                    uint32_t index, double eps, QueryContext& ctx, std::vector<Piece>& out,
+                    const std::vector<std::vector<HalfPlane>>& convexPlanes, uint32_t index,
+                    double eps, QueryContext& ctx, CutScratch& work, std::vector<Piece>& out,
                     uint64_t& piecesMade) {
     const Face& f = faces[index];
-    std::vector<uint32_t> near;
+    if (work.stamp.size() != faces.size()) work.stamp.assign(faces.size(), 0), work.current = 0;
+    ++work.current;
+    work.near.clear();
     Bounds3 box = f.box;
     box.lo -= Vec3(eps), box.hi += Vec3(eps);
     grid.forEachNear(box, [&](const BoxGrid::Entry& e) {
-        if (e.id != index && faces[e.id].leaf != f.leaf) near.push_back(e.id);
+        if (work.stamp[e.id] == work.current) return;
+        work.stamp[e.id] = work.current;
+        if (e.id != index && faces[e.id].leaf != f.leaf) work.near.push_back(e.id);
     });
-    std::sort(near.begin(), near.end());
-    near.erase(std::unique(near.begin(), near.end()), near.end());
-    std::vector<Cut> cuts;
-    for (const uint32_t g : near) cutsOf(f, faces[g], eps, cuts);
-    std::vector<Polygon> pieces{f.corners}, scratch;
-    for (const Cut& cut : cuts) splitPieces(pieces, cut, eps, scratch);
+    // In face order, so the cuts (and so the pieces) do not depend on the grid's cell order.
+    std::sort(work.near.begin(), work.near.end());
+    std::vector<Cut>& cuts = work.cuts;
+    cuts.clear();
+    work.convexLeaves.clear();
+    for (const uint32_t g : work.near) {
+        if (convexPlanes[faces[g].leaf].empty())
+            cutsOf(f, faces[g], eps, cuts);
+        else
+            work.convexLeaves.push_back(faces[g].leaf);
+    }
+    std::sort(work.convexLeaves.begin(), work.convexLeaves.end());
+    work.convexLeaves.erase(std::unique(work.convexLeaves.begin(), work.convexLeaves.end()),
+                            work.convexLeaves.end());
+    std::vector<Polygon>& pieces = work.pieces;
+    pieces.assign(1, f.corners);
+    for (const Cut& cut : cuts) splitPieces(pieces, cut, eps, work.split);
+    for (const uint32_t leaf : work.convexLeaves)
+        cutByConvexLeaf(pieces, f, convexPlanes[leaf], eps, work.section, work.split);
     piecesMade += pieces.size();
     for (Polygon& piece : pieces) {
         if (glm::length(newellNormal(piece)) <= eps * eps) continue;
@@ -270,38 +405,40 @@ void boundaryPieces(const Scene& scene, const std::vector<Face>& faces, const Bo
     }
 }
 
-// Welds positions closer than eps into one index (a hash of cells of edge 2 eps: a position's
-// neighbours are in the 27 cells around its own).
+// Welds positions closer than eps into one index: a hash of cells of edge 2 eps, where a point's
+// neighbours within eps lie in its own cell or, along each axis, in the one cell on the side of
+// the nearer border (8 cells, not 27).
 class Welder {
 public:
     explicit Welder(double eps) : eps_(eps), cell_(2.0 * eps) {}
 
     uint32_t index(const Vec3& p) {
-        const std::array<int64_t, 3> c = cellOf(p);
-        for (int64_t dz = -1; dz <= 1; ++dz)
-            for (int64_t dy = -1; dy <= 1; ++dy)
-                for (int64_t dx = -1; dx <= 1; ++dx) {
-                    const auto it = cells_.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
-                    if (it == cells_.end()) continue;
-                    for (const uint32_t i : it->second)
-                        if (glm::distance(positions[i], p) <= eps_) return i;
-                }
+        int64_t c[3], step[3];
+        for (int a = 0; a < 3; ++a) {
+            const double x = p[a] / cell_, floor = std::floor(x);
+            c[a] = int64_t(floor);
+            step[a] = x - floor < 0.5 ? -1 : 1;
+        }
+        for (int k = 0; k < 8; ++k) {
+            const auto it = cells_.find(
+                key(c[0] + (k & 1 ? step[0] : 0), c[1] + (k & 2 ? step[1] : 0),
+                    c[2] + (k & 4 ? step[2] : 0)));
+            if (it == cells_.end()) continue;
+            for (const uint32_t i : it->second)
+                if (glm::distance(positions[i], p) <= eps_) return i;
+        }
         const uint32_t i = uint32_t(positions.size());
         positions.push_back(p);
-        cells_[key(c)].push_back(i);
+        cells_[key(c[0], c[1], c[2])].push_back(i);
         return i;
     }
 
     std::vector<Vec3> positions;
 
 private:
-    std::array<int64_t, 3> cellOf(const Vec3& p) const {
-        return {int64_t(std::floor(p.x / cell_)), int64_t(std::floor(p.y / cell_)),
-                int64_t(std::floor(p.z / cell_))};
-    }
-    static uint64_t key(const std::array<int64_t, 3>& c) {
-        return (uint64_t(c[0]) * 0x9E3779B97F4A7C15ull) ^ (uint64_t(c[1]) * 0xC2B2AE3D27D4EB4Full) ^
-               (uint64_t(c[2]) * 0x165667B19E3779F9ull);
+    static uint64_t key(int64_t x, int64_t y, int64_t z) {
+        return (uint64_t(x) * 0x9E3779B97F4A7C15ull) ^ (uint64_t(y) * 0xC2B2AE3D27D4EB4Full) ^
+               (uint64_t(z) * 0x165667B19E3779F9ull);
     }
     double eps_, cell_;
     std::unordered_map<uint64_t, std::vector<uint32_t>> cells_;
@@ -440,6 +577,23 @@ std::optional<TriangleMesh> polyhedralBoundary(const Scene& scene, int threads,
             return std::nullopt;
         }
     s.faces = all.size();
+    // The face planes of every convex leaf, from all its faces (those past its reach too: the
+    // leaf's section of a face's plane needs every one).
+    // A face's Newell normal follows its corners' order, which need not face out (a box's low
+    // and high sides run the same way): each plane is turned to have the leaf's centre of
+    // corners, an interior point, on its inner side.
+    std::vector<std::vector<HalfPlane>> convexPlanes(scene.leafCount());
+    std::vector<Vec3> centre(scene.leafCount(), Vec3(0.0));
+    std::vector<double> corners(scene.leafCount(), 0.0);
+    for (const Face& f : all)
+        for (const Vec3& v : f.corners) centre[f.leaf] += v, corners[f.leaf] += 1.0;
+    for (const Face& f : all) {
+        const Primitive& p = scene.leafPrimitive(f.leaf);
+        if (!std::holds_alternative<Box>(p) && !std::holds_alternative<ConvexPolytope>(p))
+            continue;
+        const bool outward = glm::dot(f.n, centre[f.leaf] / corners[f.leaf]) < f.c;
+        convexPlanes[f.leaf].push_back(outward ? HalfPlane{f.n, f.c} : HalfPlane{-f.n, -f.c});
+    }
     const double size =
         std::max({1.0, glm::length(bounds.extent()), std::abs(bounds.lo.x), std::abs(bounds.lo.y),
                   std::abs(bounds.lo.z), std::abs(bounds.hi.x), std::abs(bounds.hi.y),
@@ -471,10 +625,12 @@ std::optional<TriangleMesh> polyhedralBoundary(const Scene& scene, int threads,
     }
     const int workers = resolveThreads(threads);
     std::vector<QueryContext> contexts(static_cast<size_t>(workers));
+    std::vector<CutScratch> scratch(static_cast<size_t>(workers));
     std::vector<std::vector<Piece>> kept(faces.size());
     std::vector<uint64_t> made(faces.size(), 0);
     parallelFor(faces.size(), workers, [&](int worker, uint64_t i) {
-        boundaryPieces(scene, faces, grid, uint32_t(i), onPlane, contexts[size_t(worker)], kept[i],
+        boundaryPieces(scene, faces, grid, convexPlanes, uint32_t(i), onPlane, contexts[size_t(worker)],
+                       scratch[size_t(worker)], kept[i],
                        made[i]);
     });
 

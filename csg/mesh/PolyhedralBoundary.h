@@ -6,10 +6,13 @@
 //
 // Boundary evaluation by classification (Requicha's method, with the ray caster as the
 // classifier):
-//   1. Every face of every leaf is cut, as a convex polygon in its plane, by the lines where the
-//      faces of the other leaves meet that plane (a face that crosses or touches it gives one
-//      line; a coplanar face gives the lines of its edges). Only faces whose boxes overlap are
-//      looked at.
+//   1. Every face of every leaf is cut, as a convex polygon in its plane, where the other leaves'
+//      boundaries cross it. A convex leaf (a box, a polytope) cuts by its section, the convex
+//      polygon its face planes leave in that plane: a piece the section's interior meets is split
+//      into the part inside and one part outside each of the section's edges. A mesh leaf cuts by
+//      the lines where its faces meet the plane (a face that crosses or touches it gives one line;
+//      a coplanar face gives the lines of its edges). Only leaves with a face whose box overlaps
+//      are looked at.
 //   2. A piece is kept when the line through its middle along the face's normal has a span end
 //      on that very face (leaf and face id): the CSG merge then says that the piece bounds the
 //      part and which way it faces (a span's entry faces back along the line, its exit forward),
@@ -42,6 +45,8 @@ struct PolyhedralBoundaryStats {
     // Wall seconds: cutting and classifying the faces; welding, closing T-junctions and
     // triangulating; merging the pieces of each face (the simplifier) and checking the result.
     double classifySeconds = 0.0, assembleSeconds = 0.0, mergeSeconds = 0.0;
+    // Wall seconds of measuring the result both ways (set by tessellate(), not here).
+    double measureSeconds = 0.0;
     // What merged the pieces of each face: "faces" (CoplanarMerge.h), "the simplifier" where a
     // face's outline touches itself, or "nothing".
     const char* mergedBy = "nothing";

@@ -33,6 +33,8 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <vector>
 
 #include "csg/Scene.h"
@@ -68,6 +70,12 @@ struct TessellateOptions {
     // polyhedron(), imported meshes) gets its exact boundary (PolyhedralBoundary.h) instead of
     // the grid's approximation; off only to measure the grid on such parts.
     bool exactPolyhedra = true;
+    // A part with curved leaves: when given, the same part with its curves faceted so that no
+    // face stands more than `deviation` (world units) off them, all polyhedra; or nothing when
+    // some leaf stays curved. tessellate() then writes that part's exact boundary when it
+    // measures within the tolerance of the exact part (a smaller deviation is tried when it
+    // does not), before it takes the grid. The CLI facets with io/ChordFaceting.h.
+    std::function<std::optional<Scene>(double deviation)> facetCurves;
     bool simplify = true;  // coarsen flat regions after the grid passes (Simplify.h)
     // Grid meshes larger than this are not simplified (0: no limit). Decimation (in slabs on
     // all workers, then once over the whole) and its re-measurement both ways cost more than
@@ -108,6 +116,9 @@ struct TessellateResult {
     DualContourStats contour;
     bool toleranceMet = false;            // error.max and backError.max <= tolerance
     bool exact = false;                   // the exact boundary of an all-polyhedral part
+    // The deviation the curves were faceted to when the mesh is the exact boundary of the part
+    // faceted by TessellateOptions::facetCurves (exact is then true too); 0 otherwise.
+    double facetDeviation = 0.0;
     PolyhedralBoundaryStats polyhedral;   // how it was made, or why it was declined
     bool capped = false;                  // maxCells stopped the refinement
     bool stalled = false;                 // refinement stopped paying (see Tessellate.h's header)

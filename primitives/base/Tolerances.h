@@ -242,6 +242,27 @@ inline constexpr double kMeshMeasureMargin = 0.8;
 // bounds above the 0.8T margin kept refining. Samples past a quarter of T are ~0.2% of all.
 inline constexpr double kDistanceFirstLineFraction = 0.25;
 
+// An export of a part with curved leaves first facets them (io/ChordFaceting.h) so that no
+// face stands more than this fraction of the tolerance off the exact surface, and writes that
+// polyhedron's exact boundary (unit: relative to T). Why: where faceted leaves meet, the
+// boundary moves by about their deviation (more where they meet at a grazing angle), and the
+// measurement must find it within kMeshMeasureMargin (0.8 T): half of T leaves that margin.
+inline constexpr double kFacetDeviationFraction = 0.5;
+// ... and halves the deviation up to this many times in all while the measurement misses (unit:
+// attempts). Why: a faceting that misses at 0.5 T, 0.25 T and 0.125 T has curves meeting at
+// grazing angles that the grid serves better, and each attempt costs a full boundary.
+inline constexpr int kFacetAttempts = 3;
+
+// A mesh's corners and edge midpoints are distance-sampled at the point this fraction of the way
+// towards their triangle's centroid (unit: relative to the distance to the centroid;
+// MeshDistance.cpp): a point of the mesh too, so the figure stays an upper bound of the distance
+// at a point of the mesh. Why: where the mesh follows the part's edges (an exact polyhedral
+// mesh), a line through the corner itself only grazes the solid and its answer is loose by up to
+// T; from inside the triangle, the line along its normal crosses the face at t ~ 0. The step must
+// be far above coordinate rounding (~1e-16 of the part) and leave the samples where they were to
+// any tolerance: 1e-6 of a triangle's size is both.
+inline constexpr double kDistanceSampleInset = 1e-6;
+
 // A distance sample that no line resolves within T (a point on an edge where two solids only
 // touch, or on a convex corner, where lines see fused or zero-length spans) is measured again
 // from a point shifted by this fraction of T in a direction of no symmetry, and the shift is

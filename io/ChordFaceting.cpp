@@ -1,0 +1,101 @@
+#include "io/ChordFaceting.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "io/FacetedPrimitives.h"
+#include "io/Faceting.h"
+#include "primitives/ConvexPolytope.h"
+
+namespace io {
+
+namespace {
+
+// The largest singular value of m's linear part: how far it can stretch a curve (power
+// iteration on m^T m, which converges from any start but an orthogonal one; a few starts).
+double largestScale(const csg::Mat4& m) {
+    const csg::Mat3 a(m), ata = glm::transpose(a) * a;
+    double best = 0.0;
+    for (const csg::Vec3& start : {csg::Vec3(1, 0, 0), csg::Vec3(0, 1, 0), csg::Vec3(0, 0, 1),
+                                   csg::Vec3(0.577, 0.577, 0.577)}) {
+        csg::Vec3 v = start;
+        for (int i = 0; i < 40; ++i) {
+            const csg::Vec3 w = ata * v;
+            const double length = glm::length(w);
+            if (!(length > 0.0)) break;
+            v = w / length;
+        }
+        best = std::max(best, glm::length(a * v));
+    }
+    return best;
+}
+
+// Fragments for a circle of world radius r whose chords may stand `sagitta` off it: the least
+// n >= 3 with r (1 - cos(pi / n)) <= sagitta; 0 when that is more than `most`.
+int64_t fragmentsFor(double r, double sagitta, int64_t most) {
+    if (!(r > sagitta)) return 3;
+    const double n = std::ceil(std::numbers::pi / std::acos(1.0 - sagitta / r));
+    if (!(n <= double(most))) return 0;
+    return std::max<int64_t>(3, int64_t(n));
+}
+
+// The faceted leaf, or nullptr when it stays curved.
+csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double deviation) {
+    const csg::Primitive& p = node.primitive;
+    const double scale = largestScale(world);
+    constexpr int64_t kMost = 1 << 15;
+    if (const auto* sphere = std::get_if<csg::Sphere>(&p)) {
+        // A face between two rings stands off the sphere by about the sagitta across the rings
+        // plus the one along them: half the deviation each.
+        const int64_t n = fragmentsFor(sphere->radius * scale, 0.5 * deviation, kMost);
+        if (n == 0 || facetedSphereFaceCount(n) >= csg::ConvexPolytope::kMaxPlanes) return nullptr;
+        return csg::leaf(polytopeOf(facetedSphere(sphere->radius, n),
+                                    {"sphere", uint32_t(n), uint32_t(sphereRingCount(n))}),
+                         node.tags);
+    }
+    if (const auto* cylinder = std::get_if<csg::Cylinder>(&p)) {
+        const double r = std::max(cylinder->r1, cylinder->r2);
+        const int64_t n = fragmentsFor(r * scale, deviation, kMost);
+        if (n == 0 || facetedCylinderFaceCount(n, cylinder->r1, cylinder->r2) >=
+                          csg::ConvexPolytope::kMaxPlanes)
+            return nullptr;
+        return csg::leaf(polytopeOf(facetedCylinder(cylinder->r1, cylinder->r2, 0.0,
+                                                    cylinder->height, n),
+                                    {"cylinder", uint32_t(n), 0}),
+                         node.tags);
+    }
+    if (std::holds_alternative<csg::Box>(p) || std::holds_alternative<csg::ConvexPolytope>(p) ||
+        std::holds_alternative<csg::Polyhedron>(p))
+        return std::make_shared<const csg::Node>(node);
+    return nullptr;
+}
+
+csg::NodePtr facet(const csg::NodePtr& node, const csg::Mat4& parent, double deviation,
+                   bool& curvedLeft) {
+    if (!node || curvedLeft) return node;
+    const csg::Mat4 world = parent * node->parentFromNode;
+    if (node->op == csg::Op::Leaf) {
+        csg::NodePtr leaf = facetLeaf(*node, world, deviation);
+        if (!leaf) {
+            curvedLeft = true;
+            return nullptr;
+        }
+        auto copy = std::make_shared<csg::Node>(*leaf);
+        copy->parentFromNode = node->parentFromNode;
+        return copy;
+    }
+    auto copy = std::make_shared<csg::Node>(*node);
+    copy->left = facet(node->left, world, deviation, curvedLeft);
+    copy->right = facet(node->right, world, deviation, curvedLeft);
+    return copy;
+}
+
+}  // namespace
+
+csg::NodePtr facetToDeviation(const csg::NodePtr& root, double deviation) {
+    bool curvedLeft = false;
+    csg::NodePtr out = facet(root, csg::Mat4(1.0), deviation, curvedLeft);
+    return curvedLeft ? nullptr : out;
+}
+
+}  // namespace io
