@@ -259,9 +259,11 @@ inline constexpr int kFacetAttempts = 3;
 // at a point of the mesh. Why: where the mesh follows the part's edges (an exact polyhedral
 // mesh), a line through the corner itself only grazes the solid and its answer is loose by up to
 // T; from inside the triangle, the line along its normal crosses the face at t ~ 0. The step must
-// be far above coordinate rounding (~1e-16 of the part) and leave the samples where they were to
-// any tolerance: 1e-6 of a triangle's size is both.
-inline constexpr double kDistanceSampleInset = 1e-6;
+// be far above the rounding of the mesh's coordinates (a GLB, STL or 3MF holds floats: ~1e-7 of
+// the part, up to 1e-5 of a small triangle) and leave the samples where they were to any
+// tolerance: 1e-3 of a triangle's size is both (csg_grid3's exact mesh read back from its GLB
+// measured 0.0032, a grazing line, with 1e-6; 1.8e-7 with this).
+inline constexpr double kDistanceSampleInset = 1e-3;
 
 // A distance sample that no line resolves within T (a point on an edge where two solids only
 // touch, or on a convex corner, where lines see fused or zero-length spans) is measured again
