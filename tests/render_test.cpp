@@ -445,6 +445,56 @@ TEST(LightThroughGlass, OpaqueSolidsStillBlock) {
     expectShadowIsTransmission(glassSlab(2, "[1, 1, 1]", 0.9) + opaque, csg::Vec3(0.0));
 }
 
+// ---- shading against its formulas ----
+
+// The white plane of planeUnder() lit from (1, 0.5, 4) by a light of radiance 1, with
+// diffuse 0.6, specular 0.3 and shininess 20, seen straight down (the view vector is +z
+// everywhere), an opaque bar over x in [-1, 0] at z in [1.5, 2] (behind the camera) casting
+// its shadow on the columns whose centres lie at x < -0.6. Each pixel is computed here from the formulas: Lambert's kd * albedo * (n . l)
+// plus Blinn-Phong's ks * (n . h)^shininess with h = normalize(l + v), or 0 in the shadow
+// (ambient 0). Tolerance: the image holds floats (relative 2^-24 of values below 1) and the
+// hit point is exact to ~1e-16, so 1e-6 is a margin of ~16 over the float rounding; a missing
+// term or a Phong (r . v) highlight instead of Blinn's is off by more than 1e-3.
+TEST(Shading, LambertAndBlinnPhongPixelsAndAShadowedOne) {
+    const std::string source =
+        "camera(eye = [0, 0, 1], center = [0, 0, -9], up = [0, 1, 0], fov = 2 * atan(0.2), "
+        "projection = \"orthographic\");\n"
+        "light([1, 0.5, 4]);\n"
+        "material(color = [1, 1, 1], ambient = 0, diffuse = 0.6, specular = 0.3, "
+        "shininess = 20) halfspace([0, 0, 1], 0);\n"
+        "material(color = [1, 1, 1], ambient = 0, diffuse = 1, specular = 0) "
+        "translate([-1, -10, 1.5]) cube([1, 20, 0.5]);\n";
+    const int n = 16;
+    const Rendered r = render(load(source), n, n);
+    const csg::Vec3 light(1.0, 0.5, 4.0), view(0.0, 0.0, 1.0);
+    int shadowed = 0, lit = 0;
+    for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < n; ++i) {
+            // The pixel's centre on the plane (the view is 4 x 4 units around the origin).
+            const csg::Vec3 p(-2.0 + (i + 0.5) * 4.0 / n, 2.0 - (j + 0.5) * 4.0 / n, 0.0);
+            // In the shadow when the segment to the light crosses the bar: its x at the
+            // bar's bottom and top (z = 1.5, 2) overlaps [-1, 0]. Pixels within 1e-3 of the
+            // shadow's edge would depend on rounding; the grid of centres has none.
+            const auto xAt = [&](double z) { return p.x + (light.x - p.x) * z / light.z; };
+            const double lo = std::min(xAt(1.5), xAt(2.0)), hi = std::max(xAt(1.5), xAt(2.0));
+            ASSERT_TRUE(std::abs(lo) > 1e-3 && std::abs(hi + 1.0) > 1e-3) << i << "," << j;
+            const bool inShadow = hi > -1.0 && lo < 0.0;
+            double want = 0.0;
+            if (!inShadow) {
+                const csg::Vec3 l = glm::normalize(light - p);
+                const csg::Vec3 h = glm::normalize(l + view);
+                want = 0.6 * l.z + 0.3 * std::pow(h.z, 20.0);
+            }
+            (inShadow ? shadowed : lit)++;
+            const csg::Vec3 got = pixel(r.result, i, j);
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(got[c], want, 1e-6) << "pixel " << i << "," << j << " channel " << c;
+        }
+    }
+    EXPECT_GE(shadowed, n);  // at least a column of the image lies in the shadow
+    EXPECT_GE(lit, n * n / 2);
+}
+
 TEST(LightThroughGlass, PlanCountsOneShadowRayPerLitPointAndNoneWhereNothingOccludes) {
     // Every pixel sees the plane and casts exactly one shadow ray toward the one light, glass
     // or not in its way: filtering changes the light, not the rays.
@@ -896,6 +946,129 @@ TEST(RenderCommand, StatsFileHasRaysQueriesPhasesAndThePlan) {
     EXPECT_EQ(stats["plan"]["materials"][1]["reflection"], true);
     std::ifstream err(dir / "stderr");
     EXPECT_EQ(std::string(std::istreambuf_iterator<char>(err), {}), "") << "--quiet";
+}
+
+// The options of `csgray render --help`, each run through the binary. run() returns the exit
+// status of `csgray render PART -o OUT ARGS` in dir (stderr to dir/stderr).
+int runRender(const fs::path& dir, const std::string& source, const std::string& out,
+              const std::string& args) {
+    std::ofstream(dir / "part.scad") << source;
+    const std::string command = std::string(CSGRAY_EXE) + " render '" +
+                                (dir / "part.scad").string() + "' -o '" + (dir / out).string() +
+                                "' --quiet " + args + " 2>'" + (dir / "stderr").string() + "'";
+    return std::system(command.c_str());
+}
+
+// A PFM's linear floats, rows top to bottom (the file stores them bottom to top).
+struct Pfm {
+    int width = 0, height = 0;
+    std::vector<float> rgb;
+    csg::Vec3 at(int i, int j) const {
+        const float* p = &rgb[(size_t(j) * width + i) * 3];
+        return {p[0], p[1], p[2]};
+    }
+};
+
+Pfm readPfm(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string magic;
+    double scale;
+    Pfm p;
+    in >> magic >> p.width >> p.height >> scale;
+    in.get();
+    if (magic != "PF" || scale >= 0 || p.width <= 0 || p.height <= 0) return {};
+    std::vector<float> bottomUp(size_t(p.width) * p.height * 3);
+    in.read(reinterpret_cast<char*>(bottomUp.data()), std::streamsize(bottomUp.size() * 4));
+    const size_t row = size_t(p.width) * 3;
+    p.rgb.resize(bottomUp.size());
+    for (int j = 0; j < p.height; ++j)
+        std::copy_n(&bottomUp[size_t(p.height - 1 - j) * row], row, &p.rgb[size_t(j) * row]);
+    return p;
+}
+
+// --aa N: N x N stratified samples averaged. A lit square whose left edge x = 0.125 lies a
+// quarter into pixel column 4 (which spans x in [0, 0.5] in planeUnder()'s 4 x 4 view of
+// 8 x 8 pixels) and on a boundary of its 4 x 4 strata: 12 of the 16 samples see the square
+// whatever the jitter inside a stratum, so the pixel is 3/4 square + 1/4 background, while
+// one sample per pixel (its centre, x = 0.25) sees only the square. Square and background
+// are read from pixels wholly inside them; float rounding of a 16-sample mean: 1e-6.
+TEST(RenderCommand, AaAveragesStratifiedSamples) {
+    const TempDir temp("render_aa");
+    const std::string source =
+        "camera(eye = [0, 0, 1], center = [0, 0, -9], up = [0, 1, 0], fov = 2 * atan(0.2), "
+        "projection = \"orthographic\");\n"
+        "material(color = [0.2, 0.3, 0.4], ambient = 1, diffuse = 0, specular = 0) "
+        "translate([0.125, -10, -1]) cube([10, 20, 1]);\n";
+    ASSERT_EQ(runRender(temp.path, source, "one.pfm", "--size 8x8"), 0);
+    ASSERT_EQ(runRender(temp.path, source, "aa.pfm", "--size 8x8 --aa 4"), 0);
+    const Pfm one = readPfm(temp.path / "one.pfm"), aa = readPfm(temp.path / "aa.pfm");
+    ASSERT_EQ(aa.width, 8);
+    ASSERT_EQ(one.width, 8);
+    for (int j = 0; j < 8; ++j) {
+        const csg::Vec3 square = aa.at(6, j), background = aa.at(1, j);
+        ASSERT_GT(std::abs(square.r - background.r), 0.1) << "the square must show";
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(aa.at(4, j)[c], 0.75 * square[c] + 0.25 * background[c], 1e-6) << j;
+            EXPECT_NEAR(one.at(4, j)[c], one.at(6, j)[c], 1e-6) << j;
+            EXPECT_NEAR(aa.at(3, j)[c], background[c], 1e-6) << j;
+        }
+    }
+}
+
+// --no-shadows: the plane of planeUnder() under an opaque bar, lit from straight above: with
+// shadows the left half is black (ambient 0); without, every pixel is Lambert's cosine of the
+// light over the plane, computed here, and the stats count no shadow ray.
+TEST(RenderCommand, NoShadowsLightsEverySurfaceFacingTheLight) {
+    const TempDir temp("render_noshadows");
+    const std::string source =
+        planeUnder("material(ambient = 0) translate([-10, -10, 2]) cube([10, 20, 1]);\n");
+    ASSERT_EQ(runRender(temp.path, source, "on.pfm", "--size 8x8"), 0);
+    ASSERT_EQ(runRender(temp.path, source, "off.pfm",
+                        "--size 8x8 --no-shadows --stats '" + (temp.path / "s.json").string() + "'"),
+              0);
+    const Pfm on = readPfm(temp.path / "on.pfm"), off = readPfm(temp.path / "off.pfm");
+    ASSERT_EQ(on.width, 8);
+    ASSERT_EQ(off.width, 8);
+    for (int j = 0; j < 8; ++j) {
+        for (int i = 0; i < 8; ++i) {
+            const csg::Vec3 p(-2.0 + (i + 0.5) / 2.0, 2.0 - (j + 0.5) / 2.0, 0.0);
+            const double lambert = glm::normalize(csg::Vec3(0, 0, 100) - p).z;
+            EXPECT_NEAR(off.at(i, j).g, lambert, 1e-6) << i << "," << j;
+            EXPECT_NEAR(on.at(i, j).g, i < 4 ? 0.0 : lambert, 1e-6) << i << "," << j;
+        }
+    }
+    const nlohmann::json stats = nlohmann::json::parse(std::ifstream(temp.path / "s.json"));
+    EXPECT_EQ(stats["rays"]["shadow"], 0);
+}
+
+// --min-weight W: facing mirrors of reflect 0.5 cast a reflection while its weight 0.5^k is
+// at least W: k <= 8 for the default 1/256, k <= 4 for W = 1/16.
+TEST(RenderCommand, MinWeightEndsTheRayTree) {
+    const TempDir temp("render_minweight");
+    const std::string stats = "--stats '" + (temp.path / "s.json").string() + "'";
+    ASSERT_EQ(runRender(temp.path, facingMirrors(0.5), "a.png", "--size 20x10 " + stats), 0);
+    EXPECT_EQ(nlohmann::json::parse(std::ifstream(temp.path / "s.json"))["rays"]["reflection"],
+              8 * 200);
+    ASSERT_EQ(runRender(temp.path, facingMirrors(0.5), "b.png",
+                        "--size 20x10 --min-weight 0.0625 " + stats),
+              0);
+    EXPECT_EQ(nlohmann::json::parse(std::ifstream(temp.path / "s.json"))["rays"]["reflection"],
+              4 * 200);
+}
+
+// --format exr writes OpenEXR whatever the extension (its magic number 76 2f 31 01), and
+// --format png a PNG (its 8-byte signature).
+TEST(RenderCommand, FormatOverridesTheExtension) {
+    const TempDir temp("render_format");
+    const std::string source = "cube(1);\n";
+    ASSERT_EQ(runRender(temp.path, source, "image.out", "--size 8x6 --format exr"), 0);
+    std::string bytes(4, '\0');
+    std::ifstream(temp.path / "image.out", std::ios::binary).read(bytes.data(), 4);
+    EXPECT_EQ(bytes, std::string("\x76\x2f\x31\x01", 4));
+    ASSERT_EQ(runRender(temp.path, source, "image.img", "--size 8x6 --format png"), 0);
+    std::string png(8, '\0');
+    std::ifstream(temp.path / "image.img", std::ios::binary).read(png.data(), 8);
+    EXPECT_EQ(png, std::string("\x89PNG\r\n\x1a\n", 8));
 }
 
 // ---- Ctrl-C ----
