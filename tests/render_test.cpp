@@ -44,12 +44,15 @@ extern char** environ;
 // cannot see that the counting operator new is malloc, hence the pragma for the matching free.
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 #include "tests/CountingNew.h"
+#include "tests/RenderScenes.h"
 #include "tests/TempDir.h"
 
 namespace viewer::render {
 namespace {
 
 namespace fs = std::filesystem;
+using csg::testing::facingMirrors;
+using csg::testing::planeUnder;
 
 struct LoadedScene {
     io::Model model;
@@ -137,19 +140,6 @@ TEST(EffectsPlan, OneConvexSolidCastsNoShadowRays) {
     EXPECT_GT(r.result.rays.primary, 0u);
 }
 
-// Two facing mirrors, z <= 0 and z >= 10, seen by an orthographic camera at z = 5 looking
-// down: every primary ray hits the floor and the reflections bounce between the two planes
-// forever, so the ray tree is cut only by the weight rule. The k-th reflection ray weighs
-// reflect^k and is cast when reflect^k >= 1/256.
-std::string facingMirrors(double reflect) {
-    return "camera(eye=[0,0,5], center=[0,0,0], up=[0,1,0], projection=\"orthographic\");\n"
-           "material(ambient=0.2, diffuse=0, specular=0, reflect=" +
-           std::to_string(reflect) +
-           ") {\n"
-           "  halfspace([0, 0, 1], 0);\n"
-           "  halfspace([0, 0, -1], -10);\n"
-           "}\n";
-}
 
 TEST(EffectsPlan, MirrorReflectRaysFollowTheWeightThreshold) {
     constexpr uint64_t kPixels = 24 * 16;
@@ -376,14 +366,6 @@ csg::Vec3 pixel(const RenderResult& r, int i, int j) {
     return {p[0], p[1], p[2]};
 }
 
-std::string planeUnder(const std::string& slabs) {
-    return "camera(eye = [0, 0, 1], center = [0, 0, -9], up = [0, 1, 0], fov = 2 * atan(0.2), "
-           "projection = \"orthographic\");\n"
-           "light([0, 0, 100]);\n"
-           "material(color = [1, 1, 1], ambient = 0, diffuse = 1, specular = 0) "
-           "halfspace([0, 0, 1], 0);\n" +
-           slabs;
-}
 
 // A glass slab over x in [-10, 0], z in [z0, z0 + 1]: colour (sRGB) and transmit as given,
 // no light of its own.
@@ -946,129 +928,6 @@ TEST(RenderCommand, StatsFileHasRaysQueriesPhasesAndThePlan) {
     EXPECT_EQ(stats["plan"]["materials"][1]["reflection"], true);
     std::ifstream err(dir / "stderr");
     EXPECT_EQ(std::string(std::istreambuf_iterator<char>(err), {}), "") << "--quiet";
-}
-
-// The options of `csgray render --help`, each run through the binary. run() returns the exit
-// status of `csgray render PART -o OUT ARGS` in dir (stderr to dir/stderr).
-int runRender(const fs::path& dir, const std::string& source, const std::string& out,
-              const std::string& args) {
-    std::ofstream(dir / "part.scad") << source;
-    const std::string command = std::string(CSGRAY_EXE) + " render '" +
-                                (dir / "part.scad").string() + "' -o '" + (dir / out).string() +
-                                "' --quiet " + args + " 2>'" + (dir / "stderr").string() + "'";
-    return std::system(command.c_str());
-}
-
-// A PFM's linear floats, rows top to bottom (the file stores them bottom to top).
-struct Pfm {
-    int width = 0, height = 0;
-    std::vector<float> rgb;
-    csg::Vec3 at(int i, int j) const {
-        const float* p = &rgb[(size_t(j) * width + i) * 3];
-        return {p[0], p[1], p[2]};
-    }
-};
-
-Pfm readPfm(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::string magic;
-    double scale;
-    Pfm p;
-    in >> magic >> p.width >> p.height >> scale;
-    in.get();
-    if (magic != "PF" || scale >= 0 || p.width <= 0 || p.height <= 0) return {};
-    std::vector<float> bottomUp(size_t(p.width) * p.height * 3);
-    in.read(reinterpret_cast<char*>(bottomUp.data()), std::streamsize(bottomUp.size() * 4));
-    const size_t row = size_t(p.width) * 3;
-    p.rgb.resize(bottomUp.size());
-    for (int j = 0; j < p.height; ++j)
-        std::copy_n(&bottomUp[size_t(p.height - 1 - j) * row], row, &p.rgb[size_t(j) * row]);
-    return p;
-}
-
-// --aa N: N x N stratified samples averaged. A lit square whose left edge x = 0.125 lies a
-// quarter into pixel column 4 (which spans x in [0, 0.5] in planeUnder()'s 4 x 4 view of
-// 8 x 8 pixels) and on a boundary of its 4 x 4 strata: 12 of the 16 samples see the square
-// whatever the jitter inside a stratum, so the pixel is 3/4 square + 1/4 background, while
-// one sample per pixel (its centre, x = 0.25) sees only the square. Square and background
-// are read from pixels wholly inside them; float rounding of a 16-sample mean: 1e-6.
-TEST(RenderCommand, AaAveragesStratifiedSamples) {
-    const TempDir temp("render_aa");
-    const std::string source =
-        "camera(eye = [0, 0, 1], center = [0, 0, -9], up = [0, 1, 0], fov = 2 * atan(0.2), "
-        "projection = \"orthographic\");\n"
-        "material(color = [0.2, 0.3, 0.4], ambient = 1, diffuse = 0, specular = 0) "
-        "translate([0.125, -10, -1]) cube([10, 20, 1]);\n";
-    ASSERT_EQ(runRender(temp.path, source, "one.pfm", "--size 8x8"), 0);
-    ASSERT_EQ(runRender(temp.path, source, "aa.pfm", "--size 8x8 --aa 4"), 0);
-    const Pfm one = readPfm(temp.path / "one.pfm"), aa = readPfm(temp.path / "aa.pfm");
-    ASSERT_EQ(aa.width, 8);
-    ASSERT_EQ(one.width, 8);
-    for (int j = 0; j < 8; ++j) {
-        const csg::Vec3 square = aa.at(6, j), background = aa.at(1, j);
-        ASSERT_GT(std::abs(square.r - background.r), 0.1) << "the square must show";
-        for (int c = 0; c < 3; ++c) {
-            EXPECT_NEAR(aa.at(4, j)[c], 0.75 * square[c] + 0.25 * background[c], 1e-6) << j;
-            EXPECT_NEAR(one.at(4, j)[c], one.at(6, j)[c], 1e-6) << j;
-            EXPECT_NEAR(aa.at(3, j)[c], background[c], 1e-6) << j;
-        }
-    }
-}
-
-// --no-shadows: the plane of planeUnder() under an opaque bar, lit from straight above: with
-// shadows the left half is black (ambient 0); without, every pixel is Lambert's cosine of the
-// light over the plane, computed here, and the stats count no shadow ray.
-TEST(RenderCommand, NoShadowsLightsEverySurfaceFacingTheLight) {
-    const TempDir temp("render_noshadows");
-    const std::string source =
-        planeUnder("material(ambient = 0) translate([-10, -10, 2]) cube([10, 20, 1]);\n");
-    ASSERT_EQ(runRender(temp.path, source, "on.pfm", "--size 8x8"), 0);
-    ASSERT_EQ(runRender(temp.path, source, "off.pfm",
-                        "--size 8x8 --no-shadows --stats '" + (temp.path / "s.json").string() + "'"),
-              0);
-    const Pfm on = readPfm(temp.path / "on.pfm"), off = readPfm(temp.path / "off.pfm");
-    ASSERT_EQ(on.width, 8);
-    ASSERT_EQ(off.width, 8);
-    for (int j = 0; j < 8; ++j) {
-        for (int i = 0; i < 8; ++i) {
-            const csg::Vec3 p(-2.0 + (i + 0.5) / 2.0, 2.0 - (j + 0.5) / 2.0, 0.0);
-            const double lambert = glm::normalize(csg::Vec3(0, 0, 100) - p).z;
-            EXPECT_NEAR(off.at(i, j).g, lambert, 1e-6) << i << "," << j;
-            EXPECT_NEAR(on.at(i, j).g, i < 4 ? 0.0 : lambert, 1e-6) << i << "," << j;
-        }
-    }
-    const nlohmann::json stats = nlohmann::json::parse(std::ifstream(temp.path / "s.json"));
-    EXPECT_EQ(stats["rays"]["shadow"], 0);
-}
-
-// --min-weight W: facing mirrors of reflect 0.5 cast a reflection while its weight 0.5^k is
-// at least W: k <= 8 for the default 1/256, k <= 4 for W = 1/16.
-TEST(RenderCommand, MinWeightEndsTheRayTree) {
-    const TempDir temp("render_minweight");
-    const std::string stats = "--stats '" + (temp.path / "s.json").string() + "'";
-    ASSERT_EQ(runRender(temp.path, facingMirrors(0.5), "a.png", "--size 20x10 " + stats), 0);
-    EXPECT_EQ(nlohmann::json::parse(std::ifstream(temp.path / "s.json"))["rays"]["reflection"],
-              8 * 200);
-    ASSERT_EQ(runRender(temp.path, facingMirrors(0.5), "b.png",
-                        "--size 20x10 --min-weight 0.0625 " + stats),
-              0);
-    EXPECT_EQ(nlohmann::json::parse(std::ifstream(temp.path / "s.json"))["rays"]["reflection"],
-              4 * 200);
-}
-
-// --format exr writes OpenEXR whatever the extension (its magic number 76 2f 31 01), and
-// --format png a PNG (its 8-byte signature).
-TEST(RenderCommand, FormatOverridesTheExtension) {
-    const TempDir temp("render_format");
-    const std::string source = "cube(1);\n";
-    ASSERT_EQ(runRender(temp.path, source, "image.out", "--size 8x6 --format exr"), 0);
-    std::string bytes(4, '\0');
-    std::ifstream(temp.path / "image.out", std::ios::binary).read(bytes.data(), 4);
-    EXPECT_EQ(bytes, std::string("\x76\x2f\x31\x01", 4));
-    ASSERT_EQ(runRender(temp.path, source, "image.img", "--size 8x6 --format png"), 0);
-    std::string png(8, '\0');
-    std::ifstream(temp.path / "image.img", std::ios::binary).read(png.data(), 8);
-    EXPECT_EQ(png, std::string("\x89PNG\r\n\x1a\n", 8));
 }
 
 // ---- Ctrl-C ----
