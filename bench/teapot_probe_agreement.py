@@ -12,6 +12,10 @@ direction points at a uniform point of the box. Seeded, so a run repeats exactly
 Prints, per method after the first: rays whose crossing count differs from the first
 method's, and over the rays with equal counts the largest |t - t_first| / max(1, |t_first|)
 (t is a distance: the probe's directions are unit length).
+
+With --max-differ N and --max-rel X (ctest's teapot_probe_agreement runs so) it exits 1 when a
+method differs from the first on more than N rays or by more than X, or when the first method
+finds no crossing at all (then there is nothing to agree on).
 """
 import argparse
 import json
@@ -64,6 +68,8 @@ def main():
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--methods", default="clip,newton,resultant")
     parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--max-differ", type=int, default=None)
+    parser.add_argument("--max-rel", type=float, default=None)
     args = parser.parse_args()
 
     lo, hi = teapot_box(args.csgray)
@@ -79,6 +85,7 @@ def main():
     hit = sum(1 for c in first if c)
     print(f"{args.rays} rays (seed {args.seed}) through the teapot's box {lo} .. {hi}: "
           f"{methods[0]} finds {total} crossings on {hit} rays")
+    failed = args.max_differ is not None and hit == 0
     for m in methods[1:]:
         other = results[m]
         if len(other) != len(first):
@@ -91,6 +98,12 @@ def main():
                     worst = max(worst, abs(tb - ta) / max(1.0, abs(ta)))
         print(f"{m}: crossing count differs from {methods[0]} on {differ} rays; "
               f"max relative t difference {worst:.2g} on the others")
+        if args.max_differ is not None and differ > args.max_differ:
+            failed = True
+        if args.max_rel is not None and worst > args.max_rel:
+            failed = True
+    if failed:
+        sys.exit("teapot_probe_agreement: the methods disagree beyond the bounds given")
 
 
 if __name__ == "__main__":

@@ -17,6 +17,7 @@ packages=(
     xvfb xdotool          # viewer_test: a virtual X server and the input it sends the window
     libgtest-dev libgmock-dev  # tests
     libbenchmark-dev      # bench/
+    python3               # bench/teapot_probe_agreement.py and bench/benchmark_smoke.py, run by ctest
     libfreetype-dev libharfbuzz-dev libfontconfig-dev  # text(): outlines, shaping, font lookup
     fonts-liberation2     # text()'s default font, Liberation Sans, the file Debian's openscad opens
     libpolyclipping-dev   # Clipper 6.4: offset() as OpenSCAD 2021 computes it (csg/derived/)

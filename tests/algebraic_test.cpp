@@ -269,12 +269,40 @@ TEST(Algebraic, EverySolverAgainstTheClosedFormReference) {
                         c.name.c_str(), solverName(solver), s.data->g.degree(), t.rays, t.ambiguous,
                         t.wrong, t.tangencyMisses, t.slivers, maxErr, percentile(t.errors, 0.99),
                         1e6 * t.seconds / double(t.rays));
-            if (solver == Solver::Auto) {
-                EXPECT_EQ(t.wrong, 0) << c.name << ": " << t.firstWrong;
-                // Simple roots to ~1e-9 of the chord; multiple roots of multiplicity k only
-                // to ~eps^(1/k) (their conditioning), so the bound is loose for the powers.
-                EXPECT_LE(maxErr, c.multiplicity == 1 ? 1e-6 : 1e-1) << c.name;
+            // Every solver is asserted. Wrong counts: none for Auto, the closed form,
+            // Descartes and interval subdivision; Yuksel and Bernstein lose a few roots of
+            // the high powers (measured 4 and 8 of 2000; the accuracy report has Bernstein
+            // wrong on 3 / 1000 at degree 16 too), held to 1 / 250 of the rays. The Sturm
+            // solvers cannot see a tangency (no sign change; see solvers_test): exempt on the
+            // even powers, where every root is one, else held to the report's 1 / 200 (7 of
+            // 2000 on shells of degree 16; 9 here on shells x8) -- except on wide x8, where
+            // they return denormal roots near 0 in place of the chord's positive half on 37
+            // of 2000 rays (a known bug of the Sturm pair, not of Auto): held to 1 / 40 there
+            // so that it cannot grow unseen.
+            const bool sturm =
+                solver == Solver::SturmBisection || solver == Solver::SturmIllinois;
+            if (!(sturm && c.multiplicity % 2 == 0)) {
+                long allowed = 0;
+                if (solver == Solver::Yuksel || solver == Solver::Bernstein) allowed = t.rays / 250;
+                if (sturm) allowed = c.name.rfind("wide x8", 0) == 0 ? t.rays / 40 : t.rays / 200;
+                EXPECT_LE(t.wrong, allowed)
+                    << c.name << " " << solverName(solver) << ": " << t.firstWrong;
             }
+            // Errors, in u: a simple root to ~1e-9 of the chord (1e-6 leaves a margin); a
+            // root of multiplicity k moves by (dp / c)^(1/k) when p moves by dp near
+            // p = c (u - u0)^k, and the coefficients' rounding dp / c stays below 64^k eps
+            // in these classes (the sliver rule above uses the same bound): 64 eps^(1/k),
+            // 4e-4 for the cube of a sphere (measured 4.4e-5).
+            const double bound = c.multiplicity == 1
+                                     ? 1e-6
+                                     : 64.0 * std::pow(tol::kUlp, 1.0 / c.multiplicity);
+            EXPECT_LE(maxErr, bound) << c.name << " " << solverName(solver);
+            // The skipped rays (reference within 1000 noise levels of a merge): none to a few
+            // in most classes; the near-double class's pair 1e-6 apart is in that grey zone
+            // on about half its rays (measured 948 of 2000), so it may skip up to 55 %.
+            EXPECT_LE(t.ambiguous, c.name.rfind("near-double", 0) == 0 ? t.rays * 55 / 100
+                                                                         : t.rays / 100)
+                << c.name;
         }
         std::fflush(stdout);
     }

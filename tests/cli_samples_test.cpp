@@ -401,8 +401,11 @@ TEST(ProbeRays, HundredThousandRaysThroughTheGrid) {
     std::cout << "probe --rays: " << kRays << " rays through csg_grid.scad in " << seconds
               << " s = " << raysPerSecond << " rays/s (JSON lines, piped to wc)\n";
     RecordProperty("rays_per_second", std::to_string(raysPerSecond));
-    // Generous: 10^6 rays must stay well under a minute even on a loaded machine.
-    EXPECT_LT(seconds, 30.0);
+    // A guard against an order-of-magnitude loss, not a speed figure (that is the recorded
+    // property and bench/): 10^5 rays took 5.0 s on the shared 2-core machine at load 5 (a
+    // build beside it), ~0.5 s unloaded; 60 s is 12 times the loaded run, which a 2-core CI
+    // machine running two tests at once cannot reach without a real regression.
+    EXPECT_LT(seconds, 60.0);
 }
 
 }  // namespace

@@ -5,7 +5,10 @@
 #include <png.h>
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <map>
+#include <sstream>
+#include <string>
 
 #include "CliRunner.h"
 
@@ -267,6 +270,73 @@ TEST(Probe, DefineOverridesATopLevelVariable) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto spans = spansOf(nlohmann::json::parse(r.out));
     EXPECT_TRUE(sameSpans(spans, {{4, 4.8}, {5.2, 6}}, 1e-9)) << describe(spans);
+}
+
+// "-D name=value ... may be repeated" is in every part command's help: probe above; here info,
+// render, export and compare (view: viewer_test). The part refuses to load unless both -D
+// values reach it (its assert), and info's bounds and the export's vertices show the size.
+TEST(Define, EveryPartCommandTakesIt) {
+    ScratchDir dir;
+    const fs::path part = dir / "sized.scad";
+    writeFile(part, "s = 1;\nk = 0;\nassert(s == 3 && k == 2, \"-D did not reach the part\");\n"
+                    "cube(s);\n");
+    const std::vector<std::string> defines = {"-D", "s=3", "-D", "k=1+1"};
+    const auto with = [&](std::vector<std::string> args) {
+        args.insert(args.begin() + 2, defines.begin(), defines.end());
+        return args;
+    };
+    // Without them the assert fails: a bad model.
+    EXPECT_EQ(runCsgray({"info", part.string()}, dir.path()).exitCode, 1);
+    const RunResult info = runCsgray(with({"info", part.string()}), dir.path());
+    ASSERT_EQ(info.exitCode, 0) << info.err;
+    for (int a = 0; a < 3; ++a)
+        EXPECT_EQ(nlohmann::json::parse(info.out)["bounds"]["max"][a].get<double>(), 3.0);
+    const RunResult render = runCsgray(
+        with({"render", part.string(), "-o", (dir / "r.png").string(), "--size", "16x12"}),
+        dir.path());
+    EXPECT_EQ(render.exitCode, 0) << render.err;
+    const RunResult exported =
+        runCsgray(with({"export", part.string(), "-o", (dir / "e.obj").string()}), dir.path());
+    ASSERT_EQ(exported.exitCode, 0) << exported.err;
+    double top = 0.0;
+    std::istringstream obj(readFile(dir / "e.obj"));
+    for (std::string line; std::getline(obj, line);)
+        if (line.rfind("v ", 0) == 0) top = std::max(top, std::stod(line.substr(line.rfind(' '))));
+    EXPECT_EQ(top, 3.0);
+    const RunResult compare = runCsgray(
+        with({"compare", part.string(), (dir / "e.obj").string(), "--json"}), dir.path());
+    EXPECT_EQ(compare.exitCode, 0) << compare.err;
+    EXPECT_NEAR(nlohmann::json::parse(compare.out)["volume"]["mesh"].get<double>(), 27.0, 1e-4);
+}
+
+// info's "plan" is render's plan with render's defaults: a scene whose mirror cube can shadow
+// the sphere gets shadow rays for its one light (and says why), reflection on, refraction
+// off, each material's own effects, and render's default min weight and depth.
+TEST(Info, PlanIsTheRenderersWithItsDefaults) {
+    ScratchDir dir;
+    const fs::path part = dir / "plan.scad";
+    writeFile(part, "light([0, 0, 10]);\nsphere(1);\n"
+                    "material(reflect = 0.5) translate([0, 5, 0]) cube(1);\n");
+    const RunResult r = runCsgray({"info", part.string()}, dir.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json plan = nlohmann::json::parse(r.out)["plan"];
+    EXPECT_EQ(plan["reflection"], true) << plan;
+    EXPECT_EQ(plan["refraction"], false) << plan;
+    EXPECT_EQ(plan["minWeight"], 1.0 / 256) << plan;
+    EXPECT_EQ(plan["maxDepth"], 10) << plan;
+    ASSERT_EQ(plan["lights"].size(), 1u) << plan;
+    EXPECT_EQ(plan["lights"][0]["shadowRays"], true) << plan;
+    EXPECT_EQ(plan["lights"][0]["position"], nlohmann::json::parse("[0, 0, 10]")) << plan;
+    EXPECT_FALSE(plan["lights"][0]["why"].get<std::string>().empty()) << plan;
+    ASSERT_EQ(plan["materials"].size(), 2u) << plan;
+    EXPECT_EQ(plan["materials"][0]["reflection"], false) << plan;
+    EXPECT_EQ(plan["materials"][1]["reflection"], true) << plan;
+    // One convex solid cannot shadow itself: no shadow rays, as render decides.
+    writeFile(part, "light([0, 0, 10]);\nsphere(1);\n");
+    const nlohmann::json alone =
+        nlohmann::json::parse(runCsgray({"info", part.string()}, dir.path()).out)["plan"];
+    EXPECT_EQ(alone["convexScene"], true) << alone;
+    EXPECT_EQ(alone["lights"][0]["shadowRays"], false) << alone;
 }
 
 TEST(Probe, RaysFromStdinGiveOneLinePerRayInOrder) {

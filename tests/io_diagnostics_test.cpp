@@ -251,7 +251,11 @@ TEST(IoDiagnostics, FiftyMegabyteFileInReasonableTime) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ASSERT_TRUE(r.ok()) << formatDiagnostic(r.diagnostics.at(0));
     EXPECT_TRUE(r.model->root);
-    EXPECT_LT(seconds, 60.0);
+    // A guard against quadratic reading (hours at 50 MB), not a speed figure: the whole test,
+    // writing the file included, took 30.6 s on the shared 2-core machine at load 5, so the
+    // old 60 s was only twice that; 300 s is ten times it, out of reach of a loaded CI machine
+    // and far below quadratic.
+    EXPECT_LT(seconds, 300.0);
     std::filesystem::remove(path);
 }
 

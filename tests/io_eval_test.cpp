@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <random>
 
 #include <unistd.h>
 
@@ -296,10 +298,21 @@ TEST(IoEval, BuiltinFunctions) {
     EXPECT_EQ(echo1("echo(is_undef(undef), is_num(1), is_num(0/0), is_bool(false), is_string(\"\"),"
                     "is_list([]), version());"),
               "ECHO: true, true, false, true, true, true, [2021, 1, 0]");
-    // Seeded rands is OpenSCAD's sequence (std::mt19937 + uniform_real_distribution).
+    // Seeded rands is OpenSCAD's sequence (std::mt19937 + uniform_real_distribution). The
+    // expected lines are OpenSCAD 2021.01's (Debian's openscad), recorded with
+    //   printf 'echo(rands(0, 1, 2, 42));\necho(rands(0, 10, 3, 7));\n' > r.scad &&
+    //   openscad -o r.echo r.scad && cat r.echo
     EXPECT_EQ(echo1("echo(rands(0, 1, 2, 42));"), "ECHO: [0.796543, 0.183435]");
-    // Unseeded rands is still deterministic between runs.
-    EXPECT_EQ(echo1("echo(rands(0, 1, 1));"), echo1("echo(rands(0, 1, 1));"));
+    EXPECT_EQ(echo1("echo(rands(0, 10, 3, 7));"), "ECHO: [2.27339, 3.18972, 9.78223]");
+    // Unseeded rands: OpenSCAD seeds from the clock, csgray from 0 so a run repeats. The
+    // expected values come from the standard generator seeded so, not from csgray; the second
+    // call continues the sequence instead of restarting it.
+    std::mt19937 zero(0);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const double first = unit(zero), second = unit(zero);
+    char want[64];
+    std::snprintf(want, sizeof want, "ECHO: [%g], [%g]", first, second);
+    EXPECT_EQ(echo1("a = rands(0, 1, 1); b = rands(0, 1, 1); echo(a, b);"), want);
 }
 
 // search() with OpenSCAD 2021.01's rules (func.cc), each result derived by hand.

@@ -231,9 +231,16 @@ TEST(Query, BoundingBallRejectsOnlyLinesThatMissTheSphere) {
                 const std::optional<Hit> hit = scene.closest(ray, ctx);
                 ASSERT_EQ(hit.has_value(), meets) << "part " << part << " line " << line;
                 if (meets) {
-                    // Entry at back - half the chord, in units of t.
+                    // Entry at back - half the chord, in units of t. Tolerance: the line's
+                    // points are ~25 radii from the origin (shift up to 12 R, back 10 R), so
+                    // placing it and mapping it to the sphere's frame moves it across by a few
+                    // u * 25 R (u = 2^-53), and the discriminant r^2 - p^2 cancels ~100 r^2 to
+                    // a few u * 100 r^2. A half chord h = 4.5e-4 R moves by R dp / h and
+                    // d(disc) / 2h: each ~1e5 u R = 1e-11 R. 1e-9 R leaves a factor 100 and is
+                    // 4e5 times smaller than h, so a hit at the closest-approach point fails.
                     const double halfChord = radius * std::sqrt(1.0 - factor * factor);
-                    EXPECT_NEAR(hit->t, back - halfChord / glm::length(d), 1e-3 * back)
+                    EXPECT_NEAR(hit->t, back - halfChord / glm::length(d),
+                                1e-9 * radius / glm::length(d))
                         << "part " << part << " line " << line;
                 } else {
                     EXPECT_EQ(ctx.stats.primitiveTests, solves) << "part " << part;

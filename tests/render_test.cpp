@@ -44,12 +44,15 @@ extern char** environ;
 // cannot see that the counting operator new is malloc, hence the pragma for the matching free.
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 #include "tests/CountingNew.h"
+#include "tests/RenderScenes.h"
 #include "tests/TempDir.h"
 
 namespace viewer::render {
 namespace {
 
 namespace fs = std::filesystem;
+using csg::testing::facingMirrors;
+using csg::testing::planeUnder;
 
 struct LoadedScene {
     io::Model model;
@@ -137,19 +140,6 @@ TEST(EffectsPlan, OneConvexSolidCastsNoShadowRays) {
     EXPECT_GT(r.result.rays.primary, 0u);
 }
 
-// Two facing mirrors, z <= 0 and z >= 10, seen by an orthographic camera at z = 5 looking
-// down: every primary ray hits the floor and the reflections bounce between the two planes
-// forever, so the ray tree is cut only by the weight rule. The k-th reflection ray weighs
-// reflect^k and is cast when reflect^k >= 1/256.
-std::string facingMirrors(double reflect) {
-    return "camera(eye=[0,0,5], center=[0,0,0], up=[0,1,0], projection=\"orthographic\");\n"
-           "material(ambient=0.2, diffuse=0, specular=0, reflect=" +
-           std::to_string(reflect) +
-           ") {\n"
-           "  halfspace([0, 0, 1], 0);\n"
-           "  halfspace([0, 0, -1], -10);\n"
-           "}\n";
-}
 
 TEST(EffectsPlan, MirrorReflectRaysFollowTheWeightThreshold) {
     constexpr uint64_t kPixels = 24 * 16;
@@ -376,14 +366,6 @@ csg::Vec3 pixel(const RenderResult& r, int i, int j) {
     return {p[0], p[1], p[2]};
 }
 
-std::string planeUnder(const std::string& slabs) {
-    return "camera(eye = [0, 0, 1], center = [0, 0, -9], up = [0, 1, 0], fov = 2 * atan(0.2), "
-           "projection = \"orthographic\");\n"
-           "light([0, 0, 100]);\n"
-           "material(color = [1, 1, 1], ambient = 0, diffuse = 1, specular = 0) "
-           "halfspace([0, 0, 1], 0);\n" +
-           slabs;
-}
 
 // A glass slab over x in [-10, 0], z in [z0, z0 + 1]: colour (sRGB) and transmit as given,
 // no light of its own.
@@ -443,6 +425,56 @@ TEST(LightThroughGlass, OpaqueSolidsStillBlock) {
         "translate([-10, -10, 3.5]) cube([10, 20, 0.5]);\n";
     expectShadowIsTransmission(opaque, csg::Vec3(0.0));
     expectShadowIsTransmission(glassSlab(2, "[1, 1, 1]", 0.9) + opaque, csg::Vec3(0.0));
+}
+
+// ---- shading against its formulas ----
+
+// The white plane of planeUnder() lit from (1, 0.5, 4) by a light of radiance 1, with
+// diffuse 0.6, specular 0.3 and shininess 20, seen straight down (the view vector is +z
+// everywhere), an opaque bar over x in [-1, 0] at z in [1.5, 2] (behind the camera) casting
+// its shadow on the columns whose centres lie at x < -0.6. Each pixel is computed here from the formulas: Lambert's kd * albedo * (n . l)
+// plus Blinn-Phong's ks * (n . h)^shininess with h = normalize(l + v), or 0 in the shadow
+// (ambient 0). Tolerance: the image holds floats (relative 2^-24 of values below 1) and the
+// hit point is exact to ~1e-16, so 1e-6 is a margin of ~16 over the float rounding; a missing
+// term or a Phong (r . v) highlight instead of Blinn's is off by more than 1e-3.
+TEST(Shading, LambertAndBlinnPhongPixelsAndAShadowedOne) {
+    const std::string source =
+        "camera(eye = [0, 0, 1], center = [0, 0, -9], up = [0, 1, 0], fov = 2 * atan(0.2), "
+        "projection = \"orthographic\");\n"
+        "light([1, 0.5, 4]);\n"
+        "material(color = [1, 1, 1], ambient = 0, diffuse = 0.6, specular = 0.3, "
+        "shininess = 20) halfspace([0, 0, 1], 0);\n"
+        "material(color = [1, 1, 1], ambient = 0, diffuse = 1, specular = 0) "
+        "translate([-1, -10, 1.5]) cube([1, 20, 0.5]);\n";
+    const int n = 16;
+    const Rendered r = render(load(source), n, n);
+    const csg::Vec3 light(1.0, 0.5, 4.0), view(0.0, 0.0, 1.0);
+    int shadowed = 0, lit = 0;
+    for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < n; ++i) {
+            // The pixel's centre on the plane (the view is 4 x 4 units around the origin).
+            const csg::Vec3 p(-2.0 + (i + 0.5) * 4.0 / n, 2.0 - (j + 0.5) * 4.0 / n, 0.0);
+            // In the shadow when the segment to the light crosses the bar: its x at the
+            // bar's bottom and top (z = 1.5, 2) overlaps [-1, 0]. Pixels within 1e-3 of the
+            // shadow's edge would depend on rounding; the grid of centres has none.
+            const auto xAt = [&](double z) { return p.x + (light.x - p.x) * z / light.z; };
+            const double lo = std::min(xAt(1.5), xAt(2.0)), hi = std::max(xAt(1.5), xAt(2.0));
+            ASSERT_TRUE(std::abs(lo) > 1e-3 && std::abs(hi + 1.0) > 1e-3) << i << "," << j;
+            const bool inShadow = hi > -1.0 && lo < 0.0;
+            double want = 0.0;
+            if (!inShadow) {
+                const csg::Vec3 l = glm::normalize(light - p);
+                const csg::Vec3 h = glm::normalize(l + view);
+                want = 0.6 * l.z + 0.3 * std::pow(h.z, 20.0);
+            }
+            (inShadow ? shadowed : lit)++;
+            const csg::Vec3 got = pixel(r.result, i, j);
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(got[c], want, 1e-6) << "pixel " << i << "," << j << " channel " << c;
+        }
+    }
+    EXPECT_GE(shadowed, n);  // at least a column of the image lies in the shadow
+    EXPECT_GE(lit, n * n / 2);
 }
 
 TEST(LightThroughGlass, PlanCountsOneShadowRayPerLitPointAndNoneWhereNothingOccludes) {

@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -240,6 +241,31 @@ struct ClassSpec {
 // stops when |p| reaches its rounding noise lands within one or two of them.
 constexpr double kAutoLimitRatio = 4.0;
 
+// What every solver is held to in the random classes: its roots within kAutoLimitRatio
+// conditioning limits, and at most this fraction of cases with a wrong count. Auto, the
+// closed form, Yuksel and Descartes are right on every case (bench/reports/accuracy.md: 0 wrong
+// at rel_tol 0 on every class); Bernstein, interval and the Sturm solvers lose a root on a few
+// cases in 10^5 (the report: Bernstein 1-3 / 1000 at degrees 15-16, interval 4 / 2000 on
+// near-doubles, Sturm 7 / 2000 on shells of degree 16), held here to 1e-4.
+double wrongFractionAllowed(Solver solver) {
+    switch (solver) {
+        case Solver::Bernstein:
+        case Solver::Interval:
+        case Solver::SturmBisection:
+        case Solver::SturmIllinois:
+            return 1e-4;
+        default:
+            return 0.0;
+    }
+}
+
+// Sturm isolation counts sign changes, so it cannot see a tangency (an even root, no sign
+// change): on the tangent classes it breaks Solve.h's contract (a tangency listed twice) on
+// ~90 % of cases. Exempt there, and said so; everywhere else it is held like the others.
+bool missesTangencies(Solver solver) {
+    return solver == Solver::SturmBisection || solver == Solver::SturmIllinois;
+}
+
 const ClassSpec kClasses[] = {
     {"cubic-separated", separated, 3},
     {"cubic-tangent", tangent, 3},
@@ -289,10 +315,11 @@ TEST(Solvers, RandomClassesAgainstExactReference) {
                         solverName(solver), (unsigned long long)tally.cases,
                         (unsigned long long)tally.wrongCount, tally.maxError, tally.maxLimitRatio,
                         1e9 * seconds / double(tally.cases));
-            if (solver == Solver::Auto) {
-                EXPECT_EQ(tally.wrongCount, 0u) << spec.name << ": " << firstWrong;
-                EXPECT_LE(tally.maxLimitRatio, kAutoLimitRatio) << spec.name;
-            }
+            if (std::strstr(spec.name, "tangent") != nullptr && missesTangencies(solver))
+                continue;
+            EXPECT_LE(double(tally.wrongCount), wrongFractionAllowed(solver) * tally.cases)
+                << spec.name << " " << solverName(solver) << ": " << firstWrong;
+            EXPECT_LE(tally.maxLimitRatio, kAutoLimitRatio) << spec.name << " " << solverName(solver);
         }
     }
 }
@@ -341,6 +368,23 @@ const HardQuartic kHardQuartics[] = {
     {"1e-3 +- 1e-9 i (near-double, complex)", {{5.0, -5.0}, {{1e-3, 1e-9}}}},
 };
 
+// The hard quartics a solver other than Auto and the closed form is known to get wrong, each
+// with why; every other pair is asserted.
+bool knownHardFailure(const std::string& name, Solver solver) {
+    const bool sturm = solver == Solver::SturmBisection || solver == Solver::SturmIllinois;
+    // Measured: Sturm isolation finds 1 of the quadruple root's 2 listings (no sign change)
+    // and 2 of the four decades 1e47..1e53, and lists the near-double complex pair as four
+    // real roots.
+    if (sturm && (name == "quadruple root 1000" || name == "{1e53,1e50,1e49,1e47}" ||
+                  name == "1e-3 +- 1e-9 i (near-double, complex)"))
+        return true;
+    // Measured: Descartes and interval subdivision give 2 and 0 of the 1e-3 cluster's 4 roots.
+    if ((solver == Solver::Descartes || solver == Solver::Interval) &&
+        name == "cluster {2.003,2.002,2.001,2}")
+        return true;
+    return false;
+}
+
 TEST(Solvers, PublishedHardQuartics) {
     for (const HardQuartic& h : kHardQuartics) {
         const Case c = hardCase(h);
@@ -351,10 +395,9 @@ TEST(Solvers, PublishedHardQuartics) {
             const bool countOk = compare(c.p, c.want, roots, n, t);
             std::printf("%-38s %-16s roots %d/%zu  max error %9.3g  err/limit %9.3g\n", h.name,
                         solverName(solver), n, c.want.size(), t.maxError, t.maxLimitRatio);
-            if (solver == Solver::Auto || solver == Solver::ClosedForm) {
-                EXPECT_TRUE(countOk) << h.name << " " << solverName(solver);
-                EXPECT_LE(t.maxLimitRatio, kAutoLimitRatio) << h.name << " " << solverName(solver);
-            }
+            if (knownHardFailure(h.name, solver)) continue;
+            EXPECT_TRUE(countOk) << h.name << " " << solverName(solver);
+            EXPECT_LE(t.maxLimitRatio, kAutoLimitRatio) << h.name << " " << solverName(solver);
         }
     }
 }
@@ -432,13 +475,19 @@ TEST(Solvers, HighDegreePowersOfASphere) {
         const Polynomial p = toDouble(c, &exact);
         ASSERT_TRUE(exact);
         const int per = k % 2 ? 1 : 2;
+        // The coefficients are exact, so only evaluation moves the roots: near t = 1,
+        // p(t) ~ 2^k (t - 1)^k, and Horner's error is at most gamma(2n) sum |c_i| = ~4k u 2^k
+        // (n = 2k, the binomial coefficients sum to 2^k, u = 2^-53). No solver can tell p
+        // from 0 closer than |t - 1| = (4k u)^(1/k); twice that is the tolerance (8e-8 for
+        // k = 2, 0.03 for k = 8).
+        const double tolerance = 2.0 * std::pow(4.0 * k * std::ldexp(1.0, -53), 1.0 / k);
         for (Solver solver : {Solver::Auto, Solver::Yuksel, Solver::SturmIllinois}) {
             double r[Polynomial::kMaxDegree];
             const int n = solve(p, -4.0, 4.0, r, solver);
             EXPECT_EQ(n, 2 * per) << "k=" << k << " " << solverName(solver);
             if (n != 2 * per) continue;
-            EXPECT_NEAR(r[0], -1.0, 1e-2) << "k=" << k << " " << solverName(solver);
-            EXPECT_NEAR(r[n - 1], 1.0, 1e-2) << "k=" << k << " " << solverName(solver);
+            EXPECT_NEAR(r[0], -1.0, tolerance) << "k=" << k << " " << solverName(solver);
+            EXPECT_NEAR(r[n - 1], 1.0, tolerance) << "k=" << k << " " << solverName(solver);
         }
     }
 }
@@ -447,7 +496,11 @@ TEST(Polynomial, HornerBoundShiftAndDerivative) {
     const Polynomial p{-6.0, 11.0, -6.0, 1.0};  // (t-1)(t-2)(t-3)
     double bound;
     EXPECT_EQ(p.eval(2.0, &bound), 0.0);
-    EXPECT_GE(bound, 0.0);
+    // Higham's a priori bound for Horner's rule with fma, gamma(2n) * sum |c_i| |t|^i
+    // (Accuracy and Stability, 5.1), is what the running bound refines: here 6u * 60 with
+    // u = 2^-53. The running bound may exceed it only by its own rounding, so allow twice.
+    const double u = std::ldexp(1.0, -53), aPriori = 6 * u / (1 - 6 * u) * (6 + 22 + 24 + 8);
+    EXPECT_LE(bound, 2.0 * aPriori);
     const Polynomial q = p.shifted(2.0);  // (t+1) t (t-1) = t^3 - t
     EXPECT_EQ(q[0], 0.0);
     EXPECT_EQ(q[1], -1.0);
@@ -468,6 +521,10 @@ TEST(Polynomial, HornerBoundShiftAndDerivative) {
         for (int k = w.degree(); k >= 0; --k) exact = exact * Big(t) + Big(w[k]);
         const double got = w.eval(t, &bound);
         EXPECT_LE(double(abs(Big(got) - exact)), bound) << t;
+        // Not vacuous: within twice the a priori bound gamma(2n) sum |c_i| |t|^i (n = 4).
+        double magnitude = 0.0;
+        for (int k = w.degree(); k >= 0; --k) magnitude = magnitude * std::abs(t) + std::abs(w[k]);
+        EXPECT_LE(bound, 2.0 * 8 * u / (1 - 8 * u) * magnitude) << t;
     }
 }
 

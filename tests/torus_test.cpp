@@ -403,6 +403,33 @@ TEST(Torus, ClosedFormQuarticConfirmsOrdinaryRays) {
 
 using rootref::Big;
 
+// The torus's implicit function at o + t d, from the point's coordinates in 50 digits:
+// (|p|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2), positive outside the solid. Written here, apart
+// from rootref::torusQuartic's expanded coefficients, to check that reference.
+Big torusAt(const Torus& shape, const Vec3& o, const Vec3& d, const Big& t) {
+    const Big x = Big(o.x) + t * Big(d.x), y = Big(o.y) + t * Big(d.y),
+              z = Big(o.z) + t * Big(d.z);
+    const Big R2 = Big(shape.majorRadius) * Big(shape.majorRadius),
+              r2 = Big(shape.minorRadius) * Big(shape.minorRadius);
+    const Big s = x * x + y * y + z * z + R2 - r2;
+    return s * s - 4 * R2 * (x * x + y * y);
+}
+
+// The reference's roots are the line's crossings: F changes sign across each (1e-30 of t on
+// either side, far above the 50-digit roots' error and far below their separation), and is
+// positive (outside) before the first and after the last.
+bool referenceIsTheLinesCrossings(const Torus& shape, const Vec3& o, const Vec3& d,
+                                  const std::vector<Big>& roots, const Big& reach) {
+    if (torusAt(shape, o, d, -reach) <= 0 || torusAt(shape, o, d, reach) <= 0) return false;
+    for (size_t k = 0; k < roots.size(); ++k) {
+        const Big step = 1e-30 * std::max(Big(1), Big(abs(roots[k])));
+        const Big before = torusAt(shape, o, d, roots[k] - step);
+        const Big after = torusAt(shape, o, d, roots[k] + step);
+        if ((before > 0) != (k % 2 == 0) || (after > 0) != (k % 2 == 1)) return false;
+    }
+    return true;
+}
+
 // Span ends of random lines against the real roots of the exact quartic of the same double
 // line: the relative error of t, over lines whose roots are at least 1e-4 of the torus size
 // apart (a closer pair is a near-tangency, conditioned like sqrt(ulp) in any method). Also
@@ -431,11 +458,16 @@ TEST(Torus, SpanEndsAgainstFiftyDigitReference) {
             // The torus quartic F along the line, expanded exactly (to 50 digits).
             std::vector<Big> want = rootref::realRoots(
                 rootref::torusQuartic(shape.majorRadius, shape.minorRadius, o, d), -reach, reach);
+            EXPECT_TRUE(referenceIsTheLinesCrossings(shape, o, d, want, Big(reach)))
+                << "line " << i;
             bool separated = want.size() % 2 == 0;
             for (size_t k = 0; k + 1 < want.size(); ++k)
                 separated &= (want[k + 1] - want[k]) * glm::length(d) > 1e-4 * size;
             if (separated) lines.push_back({o, d, std::move(want)});
         }
+        // Near-tangent lines are left out, but only a few: a pair within 1e-4 of the size is
+        // a line within ~1e-8 of tangency, a tiny share of lines aimed at the tube.
+        EXPECT_GE(lines.size(), 2900u);
         for (const Solver solver : {Solver::Auto, Solver::ClosedForm}) {
             Torus torus = shape;
             torus.solver = solver;
@@ -462,11 +494,13 @@ TEST(Torus, SpanEndsAgainstFiftyDigitReference) {
                 "rms %.3g, wrong count %d\n",
                 shape.majorRadius, shape.minorRadius, solverName(solver), lines.size(), ends,
                 maxRel, std::sqrt(sumSquares / std::max(ends, 1)), wrongCount);
-            if (solver == Solver::Auto) {
-                EXPECT_EQ(wrongCount, 0);
-                EXPECT_LE(maxRel, 1e-15);
-                EXPECT_GT(ends, 2000);
-            }
+            // Both are held to what the accuracy report claims for them on the torus
+            // (bench/reports/accuracy.md: tube 2.0e-15, quartic-spans 1.9e-15 against the same
+            // 50-digit reference): Auto to 1e-15 as before, the closed form, whose quartic's
+            // coefficients round too, to twice the report's figure.
+            EXPECT_EQ(wrongCount, 0) << solverName(solver);
+            EXPECT_LE(maxRel, solver == Solver::Auto ? 1e-15 : 4e-15) << solverName(solver);
+            EXPECT_GT(ends, 2000) << solverName(solver);
         }
     }
 }

@@ -13,8 +13,10 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <functional>
 #include <thread>
+#include <utility>
 
 #include "MissingTool.h"
 #include "CliRunner.h"
@@ -183,13 +185,13 @@ protected:
     // PointerRoot to the window, and SDL drops a click it reads within 10 ms of that FocusIn
     // (a click that activates a window is not passed on unless this hint says so). Under load
     // the click often arrives in the same batch, and the first click or drag was lost.
-    void launch() {
+    void launch(const std::string& extraArgs = "") {
         const std::string command = "DISPLAY=" + display_->name() +
                                     " SDL_MOUSE_FOCUS_CLICKTHROUGH=1"
                                     " CSGRAY_VIEW_DUMP=frame.png exec " +
                                     shellQuote(CSGRAY_EXE) + " view part.scad --size " +
                                     std::to_string(kWidth) + "x" + std::to_string(kHeight) +
-                                    " --threads 2 --verbose 2>stderr.txt";
+                                    " --threads 2 --verbose " + extraArgs + " 2>stderr.txt";
         pid_ = spawn(command, dir_.path());
     }
     std::string err() const { return readFile(dir_ / "stderr.txt"); }
@@ -398,13 +400,23 @@ TEST_F(ViewerTest, EditReloadsAndSyntaxErrorKeepsTheLastGoodFrame) {
     EXPECT_TRUE(waitForPanel([](const std::string& p) {
         return has(p, "visible: yes\nerror: part.scad:3:") && has(p, ": error: ");
     })) << panel();
-    std::this_thread::sleep_for(600ms);
-    EXPECT_EQ(err().find("view: frame 3 written"), std::string::npos) << err();
     EXPECT_EQ(maxDifference(readPng(dir_ / "frame.png"), second), 0);
 
-    // Fixing the file brings the window back.
+    // Fixing the file brings the window back. No frame was written while the file was broken:
+    // the view's log (one stream, in order) has no frame between the failed reload and the
+    // next good one, and the fixed file's frame is number 3. An ordering in the log, not an
+    // absence after a sleep, so a slow machine cannot pass a frame that came late.
     writeFile(part_, kPart);
     ASSERT_TRUE(waitForFrame(3)) << err();
+    {
+        const std::string log = err();
+        const size_t failed = log.find("view: reload failed");
+        const size_t fixed = log.find("view: reloaded part.scad", failed);
+        ASSERT_NE(fixed, std::string::npos) << log;
+        EXPECT_EQ(log.substr(failed, fixed - failed).find("view: frame"), std::string::npos)
+            << log;
+        EXPECT_GT(log.find("view: frame 3 written"), fixed) << log;
+    }
     EXPECT_LE(maxDifference(readPng(dir_ / "frame.png"), first), 2);
     EXPECT_TRUE(waitForPanel([](const std::string& p) { return !has(p, "error:"); })) << panel();
 }
@@ -453,6 +465,68 @@ TEST_F(ViewerTest, DragOrbitsWheelZoomsAndResetAndFrameRestoreTheView) {
     ASSERT_EQ(xdotool("windowfocus %1 key f"), 0);
     ASSERT_TRUE(waitForFrame(6)) << err();
     EXPECT_LE(maxDifference(frame(), first), 2);
+}
+
+// The mean column and row of the pixels that differ from the background (top-left) pixel.
+std::pair<double, double> centroid(const Image& image) {
+    double sx = 0.0, sy = 0.0;
+    size_t n = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const size_t i = (size_t(y) * image.width + x) * 3;
+            for (int c = 0; c < 3; ++c)
+                if (std::abs(image.rgb[i + c] - image.rgb[c]) > 8) {
+                    sx += x, sy += y, ++n;
+                    break;
+                }
+        }
+    return n == 0 ? std::pair{0.0, 0.0} : std::pair{sx / double(n), sy / double(n)};
+}
+
+// The claims of `csgray view --help` no other test checks: -D reaches the view's part;
+// "progressively: one ray per 8x8 pixels first, then 4x4, 2x2 and every pixel" (--verbose
+// prints each level shown: coarse to fine, each with ceil(size / block) rays a side; a level
+// that finished before the window could show it may be skipped, so only the order and the
+// sizes are held, and the last level is every pixel); a right drag pans (the picture moves
+// with the pointer, where an orbit of this centred part would leave its centroid in place);
+// Esc quits with status 0.
+TEST_F(ViewerTest, DefineProgressiveLevelsPanAndEscape) {
+    if (!onPath("xdotool")) SKIP_OR_FAIL_IN_CI("xdotool is not installed (Debian package xdotool)");
+    writeFile(part_, "s = 1;\nassert(s == 7, \"-D did not reach the part\");\n"
+                     "cube(s, center = true);\n");
+    launch("-D s=7");
+    ASSERT_TRUE(waitForFrame(1)) << err();
+    EXPECT_EQ(err().find("error"), std::string::npos) << err();
+    const std::string log = err();
+    int last = 16;
+    for (size_t at = log.find("view: level "); at < log.find("view: frame 1 written");
+         at = log.find("view: level ", at + 1)) {
+        int block = 0, w = 0, h = 0;
+        ASSERT_EQ(std::sscanf(log.c_str() + at, "view: level %dx%*d: %d x %d rays", &block, &w, &h),
+                  3)
+            << log;
+        EXPECT_TRUE(block == 8 || block == 4 || block == 2 || block == 1) << block;
+        EXPECT_LT(block, last) << log;
+        EXPECT_EQ(w, (kWidth + block - 1) / block) << log;
+        EXPECT_EQ(h, (kHeight + block - 1) / block) << log;
+        last = block;
+    }
+    EXPECT_EQ(last, 1) << log;
+    const Image first = frame();
+
+    // A 30-pixel right drag to the right: request 2, the part moved right, not turned.
+    ASSERT_EQ(xdotool("windowfocus %1 mousemove --window %1 60 60 mousedown 3 "
+                      "mousemove --window %1 90 60 mouseup 3"),
+              0);
+    ASSERT_TRUE(waitForFrame(2)) << err();
+    const auto [x0, y0] = centroid(first);
+    const auto [x1, y1] = centroid(frame());
+    EXPECT_GT(x1 - x0, 10.0) << x0 << " -> " << x1;
+    EXPECT_LT(std::abs(y1 - y0), 3.0) << y0 << " -> " << y1;
+    EXPECT_EQ(err().find("view: probe: "), std::string::npos) << err();
+
+    xdotool("windowfocus %1 key Escape");  // the window closes on the press: see Q above
+    EXPECT_EQ(exitStatus(5s), 0) << err();
 }
 
 TEST_F(ViewerTest, EffectKeysSwitchShadowsReflectionAndRefraction) {
