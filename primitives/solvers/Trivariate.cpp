@@ -23,6 +23,24 @@ void hornerStepPoly(Polynomial& q, int& deg, double a, double b, const Polynomia
     for (int i = 0; i <= cdeg; ++i) q[i] += c[i];
 }
 
+// The same two steps on double-double polynomials (alongDD).
+void hornerStepDD(PolynomialDD& q, int& deg, const DoubleDouble& a, double b,
+                  const DoubleDouble& c) {
+    PolynomialDD r;
+    r.c[deg + 1] = q.c[deg] * DoubleDouble(b);
+    for (int i = deg; i >= 1; --i) r.c[i] = q.c[i] * a + q.c[i - 1] * DoubleDouble(b);
+    r.c[0] = q.c[0] * a + c;
+    ++deg;
+    r.degree = deg;
+    q = r;
+}
+
+void hornerStepPolyDD(PolynomialDD& q, int& deg, const DoubleDouble& a, double b,
+                      const PolynomialDD& c, int cdeg) {
+    hornerStepDD(q, deg, a, b, 0.0);
+    for (int i = 0; i <= cdeg; ++i) q.c[i] = q.c[i] + c.c[i];
+}
+
 }  // namespace
 
 double Trivariate::maxMagnitude() const {
@@ -85,6 +103,33 @@ Polynomial Trivariate::along(const Vec3& p, const Vec3& u) const {
         else
             hornerStepPoly(fx, degX, p.x, u.x, fy, degY);
     }
+    return fx;
+}
+
+PolynomialDD Trivariate::alongDD(const DoubleDouble p[3], const Vec3& u) const {
+    const int n = degree_;
+    // The steps of along(), every value a double-double.
+    PolynomialDD fx;
+    int degX = -1;
+    for (int i = n; i >= 0; --i) {
+        PolynomialDD fy;
+        int degY = -1;
+        for (int j = n - i; j >= 0; --j) {
+            PolynomialDD fz;
+            fz.c[0] = at(i, j, n - i - j);
+            int degZ = 0;
+            for (int k = n - i - j - 1; k >= 0; --k) hornerStepDD(fz, degZ, p[2], u.z, at(i, j, k));
+            if (degY < 0)
+                fy = fz, degY = degZ;
+            else
+                hornerStepPolyDD(fy, degY, p[1], u.y, fz, degZ);
+        }
+        if (degX < 0)
+            fx = fy, degX = degY;
+        else
+            hornerStepPolyDD(fx, degX, p[0], u.x, fy, degY);
+    }
+    fx.degree = n;
     return fx;
 }
 
