@@ -21,7 +21,9 @@ namespace csg {
 
 class Trivariate {
 public:
-    static constexpr int kMaxDegree = Polynomial::kMaxDegree;
+    // A surface's degree: 16 (969 coefficients), below Polynomial's 20, which only the solvers'
+    // measurements use.
+    static constexpr int kMaxDegree = 16;
     static constexpr int kMaxTerms = (kMaxDegree + 1) * (kMaxDegree + 2) * (kMaxDegree + 3) / 6;
 
     Trivariate() = default;
