@@ -134,6 +134,12 @@ int AlgebraicSurface::crossingTimes(const Vec3& o, const Vec3& d, const Chord& c
     PolynomialDD dd;
     bool formed = false;
     int polished = 0;
+    // The chord's coefficient rounding bound at the chord's far end bounds it at every root
+    // (|G| of magnitudes grows with |u|): one trivariate evaluation per ray, not per root.
+    const double chordBound =
+        polisher == Polisher::Auto
+            ? chordErrorBound(q, hd, std::max(std::abs(c.uLo), std::abs(c.uHi)))
+            : 0.0;
     for (int i = 0; i < n; ++i) {
         if (isTangency(roots, n, i)) continue;
         // Step 1 (Auto): the cheap condition test. The double root is off by at most the
@@ -142,7 +148,7 @@ int AlgebraicSurface::crossingTimes(const Vec3& o, const Vec3& d, const Chord& c
             double bound, v, dv;
             c.poly.eval(roots[i], &bound);
             c.poly.evalWithDerivative(roots[i], v, dv);
-            const double err = (bound + chordErrorBound(q, hd, roots[i])) * c.scale;
+            const double err = (bound + chordBound) * c.scale;
             if (!(err > tol::kPolishConditionUlps * ulpOf(t[i]) * std::abs(dv))) continue;
         }
         // Step 2: the polish, on the chord polynomial formed once per ray in double-double.

@@ -347,7 +347,8 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
             tBase + ends[m - 1] - std::max(tBase + ends[m - 2], out.from) > out.margin)
             break;
         if (tBase + hi.s / len < out.from - out.margin) {
-            ends[m++] = lo.s / len;
+            ends[m] = lo.s / len, times[m] = tBase + ends[m];
+            ++m;
             continue;
         }
         // Start from the root of G's Taylor quadratic at the end nearer zero (G'' is known
@@ -370,20 +371,28 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
                 if (next * len > lo.s && next * len < hi.s) ends[m] = next;
             }
         }
-        // Kept for Step 7: the crossing's bracket and its condition (|G'|, G's rounding bound).
-        wanted[m] =
-            torus.polisher != Polisher::Auto ||
-            root.err > tol::kPolishConditionUlps * ulpOf(tBase + ends[m]) * std::abs(root.dg) * len;
+        // Step 7 (Auto): where the tube form's rounding bound over |G'| may exceed half an ulp
+        // of t, one Newton step on the accurate G (double-double inside), t = tBase + sigma -
+        // G / G' summed in double-double and rounded once: the crossing's error is then the
+        // step's own, ~(G / G')^2 G'' / G', far below an ulp. The other polishers: Step 8.
+        times[m] = tBase + ends[m];
+        if (torus.polisher == Polisher::Auto &&
+            root.err > tol::kPolishConditionUlps * ulpOf(times[m]) * std::abs(root.dg) * len) {
+            const double g = accurateG(o, d, tBase, ends[m], R, r);
+            const double dg = root.dg * len;
+            const double next = ends[m] - g / dg;
+            if (std::isfinite(g) && dg != 0.0 && next * len > lo.s && next * len < hi.s)
+                times[m] = (DoubleDouble(tBase) + DoubleDouble(ends[m]) - g / dg).value();
+        }
+        wanted[m] = torus.polisher != Polisher::Auto && torus.polisher != Polisher::None;
         sigmaLo[m] = lo.s / len, sigmaHi[m] = hi.s / len;
         crossings[nCrossings] = ends[m], crossingEnd[nCrossings++] = m;
         ++m;
     }
-    // Step 7: the polish (Polish.h) on the quartic of the line's doubles in double-double,
-    // where the tube form's rounding bound over |G'| may exceed half an ulp of t (Auto), or on
-    // every crossing (Newton, Laguerre, Bairstow, which takes the neighbouring crossing as the
-    // quadratic factor's other root); t = tBase + sigma rounded once.
-    for (int i = 0; i < m; ++i) times[i] = tBase + ends[i];
-    if (torus.polisher != Polisher::None) {
+    // Step 8: Newton, Laguerre or Bairstow (Polish.h; Bairstow takes the neighbouring crossing
+    // as the quadratic factor's other root) on every crossing, on the quartic of the line's
+    // doubles formed in double-double; t = tBase + sigma rounded once.
+    if (torus.polisher != Polisher::Auto && torus.polisher != Polisher::None) {
         PolynomialDD quartic;
         bool formed = false;
         for (int j = 0; j < nCrossings; ++j) {

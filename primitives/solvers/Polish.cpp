@@ -5,6 +5,8 @@
 #include "primitives/solvers/Polish.h"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <cstring>
 
@@ -39,8 +41,10 @@ bool polisherFromName(const char* name, Polisher* polisher) {
 }
 
 double ulpOf(double x) {
-    const double a = std::abs(x);
-    return std::nextafter(a, kInfinity) - a;
+    // 2^(e - 52) for |x| in [2^e, 2^(e + 1)): x's exponent bits alone, scaled (libm's nextafter
+    // showed in a torus render's instructions). 0 for 0 and subnormals, inf for inf and NaN.
+    const uint64_t exponent = std::bit_cast<uint64_t>(x) & 0x7ff0000000000000ull;
+    return std::bit_cast<double>(exponent) * 0x1p-52;
 }
 
 void rootBracket(const double* roots, int n, int i, double tlo, double thi, double* lo,
@@ -62,15 +66,32 @@ bool converged(double step, const DoubleDouble& x) {
     return std::abs(step) <= tol::kPolishStepRel * std::abs(x.hi);
 }
 
-// Newton: x -= P / P'.
+// p in double-double and p' in double at x (what a Newton step needs), one Horner pass.
+struct Slope {
+    DoubleDouble p;
+    double dp;
+};
+Slope valueAndSlope(const PolynomialDD& p, const DoubleDouble& x) {
+    Slope v{p.c[p.degree], 0.0};
+    for (int i = p.degree - 1; i >= 0; --i) {
+        v.dp = v.dp * x.hi + v.p.hi;
+        v.p = v.p * x + p.c[i];
+    }
+    return v;
+}
+
+// Newton: x -= P / P', each step taken only when it lowers |P| (so no other safeguard on the
+// residual is needed) or when it is already below kPolishStepRel (then it is not evaluated).
 DoubleDouble newton(const PolynomialDD& p, DoubleDouble x) {
+    Slope v = valueAndSlope(p, x);
     for (int k = 0; k < tol::kPolishMaxSteps; ++k) {
-        const PolynomialDD::Values v = p.at(x);
-        const double dp = v.dp.value();
-        if (v.p.hi == 0.0 || dp == 0.0) break;
-        const double step = v.p.value() / dp;
-        x = x - step;
-        if (converged(step, x)) break;
+        if (v.p.hi == 0.0 || v.dp == 0.0) break;
+        const double step = v.p.value() / v.dp;
+        const DoubleDouble next = x - step;
+        if (converged(step, next)) return next;
+        const Slope nv = valueAndSlope(p, next);
+        if (!(std::abs(nv.p.value()) < std::abs(v.p.value()))) break;
+        x = next, v = nv;
     }
     return x;
 }
@@ -177,9 +198,12 @@ DoubleDouble polishRootWith(Polisher method, const PolynomialDD& p, const double
         case Polisher::None:
             break;
     }
-    // Safeguard: in the bracket, and no larger a residual than the start's.
+    // Safeguard: in the bracket, and no larger a residual than the start's (Newton keeps that
+    // itself).
     if (!(x.hi > lo && x.hi < hi) || !std::isfinite(x.hi)) return x0;
-    if (ddAbs(p(x)).value() > std::abs(p(DoubleDouble(x0)).value())) return x0;
+    if (method != Polisher::Auto && method != Polisher::Newton &&
+        ddAbs(p(x)).value() > std::abs(p(DoubleDouble(x0)).value()))
+        return x0;
     return x;
 }
 
