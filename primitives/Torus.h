@@ -17,9 +17,11 @@ struct Torus {
     // Auto: the tube form (rho - R)^2 + z^2 - r^2 on its monotone pieces (Torus.cpp); any
     // other: the quartic by that solver (for comparisons).
     Solver solver = Solver::Auto;
-    // How crossings are refined after isolation (Polish.h), on the quartic of the local line's
-    // doubles formed in double-double (quarticDD): Auto where the tube form's rounding bound
-    // over |G'| may exceed half an ulp of t; None: the tube form's own answer.
+    // How crossings are refined after isolation (Polish.h) against the exact root for the local
+    // line's doubles: Auto, where the tube form's rounding bound over |G'| may exceed half an
+    // ulp of t, by one Newton step on G evaluated in double-double (the quartic path: Newton on
+    // quarticDD); Newton, Laguerre, Bairstow on every crossing, on quarticDD; None: the
+    // isolating path's own answer.
     Polisher polisher = Polisher::Auto;
 
     const char* invalidReason() const {
