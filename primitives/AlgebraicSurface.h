@@ -37,7 +37,8 @@ struct AlgebraicSurface {
     // How the isolated roots are refined (Polish.h): on the chord polynomial formed in
     // double-double from the local ray and G's own coefficients, so that a simple crossing's t
     // is within an ulp of the exact root of G(o + t d - centre) for the ray's doubles (Auto:
-    // where chordCondition says the double root may miss that). Not with tolerance > 0.
+    // where the evaluation's and the chord coefficients' rounding bounds over |p'| exceed half an
+    // ulp of t: crossingTimes). Not with tolerance > 0.
     Polisher polisher = Polisher::Auto;
 
     // Builds the surface (never throws; bad input shows in invalidReason()).
