@@ -193,7 +193,8 @@ bool isHeightmapCall(const InstantiationStmt& s) {
     for (const Argument& a : s.args) {
         if (a.name == "file" || a.name == "center" || a.name == "invert" || a.name == "convexity")
             return true;
-        if (a.name == "f" || a.name == "bbox" || a.name == "solver" || a.name == "tolerance")
+        if (a.name == "f" || a.name == "bbox" || a.name == "solver" || a.name == "tolerance" ||
+            a.name == "polish")
             return false;
         if (a.name.empty() && positional++ == 1 && a.value && a.value->kind == ExprKind::Vector)
             return false;

@@ -24,7 +24,7 @@ using csg::ExactPolynomial;
 
 constexpr const char* kForm =
     "surface(f = \"polynomial in x, y, z\", bbox = [[x0, y0, z0], [x1, y1, z1]], "
-    "solver = \"auto\", tolerance = 0)";
+    "solver = \"auto\", tolerance = 0, polish = \"auto\")";
 
 // The walk holds a left operand while it expands the right one; each held ExactPolynomial is
 // 17^3 double-double coefficients (79 KB), so right-nesting is bounded (64: 5 MB). A long
@@ -256,13 +256,25 @@ csg::Solver solverArg(Evaluator& e, const BoundArgs& b) {
     return solver;
 }
 
+csg::Polisher polishArg(Evaluator& e, const BoundArgs& b) {
+    if (b.values[4].isUndef()) return csg::Polisher::Auto;
+    std::string names;
+    for (csg::Polisher p : csg::kAllPolishers)
+        names += std::string(names.empty() ? "\"" : ", \"") + csg::polisherName(p) + "\"";
+    csg::Polisher polisher;
+    if (!b.values[4].isString() || !csg::polisherFromName(b.values[4].string().c_str(), &polisher))
+        e.fail(b.locs[4],
+               "surface(): unknown polish " + b.values[4].brief() + "; expected one of " + names);
+    return polisher;
+}
+
 }  // namespace
 
 Instance surfaceModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                        const GeomState& state) {
     // OpenSCAD's heightmap, surface(file = ...), is another module under the same name.
     if (isHeightmapCall(s)) return heightmapModule(e, s, ctx, state);
-    const BoundArgs b = bindArgs(e, s, ctx, {"f", "bbox", "solver", "tolerance"}, kForm);
+    const BoundArgs b = bindArgs(e, s, ctx, {"f", "bbox", "solver", "tolerance", "polish"}, kForm);
 
     // f: parsed by the language's own parser as a source of its own.
     if (b.values[0].isUndef())
@@ -296,7 +308,9 @@ Instance surfaceModule(Evaluator& e, const InstantiationStmt& s, const ContextPt
         tolerance = b.values[3].number();
     }
 
-    const csg::AlgebraicSurface shape = csg::AlgebraicSurface::make(poly, box, solver, tolerance);
+    const csg::Polisher polisher = polishArg(e, b);
+    const csg::AlgebraicSurface shape =
+        csg::AlgebraicSurface::make(poly, box, solver, tolerance, polisher);
     if (const char* why = shape.invalidReason())
         e.fail(b.locs[0], std::string("surface(): ") + why + "; expected " + kForm);
     return csg::leaf(shape, {e.sourceTag(s.loc, e.childPath(state, s.name)), state.material});

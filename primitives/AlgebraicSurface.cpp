@@ -7,15 +7,17 @@
 #include <algorithm>
 #include <cmath>
 
+#include "primitives/solvers/ErrorFree.h"
 #include "primitives/solvers/LinePoint.h"
+#include "primitives/solvers/Roots.h"
 
 namespace csg {
 
 AlgebraicSurface AlgebraicSurface::make(const ExactPolynomial& f, const Bounds3& box, Solver solver,
-                                        double tolerance) {
+                                        double tolerance, Polisher polisher) {
     auto data = std::make_shared<AlgebraicData>();
     data->box = box;
-    AlgebraicSurface s{nullptr, solver, tolerance};
+    AlgebraicSurface s{nullptr, solver, tolerance, polisher};
     // Step 1: the input's domain.
     const int n = f.degree();
     if (!(box.finite() && box.lo.x < box.hi.x && box.lo.y < box.hi.y && box.lo.z < box.hi.z))
@@ -63,6 +65,7 @@ void AlgebraicSurface::describe(JsonWriter& json) const {
     json.key("degree").value(data->g.degree());
     json.key("bbox").beginArray().vec(data->box.lo, 3).vec(data->box.hi, 3).endArray();
     json.key("solver").value(solverName(solver));
+    json.key("polish").value(polisherName(polisher));
 }
 
 Bounds3 AlgebraicSurface::bounds() const {
@@ -110,25 +113,75 @@ double AlgebraicSurface::chordErrorBound(const Vec3& q, const Vec3& hd, double u
     return tol::gamma(4 * data->g.degree() + 4) * data->magnitude(at);
 }
 
+PolynomialDD AlgebraicSurface::chordDD(const Vec3& o, const Vec3& d, const Chord& c) const {
+    // q = o - centre + tMid d per axis, in double-double (o - centre and tMid d are exact as
+    // hi + lo); h d is exact (h a power of two).
+    DoubleDouble q[3];
+    for (int a = 0; a < 3; ++a) {
+        const Sum2 oc = twoSum(o[a], -data->centre[a]);
+        const Sum2 td = twoProduct(c.tMid, d[a]);
+        q[a] = DoubleDouble(oc.hi, oc.lo) + DoubleDouble(td.hi, td.lo);
+    }
+    return data->g.alongDD(q, c.scale * d);
+}
+
+int AlgebraicSurface::crossingTimes(const Vec3& o, const Vec3& d, const Chord& c,
+                                    const double* roots, int n, double* t) const {
+    for (int i = 0; i < n; ++i) t[i] = c.tMid + roots[i] * c.scale;
+    if (polisher == Polisher::None || tolerance > 0.0 || n == 0) return 0;
+    const Vec3 q = pointOnLine(o, d, c.tMid) - data->centre;
+    const Vec3 hd = c.scale * d;
+    PolynomialDD dd;
+    bool formed = false;
+    int polished = 0;
+    // The chord's coefficient rounding bound at the chord's far end bounds it at every root
+    // (|G| of magnitudes grows with |u|): one trivariate evaluation per ray, not per root.
+    const double chordBound =
+        polisher == Polisher::Auto
+            ? chordErrorBound(q, hd, std::max(std::abs(c.uLo), std::abs(c.uHi)))
+            : 0.0;
+    for (int i = 0; i < n; ++i) {
+        if (isTangency(roots, n, i)) continue;
+        // Step 1 (Auto): the cheap condition test. The double root is off by at most the
+        // evaluation's and the chord coefficients' rounding over |p'|, times h in t.
+        if (polisher == Polisher::Auto) {
+            double bound, v, dv;
+            c.poly.eval(roots[i], &bound);
+            c.poly.evalWithDerivative(roots[i], v, dv);
+            const double err = (bound + chordBound) * c.scale;
+            if (!(err > tol::kPolishConditionUlps * ulpOf(t[i]) * std::abs(dv))) continue;
+        }
+        // Step 2: the polish, on the chord polynomial formed once per ray in double-double.
+        if (!formed) dd = chordDD(o, d, c), formed = true;
+        double lo, hi;
+        rootBracket(roots, n, i, c.uLo, c.uHi, &lo, &hi);
+        const DoubleDouble u = polishRootWith(polisher, dd, roots, n, i, lo, hi);
+        // Step 3: t = tMid + u h, rounded once (u h is exact: h is a power of two).
+        t[i] = (DoubleDouble(c.tMid) + DoubleDouble(u.hi * c.scale, u.lo * c.scale)).value();
+        ++polished;
+    }
+    return polished;
+}
+
 void AlgebraicSurface::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     Chord c;
     if (!chord(o, d, c)) return;
-    // Step 1: the roots of G on the chord (tangencies listed twice).
-    double roots[Polynomial::kMaxDegree];
-    const int n = solve(c.poly, c.uLo, c.uHi, roots, solver, tolerance);
+    // Step 1: the roots of G on the chord (tangencies listed twice), and their times, polished
+    // on the chord polynomial in double-double.
+    double roots[Polynomial::kMaxDegree], times[Polynomial::kMaxDegree];
+    const int n = solve(c.poly, c.uLo, c.uHi, roots, solver, tolerance, Polisher::None);
+    crossingTimes(o, d, c, roots, n, times);
     // Step 2: breakpoints: chord ends and distinct roots strictly inside.
-    double u[Polynomial::kMaxDegree + 2];
+    double u[Polynomial::kMaxDegree + 2], t[Polynomial::kMaxDegree + 2];
     int m = 0;
     u[m++] = c.uLo;
     for (int i = 0; i < n; ++i)
-        if (roots[i] > u[m - 1] && roots[i] < c.uHi) u[m++] = roots[i];
+        if (roots[i] > u[m - 1] && roots[i] < c.uHi) t[m] = times[i], u[m++] = roots[i];
     u[m++] = c.uHi;
     // Step 3: each piece is inside or out by the sign of G at its middle (a tangency leaves
     // the same sign on both sides, so it merges pieces instead of cutting them); inside
     // pieces that touch form one span.
-    auto toT = [&](int i) {
-        return i == 0 ? c.tIn : i == m - 1 ? c.tOut : c.tMid + u[i] * c.scale;
-    };
+    auto toT = [&](int i) { return i == 0 ? c.tIn : i == m - 1 ? c.tOut : t[i]; };
     auto face = [&](int i) { return i == 0 ? c.faceIn : i == m - 1 ? c.faceOut : kSurfaceFace; };
     bool inside[Polynomial::kMaxDegree + 1];
     for (int i = 0; i + 1 < m; ++i) inside[i] = c.poly(0.5 * u[i] + 0.5 * u[i + 1]) <= 0.0;

@@ -34,10 +34,17 @@ struct AlgebraicSurface {
     // 0: roots to double precision; > 0: the solvers' bracket tolerance relative to the
     // half-length of the ray's chord through the box (Solve.h), traded for time.
     double tolerance = 0.0;
+    // How the isolated roots are refined (Polish.h): on the chord polynomial formed in
+    // double-double from the local ray and G's own coefficients, so that a simple crossing's t
+    // is within an ulp of the exact root of G(o + t d - centre) for the ray's doubles (Auto:
+    // where the evaluation's and the chord coefficients' rounding bounds over |p'| exceed half an
+    // ulp of t: crossingTimes). Not with tolerance > 0.
+    Polisher polisher = Polisher::Auto;
 
     // Builds the surface (never throws; bad input shows in invalidReason()).
     static AlgebraicSurface make(const ExactPolynomial& f, const Bounds3& box,
-                                 Solver solver = Solver::Auto, double tolerance = 0.0);
+                                 Solver solver = Solver::Auto, double tolerance = 0.0,
+                                 Polisher polisher = Polisher::Auto);
 
     const char* invalidReason() const;
     // The box.
@@ -71,6 +78,14 @@ struct AlgebraicSurface {
     // through the rounding of its coefficients (unit: G's; not counting evaluation, which
     // Polynomial::eval bounds).
     double chordErrorBound(const Vec3& q, const Vec3& hd, double u) const;
+    // The chord polynomial of c in double-double, from the line's doubles o and d: the
+    // polynomial in u whose roots the polish finds (see polisher).
+    PolynomialDD chordDD(const Vec3& o, const Vec3& d, const Chord& c) const;
+    // The crossing times t of roots[0..n) of c.poly (Solve.h's contract), polished by polisher:
+    // t[i] = tMid + u scale rounded once, u the polished root; tangencies and the roots that
+    // Auto leaves are converted in double. Returns how many were polished.
+    int crossingTimes(const Vec3& o, const Vec3& d, const Chord& c, const double* roots, int n,
+                      double* t) const;
 };
 
 // The immutable part, shared by copies.

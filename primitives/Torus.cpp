@@ -13,6 +13,7 @@
 #include "primitives/base/Fma.h"
 #include "primitives/solvers/ErrorFree.h"
 #include "primitives/solvers/LinePoint.h"
+#include "primitives/solvers/Polish.h"
 #include "primitives/solvers/Roots.h"
 
 namespace csg {
@@ -146,25 +147,26 @@ double taylorRoot(double s, const TubeLine::At& v, double lo, double hi) {
 struct TubeRoot {
     double s;
     double dg;
+    double err;  // the rounding bound of G where the last step started
 };
 TubeRoot crossing(const TubeLine& line, double lo, double hi, double x, bool rising,
                   double converged) {
     TubeLine::At v{};
     for (int i = 0; i < 100; ++i) {
         v = line.at(x);
-        if (v.g == 0.0) return {x, v.dg};
+        if (v.g == 0.0) return {x, v.dg, v.err};
         if ((v.g < 0.0) == rising)
             lo = x;
         else
             hi = x;
         double next = v.dg != 0.0 ? x - v.g / v.dg : lo;
         // A step this small is the last one (it may round onto the bracket's end).
-        if (std::abs(next - x) <= converged) return {std::clamp(next, lo, hi), v.dg};
+        if (std::abs(next - x) <= converged) return {std::clamp(next, lo, hi), v.dg, v.err};
         if (!(next > lo && next < hi)) next = 0.5 * lo + 0.5 * hi;
-        if (next <= lo || next >= hi) return {x, v.dg};
+        if (next <= lo || next >= hi) return {x, v.dg, v.err};
         x = next;
     }
-    return {x, v.dg};
+    return {x, v.dg, v.err};
 }
 
 // Newton on G from a root s of the quartic while |G| drops, kept within [lo, hi]: G has the
@@ -217,6 +219,30 @@ double polish(const TubeLine& line, double s, double lo, double hi) {
 }
 
 }  // namespace
+
+PolynomialDD Torus::quarticDD(const Vec3& o, const Vec3& d, double tBase) const {
+    // Step 1: the base point p0 = o + tBase d per axis in double-double (exact products).
+    DoubleDouble p0[3];
+    for (int i = 0; i < 3; ++i) {
+        const Sum2 td = twoProduct(tBase, d[i]);
+        p0[i] = DoubleDouble(o[i]) + DoubleDouble(td.hi, td.lo);
+    }
+    const DoubleDouble dx = d.x, dy = d.y, dz = d.z, R = majorRadius, r = minorRadius;
+    // Step 2: q(sigma) = |p0 + sigma d|^2 + R^2 - r^2 and h(sigma) = x^2 + y^2, then
+    // F = q^2 - 4 R^2 h.
+    const DoubleDouble hLine[3] = {p0[0] * p0[0] + p0[1] * p0[1],
+                                   DoubleDouble(2.0) * (p0[0] * dx + p0[1] * dy),
+                                   dx * dx + dy * dy};
+    const DoubleDouble q[3] = {hLine[0] + p0[2] * p0[2] + R * R - r * r,
+                               hLine[1] + DoubleDouble(2.0) * (p0[2] * dz), hLine[2] + dz * dz};
+    const DoubleDouble fourR2 = DoubleDouble(4.0) * R * R;
+    PolynomialDD f;
+    f.degree = 4;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) f.c[i + j] = f.c[i + j] + q[i] * q[j];
+    for (int i = 0; i < 3; ++i) f.c[i] = f.c[i] - fourR2 * hLine[i];
+    return f;
+}
 
 Polynomial Torus::quarticAlong(const Vec3& b, const Vec3& u) const {
     const double R = majorRadius, r = minorRadius;
@@ -306,9 +332,13 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
     // (its place holds the piece's start, also before it: a reflected or refracted ray's tube
     // behind it); with out.firstOnly, none after the first span that reaches past `from` by
     // more than out.margin.
-    double ends[4];
+    double ends[4], times[4];  // sigma = t - tBase, and t itself (polished or tBase + sigma)
     int m = 0;
     const double polishBelow = 2.0 * r * tol::kTubeGrazingCos;
+    // The crossings solved (not the placeholders of clipped pieces), for Step 7.
+    double crossings[4], sigmaLo[4], sigmaHi[4];
+    int crossingEnd[4], nCrossings = 0;
+    bool wanted[4] = {};
     for (int k = 0; k + 1 < nBreaks && m < 4; ++k) {
         const Break& lo = breaks[k];
         const Break& hi = breaks[k + 1];
@@ -317,7 +347,8 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
             tBase + ends[m - 1] - std::max(tBase + ends[m - 2], out.from) > out.margin)
             break;
         if (tBase + hi.s / len < out.from - out.margin) {
-            ends[m++] = lo.s / len;
+            ends[m] = lo.s / len, times[m] = tBase + ends[m];
+            ++m;
             continue;
         }
         // Start from the root of G's Taylor quadratic at the end nearer zero (G'' is known
@@ -340,49 +371,102 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
                 if (next * len > lo.s && next * len < hi.s) ends[m] = next;
             }
         }
+        // Step 7 (Auto): where the tube form's rounding bound over |G'| may exceed half an ulp
+        // of t, one Newton step on the accurate G (double-double inside), t = tBase + sigma -
+        // G / G' summed in double-double and rounded once: the crossing's error is then the
+        // step's own, ~(G / G')^2 G'' / G', far below an ulp. The other polishers: Step 8.
+        times[m] = tBase + ends[m];
+        if (torus.polisher == Polisher::Auto &&
+            root.err > tol::kPolishConditionUlps * ulpOf(times[m]) * std::abs(root.dg) * len) {
+            const double g = accurateG(o, d, tBase, ends[m], R, r);
+            const double dg = root.dg * len;
+            const double next = ends[m] - g / dg;
+            if (std::isfinite(g) && dg != 0.0 && next * len > lo.s && next * len < hi.s)
+                times[m] = (DoubleDouble(tBase) + DoubleDouble(ends[m]) - g / dg).value();
+        }
+        wanted[m] = torus.polisher != Polisher::Auto && torus.polisher != Polisher::None;
+        sigmaLo[m] = lo.s / len, sigmaHi[m] = hi.s / len;
+        crossings[nCrossings] = ends[m], crossingEnd[nCrossings++] = m;
         ++m;
     }
-    for (int i = 0; i + 1 < m; i += 2) out.add(tBase + ends[i], 0, tBase + ends[i + 1], 0);
+    // Step 8: Newton, Laguerre or Bairstow (Polish.h; Bairstow takes the neighbouring crossing
+    // as the quadratic factor's other root) on every crossing, on the quartic of the line's
+    // doubles formed in double-double; t = tBase + sigma rounded once.
+    if (torus.polisher != Polisher::Auto && torus.polisher != Polisher::None) {
+        PolynomialDD quartic;
+        bool formed = false;
+        for (int j = 0; j < nCrossings; ++j) {
+            const int e = crossingEnd[j];
+            if (!wanted[e]) continue;
+            if (!formed) quartic = torus.quarticDD(o, d, tBase), formed = true;
+            const DoubleDouble x = polishRootWith(torus.polisher, quartic, crossings, nCrossings, j,
+                                                  sigmaLo[e], sigmaHi[e]);
+            times[e] = (DoubleDouble(tBase) + x).value();
+        }
+    }
+    for (int i = 0; i + 1 < m; i += 2) out.add(times[i], 0, times[i + 1], 0);
 }
 
-void quarticSpans(const Torus& torus, const TubeLine& line, double sLo, double sHi, double tBase,
-                  double len, LocalSpans& out) {
+void quarticSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine& line,
+                  double sLo, double sHi, double tBase, double len, LocalSpans& out) {
     // The quartic's roots in range; F > 0 at both ends of the range (outside), so
     // the solid is between roots 0-1 and 2-3. An odd count (a root lost to rounding) is
     // judged by F between the roots instead.
     const Polynomial quartic = torus.quarticAlong(line.b, line.u);
     double roots[4];
-    const int n = solve(quartic, sLo, sHi, roots, torus.solver);
+    const int n = solve(quartic, sLo, sHi, roots, torus.solver, 0.0, Polisher::None);
     for (int i = 0; i < n; ++i) {
         if (isTangency(roots, n, i)) continue;
         const double lo = i > 0 ? 0.5 * (roots[i - 1] + roots[i]) : sLo;
         const double hi = i + 1 < n ? 0.5 * (roots[i] + roots[i + 1]) : sHi;
         roots[i] = polish(line, roots[i], lo, hi);
     }
+    // The roots' times: polished on the quartic of the line's doubles in double-double (Polish.h;
+    // Auto where the tube form's rounding bound over |G'| may exceed half an ulp of t), else
+    // tBase + s / len.
+    double times[4], sigma[4];
+    for (int i = 0; i < n; ++i) times[i] = tBase + roots[i] / len, sigma[i] = roots[i] / len;
+    if (torus.polisher != Polisher::None) {
+        PolynomialDD dd;
+        bool formed = false;
+        for (int i = 0; i < n; ++i) {
+            if (isTangency(roots, n, i)) continue;
+            const TubeLine::At v = line.at(roots[i]);
+            if (torus.polisher == Polisher::Auto &&
+                !(v.err > tol::kPolishConditionUlps * ulpOf(times[i]) * std::abs(v.dg) * len))
+                continue;
+            double lo, hi;
+            if (!formed) dd = torus.quarticDD(o, d, tBase), formed = true;
+            rootBracket(sigma, n, i, sLo / len, sHi / len, &lo, &hi);
+            times[i] =
+                (DoubleDouble(tBase) + polishRootWith(torus.polisher, dd, sigma, n, i, lo, hi))
+                    .value();
+        }
+    }
     if (n % 2 == 0) {
         // The quartic's coefficient rounding splits a tangent line's double root into
         // two close roots as often as into a complex pair. A span whose middle is not inside
         // by more than the tube form's rounding error is such a split (dropped), and so is a
-        // gap between spans whose middle is not outside by more (the spans are joined).
-        double ends[4];
+        // gap between spans whose middle is not outside by more (the spans are joined). ends
+        // holds indices into roots.
+        int ends[4];
         int m = 0;
         for (int i = 0; i + 1 < n; i += 2) {
             if (roots[i] != roots[i + 1] &&
                 !line.beyondRounding(0.5 * roots[i] + 0.5 * roots[i + 1], -1.0))
                 continue;
-            if (m > 0 && !line.beyondRounding(0.5 * ends[m - 1] + 0.5 * roots[i], 1.0)) {
-                ends[m - 1] = roots[i + 1];
+            if (m > 0 && !line.beyondRounding(0.5 * roots[ends[m - 1]] + 0.5 * roots[i], 1.0)) {
+                ends[m - 1] = i + 1;
                 continue;
             }
-            ends[m++] = roots[i], ends[m++] = roots[i + 1];
+            ends[m++] = i, ends[m++] = i + 1;
         }
-        for (int i = 0; i + 1 < m; i += 2)
-            out.add(tBase + ends[i] / len, 0, tBase + ends[i + 1] / len, 0);
+        for (int i = 0; i + 1 < m; i += 2) out.add(times[ends[i]], 0, times[ends[i + 1]], 0);
         return;
     }
     for (int i = 0; i + 1 < n; ++i)
         if (quartic(0.5 * roots[i] + 0.5 * roots[i + 1]) < 0.0)
-            out.add(tBase + roots[i] / len, 0, tBase + roots[i + 1] / len, 0);
+            out.add(times[i], 0, times[i + 1], 0);
 }
 
 }  // namespace
@@ -430,7 +514,7 @@ void Torus::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     if (solver == Solver::Auto)
         tubeSpans(*this, o, d, line, sLo, sHi, tBase, len, out);
     else
-        quarticSpans(*this, line, sLo, sHi, tBase, len, out);
+        quarticSpans(*this, o, d, line, sLo, sHi, tBase, len, out);
 }
 
 bool Torus::inside(const Vec3& p) const {

@@ -17,6 +17,12 @@ struct Torus {
     // Auto: the tube form (rho - R)^2 + z^2 - r^2 on its monotone pieces (Torus.cpp); any
     // other: the quartic by that solver (for comparisons).
     Solver solver = Solver::Auto;
+    // How crossings are refined after isolation (Polish.h) against the exact root for the local
+    // line's doubles: Auto, where the tube form's rounding bound over |G'| may exceed half an
+    // ulp of t, by one Newton step on G evaluated in double-double (the quartic path: Newton on
+    // quarticDD); Newton, Laguerre, Bairstow on every crossing, on quarticDD; None: the
+    // isolating path's own answer.
+    Polisher polisher = Polisher::Auto;
 
     const char* invalidReason() const {
         return std::isfinite(majorRadius) && minorRadius > 0.0 && majorRadius > minorRadius
@@ -42,6 +48,9 @@ struct Torus {
     // The torus quartic along o + s u, |u| = 1, solved as is (no origin shift, no bounding
     // test): exposed so tests can show what moving the origin is worth.
     Polynomial quarticAlong(const Vec3& o, const Vec3& u) const;
+    // The torus quartic along o + (tBase + sigma) d as a polynomial in sigma, formed from the
+    // doubles o, d, tBase, R and r in double-double: what the polish solves.
+    PolynomialDD quarticDD(const Vec3& o, const Vec3& d, double tBase) const;
 };
 
 }  // namespace csg

@@ -131,7 +131,7 @@ TEST(IoSurface, LongSumsExpandButDeepRightNestingIsRefused) {
 TEST(IoSurface, NonPolynomialFIsLocatedInsideTheString) {
     const std::string form =
         "; expected surface(f = \"polynomial in x, y, z\", bbox = [[x0, y0, "
-        "z0], [x1, y1, z1]], solver = \"auto\", tolerance = 0)";
+        "z0], [x1, y1, z1]], solver = \"auto\", tolerance = 0, polish = \"auto\")";
     const std::string box = ", bbox = [[-1, -1, -1], [1, 1, 1]]);";
     // The quote is at column 13, so f's first character is column 14.
     EXPECT_EQ(error("surface(f = \"x^2 + sin(y) - 1\"" + box),
@@ -192,6 +192,9 @@ TEST(IoSurface, BadBoxAndUnknownSolverAreLocated) {
               "test.scad:1:70: error: surface(): unknown solver \"newton\"; expected one of "
               "\"auto\", \"closed-form\", \"sturm-bisection\", \"sturm-illinois\", \"yuksel\", "
               "\"descartes\", \"bernstein\", \"interval\"");
+    EXPECT_EQ(error(f + "bbox = [[-1, -1, -1], [1, 1, 1]], polish = \"halley\");"),
+              "test.scad:1:70: error: surface(): unknown polish \"halley\"; expected one of "
+              "\"auto\", \"none\", \"newton\", \"laguerre\", \"bairstow\"");
 }
 
 }  // namespace

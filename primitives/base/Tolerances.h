@@ -137,6 +137,23 @@ inline constexpr double kTubeNewtonStep = 1e-9;
 // (1/4 gains a fraction of an ulp for three times the polishing).
 inline constexpr double kTubeGrazingCos = 0.125;
 
+// Root polishing (primitives/solvers/Polish.h). Polisher::Auto polishes a double root in
+// double-double when its estimated error (the evaluation's rounding bound, plus for a surface
+// its chord coefficients' rounding bound and for a torus its tube form's, over |p'|) exceeds
+// this many ulps of t (unit: ulps of the root). Why 1/2: a root within half an ulp of the exact
+// one is within one ulp after its own final rounding, the accuracy the polish promises; the
+// estimate is an upper bound, so a root left alone is never worse than that.
+inline constexpr double kPolishConditionUlps = 0.5;
+// A polisher stops once a step is at most this fraction of the root (unit: relative). Why
+// 2^-104: double-double carries ~106 bits, so a smaller step is rounding noise of the
+// residual; the rounding to double that follows needs ~2^-60 at most.
+inline constexpr double kPolishStepRel = 0x1p-104;
+// ... or after this many steps (unit: iterations). Why 16: from a double root (>= 1 correct
+// bit for the ill-conditioned roots this is for) quadratic convergence reaches 2^-104 in ~7
+// steps; Newton's linear convergence on a root listed once but nearly double needs more, and
+// the result is then no worse than its start (a step that does not lower |p| is not taken).
+inline constexpr int kPolishMaxSteps = 16;
+
 // Mesh export (csg/mesh/). The QEF of a cell drops eigen-directions of A^T A whose eigenvalue
 // is below this fraction of the largest (unit: relative). Eigenvalues are squared singular
 // values, so this is DC's usual 0.1 singular-value cut: planes within ~6 degrees of each other

@@ -92,7 +92,9 @@ int unitParameterRoots(const WidePolynomial& input, double* roots) {
     while (p.degree > 0 && p.c[p.degree] == 0.0) --p.degree;
     if (p.degree == 0) return 0;
     const double lo = -tol::kPatchParamSlack, hi = 1.0 + tol::kPatchParamSlack;
-    if (p.degree <= Polynomial::kMaxDegree) {
+    // Degree <= 16 by solve(), as measured on patches before Polynomial held degree 20 (issue 23
+    // raised it for the solvers' degree sweep); above, Bernstein subdivision as before.
+    if (p.degree <= 16) {
         Polynomial q = Polynomial::ofDegree(p.degree);
         for (int i = 0; i <= p.degree; ++i) q[i] = p.c[i];
         return solve(q, lo, hi, roots);

@@ -1,4 +1,6 @@
-// A univariate polynomial of degree <= 16 with real coefficients, stored inline (no heap).
+// A univariate polynomial of degree <= 20 with real coefficients, stored inline (no heap). 20,
+// not the surfaces' 16 (Trivariate::kMaxDegree), so that every solver can be measured to degree
+// 20 (the accuracy report's degree sweep, the thesis' claim about Sturm sequences above 8).
 // Notation: p(t) = sum_{i=0}^{degree} c[i] t^i, coefficients ascending. The degree is nominal:
 // c[degree] may be 0 until trimmed() drops exact-zero leading coefficients.
 #pragma once
@@ -15,7 +17,7 @@ namespace csg {
 
 class Polynomial {
 public:
-    static constexpr int kMaxDegree = 16;
+    static constexpr int kMaxDegree = 20;
 
     Polynomial() = default;
     // Coefficients in ascending order: {c0, c1, ..., cn} is c0 + c1 t + ... + cn t^n.

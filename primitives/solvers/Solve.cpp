@@ -58,17 +58,9 @@ bool parityConsistent(const Polynomial& p, double tlo, double thi, const double*
     return (crossings % 2 == 1) == endsDiffer;
 }
 
-}  // namespace
-
-int solve(const Polynomial& input, double tlo, double thi, double* roots, Solver solver,
-          double relTol) {
-    const Polynomial p = input.trimmed();
-    if (p.degree() == 0 || !(tlo <= thi)) return 0;
-    // Step 1: no root lies beyond Fujiwara's bound; clamping there keeps t^n finite.
-    const double bound = rootBound(p);
-    tlo = std::max(tlo, -bound), thi = std::min(thi, bound);
-    if (!(tlo <= thi)) return 0;
-    // Step 2: the method.
+// The roots of p (trimmed, range clamped) by the method, refined in double.
+int isolate(const Polynomial& p, double tlo, double thi, double* roots, Solver solver,
+            double relTol) {
     switch (solver) {
         case Solver::Auto: {
             if (p.degree() <= 2) return solveCubic(p, tlo, thi, roots);
@@ -100,6 +92,23 @@ int solve(const Polynomial& input, double tlo, double thi, double* roots, Solver
             return solveIntervalSubdivision(p, tlo, thi, roots, relTol);
     }
     return 0;
+}
+
+}  // namespace
+
+int solve(const Polynomial& input, double tlo, double thi, double* roots, Solver solver,
+          double relTol, Polisher polisher) {
+    const Polynomial p = input.trimmed();
+    if (p.degree() == 0 || !(tlo <= thi)) return 0;
+    // Step 1: no root lies beyond Fujiwara's bound; clamping there keeps t^n finite.
+    const double bound = rootBound(p);
+    tlo = std::max(tlo, -bound), thi = std::min(thi, bound);
+    if (!(tlo <= thi)) return 0;
+    // Step 2: isolate and refine in double by the method.
+    const int n = isolate(p, tlo, thi, roots, solver, relTol);
+    // Step 3: polish in double-double.
+    if (relTol == 0.0) polishRoots(polisher, p, roots, n, tlo, thi);
+    return n;
 }
 
 }  // namespace csg

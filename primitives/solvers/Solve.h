@@ -9,6 +9,7 @@
 
 #include <cstdint>
 
+#include "primitives/solvers/Polish.h"
 #include "primitives/solvers/Polynomial.h"
 
 namespace csg {
@@ -42,7 +43,12 @@ bool solverFromName(const char* name, Solver* solver);
 // (Roots.h, bracketSmallEnough) instead of at double resolution: accuracy traded for time.
 // The closed forms ignore it. Every solver first clamps [tlo, thi] to Fujiwara's root bound
 // (Roots.h), so values of p are never taken where t^n overflows.
+//
+// polisher then refines the simple roots in double-double (Polish.h, polishRoots) against p's
+// exact value: Auto (the default) only the roots whose condition estimate says double may be
+// more than half an ulp off, so that every simple root is within an ulp of p's exact root;
+// Newton, Laguerre or Bairstow every simple root; None none. No polish when relTol > 0.
 int solve(const Polynomial& p, double tlo, double thi, double* roots, Solver solver = Solver::Auto,
-          double relTol = 0.0);
+          double relTol = 0.0, Polisher polisher = Polisher::Auto);
 
 }  // namespace csg

@@ -14,13 +14,16 @@
 #include <cassert>
 
 #include "primitives/base/Math.h"
+#include "primitives/solvers/DoubleDouble.h"
 #include "primitives/solvers/Polynomial.h"
 
 namespace csg {
 
 class Trivariate {
 public:
-    static constexpr int kMaxDegree = Polynomial::kMaxDegree;
+    // A surface's degree: 16 (969 coefficients), below Polynomial's 20, which only the solvers'
+    // measurements use.
+    static constexpr int kMaxDegree = 16;
     static constexpr int kMaxTerms = (kMaxDegree + 1) * (kMaxDegree + 2) * (kMaxDegree + 3) / 6;
 
     Trivariate() = default;
@@ -42,6 +45,10 @@ public:
     Trivariate partial(int axis) const;
     // F(p + s u) as a polynomial in s of degree degree() (nested Horner on polynomials in s).
     Polynomial along(const Vec3& p, const Vec3& u) const;
+    // The same in double-double, from a point given as hi + lo per axis: each coefficient within
+    // ~2^-100 of the exact one for these inputs (what the root polish needs; formed per ray only
+    // when a root is polished).
+    PolynomialDD alongDD(const DoubleDouble p[3], const Vec3& u) const;
 
 private:
     // Layout: x-major, then y, then z: block i holds the (y, z) triangle of degree n - i.

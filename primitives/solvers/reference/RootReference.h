@@ -91,4 +91,37 @@ std::vector<Big> torusQuartic(double majorRadius, double minorRadius, const V& o
     return c;
 }
 
+// G(o - centre + t d) as a polynomial in t, expanded exactly (up to 50 digits) from the double
+// inputs: a trivariate G with degree() and coefficients at(i, j, k) of x^i y^j z^k (Trivariate),
+// the centre it is seen from, and the line. V is any type with double members x, y, z.
+template <class G, class V>
+std::vector<Big> trivariateLine(const G& g, const V& centre, const V& o, const V& d) {
+    const int n = g.degree();
+    const auto times = [](const std::vector<Big>& a, const std::vector<Big>& b) {
+        std::vector<Big> out(a.size() + b.size() - 1, Big(0));
+        for (size_t i = 0; i < a.size(); ++i)
+            for (size_t k = 0; k < b.size(); ++k) out[i + k] += a[i] * b[k];
+        return out;
+    };
+    // powers[a][e] = (o_a - centre_a + t d_a)^e.
+    const std::vector<Big> lines[3] = {{Big(o.x) - Big(centre.x), Big(d.x)},
+                                       {Big(o.y) - Big(centre.y), Big(d.y)},
+                                       {Big(o.z) - Big(centre.z), Big(d.z)}};
+    std::vector<std::vector<Big>> powers[3];
+    for (int a = 0; a < 3; ++a) {
+        powers[a].push_back({Big(1)});
+        for (int e = 1; e <= n; ++e) powers[a].push_back(times(powers[a].back(), lines[a]));
+    }
+    std::vector<Big> out(size_t(n + 1), Big(0));
+    for (int i = 0; i <= n; ++i)
+        for (int j = 0; i + j <= n; ++j)
+            for (int k = 0; i + j + k <= n; ++k) {
+                if (g.at(i, j, k) == 0.0) continue;
+                const std::vector<Big> term =
+                    times(times(powers[0][size_t(i)], powers[1][size_t(j)]), powers[2][size_t(k)]);
+                for (size_t e = 0; e < term.size(); ++e) out[e] += Big(g.at(i, j, k)) * term[e];
+            }
+    return out;
+}
+
 }  // namespace csg::rootref

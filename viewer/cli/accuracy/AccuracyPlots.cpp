@@ -11,6 +11,7 @@ namespace csg {
 namespace {
 
 constexpr double kErrorFloor = 1e-17;  // errors of exactly 0, drawn on a log axis
+constexpr double kUlpsFloor = 0.01;    // the same for errors in ulps
 const char* const kColors[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
                                "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
 
@@ -112,7 +113,15 @@ std::string classLabel(const AccuracyRow& r) {
 
 }  // namespace
 
-std::string paretoSvg(const std::vector<AccuracyRow>& rows) {
+std::string paretoSvg(const std::vector<AccuracyRow>& input, bool ulps) {
+    // A series is a solver, or with ulps a solver with its polisher.
+    std::vector<AccuracyRow> rows = input;
+    if (ulps)
+        for (AccuracyRow& r : rows)
+            if (r.polisher != "none") r.solver += "+" + r.polisher;
+    const auto errorOf = [ulps](const AccuracyRow& r) {
+        return ulps ? std::max(kUlpsFloor, r.maxUlps) : std::max(kErrorFloor, r.p99Error);
+    };
     std::vector<std::string> classes;
     for (const AccuracyRow& r : rows)
         if (r.surfaceClass != "degree-sweep" &&
@@ -132,7 +141,7 @@ std::string paretoSvg(const std::vector<AccuracyRow>& rows) {
                 r.raysPerSecond > 0.0) {
                 mine.push_back(&r);
                 xs.push_back(1e9 / r.raysPerSecond);
-                ys.push_back(std::max(kErrorFloor, r.p99Error));
+                ys.push_back(errorOf(r));
             }
         Panel p{double(k % cols) * cellW + 50,
                 double(k / cols) * cellH + 25,
@@ -144,7 +153,8 @@ std::string paretoSvg(const std::vector<AccuracyRow>& rows) {
                 0};
         logRange(xs, p.xLo, p.xHi);
         logRange(ys, p.yLo, p.yHi);
-        drawAxes(svg, p, classes[k], "ns per ray (solve only)", "p99 relative error");
+        drawAxes(svg, p, classes[k], "ns per ray (solve only)",
+                 ulps ? "max error in ulps of t" : "p99 relative error");
         // Step 1: each solver's line through its tolerances, coarse to full precision (timings
         // are noisy, so ordering by time would zigzag); a cross marks wrong counts.
         std::vector<std::pair<double, double>> clean;  // (ns, error) without wrong counts
@@ -159,7 +169,7 @@ std::string paretoSvg(const std::vector<AccuracyRow>& rows) {
             });
             std::vector<std::pair<double, double>> pts;
             for (const AccuracyRow* r : line) {
-                const double ns = 1e9 / r->raysPerSecond, e = std::max(kErrorFloor, r->p99Error);
+                const double ns = 1e9 / r->raysPerSecond, e = errorOf(*r);
                 const double cx = p.px(ns), cy = p.py(e);
                 pts.push_back({cx, cy});
                 if (r->wrongCounts > 0)

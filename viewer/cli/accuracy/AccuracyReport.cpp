@@ -42,6 +42,7 @@ struct Job {
     Polynomial p;
     double lo, hi;
     std::vector<double> reference;  // the 50-digit roots rounded to double
+    std::vector<Big> exact;         // the 50-digit roots themselves (errors in ulps)
     // False when p, between two adjacent reference roots, stays below its own rounding-error
     // bound in double (Polynomial::eval): no double evaluation can see the sign change
     // there, so a wrong count on this ray is double precision's limit, not the solver's.
@@ -60,6 +61,7 @@ void addReference(Job& j) {
     for (int i = 0; i <= j.p.degree(); ++i) c[size_t(i)] = j.p[i];
     const std::vector<Big> roots = rootref::realRoots(c, Big(j.lo), Big(j.hi));
     for (const Big& r : roots) j.reference.push_back(r.convert_to<double>());
+    j.exact = roots;
     for (int i = 0; i <= j.p.degree(); ++i)
         j.pf[size_t(i)] = float(j.p[i]), j.pd[size_t(i)] = j.p[i];
     for (size_t i = 0; i + 1 < roots.size(); ++i) {
@@ -112,25 +114,56 @@ std::vector<Job> torusLineJobs(const std::vector<Job>& torus) {
     std::vector<Job> out = torus;
     for (Job& j : out) {
         j.reference.clear();
-        for (const Big& r : rootref::realRoots(
-                 rootref::torusQuartic(shape.majorRadius, shape.minorRadius, j.lineBase, j.lineDir),
-                 Big(j.lo), Big(j.hi)))
-            j.reference.push_back(r.convert_to<double>());
+        j.exact = rootref::realRoots(
+            rootref::torusQuartic(shape.majorRadius, shape.minorRadius, j.lineBase, j.lineDir),
+            Big(j.lo), Big(j.hi));
+        for (const Big& r : j.exact) j.reference.push_back(r.convert_to<double>());
         j.resolvable = true;
     }
     return out;
 }
 
-// Rays through the product of degree / 2 origin-centred spheres (radii^2 0.25 .. 1.4): the
-// chord polynomial AlgebraicSurface hands its solver.
-std::vector<Job> shellJobs(int degree, int n) {
-    const AlgebraicSurface s = shellSurface(degree);
-    Rng g(17 + uint64_t(degree));
+// Rays from 4 units away through the surface s (the product of degree / 2 origin-centred
+// spheres, radii^2 0.25 .. 1.4, aimed within 1.5; or the close shells, aimed within 0.99): the
+// chord polynomial AlgebraicSurface hands its solver, and the line itself (for the spans rows).
+std::vector<Job> shellJobs(const AlgebraicSurface& s, uint64_t seed, int n, double aim) {
+    Rng g(seed);
     std::vector<Job> out;
     while (int(out.size()) < n) {
         const Vec3 o = 4.0 * glm::normalize(randomIn(g, 1.0));
+        const Vec3 d = randomIn(g, aim) - o;
         AlgebraicSurface::Chord c;
-        if (s.chord(o, randomIn(g, 1.5) - o, c)) out.push_back({c.poly, c.uLo, c.uHi, {}});
+        if (!s.chord(o, d, c)) continue;
+        Job j{c.poly, c.uLo, c.uHi, {}};
+        j.lineBase = o, j.lineDir = d;
+        out.push_back(std::move(j));
+    }
+    return out;
+}
+
+// The issue-23 shells 5e-7 apart, (x^2+y^2+z^2-1)(x^2+y^2+z^2-1.000001), in the box [-2, 2]^3.
+AlgebraicSurface closeShellSurface() {
+    const ExactPolynomial x = ExactPolynomial::x(), y = ExactPolynomial::y(),
+                          z = ExactPolynomial::z();
+    const ExactPolynomial r2 = *x.times(x) + *y.times(y) + *z.times(z);
+    return AlgebraicSurface::make(
+        *(r2 - ExactPolynomial::constant(1.0)).times(r2 - ExactPolynomial::constant(1.000001)),
+        {Vec3(-2.0), Vec3(2.0)});
+}
+
+// The shell jobs for the spans rows: the same lines, with the 50-digit roots in t of G(o - centre
+// + t d) on the surface's own double coefficients (rootref::trivariateLine) inside the chord.
+std::vector<Job> surfaceLineJobs(const AlgebraicSurface& s, const std::vector<Job>& chords) {
+    std::vector<Job> out = chords;
+    for (Job& j : out) {
+        AlgebraicSurface::Chord c;
+        s.chord(j.lineBase, j.lineDir, c);
+        j.exact = rootref::realRoots(
+            rootref::trivariateLine(s.data->g, s.data->centre, j.lineBase, j.lineDir), Big(c.tIn),
+            Big(c.tOut));
+        j.reference.clear();
+        for (const Big& r : j.exact) j.reference.push_back(r.convert_to<double>());
+        j.resolvable = true;
     }
     return out;
 }
@@ -226,7 +259,8 @@ AccuracyRow measure(AccuracyRow row, const std::vector<Job>& jobs, double minSec
                     SolveOne solveOne) {
     row.rays = long(jobs.size());
     double roots[Polynomial::kMaxDegree];
-    std::vector<double> errors;
+    std::vector<double> errors, ulps;
+    long nearest = 0;
     for (const Job& j : jobs) {
         const int n = solveOne(j, roots);
         if (n != int(j.reference.size())) {
@@ -235,17 +269,26 @@ AccuracyRow measure(AccuracyRow row, const std::vector<Job>& jobs, double minSec
             continue;
         }
         double e = 0;
-        for (int i = 0; i < n; ++i)
-            e = std::max(e, std::abs(roots[i] - j.reference[size_t(i)]) /
-                                std::max(1.0, std::abs(j.reference[size_t(i)])));
+        for (int i = 0; i < n; ++i) {
+            const double ref = j.reference[size_t(i)];
+            e = std::max(e, std::abs(roots[i] - ref) / std::max(1.0, std::abs(ref)));
+            // In ulps of t, against the 50-digit root itself.
+            const Big exact = j.exact.empty() ? Big(ref) : j.exact[size_t(i)];
+            ulps.push_back((abs(Big(roots[i]) - exact) / Big(ulpOf(ref))).convert_to<double>());
+            nearest += roots[i] == ref ? 1 : 0;
+        }
         errors.push_back(e);
     }
-    std::sort(errors.begin(), errors.end());
-    if (!errors.empty()) {
-        row.maxError = errors.back();
-        row.p99Error = errors[size_t(0.99 * double(errors.size() - 1))];
-        row.medianError = errors[errors.size() / 2];
-    }
+    const auto quantiles = [](std::vector<double>& v, double& max, double& p99, double& median) {
+        std::sort(v.begin(), v.end());
+        if (v.empty()) return;
+        max = v.back();
+        p99 = v[size_t(0.99 * double(v.size() - 1))];
+        median = v[v.size() / 2];
+    };
+    quantiles(errors, row.maxError, row.p99Error, row.medianError);
+    quantiles(ulps, row.maxUlps, row.p99Ulps, row.medianUlps);
+    row.nearestShare = ulps.empty() ? 0.0 : double(nearest) / double(ulps.size());
     using Clock = std::chrono::steady_clock;
     long passes = 0;
     double sink = 0;
@@ -265,30 +308,71 @@ AccuracyRow measure(AccuracyRow row, const std::vector<Job>& jobs, double minSec
 }
 
 AccuracyRow measureSolver(const std::string& name, int degree, const std::vector<Job>& jobs,
-                          Solver solver, double relTol, double minSeconds) {
-    return measure({name, degree, solverName(solver), "double", relTol}, jobs, minSeconds,
-                   [solver, relTol](const Job& j, double* roots) {
-                       return solve(j.p, j.lo, j.hi, roots, solver, relTol);
+                          Solver solver, double relTol, Polisher polisher, double minSeconds) {
+    AccuracyRow row{name, degree, solverName(solver), "double", relTol};
+    row.polisher = polisherName(polisher);
+    return measure(row, jobs, minSeconds, [solver, relTol, polisher](const Job& j, double* roots) {
+        return solve(j.p, j.lo, j.hi, roots, solver, relTol, polisher);
+    });
+}
+
+// The exact path: the 50-digit reference itself (RootReference.h) as a solver, rounded to
+// double: what a root to the last bit costs without double-double.
+AccuracyRow measureReference(const std::string& name, int degree, const std::vector<Job>& jobs,
+                             double minSeconds) {
+    return measure({name, degree, "reference-50-digit", "cpp_bin_float_50", 0.0}, jobs, minSeconds,
+                   [](const Job& j, double* roots) {
+                       std::vector<Big> c(size_t(j.p.degree() + 1));
+                       for (int i = 0; i <= j.p.degree(); ++i) c[size_t(i)] = j.p[i];
+                       int n = 0;
+                       for (const Big& r : rootref::realRoots(c, Big(j.lo), Big(j.hi)))
+                           roots[n++] = r.convert_to<double>();
+                       return n;
                    });
+}
+
+// AlgebraicSurface::spans with Solver::Auto and the polisher on each job's line (row solver
+// "spans"): its surface crossings (span ends on face 6) against the exact roots of the line.
+AccuracyRow measureSurfaceSpans(const std::string& name, int degree, AlgebraicSurface surface,
+                                const std::vector<Job>& lineJobs, Polisher polisher,
+                                double minSeconds) {
+    surface.polisher = polisher;
+    AccuracyRow row{name, degree, "spans", "double", 0.0};
+    row.polisher = polisherName(polisher);
+    return measure(row, lineJobs, minSeconds, [surface](const Job& j, double* roots) {
+        LocalSpans s;
+        surface.spans(j.lineBase, j.lineDir, s);
+        int n = 0;
+        for (int i = 0; i < s.count; ++i) {
+            if (s.entries[i].faceIn == AlgebraicSurface::kSurfaceFace)
+                roots[n++] = s.entries[i].tIn;
+            if (s.entries[i].faceOut == AlgebraicSurface::kSurfaceFace)
+                roots[n++] = s.entries[i].tOut;
+        }
+        return n;
+    });
 }
 
 // Torus::spans on each job's line, bounding tests included: the span ends are the roots. With
 // Solver::Auto, the tube form's monotone pieces (row "tube"); with Solver::ClosedForm, the
 // quartic's roots polished on the tube form (row "quartic-spans"), for comparison on the same
 // reference.
-AccuracyRow measureTorusSpans(const std::vector<Job>& lineJobs, Solver solver, double minSeconds) {
+AccuracyRow measureTorusSpans(const std::vector<Job>& lineJobs, Solver solver, Polisher polisher,
+                              double minSeconds) {
     Torus torus = reportTorus();
     torus.solver = solver;
+    torus.polisher = polisher;
     const char* name = solver == Solver::Auto ? "tube" : "quartic-spans";
-    return measure({"torus", 4, name, "double", 0.0}, lineJobs, minSeconds,
-                   [torus](const Job& j, double* roots) {
-                       LocalSpans s;
-                       torus.spans(j.lineBase, j.lineDir, s);
-                       int n = 0;
-                       for (int i = 0; i < s.count; ++i)
-                           roots[n++] = s.entries[i].tIn, roots[n++] = s.entries[i].tOut;
-                       return n;
-                   });
+    AccuracyRow row{"torus", 4, name, "double", 0.0};
+    row.polisher = polisherName(polisher);
+    return measure(row, lineJobs, minSeconds, [torus](const Job& j, double* roots) {
+        LocalSpans s;
+        torus.spans(j.lineBase, j.lineDir, s);
+        int n = 0;
+        for (int i = 0; i < s.count; ++i)
+            roots[n++] = s.entries[i].tIn, roots[n++] = s.entries[i].tOut;
+        return n;
+    });
 }
 
 // The same Yuksel code (ScalarYuksel.h) on p's coefficients rounded to T, range and roots in
@@ -329,13 +413,15 @@ std::string fixed0(double v) {
 
 std::string csvText(const std::vector<AccuracyRow>& rows) {
     std::ostringstream csv;
-    csv << "class,degree,solver,scalar,rel_tol,rays_per_second,max_error,p99_error,median_error,"
-           "wrong_counts,wrong_resolvable,rays\n";
+    csv << "class,degree,solver,polisher,scalar,rel_tol,rays_per_second,max_error,p99_error,"
+           "median_error,max_ulps,p99_ulps,median_ulps,nearest_share,wrong_counts,"
+           "wrong_resolvable,rays\n";
     for (const AccuracyRow& r : rows)
-        csv << r.surfaceClass << ',' << r.degree << ',' << r.solver << ',' << r.scalar << ','
-            << r.relTol << ',' << r.raysPerSecond << ',' << r.maxError << ',' << r.p99Error << ','
-            << r.medianError << ',' << r.wrongCounts << ',' << r.wrongResolvable << ',' << r.rays
-            << '\n';
+        csv << r.surfaceClass << ',' << r.degree << ',' << r.solver << ',' << r.polisher << ','
+            << r.scalar << ',' << r.relTol << ',' << r.raysPerSecond << ',' << r.maxError << ','
+            << r.p99Error << ',' << r.medianError << ',' << r.maxUlps << ',' << r.p99Ulps << ','
+            << r.medianUlps << ',' << r.nearestShare << ',' << r.wrongCounts << ','
+            << r.wrongResolvable << ',' << r.rays << '\n';
     return csv.str();
 }
 
@@ -351,8 +437,14 @@ std::string markdownText(const std::vector<AccuracyRow>& rows, int rays) {
        << "the 50-digit roots of the exact quartic of the same double line, not of a rounded "
        << "polynomial: the error is against the line itself (for `quartic-spans` it includes "
        << "the rounding of the quartic's coefficients). "
+       << "The `spans` rows are AlgebraicSurface::spans (Solver::Auto) on the same lines, "
+       << "measured against the 50-digit roots of G(o - centre + t d) from the surface's own "
+       << "double coefficients; the polisher column is the refinement after isolation "
+       << "(primitives/solvers/Polish.h: none, auto = Newton in double-double where a condition "
+       << "estimate asks, newton, laguerre, bairstow). `reference-50-digit` is the exact path "
+       << "(the reference itself, timed). "
        << "Written by `csgray bench accuracy` (viewer/cli/accuracy/AccuracyReport.cpp); "
-       << "plots: accuracy_pareto.svg, degree_sweep.svg.\n\n";
+       << "plots: accuracy_pareto.svg, ulps_pareto.svg, degree_sweep.svg.\n\n";
     // Float against double first: the same solver code (ScalarYuksel.h), two scalar types.
     md << "## float vs double (the same Yuksel code, roots to full precision of the type)\n\n"
        << "| class | degree | float rays/s | double rays/s | float/double time | float max "
@@ -368,13 +460,29 @@ std::string markdownText(const std::vector<AccuracyRow>& rows, int rays) {
            << " | " << sci(d.p99Error) << " | " << f.wrongCounts << " / " << f.rays << " | "
            << d.wrongCounts << " / " << d.rays << " |\n";
     }
-    md << "\n## Every row\n\n| class | degree | solver | rel_tol | rays/s | max error | p99 error "
-          "| wrong counts | of them resolvable |\n|---|---:|---|---:|---:|---:|---:|---:|---:|\n";
+    // Errors in ulps of t at full precision, by solver and polisher.
+    md << "\n## Errors in ulps of t (full precision; exact = the 50-digit root, the double "
+          "nearest it is within 0.5 ulp)\n\n| class | degree | solver | polisher | rays/s | max "
+          "ulps | p99 ulps | median ulps | nearest | wrong counts |\n"
+          "|---|---:|---|---|---:|---:|---:|---:|---:|---:|\n";
+    for (const AccuracyRow& r : rows) {
+        if (r.relTol != 0.0 || r.scalar == "float") continue;
+        md << "| " << r.surfaceClass << " | " << r.degree << " | " << r.solver << " | "
+           << r.polisher << " | " << fixed0(r.raysPerSecond) << " | "
+           << formatted("%.3g", r.maxUlps) << " | " << formatted("%.3g", r.p99Ulps) << " | "
+           << formatted("%.3g", r.medianUlps) << " | "
+           << formatted("%.1f %%", 100.0 * r.nearestShare) << " | " << r.wrongCounts << " / "
+           << r.rays << " |\n";
+    }
+    md << "\n## Every row\n\n| class | degree | solver | polisher | rel_tol | rays/s | max error "
+          "| p99 error | max ulps | wrong counts | of them resolvable |\n"
+          "|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const AccuracyRow& r : rows)
         md << "| " << r.surfaceClass << " | " << r.degree << " | " << r.solver << " | "
-           << (r.relTol == 0 ? std::string("0") : sci(r.relTol)) << " | " << fixed0(r.raysPerSecond)
-           << " | " << sci(r.maxError) << " | " << sci(r.p99Error) << " | " << r.wrongCounts
-           << " / " << r.rays << " | " << r.wrongResolvable << " |\n";
+           << r.polisher << " | " << (r.relTol == 0 ? std::string("0") : sci(r.relTol)) << " | "
+           << fixed0(r.raysPerSecond) << " | " << sci(r.maxError) << " | " << sci(r.p99Error)
+           << " | " << formatted("%.3g", r.maxUlps) << " | " << r.wrongCounts << " / " << r.rays
+           << " | " << r.wrongResolvable << " |\n";
     return md.str();
 }
 
@@ -395,14 +503,23 @@ bool writeAccuracyReport(const AccuracyReportOptions& options, std::string* erro
         int degree;
         std::vector<Job> jobs;
         bool sweepTolerance;  // false: the degree sweep, at full accuracy only
+        const AlgebraicSurface* surface = nullptr;  // a surface class: its spans rows too
     };
     std::vector<Class> classes;
+    const AlgebraicSurface shells[] = {shellSurface(4), shellSurface(8), shellSurface(16)};
+    const AlgebraicSurface closeShells = closeShellSurface();
     classes.push_back({"torus", 4, torusJobs(rays), true});
-    for (int d : {4, 8, 16}) classes.push_back({"shells", d, shellJobs(d, rays), true});
+    for (int k = 0; k < 3; ++k) {
+        const int d = 4 << k;
+        classes.push_back({"shells", d, shellJobs(shells[k], 17 + uint64_t(d), rays, 1.5), true,
+                           d <= 8 ? &shells[k] : nullptr});  // degree 16: the 50-digit line is slow
+    }
+    classes.push_back(
+        {"close-shells", 4, shellJobs(closeShells, 2301, rays, 0.99), true, &closeShells});
     classes.push_back({"cluster", 4, clusterJobs(rays), true});
     classes.push_back({"near-double", 4, nearDoubleJobs(rays), true});
     classes.push_back({"wide-range", 4, wideRangeJobs(rays), true});
-    for (int d = 2; d <= 16; ++d)
+    for (int d = 2; d <= 20; ++d)
         classes.push_back(
             {"degree-sweep", d, separatedJobs(d, std::max(5, rays / 2), 41 + uint64_t(d)), false});
     for (Class& c : classes) {
@@ -422,12 +539,13 @@ bool writeAccuracyReport(const AccuracyReportOptions& options, std::string* erro
         rows.push_back(r);
         if (!options.progress) return;
         std::fprintf(stderr,
-                     "%-12s %2d %-16s tol %-7g %10.0f rays/s max %s p99 %s wrong %ld (%ld "
-                     "resolvable)\n",
-                     r.surfaceClass.c_str(), r.degree, r.solver.c_str(), r.relTol, r.raysPerSecond,
-                     sci(r.maxError).c_str(), sci(r.p99Error).c_str(), r.wrongCounts,
-                     r.wrongResolvable);
+                     "%-12s %2d %-16s %-8s tol %-7g %10.0f rays/s max %s p99 %s ulps max %.3g "
+                     "p99 %.3g wrong %ld (%ld resolvable)\n",
+                     r.surfaceClass.c_str(), r.degree, r.solver.c_str(), r.polisher.c_str(),
+                     r.relTol, r.raysPerSecond, sci(r.maxError).c_str(), sci(r.p99Error).c_str(),
+                     r.maxUlps, r.p99Ulps, r.wrongCounts, r.wrongResolvable);
     };
+    const double minSeconds = options.minSeconds;
     for (const Class& c : classes) {
         for (Solver solver : kAllSolvers) {
             // Closed forms exist up to degree 4 only (above, ClosedForm is Yuksel).
@@ -436,22 +554,43 @@ bool writeAccuracyReport(const AccuracyReportOptions& options, std::string* erro
                 if (!c.sweepTolerance && tol != 0.0) continue;
                 // The closed forms ignore the tolerance: one row is the whole story.
                 if (solver == Solver::ClosedForm && tol != 0.0) continue;
-                report(measureSolver(c.name, c.degree, c.jobs, solver, tol, options.minSeconds));
+                // No polish at a tolerance (solve() skips it); at full precision the isolating
+                // solver alone, then with the Auto polish.
+                report(measureSolver(c.name, c.degree, c.jobs, solver, tol, Polisher::None,
+                                     minSeconds));
+                if (tol == 0.0)
+                    report(measureSolver(c.name, c.degree, c.jobs, solver, tol, Polisher::Auto,
+                                         minSeconds));
             }
         }
+        // Every polisher after Solver::Auto's isolation.
+        for (Polisher polisher : {Polisher::Newton, Polisher::Laguerre, Polisher::Bairstow})
+            report(
+                measureSolver(c.name, c.degree, c.jobs, Solver::Auto, 0.0, polisher, minSeconds));
+        // The exact path, where it is cheap enough to time (degree 4).
+        if (c.degree == 4 && c.sweepTolerance)
+            report(measureReference(c.name, c.degree, c.jobs, minSeconds));
         if (c.name == "torus") {
             const std::vector<Job> lineJobs = torusLineJobs(c.jobs);
             for (Solver solver : {Solver::Auto, Solver::ClosedForm})
-                report(measureTorusSpans(lineJobs, solver, options.minSeconds));
+                for (Polisher polisher : kAllPolishers)
+                    report(measureTorusSpans(lineJobs, solver, polisher, minSeconds));
         }
-        report(measureScalar<float>(c.name, c.degree, c.jobs, options.minSeconds));
-        report(measureScalar<double>(c.name, c.degree, c.jobs, options.minSeconds));
+        if (c.surface) {
+            const std::vector<Job> lineJobs = surfaceLineJobs(*c.surface, c.jobs);
+            for (Polisher polisher : kAllPolishers)
+                report(measureSurfaceSpans(c.name, c.degree, *c.surface, lineJobs, polisher,
+                                           minSeconds));
+        }
+        report(measureScalar<float>(c.name, c.degree, c.jobs, minSeconds));
+        report(measureScalar<double>(c.name, c.degree, c.jobs, minSeconds));
     }
 
     const std::pair<const char*, std::string> files[] = {
         {"accuracy.csv", csvText(rows)},
         {"accuracy.md", markdownText(rows, rays)},
         {"accuracy_pareto.svg", paretoSvg(rows)},
+        {"ulps_pareto.svg", paretoSvg(rows, true)},
         {"degree_sweep.svg", degreeSweepSvg(rows)}};
     for (const auto& [name, text] : files) {
         *error = csg::writeFileAtomically(dir / name, text);
@@ -459,8 +598,8 @@ bool writeAccuracyReport(const AccuracyReportOptions& options, std::string* erro
     }
     if (options.progress)
         std::fprintf(stderr,
-                     "wrote accuracy.csv, accuracy.md, accuracy_pareto.svg and "
-                     "degree_sweep.svg in %s\n",
+                     "wrote accuracy.csv, accuracy.md, accuracy_pareto.svg, ulps_pareto.svg "
+                     "and degree_sweep.svg in %s\n",
                      dir.c_str());
     return true;
 }

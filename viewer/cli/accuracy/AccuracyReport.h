@@ -3,9 +3,11 @@
 //
 // For every solver, surface class and tolerance: rays per second of solve() alone against the
 // error distribution (max, 99th percentile, median) and the wrong root counts, measured
-// against the 50-digit roots of the same double polynomial; a degree sweep 2..16; and float
-// against double for the same solver code (ScalarYuksel.h). Writes DIR/accuracy.csv,
-// DIR/accuracy.md, DIR/accuracy_pareto.svg and DIR/degree_sweep.svg.
+// against the 50-digit roots of the same double polynomial, also in ulps of t, with each
+// polisher after isolation (Polish.h); the surfaces' and the torus's span ends against the
+// exact roots of their line's polynomial; a degree sweep 2..20; and float against double for
+// the same solver code (ScalarYuksel.h). Writes DIR/accuracy.csv, DIR/accuracy.md,
+// DIR/accuracy_pareto.svg, DIR/ulps_pareto.svg and DIR/degree_sweep.svg.
 #pragma once
 
 #include <filesystem>
@@ -22,6 +24,11 @@ struct AccuracyRow {
     double relTol = 0.0;  // 0: roots to full precision
     double raysPerSecond = 0.0;
     double maxError = 0.0, p99Error = 0.0, medianError = 0.0;  // |root - ref| / max(1, |ref|)
+    // The polisher after isolation (Polish.h's name; "none": the isolating solver's roots).
+    std::string polisher = "none";
+    // Per root: |root - exact| / ulp(exact), exact the 50-digit root (the double nearest it is
+    // within 0.5); and the share of roots that are that nearest double.
+    double maxUlps = 0.0, p99Ulps = 0.0, medianUlps = 0.0, nearestShare = 0.0;
     long wrongCounts = 0;
     long wrongResolvable = 0;  // wrong counts on rays double precision can resolve
     long rays = 0;
