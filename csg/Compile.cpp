@@ -7,6 +7,7 @@
 
 #include "csg/Bvh.h"
 #include "csg/Compiled.h"
+#include "csg/Grid.h"
 #include "csg/Scene.h"
 
 namespace csg {
@@ -98,8 +99,15 @@ size_t countLeaves(const Node* node) {
 
 }  // namespace
 
+// The structure --accel auto gives a union of `bounded` children with these boxes.
+Accel chooseAccel(uint32_t bounded) {
+    (void)bounded;
+    return Accel::Sah;
+}
+
 struct Compiler {
     Scene& scene;
+    CompileOptions options;
     // The innermost difference or intersection being built, if any: a sheet under it is an
     // error (it has no inside for the operation to use).
     const Node* boolean = nullptr;
@@ -299,9 +307,28 @@ struct Compiler {
         u.count = static_cast<uint32_t>(children.size());
         u.bounded = static_cast<uint32_t>(firstUnbounded - children.begin());
         for (uint32_t c : children) u.bounds.extend(scene.nodes_[c].bounds);
-        if (u.bounded >= kBvhMinChildren) {
-            u.bvhRoot =
-                buildBvh(std::span(children.data(), u.bounded), scene.nodes_, u.first, scene.bvh_);
+        const Accel accel = options.accel == Accel::Auto ? chooseAccel(u.bounded) : options.accel;
+        if (u.bounded >= kBvhMinChildren &&
+            (accel == Accel::Grid || accel == Accel::NonUniformGrid)) {
+            // A grid lists each child by its position in children_ (the union's run starts at
+            // u.first), in the order given; the children's own bounds are tested as they are
+            // visited (boundsImplied stays false).
+            std::vector<Bounds3> boxes(u.bounded);
+            for (uint32_t i = 0; i < u.bounded; ++i) boxes[i] = scene.nodes_[children[i]].bounds;
+            u.halving = accel == Accel::NonUniformGrid;
+            if (u.halving) {
+                u.grid = static_cast<uint32_t>(scene.halvingGrids_.size());
+                scene.halvingGrids_.push_back(buildHalvingGrid(boxes, u.first));
+            } else {
+                u.grid = static_cast<uint32_t>(scene.grids_.size());
+                scene.grids_.push_back(buildUniformGrid(boxes, u.first));
+            }
+        } else if (u.bounded >= kBvhMinChildren) {
+            const BvhMethod method = accel == Accel::Median            ? BvhMethod::Median
+                                     : accel == Accel::GoldsmithSalmon ? BvhMethod::GoldsmithSalmon
+                                                                       : BvhMethod::Sah;
+            u.bvhRoot = buildBvh(std::span(children.data(), u.bounded), scene.nodes_, u.first,
+                                 scene.bvh_, method);
             // The BVH root's slots cover the same children: a ray that misses u.bounds misses
             // them all, so testing u.bounds first would only add a test.
             u.boundsImplied = u.bounded == u.count;
@@ -323,9 +350,9 @@ struct Compiler {
     }
 };
 
-Scene Scene::compile(const NodePtr& root) {
+Scene Scene::compile(const NodePtr& root, const CompileOptions& options) {
     Scene scene;
-    Compiler compiler{scene};
+    Compiler compiler{scene, options};
     const size_t leaves = countLeaves(root.get());
     scene.leaves_.reserve(leaves);
     scene.frames_.reserve(leaves);
