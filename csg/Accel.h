@@ -18,7 +18,8 @@ enum class Accel : uint8_t {
     GoldsmithSalmon,  // Goldsmith-Salmon insertion BVH
     Grid,             // uniform grid, Amanatides-Woo walk
     NonUniformGrid,   // recursive halving along x, y, z in turn, walked as an octree
-    Auto,             // per union, by the rule of Compile.cpp (chooseAccel)
+    Auto,             // per union: a uniform grid for large evenly spread ones, else SAH
+                      // (Compile.cpp, kAutoGridMinChildren)
 };
 
 // The names of --accel, in the enum's order.

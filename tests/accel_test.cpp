@@ -213,7 +213,21 @@ void expectSameAnswers(const NodePtr& tree, int rayCount, Bounds3 aim = {}) {
 }
 
 TEST(Accel, RandomSpheresSameAsSah) {
-    expectSameAnswers(randomSpheres(3000), 4000);
+    expectSameAnswers(randomSpheres(5000), 4000);
+}
+
+// auto takes the uniform grid for a large evenly spread union (a grid's memory, well below the
+// BVH's), the SAH BVH for a small one and a clustered one.
+TEST(Accel, AutoPicksTheGridWhereObjectsSpreadEvenly) {
+    const auto bytes = [](const NodePtr& tree, Accel accel) {
+        return Scene::compile(tree, {.accel = accel}).structureBytes();
+    };
+    const NodePtr spread = randomSpheres(5000);
+    EXPECT_EQ(bytes(spread, Accel::Auto), bytes(spread, Accel::Grid));
+    const NodePtr few = randomSpheres(1000);
+    EXPECT_EQ(bytes(few, Accel::Auto), bytes(few, Accel::Sah));
+    const NodePtr gathered = clustered(5000);
+    EXPECT_EQ(bytes(gathered, Accel::Auto), bytes(gathered, Accel::Sah));
 }
 
 TEST(Accel, ClusteredSameAsSah) {
