@@ -411,10 +411,11 @@ struct SpanWalk {
         return ctx.walks_;
     }
 
-    // Visits the children a grid cell lists that this walk has not visited yet (the mailbox:
-    // a child listed by many cells is evaluated once per ray, over the whole [t0, t1], so a
-    // hit it has beyond the current cell is kept in t1 and the walk goes on only through
-    // cells that begin before it: a hit counts once the walk has passed the cells before it).
+    // Visits the children a grid cell lists that this walk has not visited yet. The mailbox
+    // evaluates a child listed by many cells once, over the whole [t0, t1]; a hit it has
+    // beyond the current cell lowers t1, and the walk goes on through the cells that begin
+    // before that hit: so a hit is final only once no earlier cell is left (the lecture's
+    // "a hit counts only inside the current cell", without testing the child again).
     template <class Visit>
     bool visitCell(const uint32_t* items, uint32_t count, uint32_t walk, Visit& visit) {
         for (uint32_t i = 0; i < count; ++i) {
@@ -426,8 +427,9 @@ struct SpanWalk {
         return true;
     }
 
-    // The ray's range [tIn, tOut] inside a grid's box within [t0, t1], or false. A ray that
-    // would enter at an infinite t (a zero direction) is handed to visitAll instead.
+    // The ray's range [tIn, tOut] inside a grid's box within [t0, t1], or false. (A range
+    // with an infinite end, from a zero direction, has no cell to start in: walkGrid then
+    // visits every child the grid lists, each once.)
     bool enterGrid(const Bounds3& box, double t0, double t1, double& tIn, double& tOut) {
         tIn = t0;
         tOut = t1;

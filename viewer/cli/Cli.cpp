@@ -27,8 +27,9 @@ const char* const kCommonOptionsHelp =
     "                         sah (default): surface area heuristic BVH; median: median\n"
     "                         cut BVH; goldsmith-salmon: insertion BVH; grid: uniform grid\n"
     "                         (Amanatides-Woo walk); nonuniform-grid: recursive halving\n"
-    "                         along x, y, z, walked as an octree; auto: per union, the one\n"
-    "                         bench/README.md found fastest for its kind\n"
+    "                         along x, y, z, walked as an octree; auto: the uniform grid\n"
+    "                         for a union of 4096 or more objects spread evenly, SAH\n"
+    "                         otherwise (bench/README.md, spatial structures)\n"
     "  --diagnostics=FORMAT   text (default): file:line:col: error: message on stderr;\n"
     "                         json: one JSON array of diagnostics on stderr\n"
     "  -h, --help             show this help\n";
