@@ -152,6 +152,37 @@ NodePtr sphereLayerTree(size_t sphereCount) {
     return uniteAll(spheres);
 }
 
+NodePtr clusteredLayerTree(size_t sphereCount) {
+    const double radius =
+        kLayerSide * std::sqrt(kLayerDiscCoverage / (std::numbers::pi * sphereCount));
+    const NodePtr ball = leaf(Sphere{radius});
+    std::mt19937_64 random(20240602);
+    auto uniform = [&random] { return static_cast<double>(random() >> 11) * 0x1.0p-53; };
+    constexpr int kClusters = 16;
+    constexpr double kClusterRadius = 4.0;
+    Vec3 centres[kClusters];
+    for (Vec3& c : centres) {
+        const double x = kLayerSide * (0.1 + 0.8 * uniform());
+        const double y = kLayerSide * (0.1 + 0.8 * uniform());
+        c = {x, y, 0.0};
+    }
+    std::vector<NodePtr> spheres;
+    spheres.reserve(sphereCount);
+    for (size_t i = 0; i < sphereCount; ++i) {
+        // A point of the unit ball by rejection, drawn in order (x, then y, then z).
+        Vec3 p;
+        do {
+            const double x = 2.0 * uniform() - 1.0;
+            const double y = 2.0 * uniform() - 1.0;
+            const double z = 2.0 * uniform() - 1.0;
+            p = {x, y, z};
+        } while (glm::dot(p, p) > 1.0);
+        const Vec3 centre = centres[i % kClusters] + kClusterRadius * p;
+        spheres.push_back(transformed(translation(centre), ball));
+    }
+    return uniteAll(spheres);
+}
+
 PinholeCamera sphereLayerCamera() {
     // Above and in front of the layer, looking down at its centre at about 40 degrees from the
     // vertical; the far corners and the sky above the far edge are misses.

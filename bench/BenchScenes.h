@@ -56,6 +56,10 @@ PinholeCamera emblemGridCamera();  // POV's camera: location <14,12,-22>, look_a
 // BVH's node visits per ray comparable across n (they should grow as log n).
 NodePtr sphereLayerTree(size_t sphereCount);
 PinholeCamera sphereLayerCamera();
+// The same n spheres of the same radius, clustered: gathered in 16 balls of radius 4 (seeded
+// centres across the layer, uniform in each ball) instead of spread over the layer, so
+// most of the layer is empty and a few spots are dense: the case a uniform grid handles badly.
+NodePtr clusteredLayerTree(size_t sphereCount);
 // The same camera narrowed to 0.4 degrees: its rays cover about 1 x 1 unit of the layer's
 // centre, so they walk the same BVH but touch only the few nodes and leaves above that patch:
 // the working set fits in cache at every n.

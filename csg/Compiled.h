@@ -58,8 +58,9 @@ struct BoundingBall {
 // Leaf:         first = leaf index.
 // Intersection, Difference: first = left node, second = right node.
 // Union:        children_[first, first + count) are the child nodes; the first `bounded`
-//               of them are ordered by the union's BVH (rooted at bvhRoot, or kNoNode for
-//               a short union scanned linearly); the rest have unbounded bounds.
+//               of them are organized by the union's structure (csg/Accel.h): its BVH
+//               (rooted at bvhRoot) or its grid (grid), or neither for a short union scanned
+//               linearly; the rest have unbounded bounds.
 struct CompiledNode {
     Op kind = Op::Union;
     // The ray loop does not test this node's bounds, because a test that has just passed
@@ -84,11 +85,18 @@ struct CompiledNode {
     uint32_t count = 0;
     uint32_t bounded = 0;
     uint32_t bvhRoot = kNoNode;
+    // The union's grid instead of a BVH (csg/Grid.h): an index into Scene::grids_ or
+    // Scene::halvingGrids_ (halving), or kNoNode.
+    uint32_t grid = kNoNode;
+    bool halving = false;
     // Index into Scene::balls_, or kNoNode. Held only by the topmost node it bounds: an
     // intersection or difference takes over its operand's ball, which is then not tested
     // again (the operand is evaluated only after the parent's test passed, and a line test
     // does not depend on the range).
     uint32_t ball = kNoNode;
+
+    // Whether a union's bounded children are walked through a structure, not scanned.
+    bool structured() const { return bvhRoot != kNoNode || grid != kNoNode; }
 };
 
 // The 4-wide BVH over a union's bounded children is made of BvhNode

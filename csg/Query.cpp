@@ -6,6 +6,7 @@
 
 #include "csg/Bvh.h"
 #include "csg/Compiled.h"
+#include "csg/Grid.h"
 #include "csg/Scene.h"
 #include "csg/SpanList.h"
 #include "primitives/solvers/LinePoint.h"
@@ -277,8 +278,7 @@ struct SpanWalk {
         // The operands whose boxes count: a short union's children (not through its BVH), else
         // the right operand itself as one box.
         const CompiledNode& b = scene.nodes_[right];
-        const bool byOperand =
-            b.kind == Op::Union && b.bvhRoot == kNoNode && b.count <= kMaxReaches;
+        const bool byOperand = b.kind == Op::Union && !b.structured() && b.count <= kMaxReaches;
         const uint32_t operands = byOperand ? b.count : 1;
         const auto operand = [&](uint32_t k) {
             return byOperand ? scene.children_[b.first + k] : right;
@@ -343,7 +343,12 @@ struct SpanWalk {
     template <class Visit>
     void forEachChild(const CompiledNode& node, double t0, double& t1, Visit&& visit) {
         const std::vector<uint32_t>& children = scene.children_;
-        if (node.bvhRoot == kNoNode) {
+        if (node.grid != kNoNode) {
+            const bool going = node.halving
+                                   ? walkHalvingGrid(scene.halvingGrids_[node.grid], t0, t1, visit)
+                                   : walkGrid(scene.grids_[node.grid], t0, t1, visit);
+            if (!going) return;
+        } else if (node.bvhRoot == kNoNode) {
             for (uint32_t i = 0; i < node.bounded; ++i)
                 if (!visit(children[node.first + i])) return;
         } else if (!walkBvh(node.bvhRoot, t0, t1, visit)) {
@@ -391,6 +396,128 @@ struct SpanWalk {
                 const uint32_t first = entry.target, count = entry.leafCount;
                 for (uint32_t i = 0; i < count; ++i)
                     if (!visit(scene.children_[first + i])) return false;
+            }
+        }
+    }
+
+    // A new walk number for the grids' mailbox (QueryContext::stamp_), its stamps sized to the
+    // scene; on the counter's wrap every stamp is cleared once.
+    uint32_t startWalk() {
+        if (ctx.stamp_.size() < scene.children_.size()) ctx.stamp_.resize(scene.children_.size());
+        if (++ctx.walks_ == 0) {
+            std::fill(ctx.stamp_.begin(), ctx.stamp_.end(), 0u);
+            ctx.walks_ = 1;
+        }
+        return ctx.walks_;
+    }
+
+    // Visits the children a grid cell lists that this walk has not visited yet. The mailbox
+    // evaluates a child listed by many cells once, over the whole [t0, t1]; a hit it has
+    // beyond the current cell lowers t1, and the walk goes on through the cells that begin
+    // before that hit: so a hit is final only once no earlier cell is left (the lecture's
+    // "a hit counts only inside the current cell", without testing the child again).
+    template <class Visit>
+    bool visitCell(const uint32_t* items, uint32_t count, uint32_t walk, Visit& visit) {
+        for (uint32_t i = 0; i < count; ++i) {
+            const uint32_t position = items[i];
+            if (ctx.stamp_[position] == walk) continue;
+            ctx.stamp_[position] = walk;
+            if (!visit(scene.children_[position])) return false;
+        }
+        return true;
+    }
+
+    // The ray's range [tIn, tOut] inside a grid's box within [t0, t1], or false. (A range
+    // with an infinite end, from a zero direction, has no cell to start in: walkGrid then
+    // visits every child the grid lists, each once.)
+    bool enterGrid(const Bounds3& box, double t0, double t1, double& tIn, double& tOut) {
+        tIn = t0;
+        tOut = t1;
+        return clipToBox(slab, box, tIn, tOut);
+    }
+
+    // forEachChild's walk of a uniform grid (GridCursor, Amanatides and Woo's) from the cell
+    // where the ray enters the box until past t1 (lowered by visit) or out of the box. False
+    // when visit stopped the walk.
+    template <class Visit>
+    bool walkGrid(const UniformGrid& g, double t0, double& t1, Visit& visit) {
+        double tIn, tOut;
+        if (!enterGrid(g.box, t0, t1, tIn, tOut)) return true;
+        const uint32_t walk = startWalk();
+        if (!std::isfinite(tIn) || !std::isfinite(tOut))
+            return visitCell(g.items.data(), static_cast<uint32_t>(g.items.size()), walk, visit);
+        GridCursor cursor(g, ray.o, ray.d, slab.invD, tIn);
+        for (;;) {
+            ++ctx.stats.nodeVisits;
+            const size_t c = cursor.index(g);
+            const uint32_t first = g.cellStart[c];
+            if (!visitCell(g.items.data() + first, g.cellStart[c + 1] - first, walk, visit))
+                return false;
+            double cellIn;
+            if (!cursor.advance(g, ray.o, slab.invD, cellIn)) return true;
+            // The next cell begins past the range (its entry widened as the slab test widens
+            // its ends): nothing in it can come before what has been found.
+            if (std::min(cellIn * (1.0 - tol::kSlabWiden), cellIn * (1.0 + tol::kSlabWiden)) >
+                std::min(t1, tOut))
+                return true;
+        }
+    }
+
+    // forEachChild's walk of a non-uniform grid, as an octree walk: each halving the ray
+    // crosses is entered on the near side first, the far side kept with the range past the
+    // plane (a front-to-back walk of the lecture's cells, without pushing exit points).
+    template <class Visit>
+    bool walkHalvingGrid(const HalvingGrid& g, double t0, double& t1, Visit& visit) {
+        double tIn, tOut;
+        if (!enterGrid(g.box, t0, t1, tIn, tOut)) return true;
+        const uint32_t walk = startWalk();
+        struct Pending {
+            uint32_t cell;
+            double tIn, tOut;
+        };
+        Pending todo[64];
+        int pending = 0;
+        uint32_t at = 0;
+        for (;;) {
+            // Down to the leaf cell where [tIn, tOut] begins.
+            while (!g.cells[at].leaf) {
+                ++ctx.stats.nodeVisits;
+                const HalvingGrid::Cell& c = g.cells[at];
+                const int a = c.axis;
+                const double tSplit = (c.split - ray.o[a]) * slab.invD[a];
+                // The half the ray runs through first; d = +-0 counts by the sign of 1 / d, so
+                // a ray in a plane of the axis stays in the half holding its origin.
+                const uint32_t nearHalf = c.first + (slab.invD[a] >= 0.0 ? 0 : 1);
+                const uint32_t farHalf = c.first + (slab.invD[a] >= 0.0 ? 1 : 0);
+                const double lo =
+                    std::min(tSplit * (1.0 - tol::kSlabWiden), tSplit * (1.0 + tol::kSlabWiden));
+                const double hi =
+                    std::max(tSplit * (1.0 - tol::kSlabWiden), tSplit * (1.0 + tol::kSlabWiden));
+                if (lo > tOut) {
+                    at = nearHalf;
+                } else if (hi < tIn) {
+                    at = farHalf;
+                } else if (std::isnan(tSplit)) {  // the ray lies in the plane: both halves
+                    todo[pending++] = {farHalf, tIn, tOut};
+                    at = nearHalf;
+                } else {
+                    todo[pending++] = {farHalf, std::max(tIn, lo), tOut};
+                    at = nearHalf;
+                    tOut = std::min(tOut, hi);
+                }
+            }
+            ++ctx.stats.nodeVisits;
+            const HalvingGrid::Cell& leaf = g.cells[at];
+            if (!visitCell(g.items.data() + leaf.first, leaf.count, walk, visit)) return false;
+            // The next pending cell that begins before t1 (lowered since it was pushed).
+            for (;;) {
+                if (pending == 0) return true;
+                const Pending& next = todo[--pending];
+                if (next.tIn > t1) continue;
+                at = next.cell;
+                tIn = next.tIn;
+                tOut = next.tOut;
+                break;
             }
         }
     }

@@ -1,10 +1,19 @@
 #include "csg/Scene.h"
 
 #include "csg/Compiled.h"
+#include "csg/Grid.h"
 
 namespace csg {
 
 Scene::Scene() = default;
+
+size_t Scene::structureBytes() const {
+    size_t bytes = sizeof(BvhNode) * bvh_.capacity();
+    for (const UniformGrid& g : grids_) bytes += g.bytes();
+    for (const HalvingGrid& g : halvingGrids_) bytes += g.bytes();
+    return bytes;
+}
+
 Scene::~Scene() = default;
 Scene::Scene(Scene&&) noexcept = default;
 Scene& Scene::operator=(Scene&&) noexcept = default;

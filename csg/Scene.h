@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "csg/Accel.h"
 #include "csg/Ray.h"
 #include "csg/Span.h"
 #include "csg/Tree.h"
@@ -34,7 +35,8 @@ struct CompileError : std::runtime_error {
 // Work counters of one context, summed over its queries (benchmarks and --stats read them).
 struct QueryStats {
     uint64_t rays = 0;
-    uint64_t nodeVisits = 0;      // CSG nodes and BVH slots whose boxes were tested
+    uint64_t nodeVisits = 0;      // CSG nodes and BVH slots whose boxes were tested, grid cells
+                                  // entered
     uint64_t primitiveTests = 0;  // primitive solves after their bounds were hit
 };
 
@@ -59,6 +61,11 @@ private:
     friend class Scene;
     friend struct SpanWalk;
     std::vector<Span> stack_;
+    // The grid walks' mailbox: stamp_[p] == walk means the child at position p of
+    // Scene::children_ was visited by the walk numbered walk. Each walk takes a new number, so
+    // nothing is cleared per ray; the vector grows once per scene to its children's count.
+    std::vector<uint32_t> stamp_;
+    uint32_t walks_ = 0;
 };
 
 // What a leaf's surface looks like at a hit, computed only on request.
@@ -72,11 +79,14 @@ struct LeafFrame;
 struct CompiledNode;
 struct BvhNode;
 struct BoundingBall;
+struct UniformGrid;
+struct HalvingGrid;
 
 class Scene {
 public:
-    // Throws CompileError. root may be nullptr (the empty scene).
-    static Scene compile(const NodePtr& root);
+    // Throws CompileError. root may be nullptr (the empty scene). options.accel picks the
+    // structure over the objects of each union (csg/Accel.h); every choice gives the same answers.
+    static Scene compile(const NodePtr& root, const CompileOptions& options = {});
 
     Scene();
     ~Scene();
@@ -109,6 +119,10 @@ public:
     // only as far as the left one does. Empty for a leaf that nothing of the part can show.
     std::vector<Bounds3> leafReach() const;
 
+    // Bytes held by the structures over unions' children (BVH nodes, grids and their lists):
+    // what --accel changes in memory.
+    size_t structureBytes() const;
+
 private:
     friend struct SpanWalk;
     friend struct Compiler;
@@ -118,7 +132,9 @@ private:
     std::vector<CompiledNode> nodes_;
     std::vector<uint32_t> children_;  // child node indices of n-ary unions
     std::vector<BvhNode> bvh_;
-    std::vector<BoundingBall> balls_;  // CompiledNode::ball
+    std::vector<UniformGrid> grids_;         // CompiledNode::grid
+    std::vector<HalvingGrid> halvingGrids_;  // CompiledNode::grid when halving
+    std::vector<BoundingBall> balls_;        // CompiledNode::ball
     uint32_t root_ = 0;
     bool hasSheets_ = false;  // a leaf is a sheet: unions must look for sheet crossings
 };

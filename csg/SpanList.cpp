@@ -65,8 +65,16 @@ size_t mergeSolid(const Span* a, size_t na, const Span* b, size_t nb, Span* out,
         // Emit a boundary where the result changes, by the documented tie-break.
         const bool now = apply<Op>(ca.inside, cb.inside);
         if (now == inResult) continue;
+        // Of two ends at one t, a surface over a clip end; of two clip ends of a union (a ray
+        // that starts or stops inside both operands), the lower leaf, so that a union's result
+        // does not depend on the order its children are merged in (the structures of --accel
+        // visit them in different orders).
+        const bool both = takeA && takeB;
+        const bool clipTie = Op == SetOp::Union && both && !hitA.isSurface() && !hitB.isSurface() &&
+                             hitB.leaf < hitA.leaf;
         const Hit& boundary =
-            !takeB || (takeA && (hitA.isSurface() || !hitB.isSurface())) ? hitA : hitB;
+            !clipTie && (!takeB || (takeA && (hitA.isSurface() || !hitB.isSurface()))) ? hitA
+                                                                                       : hitB;
         if (now)
             start = boundary;
         else

@@ -40,6 +40,39 @@ TEST(QueryAllocation, SteadyStateQueriesAllocateNothing) {
     EXPECT_GT(warm, 1000u);  // the rays did meet the scene
 }
 
+// Every --accel structure, the grids' mailbox included: after the first rays (which size the
+// context's stamps to the scene), no query allocates.
+TEST(QueryAllocation, EveryStructureAllocatesNothing) {
+    std::mt19937_64 rng(10);
+    std::vector<NodePtr> parts;
+    for (int i = 0; i < 300; ++i)
+        parts.push_back(transformed(glm::translate(Mat4(1.0), Vec3(i % 10, (i / 10) % 10, i / 100)),
+                                    testing::randomTree(rng, 2)));
+    const NodePtr tree = uniteAll(parts);
+    for (Accel accel :
+         {Accel::Sah, Accel::Median, Accel::GoldsmithSalmon, Accel::Grid, Accel::NonUniformGrid}) {
+        const Scene scene = Scene::compile(tree, {.accel = accel});
+        QueryContext ctx;
+        auto runAll = [&] {
+            size_t found = 0;
+            for (int i = 0; i < 2000; ++i) {
+                std::mt19937_64 r(i);
+                std::uniform_real_distribution<double> u(-1, 1);
+                const Ray ray{{20 * u(r), 20 * u(r), 20 * u(r)}, {u(r), u(r), u(r)}, 0.0, 80.0};
+                found += scene.spans(ray, ctx).size();
+                found += scene.closest(ray, ctx).has_value();
+                found += scene.occluded(ray, ctx);
+            }
+            return found;
+        };
+        const size_t warm = runAll();
+        const long before = allocations.load();
+        const size_t again = runAll();
+        EXPECT_EQ(allocations.load() - before, 0) << accelName(accel);
+        EXPECT_EQ(warm, again);
+    }
+}
+
 // Meshes keep their crossings in per-thread scratch: after the first rays, none allocates, also
 // on lines of more spans than LocalSpans holds (a comb of 40 slabs) and when asked for normals.
 TEST(QueryAllocation, MeshQueriesAllocateNothing) {

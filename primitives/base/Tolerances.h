@@ -56,6 +56,16 @@ inline constexpr double kSimilarityRel = 1e-12;
 // in the test never culls a box the exact test would hit (pbrt's 2 gamma(3)).
 inline constexpr double kSlabWiden = 2 * gamma(3);
 
+// A grid cell (csg/Grid.h) lists every child whose box, widened by this fraction of the grid's
+// size (the largest coordinate magnitude or side of its box), overlaps the cell (unit:
+// relative). Why: the walk finds the cells along a ray from o + t d and from cell faces
+// computed as lo + i * size, each rounded to a few ulps of the grid's size; an object within
+// that of a cell the walk did not enter would be missed where the slab test (kSlabWiden) and
+// the SAH walk still meet it. 1e-9 leaves ~10^6 over those roundings for rays from as far as
+// 10^3 grid sizes away, and is far below a cell's side, so a child gains a neighbouring
+// cell only when it touches it.
+inline constexpr double kGridMarginRel = 1e-9;
+
 // A transform whose linear part has |det| below this fraction of the cube of its largest
 // column length is singular for our purposes (unit: relative). Inverting it would amplify
 // rounding by more than 1e12, so localFromWorld would be garbage: compile rejects it, and so

@@ -5,6 +5,8 @@
 #include <array>
 #include <cassert>
 
+#include "primitives/base/BinaryBvh.h"
+
 namespace csg {
 namespace {
 
@@ -12,15 +14,6 @@ constexpr int kBins = 16;
 // Below this depth splits fall back to the median, so a walk's fixed stack (kBvhMaxDepth) can
 // never overflow whatever the SAH would choose.
 constexpr int kSahMaxDepth = kBvhMaxDepth - kBvhMedianLevels;
-
-// The binary tree the SAH builds. Interior: the left child follows at index + 1, the right
-// child is at firstOrRight; count == 0. Leaf: items [firstOrRight, firstOrRight + count).
-struct BinaryNode {
-    Bounds3 box;
-    uint32_t firstOrRight = 0;
-    uint32_t count = 0;
-    int axis = 0;  // an interior node's split axis: its left child lies toward -axis
-};
 
 struct Builder {
     std::span<uint32_t> items;  // indices into boxes, reordered as the tree is built
@@ -202,18 +195,31 @@ uint32_t buildWideBvh(std::span<const Bounds3> boxes, std::vector<uint32_t>& ord
     assert(!boxes.empty() && options.maxLeafItems >= 1 && 4 * options.maxLeafItems <= 255);
     order.resize(boxes.size());
     for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-    Builder builder{order, boxes, options.maxLeafItems, options.traversalCost, {}};
-    builder.nodes.reserve(2 * boxes.size());
-    builder.build(0, static_cast<uint32_t>(boxes.size()), 0);
+    std::vector<BinaryNode> binary;
+    switch (options.method) {
+        case BvhMethod::Sah: {
+            Builder builder{order, boxes, options.maxLeafItems, options.traversalCost, {}};
+            builder.nodes.reserve(2 * boxes.size());
+            builder.build(0, static_cast<uint32_t>(boxes.size()), 0);
+            binary = std::move(builder.nodes);
+            break;
+        }
+        case BvhMethod::Median:
+            binary = buildMedianCut(boxes, order, options.maxLeafItems);
+            break;
+        case BvhMethod::GoldsmithSalmon:
+            binary = buildGoldsmithSalmon(boxes, order, options.maxLeafItems);
+            break;
+    }
     // A root that is a leaf (items too few or all at one centre) is wrapped in one wide node.
-    if (builder.nodes[0].count > 0) {
+    if (binary[0].count > 0) {
         const uint32_t index = static_cast<uint32_t>(nodes.size());
         BvhNode& node = nodes.emplace_back();
-        setSlot(node, 0, builder.nodes[0].box, itemsOffset, builder.nodes[0].count);
+        setSlot(node, 0, binary[0].box, itemsOffset, binary[0].count);
         node.slots = 1;
         return index;
     }
-    Collapser collapser{builder.nodes, itemsOffset, nodes};
+    Collapser collapser{binary, itemsOffset, nodes};
     return collapser.collapse(0);
 }
 

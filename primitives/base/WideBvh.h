@@ -36,19 +36,31 @@ struct alignas(64) BvhNode {
     unsigned usedMask() const { return (1u << slots) - 1u; }
 };
 
+// How the binary tree is built before it is collapsed into 4-wide nodes: the lecture's three
+// hierarchies. The walk and the node layout are the same for all three.
+enum class BvhMethod : uint8_t {
+    Sah,              // binned surface area heuristic: the cheapest split plane per node
+    Median,           // median cut: the longest side of the node's box, the items sorted by
+                      // their lower bound on it, halved
+    GoldsmithSalmon,  // items inserted one at a time (in a fixed shuffled order) beside the node
+                      // where the tree's total surface area grows least, refitted bottom-up
+};
+
 struct BvhBuildOptions {
     // A node of at most this many items is a leaf; more only where no split pays (at most
     // four times this) or all centres coincide.
     uint32_t maxLeafItems = 1;
     // SAH cost of testing one box relative to testing one item.
     double traversalCost = 0.5;
+    BvhMethod method = BvhMethod::Sah;
 };
 
 // Builds a BVH over boxes (finite, non-empty; at least one), appending its nodes to `nodes`.
 // `order` receives the leaf order: leaf slot ranges index it, offset by itemsOffset (slot =
 // itemsOffset + position in order), and order[position] is the index into boxes. Returns the
 // root node's index. A root that would be a leaf is one wide node with one slot. The tree is
-// a function of the boxes alone (deterministic).
+// a function of the boxes and the options alone (deterministic). Median cut and
+// Goldsmith-Salmon ignore traversalCost; Goldsmith-Salmon puts one item per leaf.
 uint32_t buildWideBvh(std::span<const Bounds3> boxes, std::vector<uint32_t>& order,
                       uint32_t itemsOffset, const BvhBuildOptions& options,
                       std::vector<BvhNode>& nodes);

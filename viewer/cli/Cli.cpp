@@ -22,6 +22,14 @@ const char* const kCommonOptionsHelp =
     "                           extrusion of a polygon has no other facets; with twist\n"
     "                           or scale = [sx, sy] OpenSCAD's sliced solid is not built\n"
     "                           (slices is read and ignored)\n"
+    "  --accel=STRUCTURE      what organizes the objects of each union (every choice gives\n"
+    "                         the same answers, only the time and memory differ):\n"
+    "                         sah (default): surface area heuristic BVH; median: median\n"
+    "                         cut BVH; goldsmith-salmon: insertion BVH; grid: uniform grid\n"
+    "                         (Amanatides-Woo walk); nonuniform-grid: recursive halving\n"
+    "                         along x, y, z, walked as an octree; auto: the uniform grid\n"
+    "                         for a union of 4096 or more objects spread evenly, SAH\n"
+    "                         otherwise (bench/README.md, spatial structures)\n"
     "  --diagnostics=FORMAT   text (default): file:line:col: error: message on stderr;\n"
     "                         json: one JSON array of diagnostics on stderr\n"
     "  -h, --help             show this help\n";
@@ -72,6 +80,16 @@ bool ArgCursor::common(CommonOptions& options) {
         if (!curves)
             throw UsageError("--curves expects auto, exact or openscad, got '" + *mode + "'");
         options.curves = *curves;
+        return true;
+    }
+    if (auto name = option("--accel")) {
+        const std::optional<csg::Accel> accel = csg::parseAccel(*name);
+        if (!accel)
+            throw UsageError(
+                "--accel expects sah, median, goldsmith-salmon, grid, "
+                "nonuniform-grid or auto, got '" +
+                *name + "'");
+        options.accel = *accel;
         return true;
     }
     if (auto format = option("--diagnostics")) {

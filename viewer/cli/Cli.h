@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "csg/Accel.h"
 #include "io/Faceting.h"
 #include "primitives/base/Math.h"
 
@@ -30,6 +31,7 @@ struct CommonOptions {
     std::vector<std::pair<std::string, std::string>> defines;  // -D name=value, in order
     bool jsonDiagnostics = false;                              // --diagnostics=json
     io::CurveMode curves = io::CurveMode::Auto;                // --curves
+    csg::Accel accel = csg::Accel::Sah;                        // --accel
     bool help = false;                                         // --help or -h
     double time = 0.0;  // $t (render --frames sets it per frame; no option of its own)
 };
@@ -49,6 +51,7 @@ public:
     // When the current argument is exactly name, consumes it.
     bool flag(std::string_view name);
     // Consumes one of -D name=value (or -Dname=value), --curves=auto|exact|openscad,
+    // --accel=sah|median|goldsmith-salmon|grid|nonuniform-grid|auto,
     // --diagnostics=text|json, --help/-h, or
     // the part (the first argument that is not an option). Returns false for anything else.
     bool common(CommonOptions& options);

@@ -1,0 +1,377 @@
+// The spatial structures of --accel (csg/Accel.h): every one answers every query exactly as the
+// SAH BVH does (same spans, same hits, bit for bit) on thousands of seeded rays over several
+// scenes; the uniform grid's walk visits the cells a hand-drawn ray crosses, in order; the
+// lecture's hierarchies keep their invariants.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstring>
+#include <random>
+#include <sstream>
+
+#include "bench/BenchScenes.h"
+#include "csg/Grid.h"
+#include "csg/Scene.h"
+#include "primitives/Polyhedron.h"
+#include "primitives/base/WideBvh.h"
+#include "tests/SeededRng.h"
+#include "tests/TreeOracle.h"
+
+namespace csg {
+namespace {
+
+Mat4 at(const Vec3& p) {
+    return glm::translate(Mat4(1.0), p);
+}
+
+// Spheres of radius 0.2 .. 1 uniformly in a 40-unit cube.
+NodePtr randomSpheres(int count) {
+    testing::Rng rng(11);
+    std::vector<NodePtr> parts;
+    for (int i = 0; i < count; ++i) {
+        const Vec3 c = rng.inBox(Vec3(0.0), Vec3(40.0));
+        const double r = rng.uniform(0.2, 1.0);
+        parts.push_back(transformed(at(c), leaf(Sphere{r})));
+    }
+    return uniteAll(parts);
+}
+
+// A difference or intersection of two random bounded primitives, turned.
+NodePtr smallPart(std::mt19937_64& shapes, bool difference) {
+    const NodePtr a = leaf(testing::randomPrimitive(shapes, false));
+    const NodePtr b =
+        transformed(testing::randomAffine(shapes), leaf(testing::randomPrimitive(shapes, false)));
+    return transformed(testing::randomAffine(shapes),
+                       difference ? subtract(a, b) : intersect(a, b));
+}
+
+// Most objects in five tight clusters, a few spread wide, some large: what defeats a uniform
+// grid. The objects are small CSG parts.
+NodePtr clustered(int count) {
+    testing::Rng rng(12);
+    std::mt19937_64 shapes(13);
+    std::array<Vec3, 5> centres;
+    for (Vec3& c : centres) c = rng.inBox(Vec3(-50.0), Vec3(50.0));
+    std::vector<NodePtr> parts;
+    for (int i = 0; i < count; ++i) {
+        Vec3 c;
+        double scale = 0.05;
+        if (i % 50 == 0) {
+            c = rng.inBox(Vec3(-60.0), Vec3(60.0));
+            scale = i % 100 == 0 ? 8.0 : 0.5;
+        } else {
+            c = centres[static_cast<size_t>(rng.index(5))] + 2.0 * rng.inBall();
+        }
+        const NodePtr part = smallPart(shapes, i % 2 == 0);
+        parts.push_back(transformed(at(c) * glm::scale(Mat4(1.0), Vec3(scale)), part));
+    }
+    return uniteAll(parts);
+}
+
+// A closed mesh (a UV sphere of the given segments) as a polyhedron leaf.
+Polyhedron meshBall(int segments) {
+    std::vector<Vec3> points;
+    PolygonFaces faces;
+    const int rings = segments / 2;
+    for (int i = 0; i <= rings; ++i) {
+        const double phi = glm::pi<double>() * i / rings;
+        for (int j = 0; j < segments; ++j) {
+            const double theta = 2.0 * glm::pi<double>() * j / segments;
+            points.emplace_back(std::sin(phi) * std::cos(theta), std::sin(phi) * std::sin(theta),
+                                std::cos(phi));
+            if (i == 0 || i == rings) break;  // one point at a pole
+        }
+    }
+    const auto index = [&](int i, int j) -> uint32_t {
+        if (i == 0) return 0;
+        if (i == rings) return static_cast<uint32_t>(points.size() - 1);
+        return static_cast<uint32_t>(1 + (i - 1) * segments + (j % segments));
+    };
+    for (int i = 0; i < rings; ++i) {
+        for (int j = 0; j < segments; ++j) {
+            const uint32_t a = index(i, j), b = index(i, j + 1), c = index(i + 1, j),
+                           d = index(i + 1, j + 1);
+            if (i > 0) {
+                for (uint32_t k : {a, c, b}) faces.corners.push_back(k);
+                faces.closeFace();
+            }
+            if (i + 1 < rings) {
+                for (uint32_t k : {b, c, d}) faces.corners.push_back(k);
+                faces.closeFace();
+            }
+        }
+    }
+    Polyhedron mesh = Polyhedron::make(points, faces);
+    EXPECT_EQ(mesh.invalidReason(), nullptr);
+    return mesh;
+}
+
+// Meshes as the objects of a union: 300 placed copies of a 24 x 12 UV sphere, cut by boxes.
+NodePtr meshes() {
+    testing::Rng rng(14);
+    const NodePtr ball = leaf(meshBall(24));
+    std::vector<NodePtr> parts;
+    for (int i = 0; i < 300; ++i) {
+        const Vec3 c = rng.inBox(Vec3(0.0), Vec3(20.0));
+        const NodePtr part = i % 3 == 0 ? subtract(ball, leaf(Box{Vec3(0.0), Vec3(2.0)})) : ball;
+        parts.push_back(transformed(at(c), part));
+    }
+    return uniteAll(parts);
+}
+
+bool sameHit(const Hit& a, const Hit& b) {
+    return std::memcmp(&a.t, &b.t, sizeof a.t) == 0 && a.leaf == b.leaf && a.face == b.face &&
+           a.flipped == b.flipped && a.sheet == b.sheet;
+}
+
+// Rays from around the scene's box toward points in it (and some from inside, some along an
+// axis, some with a finite range), the same for every structure.
+std::vector<Ray> raysFor(const Bounds3& box, int count) {
+    testing::Rng rng(15);
+    const Vec3 c = box.center(), e = box.extent();
+    std::vector<Ray> rays;
+    for (int i = 0; i < count; ++i) {
+        Ray ray;
+        const Vec3 target = rng.inBox(box.lo, box.hi);
+        if (i % 4 == 0) {
+            ray.o = rng.inBox(box.lo, box.hi);  // from inside
+            ray.d = rng.unit();
+        } else {
+            ray.o = c + 1.5 * glm::length(e) * rng.unit();
+            ray.d = target - ray.o;
+        }
+        if (i % 10 == 1) {  // along an axis, through the target
+            const int axis = rng.index(3);
+            ray.d = Vec3(0.0);
+            ray.d[axis] = rng.chance(0.5) ? 1.0 : -1.0;
+            ray.o = target;
+            ray.o[axis] = c[axis] - ray.d[axis] * e[axis];
+        }
+        if (i % 7 == 3) {
+            ray.tmin = rng.uniform(0.0, 0.5);
+            ray.tmax = rng.uniform(0.5, 1.5);
+        }
+        rays.push_back(ray);
+    }
+    return rays;
+}
+
+std::string spansText(std::span<const Span> spans) {
+    std::ostringstream out;
+    out.precision(17);
+    for (const Span& s : spans)
+        out << " [" << s.in.t << " leaf " << s.in.leaf << " face " << s.in.face << ", " << s.out.t
+            << " leaf " << s.out.leaf << " face " << s.out.face << "]";
+    return out.str();
+}
+
+constexpr Accel kOthers[] = {Accel::Median, Accel::GoldsmithSalmon, Accel::Grid,
+                             Accel::NonUniformGrid, Accel::Auto};
+
+// Every query of every ray against the SAH scene's answers.
+// Rays aimed into `aim`, or into the scene's bounds when it is empty.
+void expectSameAnswers(const NodePtr& tree, int rayCount, Bounds3 aim = {}) {
+    const Scene sah = Scene::compile(tree);
+    const std::vector<Ray> rays = raysFor(aim.empty() ? sah.bounds() : aim, rayCount);
+    QueryContext sahContext, context;
+    size_t hits = 0;
+    for (Accel accel : kOthers) {
+        SCOPED_TRACE(std::string(accelName(accel)));
+        const Scene other = Scene::compile(tree, {.accel = accel});
+        int failures = 0;
+        for (size_t i = 0; i < rays.size() && failures < 5; ++i) {
+            const Ray& ray = rays[i];
+            const std::vector<Span> want(sah.spans(ray, sahContext).begin(),
+                                         sah.spans(ray, sahContext).end());
+            const std::span<const Span> got = other.spans(ray, context);
+            bool sameSpans = got.size() == want.size();
+            for (size_t k = 0; sameSpans && k < got.size(); ++k)
+                sameSpans = sameHit(got[k].in, want[k].in) && sameHit(got[k].out, want[k].out);
+            const std::optional<Hit> wantHit = sah.closest(ray, sahContext);
+            const std::optional<Hit> gotHit = other.closest(ray, context);
+            const bool sameClosest = wantHit.has_value() == gotHit.has_value() &&
+                                     (!wantHit || sameHit(*wantHit, *gotHit));
+            const bool sameOccluded = sah.occluded(ray, sahContext) == other.occluded(ray, context);
+            hits += wantHit.has_value();
+            if (!sameSpans || !sameClosest || !sameOccluded) {
+                ++failures;
+                ADD_FAILURE() << "ray " << i << ": o (" << ray.o.x << ", " << ray.o.y << ", "
+                              << ray.o.z << ") d (" << ray.d.x << ", " << ray.d.y << ", " << ray.d.z
+                              << ") [" << ray.tmin << ", " << ray.tmax << "]"
+                              << (sameSpans ? "" : " spans differ")
+                              << (sameClosest ? "" : " closest differs")
+                              << (sameOccluded ? "" : " occluded differs") << "; closest t "
+                              << (wantHit ? wantHit->t : -1.0) << " leaf "
+                              << (wantHit ? wantHit->leaf : 0u) << " vs "
+                              << (gotHit ? gotHit->t : -1.0) << " leaf "
+                              << (gotHit ? gotHit->leaf : 0u) << spansText(want) << " vs"
+                              << spansText(got);
+            }
+        }
+    }
+    EXPECT_GT(hits, static_cast<size_t>(rayCount) / 10);  // the rays did meet the scene
+}
+
+TEST(Accel, RandomSpheresSameAsSah) {
+    expectSameAnswers(randomSpheres(5000), 4000);
+}
+
+// auto takes the uniform grid for a large evenly spread union (a grid's memory, well below the
+// BVH's), the SAH BVH for a small one and a clustered one.
+TEST(Accel, AutoPicksTheGridWhereObjectsSpreadEvenly) {
+    const auto bytes = [](const NodePtr& tree, Accel accel) {
+        return Scene::compile(tree, {.accel = accel}).structureBytes();
+    };
+    const NodePtr spread = randomSpheres(5000);
+    EXPECT_EQ(bytes(spread, Accel::Auto), bytes(spread, Accel::Grid));
+    const NodePtr few = randomSpheres(1000);
+    EXPECT_EQ(bytes(few, Accel::Auto), bytes(few, Accel::Sah));
+    const NodePtr gathered = clustered(5000);
+    EXPECT_EQ(bytes(gathered, Accel::Auto), bytes(gathered, Accel::Sah));
+}
+
+TEST(Accel, ClusteredSameAsSah) {
+    expectSameAnswers(clustered(2000), 4000);
+}
+
+TEST(Accel, CsgGridSameAsSah) {
+    expectSameAnswers(bench::emblemGridTree(), 4000);
+}
+
+TEST(Accel, MeshesSameAsSah) {
+    expectSameAnswers(meshes(), 3000);
+}
+
+// Nested unions: each object a union of six small parts (a structure of its own), and a
+// difference whose right operand is such a union.
+TEST(Accel, NestedUnionsSameAsSah) {
+    std::mt19937_64 shapes(16);
+    std::vector<NodePtr> parts;
+    testing::Rng rng(17);
+    for (int i = 0; i < 400; ++i) {
+        std::vector<NodePtr> group;
+        for (int k = 0; k < 6; ++k) group.push_back(smallPart(shapes, k % 2 == 0));
+        const NodePtr object = i % 4 == 0
+                                   ? subtract(leaf(Box{Vec3(-1.5), Vec3(1.5)}), uniteAll(group))
+                                   : uniteAll(group);
+        parts.push_back(transformed(at(rng.inBox(Vec3(0.0), Vec3(30.0))), object));
+    }
+    expectSameAnswers(uniteAll(parts), 3000);
+}
+
+TEST(Accel, NamesRoundTrip) {
+    for (size_t i = 0; i < kAccelNames.size(); ++i) {
+        const Accel accel = static_cast<Accel>(i);
+        EXPECT_EQ(parseAccel(accelName(accel)), accel);
+    }
+    EXPECT_EQ(parseAccel("octree"), std::nullopt);
+}
+
+// A 4 x 4 x 1 grid of unit cells over [0, 4] x [0, 4] x [0, 1].
+UniformGrid fourByFour() {
+    UniformGrid g;
+    g.box = {Vec3(0.0), Vec3(4.0, 4.0, 1.0)};
+    g.res[0] = 4;
+    g.res[1] = 4;
+    g.res[2] = 1;
+    g.cellSize = Vec3(1.0);
+    g.invCellSize = Vec3(1.0);
+    return g;
+}
+
+// The cells (x, y) a ray from o along d visits from its entry at tIn, and their entry t.
+std::vector<std::array<double, 3>> walk(const UniformGrid& g, const Vec3& o, const Vec3& d,
+                                        double tIn) {
+    const Vec3 invD = 1.0 / d;
+    GridCursor cursor(g, o, d, invD, tIn);
+    std::vector<std::array<double, 3>> cells{{double(cursor.cell[0]), double(cursor.cell[1]), tIn}};
+    double t;
+    while (cursor.advance(g, o, invD, t))
+        cells.push_back({double(cursor.cell[0]), double(cursor.cell[1]), t});
+    return cells;
+}
+
+// From (0.5, 0.25) along (1, 0.5): crosses x = 1 at t = 0.5 (y = 0.5), y = 1 at t = 1.5
+// (x = 2), x = 2 at the same t = 1.5 (the tie goes to x first, then y), x = 3 at t = 2.5
+// (y = 1.5), y = 2 at t = 3.5 (x = 4: the grid's edge, so the walk ends there).
+TEST(GridWalk, ShallowSlopeWithACornerTie) {
+    const auto cells = walk(fourByFour(), {0.5, 0.25, 0.5}, {1.0, 0.5, 0.0}, 0.0);
+    const std::vector<std::array<double, 3>> want = {
+        {0, 0, 0.0}, {1, 0, 0.5}, {2, 0, 1.5}, {2, 1, 1.5}, {3, 1, 2.5}};
+    EXPECT_EQ(cells, want);
+}
+
+// Entering from outside at (4, 3.5) going (-1, -1) from o = (5, 4.5) at t = 1: the cell
+// (3, 3) (x = 4 is the grid's edge, clamped in), then y = 3 at t = 1.5, x = 3 at t = 2,
+// y = 2 at 2.5, x = 2 at 3, y = 1 at 3.5, x = 1 at 4 (at (1, 0.5)); next would be y = 0 at
+// 4.5, out through the bottom, so the walk ends in (0, 0).
+TEST(GridWalk, DiagonalFromOutside) {
+    const auto cells = walk(fourByFour(), {5.0, 4.5, 0.5}, {-1.0, -1.0, 0.0}, 1.0);
+    const std::vector<std::array<double, 3>> want = {
+        {3, 3, 1.0}, {3, 2, 1.5}, {2, 2, 2.0}, {2, 1, 2.5}, {1, 1, 3.0}, {1, 0, 3.5}, {0, 0, 4.0}};
+    EXPECT_EQ(cells, want);
+}
+
+// Along an axis: d = (0, 1, 0), x stays in cell 2 (o.x = 2.5); y faces at t = 1, 2, 3.
+TEST(GridWalk, AlongAnAxis) {
+    const auto cells = walk(fourByFour(), {2.5, 0.0, 0.5}, {0.0, 1.0, 0.0}, 0.0);
+    const std::vector<std::array<double, 3>> want = {
+        {2, 0, 0.0}, {2, 1, 1.0}, {2, 2, 2.0}, {2, 3, 3.0}};
+    EXPECT_EQ(cells, want);
+}
+
+// The grid lists each box in every cell its widened box touches, and a box ending on a face
+// in both cells beside it.
+TEST(GridBuild, ListsBoxesInEveryCellTheyTouch) {
+    std::vector<Bounds3> boxes = {{Vec3(0.0), Vec3(1.0)}, {Vec3(9.0), Vec3(10.0)}};
+    for (int i = 0; i < 14; ++i) boxes.push_back({Vec3(5.0), Vec3(5.0)});
+    const UniformGrid g = buildUniformGrid(boxes, 100);
+    size_t listed0 = 0, listed1 = 0;
+    for (uint32_t item : g.items) {
+        listed0 += item == 100;
+        listed1 += item == 101;
+    }
+    EXPECT_GE(listed0, 1u);
+    EXPECT_GE(listed1, 1u);
+    const HalvingGrid h = buildHalvingGrid(boxes, 0);
+    EXPECT_FALSE(h.cells[0].leaf);
+}
+
+// Each hierarchy holds every item exactly once and every node's box holds its slots' boxes.
+TEST(Hierarchies, EveryItemOnceInsideItsBoxes) {
+    testing::Rng rng(18);
+    std::vector<Bounds3> boxes(5000);
+    for (Bounds3& b : boxes) {
+        const Vec3 c = rng.inBox(Vec3(0.0), Vec3(100.0));
+        b = {c - Vec3(rng.uniform(0.0, 2.0)), c + Vec3(rng.uniform(0.0, 2.0))};
+    }
+    for (BvhMethod method : {BvhMethod::Sah, BvhMethod::Median, BvhMethod::GoldsmithSalmon}) {
+        std::vector<uint32_t> order;
+        std::vector<BvhNode> nodes;
+        const uint32_t root =
+            buildWideBvh(boxes, order, 0, {.maxLeafItems = 1, .method = method}, nodes);
+        std::vector<int> seen(boxes.size(), 0);
+        std::vector<uint32_t> stack{root};
+        while (!stack.empty()) {
+            const BvhNode& n = nodes[stack.back()];
+            stack.pop_back();
+            for (int k = 0; k < n.slots; ++k) {
+                const Bounds3 slot{{n.boxes.lo[0][k], n.boxes.lo[1][k], n.boxes.lo[2][k]},
+                                   {n.boxes.hi[0][k], n.boxes.hi[1][k], n.boxes.hi[2][k]}};
+                if (n.leafCount[k] == 0) {
+                    stack.push_back(n.slot[k]);
+                    continue;
+                }
+                for (uint32_t i = 0; i < n.leafCount[k]; ++i) {
+                    const uint32_t item = order[n.slot[k] + i];
+                    ++seen[item];
+                    EXPECT_TRUE(slot.contains(boxes[item]));
+                }
+            }
+        }
+        for (int s : seen) ASSERT_EQ(s, 1);
+    }
+}
+
+}  // namespace
+}  // namespace csg
