@@ -154,12 +154,13 @@ TEST(CliExport, DefaultToleranceIsA500thOfTheDiagonal) {
 }
 
 // "--max-cells N ... when it binds, the mesh is written with a warning and the error reached".
+// --grid: the cap is the grid's (by default a sphere is exported as its faceted leaf's boundary).
 TEST(CliExport, MaxCellsBindsWithAWarning) {
     ScratchDir dir;
     writeFile(dir / "s.scad", "sphere(r = 2);\n");
     const RunResult r = runCsgray({"export", (dir / "s.scad").string(), "-o",
                                    (dir / "s.obj").string(), "--tolerance", "1e-4",
-                                   "--max-cells", "4096"},
+                                   "--max-cells", "4096", "--grid"},
                                   dir.path());
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.err.find("warning: tolerance"), std::string::npos) << r.err;
@@ -177,7 +178,8 @@ TEST(CliExport, MaxCellsBindsWithAWarning) {
 // "--no-simplify: keep the grid's mesh". On a cylinder (flat caps, one curved side) at the same
 // tolerance: the octree's grid mesh has fewer triangles than the uniform grid's, simplification
 // fewer again, and every mesh stays within the tolerance of the cylinder. The 45 % is a
-// figure for the bench's parts; here only "fewer by a fifth" is held.
+// figure for the bench's parts; here only "fewer by a fifth" is held. --grid: the grid is the
+// subject (by default the cylinder is exported as its faceted leaf's exact boundary).
 TEST(CliExport, OctreeAndSimplifyCoarsenWithinTheTolerance) {
     ScratchDir dir;
     const Shape cylinder = shapes()[1];
@@ -191,7 +193,7 @@ TEST(CliExport, OctreeAndSimplifyCoarsenWithinTheTolerance) {
         for (const auto& f : flags) key += f;
         const fs::path obj = dir / "c.obj";
         std::vector<std::string> args = {"export", (dir / "c.scad").string(), "-o", obj.string(),
-                                         "--tolerance", std::to_string(tol)};
+                                         "--tolerance", std::to_string(tol), "--grid"};
         args.insert(args.end(), flags.begin(), flags.end());
         const RunResult r = runCsgray(args, dir.path());
         ASSERT_EQ(r.exitCode, 0) << key << r.err;

@@ -75,7 +75,7 @@ struct TessellateOptions {
     // some leaf stays curved. tessellate() then writes that part's exact boundary when it
     // measures within the tolerance of the exact part (a smaller deviation is tried when it
     // does not), before it takes the grid. The CLI facets with io/ChordFaceting.h.
-    std::function<std::optional<Scene>(double deviation)> facetCurves;
+    std::function<std::optional<Scene>(double deviation)> facetCurves = nullptr;
     bool simplify = true;  // coarsen flat regions after the grid passes (Simplify.h)
     // Grid meshes larger than this are not simplified (0: no limit). Decimation (in slabs on
     // all workers, then once over the whole) and its re-measurement both ways cost more than

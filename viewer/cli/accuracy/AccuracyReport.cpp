@@ -42,7 +42,7 @@ struct Job {
     Polynomial p;
     double lo, hi;
     std::vector<double> reference;  // the 50-digit roots rounded to double
-    std::vector<Big> exact;         // the 50-digit roots themselves (errors in ulps)
+    std::vector<Big> exact = {};    // the 50-digit roots themselves (errors in ulps)
     // False when p, between two adjacent reference roots, stays below its own rounding-error
     // bound in double (Polynomial::eval): no double evaluation can see the sign change
     // there, so a wrong count on this ray is double precision's limit, not the solver's.
