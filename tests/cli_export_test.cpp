@@ -288,5 +288,26 @@ TEST(CliExport, GlbIsYUpWithOnePrimitivePerMaterial) {
     EXPECT_NEAR(zHi, 4.0, 1e-6);
 }
 
+// "--check: measure an all-polyhedral part's exact boundary both ways too (by default it is
+// not)": the summary says which, and with --check gives figures at float rounding.
+TEST(CliExport, ExactBoundaryIsMeasuredOnlyWithCheck) {
+    ScratchDir dir;
+    writeFile(dir / "n.scad", "difference() { cube(2); translate([1, 1, 1]) cube(2); }\n");
+    const RunResult plain = runCsgray(
+        {"export", (dir / "n.scad").string(), "-o", (dir / "a.obj").string()}, dir.path());
+    EXPECT_EQ(plain.exitCode, 0) << plain.err;
+    EXPECT_NE(plain.err.find("not measured"), std::string::npos) << plain.err;
+    const RunResult checked = runCsgray(
+        {"export", (dir / "n.scad").string(), "-o", (dir / "b.obj").string(), "--check"},
+        dir.path());
+    EXPECT_EQ(checked.exitCode, 0) << checked.err;
+    EXPECT_EQ(checked.err.find("not measured"), std::string::npos) << checked.err;
+    const size_t at = checked.err.find("mesh->surface ");
+    ASSERT_NE(at, std::string::npos) << checked.err;
+    // The OBJ's vertices are the exact corners (integers here), so only rounding is left.
+    EXPECT_LT(std::stod(checked.err.substr(at + 14)), 1e-9) << checked.err;
+    EXPECT_EQ(readFile(dir / "a.obj"), readFile(dir / "b.obj"));
+}
+
 }  // namespace
 }  // namespace cli

@@ -148,6 +148,12 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
             // Measured as any mesh is: the figures are upper bounds, tight to the sampling's
             // step inside each triangle (MeshDistance.h), so an exact mesh measures ~1e-7 of
             // its triangles' size.
+            result.gridTriangles = result.mesh.triangles.size();
+            if (!options.measureExact) {
+                result.measured = false;
+                result.toleranceMet = true;
+                return result;
+            }
             measure.reach = tolerance;
             const auto start = std::chrono::steady_clock::now();
             result.error = meshToSurface(scene, result.mesh, measure);

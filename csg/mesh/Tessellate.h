@@ -70,6 +70,11 @@ struct TessellateOptions {
     // polyhedron(), imported meshes) gets its exact boundary (PolyhedralBoundary.h) instead of
     // the grid's approximation; off only to measure the grid on such parts.
     bool exactPolyhedra = true;
+    // Measure an all-polyhedral part's exact boundary both ways like any mesh. It is the part
+    // by construction (and checked to be a closed manifold), so the figures only confirm
+    // rounding; off, they are not computed (TessellateResult::measured is false). The CLI's
+    // `export --check` turns it on.
+    bool measureExact = true;
     // A part with curved leaves: when given, the same part with its curves faceted so that no
     // face stands more than `deviation` (world units) off them, all polyhedra; or nothing when
     // some leaf stays curved. tessellate() then writes that part's exact boundary when it
@@ -115,6 +120,7 @@ struct TessellateResult {
     DistanceStats backError;  // surface to mesh (kSurfaceRaysPerAxis^2 lines per axis)
     DualContourStats contour;
     bool toleranceMet = false;            // error.max and backError.max <= tolerance
+    bool measured = true;                 // false: an exact boundary not measured (measureExact)
     bool exact = false;                   // the exact boundary of an all-polyhedral part
     // The deviation the curves were faceted to when the mesh is the exact boundary of the part
     // faceted by TessellateOptions::facetCurves (exact is then true too); 0 otherwise.

@@ -53,6 +53,8 @@ const char* const kExportHelp =
     "                     whose triangles would fold are split and the contour redone)\n"
     "  --no-octree        one vertex per cell everywhere (the default)\n"
     "  --grid             mesh every part on the grid, polyhedral or faceted ones too\n"
+    "  --check            measure an all-polyhedral part's exact boundary both ways too\n"
+    "                     (by default it is not: it is the part, and checked closed)\n"
     "  --no-simplify      keep the grid's mesh (no coarsening of flat regions)\n"
     "  --simplify         coarsen even a grid mesh over a million triangles (skipped by\n"
     "                     default: there it takes longer than the meshing, e.g. 2.7x)\n"
@@ -67,6 +69,7 @@ int exportCommand(std::span<const std::string> args) {
     CommonOptions common;
     std::string output;
     csg::TessellateOptions options;
+    options.measureExact = false;  // --check
     io::MeshWriteOptions writeOptions;
     bool quiet = false, verbose = false;
     ArgCursor cursor(args);
@@ -87,6 +90,8 @@ int exportCommand(std::span<const std::string> args) {
             writeOptions.asciiStl = true;
         } else if (cursor.flag("--grid")) {
             options.exactPolyhedra = false;
+        } else if (cursor.flag("--check")) {
+            options.measureExact = true;
         } else if (cursor.flag("--no-simplify")) {
             options.simplify = false;
         } else if (cursor.flag("--simplify")) {
@@ -210,7 +215,14 @@ int exportCommand(std::span<const std::string> args) {
     if (result.facetDeviation > 0.0)
         std::snprintf(faceted, sizeof faceted, " of the part with its curves faceted within %.3g",
                       result.facetDeviation);
-    if (!quiet && result.exact)
+    if (!quiet && result.exact && !result.measured)
+        std::fprintf(stderr,
+                     "csgray: export: %s: %zu triangles (the exact polyhedral boundary), %zu "
+                     "vertices, not measured (the part's own boundary: --check or compare "
+                     "measures it), %.2f s\n",
+                     output.c_str(), result.mesh.triangles.size(), result.mesh.positions.size(),
+                     seconds);
+    else if (!quiet && result.exact)
         std::fprintf(stderr,
                      "csgray: export: %s: %zu triangles (the exact polyhedral boundary%s), %zu "
                      "vertices, mesh->surface %.3g, surface->mesh %.3g (tolerance %.3g), %.2f s\n",
