@@ -39,7 +39,7 @@ int64_t fragmentsFor(double r, double sagitta, int64_t most) {
     return std::max<int64_t>(3, int64_t(n));
 }
 
-// The faceted leaf, or nullptr when it stays curved.
+// The faceted sphere or cylinder (without the node's transform), or nullptr for any other leaf.
 csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double deviation) {
     const csg::Primitive& p = node.primitive;
     const double scale = largestScale(world);
@@ -64,10 +64,12 @@ csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double dev
                                     {"cylinder", uint32_t(n), 0}),
                          node.tags);
     }
-    if (std::holds_alternative<csg::Box>(p) || std::holds_alternative<csg::ConvexPolytope>(p) ||
-        std::holds_alternative<csg::Polyhedron>(p))
-        return std::make_shared<const csg::Node>(node);
     return nullptr;
+}
+
+bool polyhedral(const csg::Primitive& p) {
+    return std::holds_alternative<csg::Box>(p) || std::holds_alternative<csg::ConvexPolytope>(p) ||
+           std::holds_alternative<csg::Polyhedron>(p);
 }
 
 csg::NodePtr facet(const csg::NodePtr& node, const csg::Mat4& parent, double deviation,
@@ -75,14 +77,15 @@ csg::NodePtr facet(const csg::NodePtr& node, const csg::Mat4& parent, double dev
     if (!node || curvedLeft) return node;
     const csg::Mat4 world = parent * node->parentFromNode;
     if (node->op == csg::Op::Leaf) {
+        if (polyhedral(node->primitive)) return node;
         csg::NodePtr leaf = facetLeaf(*node, world, deviation);
         if (!leaf) {
             curvedLeft = true;
             return nullptr;
         }
-        auto copy = std::make_shared<csg::Node>(*leaf);
-        copy->parentFromNode = node->parentFromNode;
-        return copy;
+        auto placed = std::make_shared<csg::Node>(*leaf);
+        placed->parentFromNode = node->parentFromNode;
+        return placed;
     }
     auto copy = std::make_shared<csg::Node>(*node);
     copy->left = facet(node->left, world, deviation, curvedLeft);

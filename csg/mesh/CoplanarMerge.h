@@ -27,7 +27,8 @@ namespace csg {
 // materials: one material per polygon. straight: how far a vertex may stand off the segment
 // between its neighbours and still be dropped. Returns the triangles, with only the positions
 // they use (no normals), or nothing when the polygons are not closed, an outline does not chain
-// into loops (a face that touches itself at a vertex) or a face does not triangulate.
+// into loops (a face that touches itself at a vertex), a face does not triangulate, or a face
+// has more than a few thousand corners (ear clipping is quadratic in them).
 std::optional<TriangleMesh> mergeCoplanar(const std::vector<Vec3>& positions,
                                           const std::vector<std::vector<uint32_t>>& polygons,
                                           const std::vector<Vec3>& normals,
