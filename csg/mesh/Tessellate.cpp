@@ -141,28 +141,29 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
     DistanceOptions measure;
     measure.threads = options.threads;
     measure.goodEnough = tolerance;
+    // Measures a mesh of the exact boundary both ways into result (the figures are upper
+    // bounds, tight to rounding on an exact mesh: MeshDistance.h samples off its edges).
+    const auto measureExactMesh = [&](const TriangleMesh& mesh) {
+        measure.reach = tolerance;
+        const auto start = std::chrono::steady_clock::now();
+        result.error = meshToSurface(scene, mesh, measure);
+        const TriangleBvh bvh(mesh, options.threads);
+        result.backError = surfaceToMesh(scene, bvh, kSurfaceRaysPerAxis, measure);
+        result.polyhedral.measureSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return std::max(result.error.max, result.backError.max);
+    };
     if (options.exactPolyhedra && allLeavesPolyhedral(scene)) {
         if (auto mesh = polyhedralBoundary(scene, options.threads, &result.polyhedral)) {
             result.mesh = std::move(*mesh);
             result.exact = true;
-            // Measured as any mesh is: the figures are upper bounds, tight to the sampling's
-            // step inside each triangle (MeshDistance.h), so an exact mesh measures ~1e-7 of
-            // its triangles' size.
             result.gridTriangles = result.mesh.triangles.size();
             if (!options.measureExact) {
                 result.measured = false;
                 result.toleranceMet = true;
                 return result;
             }
-            measure.reach = tolerance;
-            const auto start = std::chrono::steady_clock::now();
-            result.error = meshToSurface(scene, result.mesh, measure);
-            const TriangleBvh bvh(result.mesh, options.threads);
-            result.backError = surfaceToMesh(scene, bvh, kSurfaceRaysPerAxis, measure);
-            result.polyhedral.measureSeconds =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            result.toleranceMet = std::max(result.error.max, result.backError.max) <= tolerance;
-            result.gridTriangles = result.mesh.triangles.size();
+            result.toleranceMet = measureExactMesh(result.mesh) <= tolerance;
             return result;
         }
     }
@@ -174,28 +175,22 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
         for (int attempt = 0; attempt < tol::kFacetAttempts; ++attempt, deviation *= 0.5) {
             const std::optional<Scene> faceted = options.facetCurves(deviation);
             if (!faceted) break;
-            PolyhedralBoundaryStats stats;
-            std::optional<TriangleMesh> mesh = polyhedralBoundary(*faceted, options.threads, &stats);
-            result.polyhedral = stats;
+            std::optional<TriangleMesh> mesh =
+                polyhedralBoundary(*faceted, options.threads, &result.polyhedral);
             if (!mesh) break;
-            measure.reach = tolerance;
-            const auto start = std::chrono::steady_clock::now();
-            const DistanceStats to = meshToSurface(scene, *mesh, measure);
-            const TriangleBvh bvh(*mesh, options.threads);
-            const DistanceStats back = surfaceToMesh(scene, bvh, kSurfaceRaysPerAxis, measure);
-            result.polyhedral.measureSeconds =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            if (std::max(to.max, back.max) > tol::kMeshMeasureMargin * tolerance) continue;
+            if (measureExactMesh(*mesh) > tol::kMeshMeasureMargin * tolerance) {
+                result.polyhedral.declined =
+                    "the faceted part did not measure within the tolerance";
+                continue;
+            }
             result.mesh = std::move(*mesh);
             result.exact = true;
             result.facetDeviation = deviation;
-            result.error = to;
-            result.backError = back;
             result.toleranceMet = true;
             result.gridTriangles = result.mesh.triangles.size();
             return result;
         }
-        result.polyhedral.declined = "the faceted part did not measure within the tolerance";
+        result.error = result.backError = {};
     }
 
     // Step 2: the first spacing from the curvature rule with the reference radius.
