@@ -13,9 +13,9 @@
 // of the hit's own surface), tried cached-object first as the renderer does. Times are this
 // thread's CPU time; a rate is the median of K timed passes (default 5) of at least 0.2 s each.
 #include <algorithm>
-#include <ctime>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <sstream>
 #include <string>
 #include <vector>

@@ -59,10 +59,10 @@ csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double dev
         if (n == 0 || facetedCylinderFaceCount(n, cylinder->r1, cylinder->r2) >=
                           csg::ConvexPolytope::kMaxPlanes)
             return nullptr;
-        return csg::leaf(polytopeOf(facetedCylinder(cylinder->r1, cylinder->r2, 0.0,
-                                                    cylinder->height, n),
-                                    {"cylinder", uint32_t(n), 0}),
-                         node.tags);
+        return csg::leaf(
+            polytopeOf(facetedCylinder(cylinder->r1, cylinder->r2, 0.0, cylinder->height, n),
+                       {"cylinder", uint32_t(n), 0}),
+            node.tags);
     }
     return nullptr;
 }

@@ -16,7 +16,9 @@ constexpr uint32_t kNone = UINT32_MAX;
 // holes of 16 corners (25 600 corners) took 6.5 s, one with 400 (6 400) 0.5 s.
 constexpr size_t kMostCornersPerFace = 20000;
 
-uint64_t edgeKey(uint32_t a, uint32_t b) { return (uint64_t(a) << 32) | b; }
+uint64_t edgeKey(uint32_t a, uint32_t b) {
+    return (uint64_t(a) << 32) | b;
+}
 
 class UnionFind {
 public:
@@ -53,9 +55,7 @@ bool outlineLoops(const std::vector<std::vector<uint32_t>>& polygons, UnionFind&
     // Outline edges, sorted by face and then by first vertex.
     struct Outline {
         uint32_t face, a, b;
-        bool operator<(const Outline& o) const {
-            return face != o.face ? face < o.face : a < o.a;
-        }
+        bool operator<(const Outline& o) const { return face != o.face ? face < o.face : a < o.a; }
     };
     std::vector<Outline> outline;
     for (uint32_t p = 0; p < polygons.size(); ++p) {
@@ -75,8 +75,9 @@ bool outlineLoops(const std::vector<std::vector<uint32_t>>& polygons, UnionFind&
         for (size_t i = begin; i + 1 < end; ++i)
             if (outline[i].a == outline[i + 1].a) return false;  // a vertex the face pinches
         const auto from = [&](uint32_t v) {
-            const auto it = std::lower_bound(outline.begin() + long(begin), outline.begin() + long(end),
-                                             Outline{outline[begin].face, v, 0});
+            const auto it =
+                std::lower_bound(outline.begin() + long(begin), outline.begin() + long(end),
+                                 Outline{outline[begin].face, v, 0});
             return it != outline.begin() + long(end) && it->a == v ? size_t(it - outline.begin())
                                                                    : size_t(kNone);
         };
@@ -159,8 +160,9 @@ double signedArea(const std::vector<Vec2>& points, const std::vector<uint32_t>& 
 
 // Step 4 for the loops of one face, in local indices into points (the face's plane coordinates,
 // counter-clockwise seen from outside): each outer loop with the holes inside it.
-bool triangulateFace(const std::vector<Vec2>& points, const std::vector<std::vector<uint32_t>>& loops,
-                     double straight, std::vector<std::array<uint32_t, 3>>& out) {
+bool triangulateFace(const std::vector<Vec2>& points,
+                     const std::vector<std::vector<uint32_t>>& loops, double straight,
+                     std::vector<std::array<uint32_t, 3>>& out) {
     std::vector<size_t> outers, holes;
     std::vector<double> areas;
     for (size_t i = 0; i < loops.size(); ++i) {

@@ -119,9 +119,9 @@ struct TessellateResult {
     DistanceStats error;      // mesh to surface of the result, as measured
     DistanceStats backError;  // surface to mesh (kSurfaceRaysPerAxis^2 lines per axis)
     DualContourStats contour;
-    bool toleranceMet = false;            // error.max and backError.max <= tolerance
-    bool measured = true;                 // false: an exact boundary not measured (measureExact)
-    bool exact = false;                   // the exact boundary of an all-polyhedral part
+    bool toleranceMet = false;  // error.max and backError.max <= tolerance
+    bool measured = true;       // false: an exact boundary not measured (measureExact)
+    bool exact = false;         // the exact boundary of an all-polyhedral part
     // The deviation the curves were faceted to when the mesh is the exact boundary of the part
     // faceted by TessellateOptions::facetCurves (exact is then true too); 0 otherwise.
     double facetDeviation = 0.0;
