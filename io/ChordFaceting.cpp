@@ -1,8 +1,10 @@
 #include "io/ChordFaceting.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
+#include "csg/mesh/Qef.h"
 #include "io/FacetedPrimitives.h"
 #include "io/Faceting.h"
 #include "primitives/ConvexPolytope.h"
@@ -11,23 +13,14 @@ namespace io {
 
 namespace {
 
-// The largest singular value of m's linear part: how far it can stretch a curve (power
-// iteration on m^T m, which converges from any start but an orthogonal one; a few starts).
+// The largest singular value of m's linear part, how far it can stretch a curve: the square
+// root of the largest eigenvalue of A^T A (csg/mesh/Qef.h's Jacobi decomposition).
 double largestScale(const csg::Mat4& m) {
-    const csg::Mat3 a(m), ata = glm::transpose(a) * a;
-    double best = 0.0;
-    for (const csg::Vec3& start : {csg::Vec3(1, 0, 0), csg::Vec3(0, 1, 0), csg::Vec3(0, 0, 1),
-                                   csg::Vec3(0.577, 0.577, 0.577)}) {
-        csg::Vec3 v = start;
-        for (int i = 0; i < 40; ++i) {
-            const csg::Vec3 w = ata * v;
-            const double length = glm::length(w);
-            if (!(length > 0.0)) break;
-            v = w / length;
-        }
-        best = std::max(best, glm::length(a * v));
-    }
-    return best;
+    const csg::Mat3 a(m);
+    csg::Vec3 w;
+    csg::Mat3 r;
+    csg::symmetricEigen(glm::transpose(a) * a, w, r);
+    return std::sqrt(std::max({w.x, w.y, w.z, 0.0}));
 }
 
 // Fragments for a circle of world radius r whose chords may stand `sagitta` off it: the least

@@ -149,15 +149,6 @@ bool insideLoop(const std::vector<Vec2>& points, const std::vector<uint32_t>& lo
     return inside;
 }
 
-double signedArea(const std::vector<Vec2>& points, const std::vector<uint32_t>& loop) {
-    double sum = 0.0;
-    for (size_t i = 0, k = loop.size(); i < k; ++i) {
-        const Vec2 a = points[loop[i]], b = points[loop[(i + 1) % k]];
-        sum += a.x * b.y - a.y * b.x;
-    }
-    return 0.5 * sum;
-}
-
 // Step 4 for the loops of one face, in local indices into points (the face's plane coordinates,
 // counter-clockwise seen from outside): each outer loop with the holes inside it.
 bool triangulateFace(const std::vector<Vec2>& points,

@@ -12,13 +12,6 @@ double cross(const Vec2& a, const Vec2& b) { return a.x * b.y - a.y * b.x; }
 // Twice the signed area of the triangle abc: positive when it turns counter-clockwise.
 double turn(const Vec2& a, const Vec2& b, const Vec2& c) { return cross(b - a, c - a); }
 
-double signedArea(std::span<const Vec2> points, const std::vector<uint32_t>& loop) {
-    double sum = 0.0;
-    for (size_t i = 0, k = loop.size(); i < k; ++i)
-        sum += cross(points[loop[i]], points[loop[(i + 1) % k]]);
-    return 0.5 * sum;
-}
-
 // The loop being cut, as a ring of nodes; a corner shared by a bridge appears in two nodes.
 class Ring {
 public:
@@ -180,6 +173,13 @@ private:
 };
 
 }  // namespace
+
+double signedArea(std::span<const Vec2> points, const std::vector<uint32_t>& loop) {
+    double sum = 0.0;
+    for (size_t i = 0, k = loop.size(); i < k; ++i)
+        sum += cross(points[loop[i]], points[loop[(i + 1) % k]]);
+    return 0.5 * sum;
+}
 
 bool earClip(std::span<const Vec2> points, const std::vector<uint32_t>& outer,
              const std::vector<std::vector<uint32_t>>& holes, double minHeight,

@@ -16,6 +16,9 @@
 
 namespace csg {
 
+// The signed area of the loop of points (indices into points): positive counter-clockwise.
+double signedArea(std::span<const Vec2> points, const std::vector<uint32_t>& loop);
+
 // Triangulates the region inside `outer` (indices into points, counter-clockwise) and outside
 // every hole (clockwise loops inside it). An ear is cut only where its tip stands more than
 // minHeight off the line through its neighbours, so corners that lie on a straight edge (within
