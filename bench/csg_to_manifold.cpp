@@ -81,7 +81,8 @@ bool write(const csg::NodePtr& node, const csg::Mat4& parent, std::string& out, 
         const bool mirrored = glm::determinant(csg::Mat3(m)) < 0.0;
         for (size_t t = 0; t < mesh->data->triangles.size(); ++t) {
             const auto& tri = mesh->data->triangles[t];
-            const uint32_t order[3] = {tri[0], mirrored ? tri[2] : tri[1], mirrored ? tri[1] : tri[2]};
+            const uint32_t order[3] = {tri[0], mirrored ? tri[2] : tri[1],
+                                       mirrored ? tri[1] : tri[2]};
             for (int k = 0; k < 3; ++k) {
                 if (t || k) out += ',';
                 out += std::to_string(order[k]);

@@ -54,17 +54,17 @@ TEST(ChordFaceting, FacesStandWithinTheDeviationAndCornersOnTheSphere) {
 
 TEST(ChordFaceting, LeavesThatStayCurvedGiveNothing) {
     EXPECT_FALSE(io::facetToDeviation(leaf(Torus{2.0, 0.5}), 0.01));
-    EXPECT_FALSE(io::facetToDeviation(unite(leaf(Box{Vec3(0.0), Vec3(1.0)}), leaf(Torus{2.0, 0.5})),
-                                      0.01));
-    EXPECT_TRUE(io::facetToDeviation(unite(leaf(Box{Vec3(0.0), Vec3(1.0)}), leaf(Sphere{1.0})),
-                                     0.01));
+    EXPECT_FALSE(
+        io::facetToDeviation(unite(leaf(Box{Vec3(0.0), Vec3(1.0)}), leaf(Torus{2.0, 0.5})), 0.01));
+    EXPECT_TRUE(
+        io::facetToDeviation(unite(leaf(Box{Vec3(0.0), Vec3(1.0)}), leaf(Sphere{1.0})), 0.01));
 }
 
 TEST(ChordFaceting, ACurvedPartExportsAsTheBoundaryOfItsFacetedLeaves) {
     // A ball of radius 10 with a cylinder bored through: exact curves, exported at T = 0.05.
-    const NodePtr part = subtract(leaf(Sphere{10.0}),
-                                  transformed(glm::translate(Mat4(1.0), Vec3(0.0, 0.0, -12.0)),
-                                              leaf(Cylinder{24.0, 3.0, 3.0})));
+    const NodePtr part =
+        subtract(leaf(Sphere{10.0}), transformed(glm::translate(Mat4(1.0), Vec3(0.0, 0.0, -12.0)),
+                                                 leaf(Cylinder{24.0, 3.0, 3.0})));
     const Scene scene = Scene::compile(part);
     TessellateOptions options;
     options.tolerance = 0.05;

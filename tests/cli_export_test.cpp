@@ -117,7 +117,9 @@ void expectWithin(const ObjMesh& m, const Shape& s, double tol) {
     EXPECT_NEAR(volumeOf(m), s.volume, s.area * tol) << s.name;
 }
 
-size_t trianglesOf(const fs::path& obj) { return readObj(obj).f.size(); }
+size_t trianglesOf(const fs::path& obj) {
+    return readObj(obj).f.size();
+}
 
 TEST(CliExport, SphereCylinderAndTorusAgainstTheirFormulas) {
     ScratchDir dir;
@@ -142,8 +144,8 @@ TEST(CliExport, DefaultToleranceIsA500thOfTheDiagonal) {
     ScratchDir dir;
     const Shape sphere = shapes()[0];
     writeFile(dir / "s.scad", std::string(sphere.source) + "\n");
-    const RunResult r =
-        runCsgray({"export", (dir / "s.scad").string(), "-o", (dir / "s.obj").string()}, dir.path());
+    const RunResult r = runCsgray(
+        {"export", (dir / "s.scad").string(), "-o", (dir / "s.obj").string()}, dir.path());
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const size_t at = r.err.find("(tolerance ");
     ASSERT_NE(at, std::string::npos) << r.err;
@@ -158,18 +160,18 @@ TEST(CliExport, DefaultToleranceIsA500thOfTheDiagonal) {
 TEST(CliExport, MaxCellsBindsWithAWarning) {
     ScratchDir dir;
     writeFile(dir / "s.scad", "sphere(r = 2);\n");
-    const RunResult r = runCsgray({"export", (dir / "s.scad").string(), "-o",
-                                   (dir / "s.obj").string(), "--tolerance", "1e-4",
-                                   "--max-cells", "4096", "--grid"},
-                                  dir.path());
+    const RunResult r =
+        runCsgray({"export", (dir / "s.scad").string(), "-o", (dir / "s.obj").string(),
+                   "--tolerance", "1e-4", "--max-cells", "4096", "--grid"},
+                  dir.path());
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.err.find("warning: tolerance"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("not reached within --max-cells: measured"), std::string::npos) << r.err;
     EXPECT_GT(trianglesOf(dir / "s.obj"), 0u);
     // Without the cap the same export meets a looser tolerance and says nothing.
-    const RunResult free = runCsgray(
-        {"export", (dir / "s.scad").string(), "-o", (dir / "t.obj").string(), "--tolerance", "0.05"},
-        dir.path());
+    const RunResult free = runCsgray({"export", (dir / "s.scad").string(), "-o",
+                                      (dir / "t.obj").string(), "--tolerance", "0.05"},
+                                     dir.path());
     EXPECT_EQ(free.exitCode, 0) << free.err;
     EXPECT_EQ(free.err.find("warning"), std::string::npos) << free.err;
 }
@@ -187,13 +189,16 @@ TEST(CliExport, OctreeAndSimplifyCoarsenWithinTheTolerance) {
     const double tol = 0.01;
     std::map<std::string, size_t> triangles;
     for (const std::vector<std::string>& flags :
-         {std::vector<std::string>{"--no-octree", "--no-simplify"}, {"--octree", "--no-simplify"},
-          {"--no-octree"}, {"--no-octree", "--simplify"}}) {
+         {std::vector<std::string>{"--no-octree", "--no-simplify"},
+          {"--octree", "--no-simplify"},
+          {"--no-octree"},
+          {"--no-octree", "--simplify"}}) {
         std::string key;
         for (const auto& f : flags) key += f;
         const fs::path obj = dir / "c.obj";
-        std::vector<std::string> args = {"export", (dir / "c.scad").string(), "-o", obj.string(),
-                                         "--tolerance", std::to_string(tol), "--grid"};
+        std::vector<std::string> args = {
+            "export",      (dir / "c.scad").string(), "-o",    obj.string(),
+            "--tolerance", std::to_string(tol),       "--grid"};
         args.insert(args.end(), flags.begin(), flags.end());
         const RunResult r = runCsgray(args, dir.path());
         ASSERT_EQ(r.exitCode, 0) << key << r.err;
@@ -225,8 +230,8 @@ TEST(CliExport, AFailedExportLeavesAnExistingFileUntouched) {
         EXPECT_EQ(r.exitCode, 1) << r.err;
         EXPECT_EQ(readFile(dir / name), "an earlier export\n");
         const std::string command = "cd " + shellQuote(dir.path().string()) +
-                                    " && trap '' XFSZ && ulimit -f 1 && " +
-                                    shellQuote(CSGRAY_EXE) + " export good.scad -o " + name +
+                                    " && trap '' XFSZ && ulimit -f 1 && " + shellQuote(CSGRAY_EXE) +
+                                    " export good.scad -o " + name +
                                     " --tolerance 0.05 >/dev/null 2>limited.txt";
         const int status = std::system(("sh -c " + shellQuote(command)).c_str());
         EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 3)
@@ -259,8 +264,8 @@ TEST(CliExport, GlbIsYUpWithOnePrimitivePerMaterial) {
               "color(\"red\") cube([1, 1, 4]);\n"
               "color(\"blue\") translate([3, 0, 0]) cube([1, 1, 2]);\n");
     const fs::path glb = dir / "two.glb";
-    const RunResult r = runCsgray({"export", (dir / "two.scad").string(), "-o", glb.string()},
-                                  dir.path());
+    const RunResult r =
+        runCsgray({"export", (dir / "two.scad").string(), "-o", glb.string()}, dir.path());
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const nlohmann::json j = glbJson(glb);
     ASSERT_TRUE(j.is_object()) << "not a GLB with a JSON chunk";
@@ -297,9 +302,9 @@ TEST(CliExport, ExactBoundaryIsMeasuredOnlyWithCheck) {
         {"export", (dir / "n.scad").string(), "-o", (dir / "a.obj").string()}, dir.path());
     EXPECT_EQ(plain.exitCode, 0) << plain.err;
     EXPECT_NE(plain.err.find("not measured"), std::string::npos) << plain.err;
-    const RunResult checked = runCsgray(
-        {"export", (dir / "n.scad").string(), "-o", (dir / "b.obj").string(), "--check"},
-        dir.path());
+    const RunResult checked =
+        runCsgray({"export", (dir / "n.scad").string(), "-o", (dir / "b.obj").string(), "--check"},
+                  dir.path());
     EXPECT_EQ(checked.exitCode, 0) << checked.err;
     EXPECT_EQ(checked.err.find("not measured"), std::string::npos) << checked.err;
     const size_t at = checked.err.find("mesh->surface ");

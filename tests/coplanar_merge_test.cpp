@@ -66,10 +66,10 @@ TEST(EarClip, CornersOnAStraightEdgeStayAndMakeNoSliver) {
 }
 
 TEST(EarClip, CombWithThreeHolesInARow) {
-    // A comb (non-convex outer loop, two 2 x 3 notches) whose back holds three square holes side by side; the
-    // holes' rays to the right meet each other, so the order of bridging matters.
+    // A comb (non-convex outer loop, two 2 x 3 notches) whose back holds three square holes side by
+    // side; the holes' rays to the right meet each other, so the order of bridging matters.
     std::vector<Vec2> points{{0, 0}, {10, 0}, {10, 6}, {8, 6}, {8, 3}, {6, 3},
-                             {6, 6}, {4, 6}, {4, 3}, {2, 3}, {2, 6}, {0, 6}};
+                             {6, 6}, {4, 6},  {4, 3},  {2, 3}, {2, 6}, {0, 6}};
     std::vector<uint32_t> outer(points.size());
     for (uint32_t i = 0; i < outer.size(); ++i) outer[i] = i;
     std::vector<std::vector<uint32_t>> holes;
@@ -166,8 +166,8 @@ CutCube cutCube(int n) {
 double volumeOf(const TriangleMesh& mesh) {
     double six = 0.0;
     for (const auto& t : mesh.triangles)
-        six += glm::dot(mesh.positions[t[0]],
-                        glm::cross(mesh.positions[t[1]], mesh.positions[t[2]]));
+        six +=
+            glm::dot(mesh.positions[t[0]], glm::cross(mesh.positions[t[1]], mesh.positions[t[2]]));
     return six / 6.0;
 }
 

@@ -7,10 +7,14 @@ namespace csg {
 
 namespace {
 
-double cross(const Vec2& a, const Vec2& b) { return a.x * b.y - a.y * b.x; }
+double cross(const Vec2& a, const Vec2& b) {
+    return a.x * b.y - a.y * b.x;
+}
 
 // Twice the signed area of the triangle abc: positive when it turns counter-clockwise.
-double turn(const Vec2& a, const Vec2& b, const Vec2& c) { return cross(b - a, c - a); }
+double turn(const Vec2& a, const Vec2& b, const Vec2& c) {
+    return cross(b - a, c - a);
+}
 
 // The loop being cut, as a ring of nodes; a corner shared by a bridge appears in two nodes.
 class Ring {

@@ -198,8 +198,9 @@ struct HalfPlane {
 // nothing else is cut. (Cut by the lines of the section's edges one by one, the parts outside
 // would be cut again by every later line: OpenSCAD's 64 x 32 sphere across a cube's face makes
 // ~64 pieces this way, thousands by lines.) planes: the leaf's faces, as world planes n . p = c.
-void cutByConvexLeaf(std::vector<Polygon>& pieces, const Face& f, const std::vector<HalfPlane>& planes,
-                     double eps, std::vector<HalfPlane>& section, std::vector<Polygon>& scratch) {
+void cutByConvexLeaf(std::vector<Polygon>& pieces, const Face& f,
+                     const std::vector<HalfPlane>& planes, double eps,
+                     std::vector<HalfPlane>& section, std::vector<Polygon>& scratch) {
     section.clear();
     // The ball around f's corners decides most planes with one product: a plane that passes
     // farther from its centre than its radius has f wholly on one side.
@@ -226,8 +227,8 @@ void cutByConvexLeaf(std::vector<Polygon>& pieces, const Face& f, const std::vec
             const double s = glm::dot(h.m, v) - h.o;
             lo = std::min(lo, s), hi = std::max(hi, s);
         }
-        if (lo >= -eps) return;     // f lies outside the section, or only touches it
-        if (hi <= eps) continue;    // f lies inside this half-plane
+        if (lo >= -eps) return;   // f lies outside the section, or only touches it
+        if (hi <= eps) continue;  // f lies inside this half-plane
         section.push_back(h);
     }
     if (section.empty()) return;  // f lies inside the section
@@ -420,9 +421,9 @@ public:
             step[a] = x - floor < 0.5 ? -1 : 1;
         }
         for (int k = 0; k < 8; ++k) {
-            const auto it = cells_.find(
-                key(c[0] + (k & 1 ? step[0] : 0), c[1] + (k & 2 ? step[1] : 0),
-                    c[2] + (k & 4 ? step[2] : 0)));
+            const auto it =
+                cells_.find(key(c[0] + (k & 1 ? step[0] : 0), c[1] + (k & 2 ? step[1] : 0),
+                                c[2] + (k & 4 ? step[2] : 0)));
             if (it == cells_.end()) continue;
             for (const uint32_t i : it->second)
                 if (glm::distance(positions[i], p) <= eps_) return i;
@@ -589,8 +590,7 @@ std::optional<TriangleMesh> polyhedralBoundary(const Scene& scene, int threads,
         for (const Vec3& v : f.corners) centre[f.leaf] += v, corners[f.leaf] += 1.0;
     for (const Face& f : all) {
         const Primitive& p = scene.leafPrimitive(f.leaf);
-        if (!std::holds_alternative<Box>(p) && !std::holds_alternative<ConvexPolytope>(p))
-            continue;
+        if (!std::holds_alternative<Box>(p) && !std::holds_alternative<ConvexPolytope>(p)) continue;
         const bool outward = glm::dot(f.n, centre[f.leaf] / corners[f.leaf]) < f.c;
         convexPlanes[f.leaf].push_back(outward ? HalfPlane{f.n, f.c} : HalfPlane{-f.n, -f.c});
     }
@@ -629,9 +629,8 @@ std::optional<TriangleMesh> polyhedralBoundary(const Scene& scene, int threads,
     std::vector<std::vector<Piece>> kept(faces.size());
     std::vector<uint64_t> made(faces.size(), 0);
     parallelFor(faces.size(), workers, [&](int worker, uint64_t i) {
-        boundaryPieces(scene, faces, grid, convexPlanes, uint32_t(i), onPlane, contexts[size_t(worker)],
-                       scratch[size_t(worker)], kept[i],
-                       made[i]);
+        boundaryPieces(scene, faces, grid, convexPlanes, uint32_t(i), onPlane,
+                       contexts[size_t(worker)], scratch[size_t(worker)], kept[i], made[i]);
     });
 
     s.classifySeconds = lap();

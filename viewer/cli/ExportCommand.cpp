@@ -206,8 +206,9 @@ int exportCommand(std::span<const std::string> args) {
                      result.exact ? "made" : exact.declined, (unsigned long long)exact.faces,
                      (unsigned long long)exact.pieces, (unsigned long long)exact.kept,
                      (unsigned long long)exact.tJunctions,
-                     (unsigned long long)exact.trianglesBeforeMerge, exact.mergedBy, exact.classifySeconds,
-                     exact.assembleSeconds, exact.mergeSeconds, exact.measureSeconds);
+                     (unsigned long long)exact.trianglesBeforeMerge, exact.mergedBy,
+                     exact.classifySeconds, exact.assembleSeconds, exact.mergeSeconds,
+                     exact.measureSeconds);
     if (verbose && !quiet)
         std::fprintf(stderr, "csgray: export: writing %s (checks, crease normals) took %.2f s\n",
                      output.c_str(), writeSeconds);
