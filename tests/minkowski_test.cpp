@@ -76,6 +76,32 @@ TEST(Minkowski, ExactBallRoundsABoxWithNoFacets) {
     EXPECT_NEAR(csg::volume(scene, 1024), exact, 2e-4 * exact);
 }
 
+// A ray that enters the rounded box through a face a hair from an edge meets the face's prism
+// there and the edge cylinder below it a little later (the cylinder sags by delta^2 / 2r at
+// delta from the edge: 2.5e-9 at delta = 1e-4). The first hit is the face, at the t the ray
+// was built with, with the face's normal: closest() clipped the prism's span at the
+// cylinder's entry once it had seen the cylinder, dropped it as a sliver, and returned the
+// cylinder's point, inside the prism, whose shadow ray then started inside the solid (the
+// rendered box's dark specks).
+TEST(Minkowski, RayEntersAFaceNotTheEdgeCylinderBelowIt) {
+    const csg::Scene scene =
+        compiled("minkowski() { cube([20, 10, 5], center = true); sphere(2); }");
+    csg::QueryContext ctx;
+    const Vec3 d = glm::normalize(Vec3(-0.388, 0.775, -0.499));  // the render's view of it
+    constexpr double kT = 31.4;
+    for (double delta : {1e-5, 3e-5, 1e-4, 3e-4, 1e-3})
+        for (double x : {-6.5, -1.0, 3.25, 6.159}) {
+            // The top face z = 4.5, delta inside its edge y = -5 (over the cylinder of that edge).
+            const Vec3 p(x, -5.0 + delta, 4.5);
+            const csg::Ray ray{p - kT * d, d, 0.0, csg::kInfinity};
+            const std::optional<csg::Hit> hit = scene.closest(ray, ctx);
+            ASSERT_TRUE(hit) << "delta " << delta << " x " << x;
+            EXPECT_NEAR(hit->t, kT, 1e-12 * kT) << "delta " << delta << " x " << x;
+            const csg::SurfacePoint s = scene.surface(ray, *hit);
+            EXPECT_NEAR(s.normal.z, 1.0, 1e-12) << "delta " << delta << " x " << x;
+        }
+}
+
 TEST(Minkowski, NonConvexFrameWithABoxAndWithABall) {
     // A 4 x 4 x 4 block with a 2 x 2 hole along z, summed with a 0.5 cube: the block grows to
     // 4.5 and the hole shrinks to 1.5 (from x = 1.5 to 3).
