@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "csg/mesh/Qef.h"
+#include "io/ExtrusionMesh.h"
 #include "io/FacetedPrimitives.h"
 #include "io/Faceting.h"
 #include "primitives/ConvexPolytope.h"
@@ -32,7 +33,8 @@ int64_t fragmentsFor(double r, double sagitta, int64_t most) {
     return std::max<int64_t>(3, int64_t(n));
 }
 
-// The faceted sphere or cylinder (without the node's transform), or nullptr for any other leaf.
+// The faceted sphere, cylinder or straight extrusion (without the node's transform), or nullptr
+// for any other leaf.
 csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double deviation) {
     const csg::Primitive& p = node.primitive;
     const double scale = largestScale(world);
@@ -56,6 +58,11 @@ csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double dev
             polytopeOf(facetedCylinder(cylinder->r1, cylinder->r2, 0.0, cylinder->height, n),
                        {"cylinder", uint32_t(n), 0}),
             node.tags);
+    }
+    if (const auto* extrusion = std::get_if<csg::Extrusion>(&p)) {
+        std::optional<csg::Polyhedron> mesh = straightExtrusionMesh(*extrusion, deviation / scale);
+        if (!mesh) return nullptr;
+        return csg::leaf(std::move(*mesh), node.tags);
     }
     return nullptr;
 }

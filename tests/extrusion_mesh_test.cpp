@@ -1,0 +1,167 @@
+// Straight linear_extrudes as prisms (io/ExtrusionMesh.h) and their export as the exact
+// boundary (io/ChordFaceting.h): volumes, corner counts and triangle counts by hand, the fill
+// rules, segments in any order, chords on the curve within the deviation, a frustum's top, and
+// the extrusions it declines.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "PartHelpers.h"
+#include "csg/mesh/MeshCheck.h"
+#include "csg/mesh/Tessellate.h"
+#include "io/ChordFaceting.h"
+#include "io/ExtrusionMesh.h"
+
+namespace csg {
+namespace {
+
+using testing::diagnosticsOf;
+using testing::evaluate;
+
+constexpr double kPi = std::numbers::pi;
+
+// The first leaf of a part's tree (the parts here are one extrusion, perhaps under groups).
+const Node* firstLeaf(const NodePtr& node) {
+    if (!node) return nullptr;
+    if (node->op == Op::Leaf) return node.get();
+    if (const Node* left = firstLeaf(node->left)) return left;
+    return firstLeaf(node->right);
+}
+
+// The extrusion a part of one linear_extrude evaluates to.
+Extrusion extrusionOf(const std::string& text) {
+    const io::EvaluateResult r = evaluate(text);
+    EXPECT_TRUE(r.ok()) << diagnosticsOf(r);
+    const Node* leaf = r.ok() ? firstLeaf(r.model->root) : nullptr;
+    EXPECT_TRUE(leaf && std::holds_alternative<Extrusion>(leaf->primitive)) << text;
+    return leaf ? std::get<Extrusion>(leaf->primitive) : Extrusion{};
+}
+
+TriangleMesh meshOf(const Polyhedron& p) {
+    TriangleMesh mesh;
+    mesh.positions = p.data->vertices;
+    mesh.triangles = p.data->triangles;
+    return mesh;
+}
+
+double volumeOf(const Polyhedron& p) {
+    return std::abs(signedVolume(meshOf(p)));
+}
+
+TEST(ExtrusionMesh, SquareWithAHoleIsItsPrism) {
+    // polygon() with two paths is even-odd: a 10 x 10 square with a 4 x 4 hole, 3 high.
+    const Extrusion e = extrusionOf(
+        "linear_extrude(3) polygon([[0,0],[10,0],[10,10],[0,10],[3,3],[7,3],[7,7],[3,7]], "
+        "[[0,1,2,3],[4,5,6,7]]);");
+    const std::optional<Polyhedron> p = io::straightExtrusionMesh(e, 0.01);
+    ASSERT_TRUE(p);
+    EXPECT_NEAR(volumeOf(*p), (100.0 - 16.0) * 3.0, 1e-9);
+    // 8 corners at each end; each cap is V + 2H - 2 = 8 triangles, each of the 8 sides 2.
+    EXPECT_EQ(p->data->vertices.size(), 16u);
+    EXPECT_EQ(p->triangleCount(), 2u * 8u + 8u * 2u);
+    const TriangleMesh mesh = meshOf(*p);
+    EXPECT_TRUE(checkTopology(mesh).closedManifold());
+}
+
+TEST(ExtrusionMesh, NonzeroRuleUnitesOverlappingContours) {
+    // Two overlapping squares in one nonzero outline (as a glyph's contours may overlap):
+    // [0, 4]^2 and [2, 6]^2, area 16 + 16 - 4 = 28. polygon() is even-odd, so the nonzero
+    // outline comes from text-like input: build it by hand from the even-odd one.
+    Extrusion e = extrusionOf(
+        "linear_extrude(2) polygon([[0,0],[4,0],[4,4],[0,4],[2,2],[6,2],[6,6],[2,6]], "
+        "[[0,1,2,3],[4,5,6,7]]);");
+    auto nonzero = std::make_shared<Outline>(*e.outline);
+    nonzero->rule = FillRule::NonZero;
+    e.outline = nonzero;
+    const std::optional<Polyhedron> united = io::straightExtrusionMesh(e, 0.01);
+    ASSERT_TRUE(united);
+    EXPECT_NEAR(volumeOf(*united), 28.0 * 2.0, 1e-9);
+    // Even-odd, the overlap [2, 4]^2 drops out and leaves two L shapes that touch at (4, 2)
+    // and (2, 4): their prisms share the vertical edges there, four faces on one edge, which is
+    // no manifold, so the prism is declined (the exact leaf stays).
+    const Extrusion evenOdd = extrusionOf(
+        "linear_extrude(2) polygon([[0,0],[4,0],[4,4],[0,4],[2,2],[6,2],[6,6],[2,6]], "
+        "[[0,1,2,3],[4,5,6,7]]);");
+    EXPECT_FALSE(io::straightExtrusionMesh(evenOdd, 0.01));
+}
+
+TEST(ExtrusionMesh, SegmentsInAnyOrderMakeTheSameRegion) {
+    Extrusion e = extrusionOf(
+        "linear_extrude(3) polygon([[0,0],[10,0],[10,10],[0,10],[3,3],[7,3],[7,7],[3,7]], "
+        "[[0,1,2,3],[4,5,6,7]]);");
+    auto shuffled = std::make_shared<Outline>(*e.outline);
+    std::mt19937 rng(5);
+    std::shuffle(shuffled->segments.begin(), shuffled->segments.end(), rng);
+    shuffled->nodes.clear();
+    shuffled->order.clear();
+    shuffled->buildIndex();
+    e.outline = shuffled;
+    const std::optional<Polyhedron> p = io::straightExtrusionMesh(e, 0.01);
+    ASSERT_TRUE(p);
+    EXPECT_NEAR(volumeOf(*p), (100.0 - 16.0) * 3.0, 1e-9);
+}
+
+TEST(ExtrusionMesh, ChordsOfACircleLieOnItWithinTheDeviation) {
+    // An exact circle of radius 5 (no $fn), 2 high, with the top scaled by 0.5: at deviation
+    // 0.01 the chord rule asks ceil(pi / acos(1 - 0.01 / 5)) = 50 chords.
+    const double r = 5.0, deviation = 0.01;
+    const Extrusion e = extrusionOf("linear_extrude(2, scale = 0.5) circle(5);");
+    const std::optional<Polyhedron> p = io::straightExtrusionMesh(e, deviation);
+    ASSERT_TRUE(p);
+    const int n = int(std::ceil(kPi / std::acos(1.0 - deviation / r)));
+    ASSERT_EQ(n, 50);
+    EXPECT_EQ(p->data->vertices.size(), 2u * size_t(n));
+    for (const Vec3& v : p->data->vertices) {
+        const double radius = std::hypot(v.x, v.y);
+        if (v.z == 0.0)
+            EXPECT_NEAR(radius, r, 1e-8 * r);
+        else
+            EXPECT_NEAR(radius, 0.5 * r, 1e-8 * r) << "the top is the bottom scaled by 0.5";
+    }
+    // A frustum of regular n-gons: h / 3 (A0 + A1 + sqrt(A0 A1)), A = n/2 R^2 sin(2 pi / n).
+    const double a0 = 0.5 * n * r * r * std::sin(2.0 * kPi / n), a1 = 0.25 * a0;
+    EXPECT_NEAR(volumeOf(*p), 2.0 / 3.0 * (a0 + a1 + std::sqrt(a0 * a1)), 1e-6);
+    // The chords' sagitta is within the deviation: the n-gon's area is within
+    // perimeter * deviation of the circle's.
+    EXPECT_LE(kPi * r * r - a0, 2.0 * kPi * r * deviation);
+}
+
+TEST(ExtrusionMesh, DeclinesWhatIsNotAPrism) {
+    const char* const parts[] = {
+        "linear_extrude(3, twist = 90) square(2);",       // helicoid sides
+        "linear_extrude(3, scale = [1, 2]) square(2);",   // two scales: a ruled surface
+        "linear_extrude(3, scale = 0) square(2);",        // an apex
+        "rotate_extrude() translate([2, 0]) square(1);",  // revolved
+    };
+    for (const char* part : parts)
+        EXPECT_FALSE(io::straightExtrusionMesh(extrusionOf(part), 0.01)) << part;
+}
+
+// End to end: a part made of straight extrusions exports as its exact boundary, the fewest
+// triangles its faces allow.
+TEST(ExtrusionMesh, ExtrudedPartsExportAsTheirExactBoundary) {
+    // A 2-D difference, extruded: a frame, 32 triangles as above, not a grid's thousands.
+    const io::EvaluateResult r = evaluate(
+        "linear_extrude(5) difference() { square(10, center = true); "
+        "square(4, center = true); }");
+    ASSERT_TRUE(r.ok()) << diagnosticsOf(r);
+    const Scene scene = Scene::compile(r.model->root);
+    TessellateOptions options;
+    options.tolerance = 0.01;
+    options.facetCurves = [&](double deviation) -> std::optional<Scene> {
+        const NodePtr faceted = io::facetToDeviation(r.model->root, deviation);
+        if (!faceted) return std::nullopt;
+        return Scene::compile(faceted);
+    };
+    const TessellateResult t = tessellate(scene, options);
+    EXPECT_TRUE(t.exact);
+    EXPECT_EQ(t.mesh.triangles.size(), 32u);
+    EXPECT_NEAR(std::abs(signedVolume(t.mesh)), (100.0 - 16.0) * 5.0, 1e-9);
+    EXPECT_LE(std::max(t.error.max, t.backError.max), 1e-9);
+}
+
+}  // namespace
+}  // namespace csg
