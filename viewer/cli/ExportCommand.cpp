@@ -1,6 +1,7 @@
 #include "viewer/cli/ExportCommand.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
@@ -15,6 +16,15 @@ namespace viewer {
 
 namespace {
 
+// A measured distance: a sample that found no surface within the measure's reach (a mesh
+// point far off the part) makes it infinite, which reads better as words than as "inf".
+std::string distanceText(double d) {
+    if (!std::isfinite(d)) return "out of reach (no surface near some mesh point)";
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", d);
+    return text;
+}
+
 const char* const kExportHelp =
     "usage: csgray export PART -o OUT.glb|OUT.gltf|OUT.obj|OUT.stl|OUT.3mf [options]\n"
     "\n"
@@ -22,13 +32,14 @@ const char* const kExportHelp =
     "or sphere faceted by $fn or --curves openscad) is a polyhedron itself: its mesh\n"
     "is its exact boundary, each leaf face cut where the others meet it and each piece kept\n"
     "when a ray along its normal says it bounds the part (--grid meshes it as below).\n"
-    "A part whose curved leaves are all exact spheres and cylinders is meshed the same way\n"
-    "after faceting them so that no face stands more than T/2 off the curve (each by its\n"
-    "own radius), kept when it measures within the tolerance of the exact part (T/4 and\n"
-    "T/8 are tried next). Every other part (tori, surfaces, curved extrusions) is meshed\n"
-    "from its own ray casts: rays along x, y and z through a grid\n"
-    "(with planes added through walls and gaps thinner than a cell) give the exact surface\n"
-    "crossings and normals on every grid edge; dual contouring with a\n"
+    "A part whose other leaves are exact spheres, cylinders and straight linear_extrudes\n"
+    "is meshed the same way after faceting them so that no face stands more than T/2 off\n"
+    "the curve (each by its own radius; an extrusion becomes the prism of its outline's\n"
+    "chords), kept when it measures within the tolerance of the exact part (T/4 and T/8\n"
+    "are tried next). Every other part (tori, surfaces, rotate_extrude, twisted or\n"
+    "unevenly scaled extrusions) is meshed from its own ray casts: rays along x, y and z\n"
+    "through a grid (with planes added through walls and gaps thinner than a cell) give\n"
+    "the exact surface crossings and normals on every grid edge; dual contouring with a\n"
     "QEF per cell keeps sharp edges and corners; the mesh is a closed, outward-oriented\n"
     "2-manifold. The grid is refined until the measured distance between mesh and surface\n"
     "(both ways, sampled) is within the tolerance, or until a pass stops paying; then flat\n"
@@ -151,7 +162,7 @@ int exportCommand(std::span<const std::string> args) {
                         (result.capped ? " within --max-cells" : "") +
                         (result.stalled ? " (finer cells stopped reducing the error)" : "") +
                         ": measured " +
-                        std::to_string(std::max(result.error.max, result.backError.max))});
+                        distanceText(std::max(result.error.max, result.backError.max))});
     // Thin gaps left fused are a surface-to-mesh error the export's sampling can miss: say so
     // even when its own measurement is within the tolerance.
     const bool thinLeft = result.thinPlanes.unresolved > 0;
@@ -187,15 +198,15 @@ int exportCommand(std::span<const std::string> args) {
                 stderr,
                 "csgray: export: pass: cell %.6g, %llu cells (%llu thin-feature planes), "
                 "%llu triangles (octree: %llu of %llu active cells in %llu blocks, %d round(s)%s), "
-                "mesh->surface %.3g, surface->mesh %.3g, %.2f s (cast "
+                "mesh->surface %s, surface->mesh %s, %.2f s (cast "
                 "%.2f, contour %.2f, mesh->surface %.2f, bvh %.2f, surface->mesh %.2f)\n",
                 p.cellSize, (unsigned long long)p.cells, (unsigned long long)p.thinPlanes,
                 (unsigned long long)p.triangles, (unsigned long long)p.contour.octreeCells,
                 (unsigned long long)p.contour.activeCells,
                 (unsigned long long)p.contour.octreeLeaves, p.contour.octreeRounds,
-                p.contour.octreeFallback ? ", not a manifold: uniform used" : "", p.error,
-                p.backError, p.seconds, p.castSeconds, p.contourSeconds, p.toSurfaceSeconds,
-                p.bvhSeconds, p.backSeconds);
+                p.contour.octreeFallback ? ", not a manifold: uniform used" : "",
+                distanceText(p.error).c_str(), distanceText(p.backError).c_str(), p.seconds,
+                p.castSeconds, p.contourSeconds, p.toSurfaceSeconds, p.bvhSeconds, p.backSeconds);
     const csg::PolyhedralBoundaryStats& exact = result.polyhedral;
     if (verbose && !quiet && (result.exact || exact.declined))
         std::fprintf(stderr,
@@ -226,22 +237,23 @@ int exportCommand(std::span<const std::string> args) {
     else if (!quiet && result.exact)
         std::fprintf(stderr,
                      "csgray: export: %s: %zu triangles (the exact polyhedral boundary%s), %zu "
-                     "vertices, mesh->surface %.3g, surface->mesh %.3g (tolerance %.3g), %.2f s\n",
+                     "vertices, mesh->surface %s, surface->mesh %s (tolerance %.3g), %.2f s\n",
                      output.c_str(), result.mesh.triangles.size(), faceted,
-                     result.mesh.positions.size(), result.error.max, result.backError.max,
-                     result.tolerance, seconds);
+                     result.mesh.positions.size(), distanceText(result.error.max).c_str(),
+                     distanceText(result.backError.max).c_str(), result.tolerance, seconds);
     else if (!quiet)
         std::fprintf(
             stderr,
             "csgray: export: %s: %zu triangles (grid %llu%s), %zu vertices, cell %.6g, "
-            "%d pass(es), mesh->surface %.3g, surface->mesh %.3g (tolerance %.3g), "
+            "%d pass(es), mesh->surface %s, surface->mesh %s (tolerance %.3g), "
             "%.2f s\n",
             output.c_str(), result.mesh.triangles.size(), (unsigned long long)result.gridTriangles,
             result.simplified        ? ", simplified"
             : result.simplifySkipped ? ", not simplified: over a million, --simplify forces it"
                                      : "",
-            result.mesh.positions.size(), result.cellSize, result.passes, result.error.max,
-            result.backError.max, result.tolerance, seconds);
+            result.mesh.positions.size(), result.cellSize, result.passes,
+            distanceText(result.error.max).c_str(), distanceText(result.backError.max).c_str(),
+            result.tolerance, seconds);
     return kExitOk;
 }
 
