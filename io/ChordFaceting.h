@@ -13,8 +13,8 @@ namespace io {
 
 // The tree with every sphere, cylinder and straight linear_extrude leaf faceted so that no face
 // stands more than `deviation` (world units, > 0) off the exact surface, or nullptr when a leaf
-// stays curved (a torus, a surface, a rotate_extrude, a twisted extrusion, an outline
-// straightExtrusionMesh declines) or a curve would need more faces than a polytope may have.
+// stays curved (a torus, a surface, a twisted extrusion, an outline
+// extrusionMesh declines) or a curve would need more faces than a polytope may have.
 // Spheres and cylinders get OpenSCAD's vertices (io/Faceting.h), with the fragment count from
 // the chord rule at the leaf's largest world scale.
 csg::NodePtr facetToDeviation(const csg::NodePtr& root, double deviation);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <vector>
 
 #include "csg/derived/Flatten2D.h"
@@ -30,71 +31,19 @@ using csg::Vec3;
 constexpr int kGridBits = 28;
 constexpr double kCleanDistance = 1.415;
 
-// The two caps and the sides of the prism over the region, built face by face.
-struct Prism {
-    std::vector<Vec3> points;
-    csg::PolygonFaces faces;
-    double z0, z1, scale;
-
-    // The corner at p, at the bottom (its index) and at the top (its index + 1).
-    uint32_t corner(Vec2 p) {
-        points.emplace_back(p, z0);
-        points.emplace_back(scale * p, z1);
-        return uint32_t(points.size() - 2);
-    }
+// A polygon of the region: its outer contour (counter-clockwise) and its holes (clockwise).
+struct Polygon {
+    std::vector<Vec2> outer;
+    std::vector<std::vector<Vec2>> holes;
 };
 
-// Adds the filled region of outer (counter-clockwise) minus its holes (clockwise, inside it):
-// its caps, ear-clipped, and its contours' sides, facing out of the region.
-bool addPolygon(const ClipperLib::PolyNode& outer, double unit, Prism& prism) {
-    std::vector<Vec2> corners;
-    std::vector<uint32_t> ids;
-    std::vector<std::vector<uint32_t>> loops;  // the outer, then the holes
-    const auto addLoop = [&](const ClipperLib::Path& path) {
-        std::vector<uint32_t>& loop = loops.emplace_back();
-        for (const ClipperLib::IntPoint& q : path) {
-            const Vec2 p(double(q.X) * unit, double(q.Y) * unit);
-            loop.push_back(uint32_t(corners.size()));
-            corners.push_back(p);
-            ids.push_back(prism.corner(p));
-        }
-    };
-    ClipperLib::Path contour;
-    ClipperLib::CleanPolygon(outer.Contour, contour, kCleanDistance);
-    if (contour.size() < 3) return true;  // nothing left of it (its holes are smaller still)
-    addLoop(contour);
-    for (const ClipperLib::PolyNode* hole : outer.Childs) {
-        ClipperLib::CleanPolygon(hole->Contour, contour, kCleanDistance);
-        if (contour.size() >= 3) addLoop(contour);
-    }
-    const std::vector<std::vector<uint32_t>> holes(loops.begin() + 1, loops.end());
-    std::vector<std::array<uint32_t, 3>> triangles;
-    if (!csg::earClip(corners, loops[0], holes, 0.0, triangles)) return false;
-    for (const auto& t : triangles) {
-        prism.faces.add({ids[t[0]], ids[t[2]], ids[t[1]]});              // the bottom, down
-        prism.faces.add({ids[t[0]] + 1, ids[t[1]] + 1, ids[t[2]] + 1});  // the top, up
-    }
-    // Clipper winds outers counter-clockwise and holes clockwise: the region is on the left of
-    // every edge, so a quad from edge a -> b up faces out of it.
-    for (const std::vector<uint32_t>& loop : loops)
-        for (size_t k = 0, m = loop.size(); k < m; ++k) {
-            const uint32_t a = ids[loop[k]], b = ids[loop[(k + 1) % m]];
-            prism.faces.add({a, b, b + 1, a + 1});
-        }
-    return true;
-}
-
-}  // namespace
-
-std::optional<csg::Polyhedron> straightExtrusionMesh(const csg::Extrusion& e, double deviation) {
-    using Kind = csg::Extrusion::Kind;
-    if (e.kind != Kind::Linear || e.twisted || e.twist != 0.0 || e.scale.x != e.scale.y ||
-        !(e.scale.x > 0.0) || !std::isfinite(e.z0) || !std::isfinite(e.z1) || !e.outline ||
-        !(deviation > 0.0) || e.box.empty())
-        return std::nullopt;
-    const double scale = e.scale.x;
-    const double size = std::max({std::abs(e.box.lo.x), std::abs(e.box.lo.y), std::abs(e.box.hi.x),
-                                  std::abs(e.box.hi.y), std::numeric_limits<double>::min()});
+// The outline's region by its fill rule as polygons, its curves replaced by chords within
+// chordDeviation; false when its segments do not chain into closed walks, when the chords
+// would have more than kMaxExtrusionMeshCorners corners, or when Clipper refuses them.
+bool regionOf(const csg::Outline& outline, const csg::Bounds2& box, double chordDeviation,
+              std::vector<Polygon>& region) {
+    const double size = std::max({std::abs(box.lo.x), std::abs(box.lo.y), std::abs(box.hi.x),
+                                  std::abs(box.hi.y), std::numeric_limits<double>::min()});
     const int sizeExponent = std::ilogb(size) + 1;  // size < 2^sizeExponent
     const double toGrid = std::ldexp(1.0, kGridBits - sizeExponent);
     const double unit = std::ldexp(1.0, sizeExponent - kGridBits);
@@ -104,7 +53,7 @@ std::optional<csg::Polyhedron> straightExtrusionMesh(const csg::Extrusion& e, do
     // path each. Where walks touch, which segment comes next does not matter: every
     // decomposition of the directed segments into closed walks has the same winding numbers.
     // A walk that does not close (a dangling end) declines.
-    const std::vector<csg::Segment2>& segments = e.outline->segments;
+    const std::vector<csg::Segment2>& segments = outline.segments;
     const auto before = [](Vec2 a, Vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); };
     std::vector<uint32_t> byStart(segments.size());
     for (uint32_t i = 0; i < byStart.size(); ++i) byStart[i] = i;
@@ -120,8 +69,6 @@ std::optional<csg::Polyhedron> straightExtrusionMesh(const csg::Extrusion& e, do
             if (!used[*it]) return *it;
         return -1;
     };
-    // The chords stand `scale` times as far off the curve at the top as at the bottom.
-    const double chordDeviation = deviation / std::max(1.0, scale);
     ClipperLib::Paths paths;
     std::vector<Vec2> points;
     size_t corners = 0;
@@ -134,13 +81,13 @@ std::optional<csg::Polyhedron> straightExtrusionMesh(const csg::Extrusion& e, do
             points.clear();
             csg::appendChordPoints(segments[size_t(k)], chordDeviation, points);
             corners += points.size();
-            if (corners > kMaxExtrusionMeshCorners) return std::nullopt;
+            if (corners > kMaxExtrusionMeshCorners) return false;
             for (const Vec2& p : points)
                 path.push_back({ClipperLib::cInt(std::llround(p.x * toGrid)),
                                 ClipperLib::cInt(std::llround(p.y * toGrid))});
             closed = segments[size_t(k)].finish() == segments[first].start();
         }
-        if (!closed) return std::nullopt;
+        if (!closed) return false;
     }
 
     // The region by the outline's fill rule, as outer contours with their holes.
@@ -149,28 +96,170 @@ std::optional<csg::Polyhedron> straightExtrusionMesh(const csg::Extrusion& e, do
     ClipperLib::PolyTree tree;
     try {
         clipper.AddPaths(paths, ClipperLib::ptSubject, true);
-        const ClipperLib::PolyFillType fill = e.outline->rule == csg::FillRule::EvenOdd
+        const ClipperLib::PolyFillType fill = outline.rule == csg::FillRule::EvenOdd
                                                   ? ClipperLib::pftEvenOdd
                                                   : ClipperLib::pftNonZero;
-        if (!clipper.Execute(ClipperLib::ctUnion, tree, fill, fill)) return std::nullopt;
+        if (!clipper.Execute(ClipperLib::ctUnion, tree, fill, fill)) return false;
     } catch (const ClipperLib::clipperException&) {
-        return std::nullopt;
+        return false;
     }
 
-    Prism prism{{}, {}, e.z0, e.z1, scale};
+    const auto contourOf = [&](const ClipperLib::Path& path, std::vector<Vec2>& out) {
+        ClipperLib::Path clean;
+        ClipperLib::CleanPolygon(path, clean, kCleanDistance);
+        for (const ClipperLib::IntPoint& q : clean)
+            out.emplace_back(double(q.X) * unit, double(q.Y) * unit);
+        return out.size() >= 3;
+    };
     std::vector<const ClipperLib::PolyNode*> pending(tree.Childs.begin(), tree.Childs.end());
     while (!pending.empty()) {
         const ClipperLib::PolyNode* outer = pending.back();
         pending.pop_back();
-        if (!addPolygon(*outer, unit, prism)) return std::nullopt;
         // An island inside a hole is an outer of its own.
         for (const ClipperLib::PolyNode* hole : outer->Childs)
             pending.insert(pending.end(), hole->Childs.begin(), hole->Childs.end());
+        Polygon polygon;
+        // Nothing left of it after cleaning: its holes are smaller still.
+        if (!contourOf(outer->Contour, polygon.outer)) continue;
+        for (const ClipperLib::PolyNode* hole : outer->Childs)
+            if (!contourOf(hole->Contour, polygon.holes.emplace_back())) polygon.holes.pop_back();
+        region.push_back(std::move(polygon));
     }
-    if (prism.faces.size() == 0) return std::nullopt;
-    csg::Polyhedron mesh = csg::Polyhedron::make(std::move(prism.points), prism.faces);
+    return !region.empty();
+}
+
+// A polygon's corners in one list (the outer, then each hole), its loops as indices into it,
+// and the triangles that fill it, counter-clockwise; false when ear clipping cannot cut it.
+struct Cap {
+    std::vector<Vec2> corners;
+    std::vector<std::vector<uint32_t>> loops;
+    std::vector<std::array<uint32_t, 3>> triangles;
+
+    bool fill(const Polygon& polygon) {
+        const auto add = [&](const std::vector<Vec2>& contour) {
+            std::vector<uint32_t>& loop = loops.emplace_back();
+            for (const Vec2& p : contour) {
+                loop.push_back(uint32_t(corners.size()));
+                corners.push_back(p);
+            }
+        };
+        add(polygon.outer);
+        for (const std::vector<Vec2>& hole : polygon.holes) add(hole);
+        const std::vector<std::vector<uint32_t>> holes(loops.begin() + 1, loops.end());
+        return csg::earClip(corners, loops[0], holes, 0.0, triangles);
+    }
+};
+
+std::optional<csg::Polyhedron> closedMesh(std::vector<Vec3> points,
+                                          const csg::PolygonFaces& faces) {
+    if (faces.size() == 0) return std::nullopt;
+    csg::Polyhedron mesh = csg::Polyhedron::make(std::move(points), faces);
     if (mesh.invalidReason() || !mesh.edges().manifold()) return std::nullopt;
     return mesh;
+}
+
+// The prism (or frustum) over the region: the caps at z0 and z1, and a side quad per contour
+// edge. Clipper winds outers counter-clockwise and holes clockwise, so the region is on the
+// left of every edge and a quad from edge a -> b up faces out of it.
+std::optional<csg::Polyhedron> prismOf(const std::vector<Polygon>& region, double z0, double z1,
+                                       double scale) {
+    std::vector<Vec3> points;
+    csg::PolygonFaces faces;
+    for (const Polygon& polygon : region) {
+        Cap cap;
+        if (!cap.fill(polygon)) return std::nullopt;
+        // Corner k of the cap is point base + 2k at the bottom and base + 2k + 1 at the top.
+        const uint32_t base = uint32_t(points.size());
+        for (const Vec2& p : cap.corners) {
+            points.emplace_back(p, z0);
+            points.emplace_back(scale * p, z1);
+        }
+        const auto bottom = [&](uint32_t k) { return base + 2 * k; };
+        for (const auto& t : cap.triangles) {
+            faces.add({bottom(t[0]), bottom(t[2]), bottom(t[1])});              // facing down
+            faces.add({bottom(t[0]) + 1, bottom(t[1]) + 1, bottom(t[2]) + 1});  // facing up
+        }
+        for (const std::vector<uint32_t>& loop : cap.loops)
+            for (size_t k = 0, m = loop.size(); k < m; ++k) {
+                const uint32_t a = bottom(loop[k]), b = bottom(loop[(k + 1) % m]);
+                faces.add({a, b, b + 1, a + 1});
+            }
+    }
+    return closedMesh(std::move(points), faces);
+}
+
+// The region (in the r, z half-plane) revolved about z through `degrees` in `steps` equal
+// steps: each contour edge sweeps a band of quads, isosceles trapezoids, so planar (a corner on
+// the axis makes them triangles: Polyhedron::make welds its copies); a wedge has the region
+// as its two end faces. With the region on the left of every edge (going up at r > 0 means
+// the region is nearer the axis), the quad P_k, P_k+1, Q_k+1, Q_k of the edge P -> Q faces
+// away from it; the start face, the region counter-clockwise in (r, z) laid on y = 0, faces
+// -y, out of a wedge that turns towards +y.
+std::optional<csg::Polyhedron> revolutionOf(const std::vector<Polygon>& region, double degrees,
+                                            int64_t steps) {
+    const bool whole = degrees >= 360.0;
+    const int64_t meridians = whole ? steps : steps + 1;
+    std::vector<Vec2> turn(static_cast<size_t>(meridians));  // cos and sin of each meridian's azimuth
+    for (int64_t k = 0; k < meridians; ++k) {
+        const double a = std::numbers::pi / 180.0 * degrees * double(k) / double(steps);
+        turn[size_t(k)] = Vec2(std::cos(a), std::sin(a));
+    }
+    std::vector<Vec3> points;
+    csg::PolygonFaces faces;
+    for (const Polygon& polygon : region) {
+        Cap cap;
+        if (!cap.fill(polygon)) return std::nullopt;
+        if (points.size() + cap.corners.size() * size_t(meridians) > kMaxRevolutionPoints)
+            return std::nullopt;
+        // Corner c of the cap on meridian k is point base + c * meridians + k.
+        const uint32_t base = uint32_t(points.size());
+        for (const Vec2& p : cap.corners)
+            for (const Vec2& t : turn) points.emplace_back(p.x * t.x, p.x * t.y, p.y);
+        const auto at = [&](uint32_t c, int64_t k) {
+            return base + c * uint32_t(meridians) + uint32_t(k % meridians);
+        };
+        for (const std::vector<uint32_t>& loop : cap.loops)
+            for (size_t i = 0, m = loop.size(); i < m; ++i) {
+                const uint32_t p = loop[i], q = loop[(i + 1) % m];
+                if (cap.corners[p].x == 0.0 && cap.corners[q].x == 0.0) continue;  // on the axis
+                for (int64_t k = 0; k < steps; ++k)
+                    faces.add({at(p, k), at(p, k + 1), at(q, k + 1), at(q, k)});
+            }
+        if (whole) continue;
+        for (const auto& t : cap.triangles) {
+            faces.add({at(t[0], 0), at(t[1], 0), at(t[2], 0)});
+            faces.add({at(t[0], steps), at(t[2], steps), at(t[1], steps)});
+        }
+    }
+    return closedMesh(std::move(points), faces);
+}
+
+}  // namespace
+
+std::optional<csg::Polyhedron> extrusionMesh(const csg::Extrusion& e, double deviation) {
+    using Kind = csg::Extrusion::Kind;
+    if (!e.outline || !(deviation > 0.0) || e.box.empty()) return std::nullopt;
+    std::vector<Polygon> region;
+    if (e.kind == Kind::Linear) {
+        if (e.twisted || e.twist != 0.0 || e.scale.x != e.scale.y || !(e.scale.x > 0.0) ||
+            !std::isfinite(e.z0) || !std::isfinite(e.z1))
+            return std::nullopt;
+        // The chords stand `scale` times as far off the curve at the top as at the bottom.
+        const double scale = e.scale.x;
+        if (!regionOf(*e.outline, e.box, deviation / std::max(1.0, scale), region))
+            return std::nullopt;
+        return prismOf(region, e.z0, e.z1, scale);
+    }
+    if (e.kind == Kind::Rotate) {
+        // Half the deviation for the profile's chords, half for the meridians' (the sagitta of
+        // a step at the largest radius).
+        if (!regionOf(*e.outline, e.box, 0.5 * deviation, region)) return std::nullopt;
+        const double reach = std::max(std::abs(e.box.lo.x), std::abs(e.box.hi.x));
+        const int64_t steps =
+            csg::chordSteps(reach, std::numbers::pi / 180.0 * e.angle, 0.5 * deviation);
+        return revolutionOf(region, e.angle, std::max<int64_t>(steps, e.angle >= 360.0 ? 3 : 1));
+    }
+    return std::nullopt;
 }
 
 }  // namespace io

@@ -1,7 +1,7 @@
-// Straight linear_extrudes as prisms (io/ExtrusionMesh.h) and their export as the exact
-// boundary (io/ChordFaceting.h): volumes, corner counts and triangle counts by hand, the fill
-// rules, segments in any order, chords on the curve within the deviation, a frustum's top, and
-// the extrusions it declines.
+// Extrusions as polyhedra (io/ExtrusionMesh.h) and their export as the exact boundary
+// (io/ChordFaceting.h): volumes, corner counts and triangle counts by hand, the fill rules,
+// segments in any order, chords on the curve within the deviation, a frustum's top,
+// revolutions whole, in a wedge and on the axis, and the extrusions it declines.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -56,7 +56,7 @@ TEST(ExtrusionMesh, SquareWithAHoleIsItsPrism) {
     const Extrusion e = extrusionOf(
         "linear_extrude(3) polygon([[0,0],[10,0],[10,10],[0,10],[3,3],[7,3],[7,7],[3,7]], "
         "[[0,1,2,3],[4,5,6,7]]);");
-    const std::optional<Polyhedron> p = io::straightExtrusionMesh(e, 0.01);
+    const std::optional<Polyhedron> p = io::extrusionMesh(e, 0.01);
     ASSERT_TRUE(p);
     EXPECT_NEAR(volumeOf(*p), (100.0 - 16.0) * 3.0, 1e-9);
     // 8 corners at each end; each cap is V + 2H - 2 = 8 triangles, each of the 8 sides 2.
@@ -76,7 +76,7 @@ TEST(ExtrusionMesh, NonzeroRuleUnitesOverlappingContours) {
     auto nonzero = std::make_shared<Outline>(*e.outline);
     nonzero->rule = FillRule::NonZero;
     e.outline = nonzero;
-    const std::optional<Polyhedron> united = io::straightExtrusionMesh(e, 0.01);
+    const std::optional<Polyhedron> united = io::extrusionMesh(e, 0.01);
     ASSERT_TRUE(united);
     EXPECT_NEAR(volumeOf(*united), 28.0 * 2.0, 1e-9);
     // Even-odd, the overlap [2, 4]^2 drops out and leaves two L shapes that touch at (4, 2)
@@ -85,7 +85,7 @@ TEST(ExtrusionMesh, NonzeroRuleUnitesOverlappingContours) {
     const Extrusion evenOdd = extrusionOf(
         "linear_extrude(2) polygon([[0,0],[4,0],[4,4],[0,4],[2,2],[6,2],[6,6],[2,6]], "
         "[[0,1,2,3],[4,5,6,7]]);");
-    EXPECT_FALSE(io::straightExtrusionMesh(evenOdd, 0.01));
+    EXPECT_FALSE(io::extrusionMesh(evenOdd, 0.01));
 }
 
 TEST(ExtrusionMesh, SegmentsInAnyOrderMakeTheSameRegion) {
@@ -99,7 +99,7 @@ TEST(ExtrusionMesh, SegmentsInAnyOrderMakeTheSameRegion) {
     shuffled->order.clear();
     shuffled->buildIndex();
     e.outline = shuffled;
-    const std::optional<Polyhedron> p = io::straightExtrusionMesh(e, 0.01);
+    const std::optional<Polyhedron> p = io::extrusionMesh(e, 0.01);
     ASSERT_TRUE(p);
     EXPECT_NEAR(volumeOf(*p), (100.0 - 16.0) * 3.0, 1e-9);
 }
@@ -109,7 +109,7 @@ TEST(ExtrusionMesh, ChordsOfACircleLieOnItWithinTheDeviation) {
     // 0.01 the chord rule asks ceil(pi / acos(1 - 0.01 / 5)) = 50 chords.
     const double r = 5.0, deviation = 0.01;
     const Extrusion e = extrusionOf("linear_extrude(2, scale = 0.5) circle(5);");
-    const std::optional<Polyhedron> p = io::straightExtrusionMesh(e, deviation);
+    const std::optional<Polyhedron> p = io::extrusionMesh(e, deviation);
     ASSERT_TRUE(p);
     const int n = int(std::ceil(kPi / std::acos(1.0 - deviation / r)));
     ASSERT_EQ(n, 50);
@@ -129,15 +129,42 @@ TEST(ExtrusionMesh, ChordsOfACircleLieOnItWithinTheDeviation) {
     EXPECT_LE(kPi * r * r - a0, 2.0 * kPi * r * deviation);
 }
 
-TEST(ExtrusionMesh, DeclinesWhatIsNotAPrism) {
+TEST(ExtrusionMesh, RevolutionsAreRingsOfTrapezoids) {
+    // The square [2, 3] x [0, 1] revolved: half the deviation 0.01 for the steps at the largest
+    // radius 3, ceil(pi / acos(1 - 0.005 / 3)) = 55 of them. Each step is a sector of the
+    // annulus between the circles through the corners: the solid is the prism of the annulus
+    // between two regular 55-gons, 55 / 2 sin(2 pi / 55) (3^2 - 2^2) x 1.
+    const double deviation = 0.01;
+    const std::optional<Polyhedron> ring =
+        io::extrusionMesh(extrusionOf("rotate_extrude() translate([2, 0]) square(1);"), deviation);
+    ASSERT_TRUE(ring);
+    EXPECT_EQ(ring->data->vertices.size(), 4u * 55u);
+    EXPECT_NEAR(volumeOf(*ring), 27.5 * std::sin(2.0 * kPi / 55.0) * 5.0, 1e-9);
+    EXPECT_TRUE(checkTopology(meshOf(*ring)).closedManifold());
+    // A quarter of it: ceil(pi / 2 / (2 acos(1 - 0.005 / 3))) = 14 steps, each a sector of
+    // 1/2 sin(pi / 28) (3^2 - 2^2), and the two end squares close it.
+    const std::optional<Polyhedron> wedge = io::extrusionMesh(
+        extrusionOf("rotate_extrude(angle = 90) translate([2, 0]) square(1);"), deviation);
+    ASSERT_TRUE(wedge);
+    EXPECT_EQ(wedge->data->vertices.size(), 4u * 15u);
+    EXPECT_NEAR(volumeOf(*wedge), 14 * 0.5 * std::sin(kPi / 28.0) * 5.0, 1e-9);
+    EXPECT_TRUE(checkTopology(meshOf(*wedge)).closedManifold());
+    // A profile on the axis: the square [0, 2] x [0, 1] revolved is a 45-gon prism
+    // (ceil(pi / acos(1 - 0.005 / 2)) = 45), its caps fans around the axis.
+    const std::optional<Polyhedron> disc =
+        io::extrusionMesh(extrusionOf("rotate_extrude() square([2, 1]);"), deviation);
+    ASSERT_TRUE(disc);
+    EXPECT_NEAR(volumeOf(*disc), 22.5 * std::sin(2.0 * kPi / 45.0) * 4.0, 1e-9);
+    EXPECT_TRUE(checkTopology(meshOf(*disc)).closedManifold());
+}
+
+TEST(ExtrusionMesh, DeclinesCurvedSidesAndApexes) {
     const char* const parts[] = {
-        "linear_extrude(3, twist = 90) square(2);",       // helicoid sides
-        "linear_extrude(3, scale = [1, 2]) square(2);",   // two scales: a ruled surface
-        "linear_extrude(3, scale = 0) square(2);",        // an apex
-        "rotate_extrude() translate([2, 0]) square(1);",  // revolved
+        "linear_extrude(3, twist = 90) square(2);",      // helicoid sides
+        "linear_extrude(3, scale = [1, 2]) square(2);",  // two scales: a ruled surface
+        "linear_extrude(3, scale = 0) square(2);",       // an apex
     };
-    for (const char* part : parts)
-        EXPECT_FALSE(io::straightExtrusionMesh(extrusionOf(part), 0.01)) << part;
+    for (const char* part : parts) EXPECT_FALSE(io::extrusionMesh(extrusionOf(part), 0.01)) << part;
 }
 
 // End to end: a part made of straight extrusions exports as its exact boundary, the fewest
