@@ -33,7 +33,7 @@ int64_t fragmentsFor(double r, double sagitta, int64_t most) {
     return std::max<int64_t>(3, int64_t(n));
 }
 
-// The faceted sphere, cylinder or straight extrusion (without the node's transform), or nullptr
+// The faceted sphere, cylinder or extrusion (without the node's transform), or nullptr
 // for any other leaf.
 csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double deviation) {
     const csg::Primitive& p = node.primitive;
