@@ -65,16 +65,17 @@ size_t mergeSolid(const Span* a, size_t na, const Span* b, size_t nb, Span* out,
         // Emit a boundary where the result changes, by the documented tie-break.
         const bool now = apply<Op>(ca.inside, cb.inside);
         if (now == inResult) continue;
-        // Of two ends at one t, a surface over a clip end; of two clip ends of a union (a ray
-        // that starts or stops inside both operands), the lower leaf, so that a union's result
-        // does not depend on the order its children are merged in (the structures of --accel
-        // visit them in different orders).
+        // Of two ends at one t, a surface over a clip end; of two surfaces or two clip ends of
+        // a union (coincident faces, or a ray that starts or stops inside both operands), the
+        // lower leaf, so that a union's result does not depend on the order its children are
+        // merged in (the structures of --accel visit them in different orders, and a BVH in
+        // an order that changes with the ray: two lines through one pair of coincident faces
+        // must name the same one, or the exact boundary keeps both or neither).
         const bool both = takeA && takeB;
-        const bool clipTie = Op == SetOp::Union && both && !hitA.isSurface() && !hitB.isSurface() &&
-                             hitB.leaf < hitA.leaf;
+        const bool lowerB = Op == SetOp::Union && both && hitA.isSurface() == hitB.isSurface() &&
+                            hitB.leaf < hitA.leaf;
         const Hit& boundary =
-            !clipTie && (!takeB || (takeA && (hitA.isSurface() || !hitB.isSurface()))) ? hitA
-                                                                                       : hitB;
+            !lowerB && (!takeB || (takeA && (hitA.isSurface() || !hitB.isSurface()))) ? hitA : hitB;
         if (now)
             start = boundary;
         else

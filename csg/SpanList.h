@@ -8,8 +8,9 @@
 //
 // The tie-break (the only one): events of both operands at exactly the same t are applied
 // together, and the boundary the result gets there is the left operand's hit, unless the
-// left hit is a clip end (kClipFace) and the right one a surface; two clip ends of a union
-// give the one of the lower leaf (the union's result is then the same in any merge order).
+// left hit is a clip end (kClipFace) and the right one a surface; a union's two surfaces, or
+// two clip ends, give the one of the lower leaf (the union's result is then the same in any
+// merge order).
 // Hence A u A = A, A n A = A, A - A = {} with A's own hits, and clip ends introduced by
 // narrowing never leak out.
 //

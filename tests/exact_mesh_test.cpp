@@ -13,6 +13,7 @@
 #include <string>
 
 #include "csg/Scene.h"
+#include "csg/Volume.h"
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/PolyhedralBoundary.h"
 #include "csg/mesh/Tessellate.h"
@@ -79,6 +80,20 @@ TEST(ExactMesh, VolumeStaysUnderATurn) {
         csg::signedVolume(exactMesh(compiled(part + "rotate([13, 34, 7]) part();")));
     EXPECT_GT(upright, 0.3);
     EXPECT_NEAR(turned, upright, 1e-9 * upright);
+}
+
+// Teeth whose tops and bottoms lie in the disc's caps: where a tooth's top and the disc's top
+// coincide, the lines through their pieces must name the same leaf, or both pieces are kept
+// (an edge used three times) or neither (a hole). The top-level union's BVH merges the
+// teeth in an order that changes from line to line; the union's tie-break names the lower
+// leaf in any order (csg/SpanList.h). Three teeth were enough to lose the boundary before.
+TEST(ExactMesh, TeethInTheDiscsCapsCloseTheBoundary) {
+    const csg::Scene scene = compiled(
+        "cylinder(h = 5, r = 20, $fn = 64);\n"
+        "for (a = [0, 22.5, 45, 150]) rotate([0, 0, a]) translate([19, -2, 0]) cube([5, 4, 5]);");
+    const TriangleMesh mesh = exactMesh(scene);
+    // Against the part's volume by span quadrature, good to ~1e-3 on straight walls.
+    EXPECT_NEAR(csg::signedVolume(mesh), csg::volume(scene, 1024), 2e-3 * csg::volume(scene, 1024));
 }
 
 TEST(ExactMesh, CurvedPartsFallBackToTheGrid) {

@@ -112,12 +112,22 @@ TEST(SpanList, CoincidentFaceInDifferenceLeavesNoSliver) {
     }
 }
 
-TEST(SpanList, TieBreakKeepsLeftHitAndPrefersSurfaceOverClip) {
+TEST(SpanList, TieBreakPrefersSurfacesThenTheLeftHitOrAUnionsLowerLeaf) {
     List a = spans({{1, 4}}, 1);
     List b = spans({{1, 4}}, 2);
     const List u = merge(SetOp::Union, a, b);
     EXPECT_EQ(u[0].in.leaf, 1u);
     EXPECT_EQ(u[0].out.leaf, 1u);
+    // A union names the lower leaf at coincident surfaces in either order (a BVH merges a
+    // union's children in an order that changes from ray to ray), entering or leaving.
+    const List swapped = merge(SetOp::Union, b, a);
+    EXPECT_EQ(swapped[0].in.leaf, 1u);
+    EXPECT_EQ(swapped[0].out.leaf, 1u);
+    const List tail = merge(SetOp::Union, spans({{2, 4}}, 7), spans({{0, 4}}, 3));
+    expectRanges(tail, {{0, 4}});
+    EXPECT_EQ(tail[0].out.leaf, 3u);
+    // An intersection and a difference keep the left operand's: their order is the tree's.
+    EXPECT_EQ(merge(SetOp::Intersection, b, a)[0].in.leaf, 2u);
     // A clip end (a narrowed range) never wins against a surface at the same t.
     b[0].in.face = kClipFace;
     a[0].out.face = kClipFace;
