@@ -579,11 +579,12 @@ struct SpanWalk {
     // First surface end of the root union's spans. Front-to-back over the top-level objects,
     // lowering t1 to the best entry so far, which is exact as long as the ray starts outside
     // every object; a ray that starts inside one falls back to the whole span list.
-    // t1 stays one coincidence slack past the best entry: an object entered just before it
-    // would otherwise be clipped there to a span shorter than the slack, which the span
-    // writer drops as a sliver, and the later entry would win (a face of the exact rounded
-    // box, entered 2e-8 before the edge cylinder under it, lost so, and the hit point inside
-    // the face's prism shadowed itself).
+    // t1 stays two coincidence slacks past the best entry: an object entered just before it,
+    // or at it, would otherwise be clipped there to a span no longer than the slack, which
+    // the span writer drops as a sliver, and a later entry, or the first object met of several
+    // entered at one t, would win (a face of the exact rounded box, entered 2e-8 before the
+    // edge cylinder under it, lost so, and the hit point inside the face's prism shadowed
+    // itself).
     std::optional<Hit> closest() {
         const CompiledNode& root = scene.nodes_[scene.root_];
         double t1 = ray.tmax;
@@ -599,10 +600,12 @@ struct SpanWalk {
                     const Hit first = stack()[base].in;
                     top = base;
                     if (!first.isSurface()) return !(startsInside = true);
-                    if (!best || first.t < best->t) {
+                    // At one t, the lower leaf, as the union's merge names it (SpanList.h).
+                    if (!best || first.t < best->t ||
+                        (first.t == best->t && first.leaf < best->leaf)) {
                         best = first;
-                        t1 = std::min(ray.tmax,
-                                      first.t + coincidenceSlack(originScale, first.t, first.t));
+                        t1 = std::min(ray.tmax, first.t + 2.0 * coincidenceSlack(originScale,
+                                                                                 first.t, first.t));
                     }
                 }
                 return true;

@@ -133,6 +133,37 @@ TEST(Query, ClosestAndOccludedAgreeWithSpans) {
     EXPECT_GT(cachedAnswers, 1000);  // the cached object did answer, not only the BVH walk
 }
 
+// Coincident faces: copies of one box (and a taller one sharing its bottom) in one union. A
+// line through their common faces enters and leaves at one t in every copy, and whatever the
+// order the union's BVH visits them in along that line, closest() and spans() name the lowest
+// leaf there (SpanList.h's tie-break), so neighbouring pixels cannot flip between the copies'
+// colours.
+TEST(Query, CoincidentFacesNameTheLowestLeafInEveryQuery) {
+    std::vector<NodePtr> copies;
+    for (int k = 0; k < 6; ++k) copies.push_back(leaf(Box{Vec3(-1.0), Vec3(1.0)}));
+    copies.push_back(leaf(Box{Vec3(-1.0), Vec3(1.0, 1.0, 3.0)}));
+    const Scene scene = Scene::compile(uniteAll(copies));
+    QueryContext ctx;
+    RandomRays rays(91);
+    int hits = 0;
+    for (int r = 0; r < 2000; ++r) {
+        const Ray ray = rays.next();
+        const auto spans = scene.spans(ray, ctx);
+        if (spans.empty() || !spans[0].in.isSurface()) continue;
+        const Hit entry = spans[0].in;  // the view lives in ctx until the next query
+        const std::optional<Hit> hit = scene.closest(ray, ctx);
+        ASSERT_TRUE(hit);
+        // The lowest leaf whose box has the entry point on its surface: 0 unless the line
+        // enters through the tall box's own top part (z > 1).
+        const Vec3 p = ray.o + hit->t * ray.d;
+        const uint32_t want = p.z > 1.0 + 1e-9 ? 6u : 0u;
+        EXPECT_EQ(hit->leaf, want) << "ray " << r;
+        EXPECT_EQ(entry.leaf, want) << "ray " << r;
+        ++hits;
+    }
+    EXPECT_GT(hits, 200);
+}
+
 // Normals returned for hits are unit, finite and face the outside of the solid.
 TEST(Query, SurfaceNormalsPointOutOfTheSolid) {
     std::mt19937_64 rng(5);
