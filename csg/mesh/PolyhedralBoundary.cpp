@@ -343,11 +343,37 @@ struct Piece {
 struct CutScratch {
     std::vector<uint32_t> stamp;
     uint32_t current = 0;
-    std::vector<uint32_t> near, convexLeaves;
+    std::vector<uint32_t> near, convexLeaves, coincident;
     std::vector<Cut> cuts;
     std::vector<HalfPlane> section;
     std::vector<Polygon> pieces, split;
 };
+
+// Whether g lies in f's plane (either way round).
+bool inPlaneOf(const Face& f, const Face& g, double eps) {
+    const double cosine = glm::dot(f.n, g.n);
+    if (std::abs(cosine) <= 1.0 - tol::kPolyBoundaryParallelCos) return false;
+    for (const Vec3& v : g.corners)
+        if (std::abs(glm::dot(f.n, v) - f.c) > eps) return false;
+    return true;
+}
+
+// Whether p (in g's plane) lies inside g's convex polygon, by more than eps: on one side of
+// every edge (whichever way the corners run around g.n).
+bool insideFace(const Face& g, const Vec3& p, double eps) {
+    int left = 0, right = 0;
+    for (size_t i = 0, k = g.corners.size(); i < k; ++i) {
+        const Vec3& a = g.corners[i];
+        const Vec3& b = g.corners[(i + 1) % k];
+        const Vec3 edge = b - a;
+        const double side = glm::dot(glm::cross(edge, p - a), g.n);
+        const double margin = eps * glm::length(edge);
+        left += side > margin;
+        right += side < -margin;
+    }
+    const int k = int(g.corners.size());
+    return left == k || right == k;
+}
 
 // Step 1 and 2 for one face.
 // convexPlanes: per leaf, its face planes when it is convex (a box or a polytope), else none.
@@ -377,6 +403,11 @@ void boundaryPieces(const Scene& scene, const std::vector<Face>& faces, const Bo
         else
             work.convexLeaves.push_back(faces[g].leaf);
     }
+    // Faces of other leaves in f's plane: where one covers a piece, the piece and its piece
+    // are one surface, which the part keeps once, as the lower leaf's (below).
+    work.coincident.clear();
+    for (const uint32_t g : work.near)
+        if (inPlaneOf(f, faces[g], eps)) work.coincident.push_back(g);
     std::sort(work.convexLeaves.begin(), work.convexLeaves.end());
     work.convexLeaves.erase(std::unique(work.convexLeaves.begin(), work.convexLeaves.end()),
                             work.convexLeaves.end());
@@ -395,10 +426,29 @@ void boundaryPieces(const Scene& scene, const std::vector<Face>& faces, const Bo
         const std::span<const Span> spans = scene.spans(Ray{middle, f.n, -reach, reach}, ctx);
         // The crossing of the face's own plane is at t = 0; a span end there on this very face
         // is the boundary. Entering along n means the part lies ahead: the outside is behind.
+        // Coincident faces of several leaves cover this piece alike: the merge names one of
+        // them at the span end, the lower leaf when their t are equal, else the one it meets
+        // first by a rounding that changes from line to line. So a span end on any of them
+        // counts, and the piece is kept by the lowest leaf among those facing its way only.
+        bool lowest = true;
+        const auto onFace = [&](const Hit& h) {
+            if (std::abs(h.t) > eps) return false;
+            if (h.leaf == f.leaf && h.face == f.id) return true;
+            for (const uint32_t g : work.coincident)
+                if (faces[g].leaf == h.leaf && faces[g].id == h.face &&
+                    glm::dot(faces[g].n, f.n) > 0.0 && insideFace(faces[g], middle, eps))
+                    return true;
+            return false;
+        };
+        for (const uint32_t g : work.coincident)
+            if (faces[g].leaf < f.leaf && glm::dot(faces[g].n, f.n) > 0.0 &&
+                insideFace(faces[g], middle, eps))
+                lowest = false;
+        if (!lowest) continue;
         int facing = 0;
         for (const Span& s : spans) {
-            if (s.in.leaf == f.leaf && s.in.face == f.id && std::abs(s.in.t) <= eps) facing = -1;
-            if (s.out.leaf == f.leaf && s.out.face == f.id && std::abs(s.out.t) <= eps) facing = 1;
+            if (onFace(s.in)) facing = -1;
+            if (onFace(s.out)) facing = 1;
         }
         if (facing == 0) continue;
         if (facing < 0) std::reverse(piece.begin(), piece.end());

@@ -16,7 +16,9 @@
 //   2. A piece is kept when the line through its middle along the face's normal has a span end
 //      on that very face (leaf and face id): the CSG merge then says that the piece bounds the
 //      part and which way it faces (a span's entry faces back along the line, its exit forward),
-//      and where faces of two leaves coincide it keeps exactly one of them.
+//      and where faces of two leaves coincide it keeps exactly one of them: a span end on any
+//      coincident face facing the same way counts (the merge names one of them, by a rounding
+//      that may change from line to line), and the lowest of those leaves keeps the piece.
 //   3. Vertices closer than tol::kPolyBoundaryWeldRel of the part's size are welded, and a vertex
 //      that lies on another piece's edge is inserted into that edge (no T-junctions).
 //   4. The pieces of each face are merged back into one polygon with holes, vertices on straight
