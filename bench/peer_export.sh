@@ -30,7 +30,8 @@
 # csg_to_manifold (CSGRAY=path, default build/viewer/csgray). Not a timed test: run it on an
 # idle machine and look at `uptime` first. Manifold's time counts from its first leaf to its
 # final mesh (hulls, booleans and getMesh: it evaluates lazily; not node's start, not reading
-# the .scad); csgray's is the whole command (reading the part, the mesh and the file).
+# the .scad); csgray's is the whole command (reading the part, the mesh and the file), and its
+# own summary's meshing seconds (0.01 s steps) are printed beside it.
 set -euo pipefail
 
 # shellcheck source=bench/peer_lib.sh
@@ -58,14 +59,14 @@ ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (b > 0) printf "%.2f", a / b; else
 
 row part leaves exporter wall cpu triangles mesh→surface surface→mesh volume closed
 if [ -n "$md" ]; then
-    echo "| part | leaves | Manifold wall | csgray wall | csgray / Manifold | Manifold triangles | csgray triangles | csgray / Manifold | Manifold mesh→surface, surface→mesh | csgray mesh→surface, surface→mesh | csgray wins |"
-    echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|"
+    echo "| part | leaves | Manifold wall | csgray wall (meshing) | csgray / Manifold | Manifold triangles | csgray triangles | csgray / Manifold | Manifold mesh→surface, surface→mesh | csgray mesh→surface, surface→mesh | csgray mesher | csgray wins |"
+    echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---|"
 fi >"${md:-/dev/null}"
 
 # n/a PART WHY: the part has no row.
 na() {
     echo "$1: n/a: $2"
-    [ -z "$md" ] || echo "| $1 | n/a: $2 | | | | | | | | | |" >>"$md"
+    [ -z "$md" ] || echo "| $1 | n/a: $2 | | | | | | | | | | |" >>"$md"
     skipped=$((skipped + 1))
 }
 
@@ -111,11 +112,16 @@ for part in "${parts[@]}"; do
     fi
     : >"$work/mseconds"
     : >"$work/times"
+    : >"$work/cmesh"
     ok=1
     for _ in $(seq "$runs"); do
         manifold_run || { ok=0; why="Manifold: $why"; break; }
-        timed "$csgray" export "$part" -o "$work/csgray.glb" --quiet "${options[@]}" ||
+        timed "$csgray" export "$part" -o "$work/csgray.glb" "${options[@]}" ||
             { ok=0; why="csgray: $why"; break; }
+        # Its summary line: the meshing's own seconds (reading and writing left out, like
+        # Manifold's timer) and which mesher made it.
+        summary="$(grep '^csgray: export: ' "$work/log" | tail -n 1)"
+        sed -E 's/.*, ([0-9.]+) s$/\1/' <<<"$summary" >>"$work/cmesh"
     done
     if [ "$ok" = 0 ]; then
         failed=$((failed + 1))
@@ -125,6 +131,13 @@ for part in "${parts[@]}"; do
     mwall="$(median <"$work/mseconds")"
     cwall="$(awk '{ print $1 }' "$work/times" | median)"
     ccpu="$(awk '{ print $2 }' "$work/times" | median)"
+    cmesh="$(median <"$work/cmesh")"
+    case "$summary" in
+    *"faceted within"*) how="$(sed -E 's/.*(faceted within [0-9.e+-]+).*/exact boundary of its curves \1/' <<<"$summary")" ;;
+    *"exact polyhedral boundary"*) how="exact boundary" ;;
+    *"grid"*) how="grid" ;;
+    *) how="?" ;;
+    esac
     if ! read -r ct cto cfrom cvol _ cclosed <<<"$(measure "$part" "$work/csgray.glb" ||
         echo "$why" >"$work/why")" || [ -z "$cclosed" ]; then
         failed=$((failed + 1))
@@ -144,10 +157,10 @@ for part in "${parts[@]}"; do
         if (cc != "yes") lost = lost " closed"
         print lost == "" ? "all" : "loses on" lost }')"
     [ "$verdict" != all ] || wins=$((wins + 1))
-    [ -z "$md" ] || echo "| $name | $kind | $mwall s | $cwall s | $(ratio "$cwall" "$mwall") | $mt | $ct | $(ratio "$ct" "$mt") | $mto, $mfrom | $cto, $cfrom$([ "$kind" = curved ] && echo " (T = $target)") | $verdict$([ "$cclosed" = yes ] || echo ' (csgray mesh not closed)')$([ "$mclosed" = yes ] || echo ' (Manifold mesh not closed)') |" >>"$md"
+    [ -z "$md" ] || echo "| $name | $kind | $mwall s | $cwall s ($cmesh s) | $(ratio "$cwall" "$mwall") | $mt | $ct | $(ratio "$ct" "$mt") | $mto, $mfrom | $cto, $cfrom | $how$([ "$kind" = curved ] && echo ", T = $target") | $verdict$([ "$cclosed" = yes ] || echo ' (csgray mesh not closed)')$([ "$mclosed" = yes ] || echo ' (Manifold mesh not closed)') |" >>"$md"
     row "$name" "$kind" manifold "$mwall" "$mwall" "$mt" "$mto" "$mfrom" "$mvol" "$mclosed"
     row "$name" "$kind" csgray "$cwall" "$ccpu" "$ct" "$cto" "$cfrom" "$cvol" "$cclosed"
-    echo "$name: csgray / Manifold: wall $(ratio "$cwall" "$mwall"), triangles $(ratio "$ct" "$mt"); $note; csgray wins: $verdict"
+    echo "$name: csgray / Manifold: wall $(ratio "$cwall" "$mwall"), triangles $(ratio "$ct" "$mt"); csgray's meshing $cmesh s by its own timer, $how; $note; csgray wins: $verdict"
     if [ -n "${OPENSCAD:-}" ]; then
         : >"$work/times"
         if timed openscad -o "$work/openscad.stl" "$part" &&

@@ -89,18 +89,50 @@ manifold_run() {
 }
 
 # measure PART MESH [compare options]: "triangles mesh->surface surface->mesh volume tolerance
-# closed" of the mesh against the part (csgray compare; closed is yes or no: a closed, manifold
+# closed" of the mesh against the part (tolerance: compare's default, the diagonal / 500) (csgray compare; closed is yes or no: a closed, manifold
 # mesh oriented outward). Fails with $why when compare gives no figures.
 measure() {
     local part="$1" mesh="$2"
     shift 2
     timeout -k 10 "$limit" "$csgray" compare "$part" "$mesh" --json "$@" >"$work/compare.json" \
         2>"$work/compare.err" || true # exit 1 only says "not within compare's tolerance"
-    python3 - "$work/compare.json" 2>/dev/null <<'EOF' || { why="compare of $(basename "$mesh") failed: $(reason_of "$work/compare.err")"; return 1; }
+    # compare's lines and nearest-triangle search reach max(10 tolerance, diagonal / 50); a
+    # sample farther from the other side is unresolved and its maximum infinite (JSON null).
+    # A mesh that coarse (OpenSCAD's default faceting of a small part) is measured again with
+    # 100 times the tolerance, which reaches twice the diagonal.
+    local tol wide
+    read -r tol wide <<<"$(python3 -c 'import json, sys
+j = json.load(open(sys.argv[1]))
+print("%.6g" % j["tolerance"], "%.6g" % (100 * j["tolerance"])
+      if j["meshToSurface"]["max"] is None or j["surfaceToMesh"]["max"] is None else "")' \
+        "$work/compare.json" 2>/dev/null || true)"
+    if [ -n "$wide" ]; then
+        timeout -k 10 "$limit" "$csgray" compare "$part" "$mesh" --json "$@" --tolerance "$wide" \
+            >"$work/compare.json" 2>"$work/compare.err" || true
+    fi
+    python3 - "$work/compare.json" "$work/measure.why" "$tol" 2>/dev/null <<'EOF' || {
 import json, sys
 j = json.load(open(sys.argv[1]))
-print(j["triangles"], "%.3g" % j["meshToSurface"]["max"], "%.3g" % j["surfaceToMesh"]["max"],
-      "%.7g" % j["volume"]["mesh"], "%.6g" % j["tolerance"],
+to, fro = j["meshToSurface"], j["surfaceToMesh"]
+if to["max"] is None or fro["max"] is None:
+    # compare gives no maximum when some samples found no surface (or no mesh) along their
+    # lines: a mesh that far from the part has no figure to compare.
+    open(sys.argv[2], "w").write(
+        "compare bounds no distance: %d of %d mesh samples and %d of %d surface samples "
+        "unresolved (volume %.4g against the part's %.4g)" % (
+            to.get("unresolved", 0), to.get("samples", 0), fro.get("unresolved", 0),
+            fro.get("samples", 0), j["volume"]["mesh"], j["volume"]["part"]))
+    sys.exit(1)
+print(j["triangles"], "%.3g" % to["max"], "%.3g" % fro["max"], "%.7g" % j["volume"]["mesh"],
+      sys.argv[3],
       "yes" if j["topology"]["closedManifold"] and j["topology"]["outward"] else "no")
 EOF
+        if [ -s "$work/measure.why" ]; then
+            why="$(basename "$mesh"): $(cat "$work/measure.why")"
+        else
+            why="compare of $(basename "$mesh") failed: $(reason_of "$work/compare.err")"
+        fi
+        rm -f "$work/measure.why"
+        return 1
+    }
 }
