@@ -20,6 +20,7 @@
 #include <string>
 
 #include "csg/Tree.h"
+#include "io/Diagnostic.h"
 #include "io/Evaluate.h"
 #include "io/Faceting.h"
 #include "primitives/Box.h"
@@ -221,6 +222,9 @@ int main(int argc, char** argv) {
     }
     const io::EvaluateResult result = io::evaluateFile(argv[1], options);
     if (!result.ok()) {
+        // The evaluator's errors first, so that the last line says why.
+        for (const io::Diagnostic& d : result.diagnostics)
+            std::fprintf(stderr, "%s\n", io::formatDiagnostic(d).c_str());
         std::fprintf(stderr, "csg_to_manifold: %s does not evaluate\n", argv[1]);
         return 1;
     }

@@ -32,8 +32,8 @@ trap 'rm -rf "$work"' EXIT
 
 median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 
-# The last line of a command's output as a reason, paths cut to their file names.
-reason_of() { tail -n 1 "$1" | sed -E -e 's|/[^ :]*/([^/ :]+)|\1|g' -e 's/^csg_to_manifold: //' -e 's/^error: //' -e 's/^[^ ]+\.scad: //' | cut -c 1-160; }
+# A command's first error line (else its last line) as a reason, paths cut to their file names.
+reason_of() { { grep -m 1 'error: ' "$1" || tail -n 1 "$1"; } | sed -E -e 's|/[^ :]*/([^/ :]+)|\1|g' -e 's/^csg_to_manifold: //' -e 's/^error: //' -e 's/^[^ ]+\.scad: //' | cut -c 1-160; }
 
 # Runs a command under the time limit with its output in $work/log; non-zero with $why set when
 # it fails or times out.
