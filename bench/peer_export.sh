@@ -175,4 +175,5 @@ for part in "${parts[@]}"; do
 done
 summary="csgray wins on all of time, triangles and both distances on $wins of $measured parts measured; $skipped n/a (of which $failed an exporter failed or timed out)"
 echo "$summary"
+echo "end $(date -u '+%F %T UTC')  $(uptime)" # the load over the run: the other end of it
 [ -z "$md" ] || printf "\n%s\n" "$summary" >>"$md"
