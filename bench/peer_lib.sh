@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Helpers shared by bench/peer_export.sh (the per-part table) and bench/export_sweep.sh (the
 # triangles-against-distance sweep): finding the binaries, installing Manifold, running a command
 # under a time limit, turning a part into Manifold's tree, and measuring a mesh against the part.
