@@ -1,23 +1,34 @@
 // Writes a part's CSG tree as JSON for bench/manifold/export.mjs, which rebuilds it with
 // Manifold (OpenSCAD's current CSG engine): the same leaves, vertex for vertex, so the two
 // exporters mesh the same polyhedron.
-//   csg_to_manifold PART.scad [--curves auto|exact|openscad] > tree.json
+//   csg_to_manifold PART.scad [--curves auto|exact|openscad] [-D name=value ...] > tree.json
 // Nodes: {"op": "union" | "intersection" | "difference", "a": node, "b": node};
-// {"hull": [x, y, z, ...]} for a convex leaf (a box, OpenSCAD's faceted cylinder or sphere: the
-// convex hull of its world vertices is the leaf); {"mesh": {"v": [x, y, z, ...], "t": [i, j, k,
+// {"extrude": {"contours": [[x, y, ...], ...], "rule": "EvenOdd" | "NonZero", "height": h,
+// "scale": [sx, sy]}, "m": [16 numbers, column-major]} for an untwisted linear_extrude of a
+// straight-edged outline; {"hull": [x, y, z, ...]} for a convex leaf (a box, OpenSCAD's faceted
+// cylinder or sphere: the convex hull of its world vertices is the leaf); {"mesh": {"v": [x, y, z,
+// ...], "t": [i, j, k,
 // ...]}} for a polyhedron or an imported mesh; {"empty": true} for the empty solid. A leaf with
 // curved faces (an exact sphere, torus, ...) is refused: Manifold has only polyhedra, so such a
-// part is compared under --curves openscad.
+// part is compared under --curves openscad; the refusal names the leaf's kind, so that
+// bench/peer_export.sh can say why a part has no Manifold row. -D overrides a top-level
+// variable as csgray's -D does (the faceting sweeps of bench/peer_export.sh set $fn, $fa, $fs).
 #include <charconv>
+#include <cmath>
 #include <cstdio>
+#include <map>
 #include <string>
 
 #include "csg/Tree.h"
+#include "io/Diagnostic.h"
 #include "io/Evaluate.h"
 #include "io/Faceting.h"
 #include "primitives/Box.h"
 #include "primitives/ConvexPolytope.h"
+#include "primitives/Extrusion.h"
+#include "primitives/HalfSpace.h"
 #include "primitives/Polyhedron.h"
+#include "primitives/Primitives.h"
 
 namespace {
 
@@ -36,6 +47,71 @@ void points(std::string& out, const csg::Mat4& m, const std::vector<csg::Vec3>& 
         }
     }
     out += ']';
+}
+
+// An untwisted linear_extrude of a straight-edged outline as Manifold's extrude: its closed
+// contours (the outline's directed segments chained end to start; they share their end points'
+// very doubles), fill rule, height and top scale, and the matrix (column-major) that puts its
+// bottom at z0. False with a reason for an outline with curved segments or one that does not
+// chain into closed contours.
+bool extrusion(const csg::Extrusion& e, const csg::Mat4& m, std::string& out, std::string& why) {
+    const auto& segments = e.outline->segments;
+    std::map<std::pair<double, double>, std::vector<size_t>> from;
+    for (size_t i = 0; i < segments.size(); ++i) {
+        if (segments[i].kind != csg::Segment2::Kind::Line) {
+            why = "leaf 'extrusion' has curved faces (an outline with arcs or Beziers)";
+            return false;
+        }
+        from[{segments[i].p[0].x, segments[i].p[0].y}].push_back(i);
+    }
+    std::vector<bool> used(segments.size(), false);
+    out += "{\"extrude\":{\"contours\":[";
+    bool firstContour = true;
+    for (size_t start = 0; start < segments.size(); ++start) {
+        if (used[start]) continue;
+        out += firstContour ? "[" : ",[";
+        firstContour = false;
+        size_t i = start;
+        for (bool firstPoint = true;; firstPoint = false) {
+            used[i] = true;
+            if (!firstPoint) out += ',';
+            number(out, segments[i].p[0].x);
+            out += ',';
+            number(out, segments[i].p[0].y);
+            const csg::Vec2 end = segments[i].p[1];
+            if (end == segments[start].p[0]) break;
+            const auto next = from.find({end.x, end.y});
+            size_t j = segments.size();
+            if (next != from.end())
+                for (size_t k : next->second)
+                    if (!used[k]) {
+                        j = k;
+                        break;
+                    }
+            if (j == segments.size()) {
+                why = "leaf 'extrusion': its outline does not chain into closed contours";
+                return false;
+            }
+            i = j;
+        }
+        out += ']';
+    }
+    out += std::string("],\"rule\":\"") +
+           (e.outline->rule == csg::FillRule::EvenOdd ? "EvenOdd" : "NonZero") + "\",\"height\":";
+    number(out, e.z1 - e.z0);
+    out += ",\"scale\":[";
+    number(out, e.scale.x);
+    out += ',';
+    number(out, e.scale.y);
+    out += "]},\"m\":[";
+    const csg::Mat4 placed = m * glm::translate(csg::Mat4(1.0), csg::Vec3(0.0, 0.0, e.z0));
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) {
+            if (c || r) out += ',';
+            number(out, placed[c][r]);
+        }
+    out += "]}";
+    return true;
 }
 
 // False with a reason when a leaf is not a polyhedron.
@@ -91,29 +167,64 @@ bool write(const csg::NodePtr& node, const csg::Mat4& parent, std::string& out, 
         out += "]}}";
         return true;
     }
-    why = "a leaf has curved faces (Manifold takes polyhedra: try --curves openscad)";
+    if (const auto* e = std::get_if<csg::Extrusion>(&p);
+        e && e->outline && e->kind == csg::Extrusion::Kind::Linear && !e->twisted &&
+        std::isfinite(e->z0) && std::isfinite(e->z1))
+        return extrusion(*e, m, out, why);
+    why = std::string("leaf '") + csg::primitiveName(p) + "' ";
+    if (const auto* extrusion = std::get_if<csg::Extrusion>(&p))
+        why += extrusion->kind == csg::Extrusion::Kind::Plane ? "is a 2-D shape (no solid)"
+               : extrusion->kind == csg::Extrusion::Kind::Linear
+                   ? "is a twisted linear_extrude (OpenSCAD's slices are not known here)"
+                   : "has curved faces (a rotate_extrude, exact)";
+    else if (std::holds_alternative<csg::HalfSpace>(p))
+        why += "is an unbounded half-space (Manifold takes bounded solids)";
+    else
+        why += "has curved faces (Manifold takes polyhedra: try --curves openscad)";
     return false;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+    const char* usage =
+        "usage: csg_to_manifold PART.scad [--curves auto|exact|openscad] [-D name=value ...]\n";
     if (argc < 2) {
-        std::fprintf(stderr, "usage: csg_to_manifold PART.scad [--curves auto|exact|openscad]\n");
+        std::fputs(usage, stderr);
         return 2;
     }
     io::EvaluateOptions options;
-    for (int i = 2; i + 1 < argc; i += 2)
-        if (std::string(argv[i]) == "--curves") {
+    for (int i = 2; i < argc; i += 2) {
+        const std::string arg = argv[i];
+        if (i + 1 >= argc) {
+            std::fputs(usage, stderr);
+            return 2;
+        }
+        if (arg == "--curves") {
             const auto mode = io::parseCurveMode(argv[i + 1]);
             if (!mode) {
                 std::fprintf(stderr, "csg_to_manifold: unknown --curves %s\n", argv[i + 1]);
                 return 2;
             }
             options.curves = *mode;
+        } else if (arg == "-D") {
+            const std::string define = argv[i + 1];
+            const size_t eq = define.find('=');
+            if (eq == std::string::npos || eq == 0) {
+                std::fprintf(stderr, "csg_to_manifold: -D wants name=value, not %s\n", argv[i + 1]);
+                return 2;
+            }
+            options.defines.emplace_back(define.substr(0, eq), define.substr(eq + 1));
+        } else {
+            std::fputs(usage, stderr);
+            return 2;
         }
+    }
     const io::EvaluateResult result = io::evaluateFile(argv[1], options);
     if (!result.ok()) {
+        // The evaluator's errors first, so that the last line says why.
+        for (const io::Diagnostic& d : result.diagnostics)
+            std::fprintf(stderr, "%s\n", io::formatDiagnostic(d).c_str());
         std::fprintf(stderr, "csg_to_manifold: %s does not evaluate\n", argv[1]);
         return 1;
     }

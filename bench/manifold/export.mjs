@@ -1,5 +1,6 @@
 // Rebuilds a csgray part's CSG tree (bench/csg_to_manifold) with Manifold and writes its mesh as a
-// binary STL, for bench/peer_export.sh.
+// binary STL, for bench/peer_export.sh and bench/export_sweep.sh. Leaves: hulls, meshes and
+// untwisted linear extrusions (Manifold.extrude of the outline's contours).
 //   node export.mjs TREE.json OUT.stl
 // Prints one JSON line: the seconds from the first leaf to the final mesh (Manifold evaluates
 // its booleans lazily, so that is leaves, booleans and getMesh together), and the triangles and
@@ -14,7 +15,7 @@ if (!treeFile || !outFile) {
 }
 const wasm = await Module();
 wasm.setup();
-const { Manifold, Mesh } = wasm;
+const { Manifold, Mesh, CrossSection } = wasm;
 
 const tree = JSON.parse(readFileSync(treeFile, 'utf8'));
 
@@ -27,6 +28,18 @@ function triples(flat) {
 function build(node) {
   if (node.empty) return new Manifold(new Mesh({ numProp: 3, vertProperties: new Float32Array(), triVerts: new Uint32Array() }));
   if (node.hull) return Manifold.hull(triples(node.hull));
+  if (node.extrude) {
+    // An untwisted linear_extrude: its contours as [x, y] pairs, extruded from z = 0 and placed
+    // by the leaf's matrix (column-major, bottom at its z0).
+    const e = node.extrude;
+    const contours = e.contours.map((flat) => {
+      const out = [];
+      for (let i = 0; i < flat.length; i += 2) out.push([flat[i], flat[i + 1]]);
+      return out;
+    });
+    const section = new CrossSection(contours, e.rule);
+    return Manifold.extrude(section, e.height, 0, 0, e.scale).transform(node.m);
+  }
   if (node.mesh) {
     const mesh = new Mesh({
       numProp: 3,
