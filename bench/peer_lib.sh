@@ -36,18 +36,23 @@ median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 # A command's first error line (else its last line) as a reason, paths cut to their file names.
 reason_of() { { grep -m 1 'error: ' "$1" || tail -n 1 "$1"; } | sed -E -e 's|/[^ :]*/([^/ :]+)|\1|g' -e 's/^csg_to_manifold: //' -e 's/^error: //' -e 's/^[^ ]+\.scad: //' | cut -c 1-160; }
 
+# Fails with $why set when exit code $1 of command $2 says it failed or timed out.
+check_exit() {
+    if [ "$1" = 124 ] || [ "$1" = 137 ]; then
+        why="timed out after $limit s: $(basename "$2")"
+        return 1
+    elif [ "$1" != 0 ]; then
+        why="$(basename "$2") failed (exit $1): $(reason_of "$work/log")"
+        return 1
+    fi
+}
+
 # Runs a command under the time limit with its output in $work/log; non-zero with $why set when
 # it fails or times out.
 limited() {
     local rc=0
     timeout -k 10 "$limit" "$@" >"$work/log" 2>&1 || rc=$?
-    if [ "$rc" = 124 ] || [ "$rc" = 137 ]; then
-        why="timed out after $limit s: $(basename "$1")"
-        return 1
-    elif [ "$rc" != 0 ]; then
-        why="$(basename "$1") failed (exit $rc): $(reason_of "$work/log")"
-        return 1
-    fi
+    check_exit "$rc" "$1"
 }
 
 # Like limited, and appends "wall cpu" (seconds; CPU = user + sys) to $work/times.
@@ -55,13 +60,7 @@ timed() {
     local rc=0
     /usr/bin/time -f "%e %U %S" -o "$work/time" timeout -k 10 "$limit" "$@" >"$work/log" 2>&1 ||
         rc=$?
-    if [ "$rc" = 124 ] || [ "$rc" = 137 ]; then
-        why="timed out after $limit s: $(basename "$1")"
-        return 1
-    elif [ "$rc" != 0 ]; then
-        why="$(basename "$1") failed (exit $rc): $(reason_of "$work/log")"
-        return 1
-    fi
+    check_exit "$rc" "$1" || return 1
     tail -n 1 "$work/time" | awk '{ printf "%.3f %.3f\n", $1, $2 + $3 }' >>"$work/times"
 }
 
