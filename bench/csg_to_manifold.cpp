@@ -6,9 +6,9 @@
 // {"extrude": {"contours": [[x, y, ...], ...], "rule": "EvenOdd" | "NonZero", "height": h,
 // "scale": [sx, sy]}, "m": [16 numbers, column-major]} for an untwisted linear_extrude of a
 // straight-edged outline; {"hull": [x, y, z, ...]} for a convex leaf (a box, OpenSCAD's faceted
-// cylinder or sphere: the convex hull of its world vertices is the leaf); {"mesh": {"v": [x, y, z,
-// ...], "t": [i, j, k,
-// ...]}} for a polyhedron or an imported mesh; {"empty": true} for the empty solid. A leaf with
+// cylinder or sphere: the convex hull of its world vertices is the leaf);
+// {"mesh": {"v": [x, y, z, ...], "t": [i, j, k, ...]}} for a polyhedron or an imported mesh;
+// {"empty": true} for the empty solid. A leaf with
 // curved faces (an exact sphere, torus, ...) is refused: Manifold has only polyhedra, so such a
 // part is compared under --curves openscad; the refusal names the leaf's kind, so that
 // bench/peer_export.sh can say why a part has no Manifold row. -D overrides a top-level
