@@ -185,5 +185,28 @@ TEST(Simplify, CollapsesDoNotCrossAThinWall) {
     EXPECT_LT(coarse.triangles.size(), shell.triangles.size() / 2);
 }
 
+// tessellate() coarsens a grid mesh only up to simplifyMaxTriangles (export's default: a
+// million; --simplify lifts it): above it the grid's mesh is kept as it is and the result says
+// so; with no cap the same mesh is coarsened.
+TEST(Simplify, SkippedAboveTheTriangleCap) {
+    const Scene scene = Scene::compile(leaf(Sphere{1.0}));
+    TessellateOptions options;
+    options.tolerance = 0.01;
+    options.threads = 2;
+    options.simplifyMaxTriangles = 1000;  // below the grid mesh of this sphere
+    const TessellateResult capped = tessellate(scene, options);
+    ASSERT_GT(capped.gridTriangles, 1000u);
+    EXPECT_TRUE(capped.simplifySkipped);
+    EXPECT_FALSE(capped.simplified);
+    EXPECT_EQ(capped.mesh.triangles.size(), capped.gridTriangles);
+
+    options.simplifyMaxTriangles = 0;  // no cap
+    const TessellateResult free = tessellate(scene, options);
+    EXPECT_FALSE(free.simplifySkipped);
+    EXPECT_TRUE(free.simplified);
+    EXPECT_EQ(free.gridTriangles, capped.gridTriangles);
+    EXPECT_LT(free.mesh.triangles.size(), free.gridTriangles);
+}
+
 }  // namespace
 }  // namespace csg
