@@ -199,8 +199,8 @@ std::optional<csg::Polyhedron> revolutionOf(const std::vector<Polygon>& region, 
                                             int64_t steps) {
     const bool whole = degrees >= 360.0;
     const int64_t meridians = whole ? steps : steps + 1;
-    std::vector<Vec2> turn(
-        static_cast<size_t>(meridians));  // cos and sin of each meridian's azimuth
+    // The cosine and sine of each meridian's azimuth.
+    std::vector<Vec2> turn(static_cast<size_t>(meridians));
     for (int64_t k = 0; k < meridians; ++k) {
         const double a = std::numbers::pi / 180.0 * degrees * double(k) / double(steps);
         turn[size_t(k)] = Vec2(std::cos(a), std::sin(a));
