@@ -11,6 +11,12 @@ void BoundArgs::bad(Evaluator& e, size_t i, std::string_view what) const {
                         ", got " + values[i].brief() + "; expected " + std::string(form));
 }
 
+void BoundArgs::unknownChoice(Evaluator& e, size_t i, std::string_view what,
+                              const std::string& choices) const {
+    e.fail(locs[i], call.name + "(): unknown " + std::string(what) + " " + values[i].brief() +
+                        "; expected one of " + choices);
+}
+
 BoundArgs bindArgs(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                    std::initializer_list<std::string_view> names, std::string_view form,
                    std::initializer_list<RefusedParam> refused) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "io/Evaluator.h"
+#include "primitives/base/NamedChoice.h"
 
 namespace io {
 
@@ -44,7 +45,23 @@ struct BoundArgs {
 
     // "name(): 'param' must be <what>, got <value>; expected <form>" at the argument.
     [[noreturn]] void bad(Evaluator& e, size_t i, std::string_view what) const;
+    // "name(): unknown <what> <value>; expected one of <choices>" at the argument.
+    [[noreturn]] void unknownChoice(Evaluator& e, size_t i, std::string_view what,
+                                    const std::string& choices) const;
 };
+
+// The choice argument i names (a solver, a polisher, a patch method: a member of `all` as
+// nameOf spells it), or fallback when it is not given; an error naming every choice otherwise.
+template <class E, size_t N, class NameOf>
+E choiceArg(Evaluator& e, const BoundArgs& b, size_t i, std::string_view what, const E (&all)[N],
+            NameOf nameOf, E fallback) {
+    if (!b.given(i)) return fallback;
+    E choice = fallback;
+    if (!b.values[i].isString() ||
+        !csg::choiceFromName(b.values[i].string().c_str(), all, nameOf, &choice))
+        b.unknownChoice(e, i, what, csg::choiceNames(all, nameOf));
+    return choice;
+}
 
 // A parameter OpenSCAD's module of the same name has that this one refuses, and the error to
 // give at an argument of that name (the whole message). Both are views of text that outlives

@@ -44,17 +44,9 @@ std::vector<csg::Vec3> pointsArg(Evaluator& e, const BoundArgs& b, size_t i, siz
     return points;
 }
 
-csg::PatchMethod methodArg(Evaluator& e, const BoundArgs& b, size_t i) {
-    if (b.values[i].isUndef()) return csg::PatchMethod::Clip;
-    std::string names;
-    for (csg::PatchMethod m : csg::kAllPatchMethods)
-        names += std::string(names.empty() ? "\"" : ", \"") + csg::patchMethodName(m) + "\"";
-    std::optional<csg::PatchMethod> m;
-    if (b.values[i].isString()) m = csg::patchMethodFromName(b.values[i].string());
-    if (!m)
-        e.fail(b.locs[i], b.call.name + "(): unknown method " + b.values[i].brief() +
-                              "; expected one of " + names);
-    return *m;
+csg::PatchMethod patchMethodArg(Evaluator& e, const BoundArgs& b, size_t i) {
+    return choiceArg(e, b, i, "method", csg::kAllPatchMethods, csg::patchMethodName,
+                     csg::PatchMethod::Clip);
 }
 
 bool solidArg(Evaluator& e, const BoundArgs& b, size_t i) {
@@ -80,7 +72,7 @@ Instance bezierPatchModule(Evaluator& e, const InstantiationStmt& s, const Conte
     const std::vector<csg::Vec3> points = pointsArg(e, b, 0, 16);
     csg::BezierPatch patch;
     for (int k = 0; k < 16; ++k) patch.points[k] = points[k];
-    return finish(e, s, state, b, {patch}, methodArg(e, b, 1), solidArg(e, b, 2));
+    return finish(e, s, state, b, {patch}, patchMethodArg(e, b, 1), solidArg(e, b, 2));
 }
 
 Instance bezierPatchesModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
@@ -113,7 +105,7 @@ Instance bezierPatchesModule(Evaluator& e, const InstantiationStmt& s, const Con
         }
         patches.push_back(patch);
     }
-    return finish(e, s, state, b, std::move(patches), methodArg(e, b, 2), solidArg(e, b, 3));
+    return finish(e, s, state, b, std::move(patches), patchMethodArg(e, b, 2), solidArg(e, b, 3));
 }
 
 }  // namespace io

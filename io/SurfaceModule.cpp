@@ -244,30 +244,6 @@ csg::Bounds3 bboxArg(Evaluator& e, const BoundArgs& b) {
     return {corner[0], corner[1]};
 }
 
-csg::Solver solverArg(Evaluator& e, const BoundArgs& b) {
-    if (b.values[2].isUndef()) return csg::Solver::Auto;
-    std::string names;
-    for (csg::Solver s : csg::kAllSolvers)
-        names += std::string(names.empty() ? "\"" : ", \"") + csg::solverName(s) + "\"";
-    csg::Solver solver;
-    if (!b.values[2].isString() || !csg::solverFromName(b.values[2].string().c_str(), &solver))
-        e.fail(b.locs[2],
-               "surface(): unknown solver " + b.values[2].brief() + "; expected one of " + names);
-    return solver;
-}
-
-csg::Polisher polishArg(Evaluator& e, const BoundArgs& b) {
-    if (b.values[4].isUndef()) return csg::Polisher::Auto;
-    std::string names;
-    for (csg::Polisher p : csg::kAllPolishers)
-        names += std::string(names.empty() ? "\"" : ", \"") + csg::polisherName(p) + "\"";
-    csg::Polisher polisher;
-    if (!b.values[4].isString() || !csg::polisherFromName(b.values[4].string().c_str(), &polisher))
-        e.fail(b.locs[4],
-               "surface(): unknown polish " + b.values[4].brief() + "; expected one of " + names);
-    return polisher;
-}
-
 }  // namespace
 
 Instance surfaceModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
@@ -300,7 +276,8 @@ Instance surfaceModule(Evaluator& e, const InstantiationStmt& s, const ContextPt
     const ExactPolynomial poly = PolynomialBuilder(e, text).build(*tree);
 
     const csg::Bounds3 box = bboxArg(e, b);
-    const csg::Solver solver = solverArg(e, b);
+    const csg::Solver solver =
+        choiceArg(e, b, 2, "solver", csg::kAllSolvers, csg::solverName, csg::Solver::Auto);
     double tolerance = 0.0;
     if (!b.values[3].isUndef()) {
         if (!b.values[3].isNumber() || !(b.values[3].number() >= 0 && b.values[3].number() < 1))
@@ -308,7 +285,8 @@ Instance surfaceModule(Evaluator& e, const InstantiationStmt& s, const ContextPt
         tolerance = b.values[3].number();
     }
 
-    const csg::Polisher polisher = polishArg(e, b);
+    const csg::Polisher polisher =
+        choiceArg(e, b, 4, "polish", csg::kAllPolishers, csg::polisherName, csg::Polisher::Auto);
     const csg::AlgebraicSurface shape =
         csg::AlgebraicSurface::make(poly, box, solver, tolerance, polisher);
     if (const char* why = shape.invalidReason())

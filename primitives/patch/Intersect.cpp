@@ -46,10 +46,4 @@ const char* patchMethodName(PatchMethod method) {
     return "?";
 }
 
-std::optional<PatchMethod> patchMethodFromName(std::string_view name) {
-    for (PatchMethod m : kAllPatchMethods)
-        if (name == patchMethodName(m)) return m;
-    return std::nullopt;
-}
-
 }  // namespace csg

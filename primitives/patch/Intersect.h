@@ -1,9 +1,6 @@
 // One entry for every ray/patch method: the dispatcher PatchSet and the benchmarks call.
 #pragma once
 
-#include <optional>
-#include <string_view>
-
 #include "primitives/patch/BezierPatch.h"
 
 namespace csg {
@@ -14,9 +11,8 @@ int intersectPatch(PatchMethod method, const BezierPatch& patch, const Vec3& o, 
                    PatchCrossings& out);
 
 // The language's name of a method ("groebner", "resultant", "clip", "newton",
-// "groebner-exact", "groebner-float") and back.
+// "groebner-exact", "groebner-float"), and every method (for lookups by name).
 const char* patchMethodName(PatchMethod method);
-std::optional<PatchMethod> patchMethodFromName(std::string_view name);
 inline constexpr PatchMethod kAllPatchMethods[] = {
     PatchMethod::Groebner, PatchMethod::Resultant,     PatchMethod::Clip,
     PatchMethod::Newton,   PatchMethod::GroebnerExact, PatchMethod::GroebnerFloat};

@@ -8,8 +8,8 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 
+#include "primitives/base/NamedChoice.h"
 #include "primitives/base/Tolerances.h"
 #include "primitives/solvers/Roots.h"
 
@@ -32,12 +32,7 @@ const char* polisherName(Polisher polisher) {
 }
 
 bool polisherFromName(const char* name, Polisher* polisher) {
-    for (Polisher p : kAllPolishers)
-        if (std::strcmp(name, polisherName(p)) == 0) {
-            *polisher = p;
-            return true;
-        }
-    return false;
+    return choiceFromName(name, kAllPolishers, polisherName, polisher);
 }
 
 double ulpOf(double x) {

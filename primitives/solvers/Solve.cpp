@@ -1,8 +1,8 @@
 #include "primitives/solvers/Solve.h"
 
 #include <algorithm>
-#include <cstring>
 
+#include "primitives/base/NamedChoice.h"
 #include "primitives/solvers/Bernstein.h"
 #include "primitives/solvers/Cubic.h"
 #include "primitives/solvers/Descartes.h"
@@ -37,12 +37,7 @@ const char* solverName(Solver solver) {
 }
 
 bool solverFromName(const char* name, Solver* solver) {
-    for (Solver s : kAllSolvers)
-        if (std::strcmp(name, solverName(s)) == 0) {
-            *solver = s;
-            return true;
-        }
-    return false;
+    return choiceFromName(name, kAllSolvers, solverName, solver);
 }
 
 namespace {
