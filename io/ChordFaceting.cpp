@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "csg/mesh/PolyhedralBoundary.h"
 #include "csg/mesh/Qef.h"
 #include "io/ExtrusionMesh.h"
 #include "io/FacetedPrimitives.h"
@@ -67,17 +68,12 @@ csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double dev
     return nullptr;
 }
 
-bool polyhedral(const csg::Primitive& p) {
-    return std::holds_alternative<csg::Box>(p) || std::holds_alternative<csg::ConvexPolytope>(p) ||
-           std::holds_alternative<csg::Polyhedron>(p);
-}
-
 csg::NodePtr facet(const csg::NodePtr& node, const csg::Mat4& parent, double deviation,
                    bool& curvedLeft) {
     if (!node || curvedLeft) return node;
     const csg::Mat4 world = parent * node->parentFromNode;
     if (node->op == csg::Op::Leaf) {
-        if (polyhedral(node->primitive)) return node;
+        if (csg::polyhedralLeaf(node->primitive)) return node;
         csg::NodePtr leaf = facetLeaf(*node, world, deviation);
         if (!leaf) {
             curvedLeft = true;
@@ -99,6 +95,14 @@ csg::NodePtr facetToDeviation(const csg::NodePtr& root, double deviation) {
     bool curvedLeft = false;
     csg::NodePtr out = facet(root, csg::Mat4(1.0), deviation, curvedLeft);
     return curvedLeft ? nullptr : out;
+}
+
+std::function<std::optional<csg::Scene>(double deviation)> curveFaceter(csg::NodePtr root) {
+    return [root = std::move(root)](double deviation) -> std::optional<csg::Scene> {
+        const csg::NodePtr faceted = facetToDeviation(root, deviation);
+        if (!faceted) return std::nullopt;
+        return csg::Scene::compile(faceted);
+    };
 }
 
 }  // namespace io

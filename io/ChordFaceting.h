@@ -8,6 +8,10 @@
 // that distance.
 #pragma once
 
+#include <functional>
+#include <optional>
+
+#include "csg/Scene.h"
 #include "csg/Tree.h"
 
 namespace io {
@@ -19,5 +23,8 @@ namespace io {
 // OpenSCAD's vertices (io/Faceting.h), with the fragment count from the chord rule at the leaf's
 // largest world scale.
 csg::NodePtr facetToDeviation(const csg::NodePtr& root, double deviation);
+
+// TessellateOptions::facetCurves for the part whose tree is root: facetToDeviation, compiled.
+std::function<std::optional<csg::Scene>(double deviation)> curveFaceter(csg::NodePtr root);
 
 }  // namespace io

@@ -68,11 +68,7 @@ TEST(ChordFaceting, ACurvedPartExportsAsTheBoundaryOfItsFacetedLeaves) {
     const Scene scene = Scene::compile(part);
     TessellateOptions options;
     options.tolerance = 0.05;
-    options.facetCurves = [&](double deviation) -> std::optional<Scene> {
-        const NodePtr faceted = io::facetToDeviation(part, deviation);
-        if (!faceted) return std::nullopt;
-        return Scene::compile(faceted);
-    };
+    options.facetCurves = io::curveFaceter(part);
     const TessellateResult result = tessellate(scene, options);
     ASSERT_TRUE(result.exact);
     EXPECT_GT(result.facetDeviation, 0.0);

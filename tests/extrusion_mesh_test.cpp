@@ -178,11 +178,7 @@ TEST(ExtrusionMesh, ExtrudedPartsExportAsTheirExactBoundary) {
     const Scene scene = Scene::compile(r.model->root);
     TessellateOptions options;
     options.tolerance = 0.01;
-    options.facetCurves = [&](double deviation) -> std::optional<Scene> {
-        const NodePtr faceted = io::facetToDeviation(r.model->root, deviation);
-        if (!faceted) return std::nullopt;
-        return Scene::compile(faceted);
-    };
+    options.facetCurves = io::curveFaceter(r.model->root);
     const TessellateResult t = tessellate(scene, options);
     EXPECT_TRUE(t.exact);
     EXPECT_EQ(t.mesh.triangles.size(), 32u);

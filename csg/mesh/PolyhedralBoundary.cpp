@@ -68,15 +68,6 @@ void addFace(const Mat4& m, const Polygon& local, uint32_t leaf, uint16_t id,
     out.push_back(std::move(f));
 }
 
-// Whether this method takes the leaf: a box, a polytope or a polygon mesh whose span ends name
-// each triangle (Polyhedron::kFaceIds).
-bool polyhedralLeaf(const Primitive& p) {
-    if (std::holds_alternative<Box>(p)) return true;
-    if (const auto* poly = std::get_if<ConvexPolytope>(&p)) return poly->data != nullptr;
-    const auto* mesh = std::get_if<Polyhedron>(&p);
-    return mesh && mesh->data && mesh->data->triangles.size() <= Polyhedron::kFaceIds;
-}
-
 // The faces of one leaf, with the face ids its spans report; false when it is not a polyhedron
 // this method takes.
 bool leafFaces(const Scene& scene, uint32_t leaf, std::vector<Face>& out) {
@@ -343,7 +334,7 @@ struct Piece {
 struct CutScratch {
     std::vector<uint32_t> stamp;
     uint32_t current = 0;
-    std::vector<uint32_t> near, convexLeaves, coincident;
+    std::vector<uint32_t> near, convexLeaves, coincident, covering;
     std::vector<Cut> cuts;
     std::vector<HalfPlane> section;
     std::vector<Polygon> pieces, split;
@@ -420,31 +411,31 @@ void boundaryPieces(const Scene& scene, const std::vector<Face>& faces, const Bo
     for (Polygon& piece : pieces) {
         if (glm::length(newellNormal(piece)) <= eps * eps) continue;
         const Vec3 middle = centroidOf(piece);
+        // Coincident faces of several leaves cover this piece alike: the merge names one of
+        // them at the span end, the lower leaf when their t are equal, else the one it meets
+        // first by a rounding that changes from line to line. So a span end on any of them
+        // counts, and the piece is kept by the lowest leaf among those facing its way only.
+        work.covering.clear();
+        bool lowest = true;
+        for (const uint32_t g : work.coincident)
+            if (glm::dot(faces[g].n, f.n) > 0.0 && insideFace(faces[g], middle, eps)) {
+                work.covering.push_back(g);
+                lowest = lowest && faces[g].leaf > f.leaf;
+            }
+        if (!lowest) continue;
         // Only the span ends near t = 0 matter: a short stretch of the line lets the bounds
         // skip every leaf it does not come near (the merge is exact on any stretch).
         const double reach = tol::kPolyBoundaryClassifyReach * eps;
         const std::span<const Span> spans = scene.spans(Ray{middle, f.n, -reach, reach}, ctx);
         // The crossing of the face's own plane is at t = 0; a span end there on this very face
         // is the boundary. Entering along n means the part lies ahead: the outside is behind.
-        // Coincident faces of several leaves cover this piece alike: the merge names one of
-        // them at the span end, the lower leaf when their t are equal, else the one it meets
-        // first by a rounding that changes from line to line. So a span end on any of them
-        // counts, and the piece is kept by the lowest leaf among those facing its way only.
-        bool lowest = true;
         const auto onFace = [&](const Hit& h) {
             if (std::abs(h.t) > eps) return false;
             if (h.leaf == f.leaf && h.face == f.id) return true;
-            for (const uint32_t g : work.coincident)
-                if (faces[g].leaf == h.leaf && faces[g].id == h.face &&
-                    glm::dot(faces[g].n, f.n) > 0.0 && insideFace(faces[g], middle, eps))
-                    return true;
+            for (const uint32_t g : work.covering)
+                if (faces[g].leaf == h.leaf && faces[g].id == h.face) return true;
             return false;
         };
-        for (const uint32_t g : work.coincident)
-            if (faces[g].leaf < f.leaf && glm::dot(faces[g].n, f.n) > 0.0 &&
-                insideFace(faces[g], middle, eps))
-                lowest = false;
-        if (!lowest) continue;
         int facing = 0;
         for (const Span& s : spans) {
             if (onFace(s.in)) facing = -1;
@@ -597,6 +588,13 @@ void triangulateConvex(const std::vector<Vec3>& positions, std::vector<uint32_t>
 }
 
 }  // namespace
+
+bool polyhedralLeaf(const Primitive& p) {
+    if (std::holds_alternative<Box>(p)) return true;
+    if (const auto* poly = std::get_if<ConvexPolytope>(&p)) return poly->data != nullptr;
+    const auto* mesh = std::get_if<Polyhedron>(&p);
+    return mesh && mesh->data && mesh->data->triangles.size() <= Polyhedron::kFaceIds;
+}
 
 bool allLeavesPolyhedral(const Scene& scene) {
     for (uint32_t leaf = 0; leaf < scene.leafCount(); ++leaf)

@@ -57,6 +57,9 @@ struct PolyhedralBoundaryStats {
     const char* declined = nullptr;
 };
 
+// Whether this method takes the leaf: a box, a polytope or a polygon mesh whose span ends name
+// each triangle (Polyhedron::kFaceIds).
+bool polyhedralLeaf(const Primitive& p);
 // Whether every leaf of the scene is a polyhedron this method takes.
 bool allLeavesPolyhedral(const Scene& scene);
 

@@ -136,11 +136,7 @@ int exportCommand(std::span<const std::string> args) {
     if (const int code = requireSolids(part, report, "export"); code != kExitOk) return code;
 
     // Mesh the part: curved leaves faceted to a share of the tolerance first (io/ChordFaceting.h).
-    options.facetCurves = [&part](double deviation) -> std::optional<csg::Scene> {
-        const csg::NodePtr faceted = io::facetToDeviation(part.model.root, deviation);
-        if (!faceted) return std::nullopt;
-        return csg::Scene::compile(faceted);
-    };
+    options.facetCurves = io::curveFaceter(part.model.root);
     const auto start = std::chrono::steady_clock::now();
     csg::TessellateResult result;
     try {
