@@ -46,6 +46,8 @@ struct Model : viewer::render::SceneLook {
     // The part is 2-D: root is its shape extruded 1 unit thick about z = 0, as OpenSCAD
     // previews it (a 3-D export of it is an error).
     bool twoD = false;
+    // A 2-D part's shape itself (Plane leaves, io/Shapes2D.h), which 2-D export draws.
+    csg::NodePtr shape2D;
 
     std::vector<MarkedPart> highlighted;      // # subtrees, for a highlight overlay
     std::vector<MarkedPart> backgroundParts;  // % subtrees, transparent and not solid

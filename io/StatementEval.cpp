@@ -93,6 +93,7 @@ void Evaluator::run(const ParsedFile& file) {
     // A 2-D part is shown as OpenSCAD previews it: the shape 1 unit thick about z = 0.
     if (dimensionOf(model_.root) == 2) {
         model_.twoD = true;
+        model_.shape2D = model_.root;
         model_.root = liftLeaves(model_.root, [](const csg::Extrusion& leaf) {
             return leaf.linear(-0.5, 0.5, csg::Vec2(1.0));
         });

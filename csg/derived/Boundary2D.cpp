@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numeric>
 
 #include "csg/derived/Flatten2D.h"
@@ -458,6 +459,101 @@ Boundary2D boundaryOf(const Region2D& region) {
         if (!duplicate) result.pieces.push_back(kept[i]);
     }
     return result;
+}
+
+size_t cornerPartner(const std::vector<BoundaryPiece>& pieces, Vec2 in,
+                     const std::vector<size_t>& outs) {
+    size_t best = 0;
+    double bestAngle = kInfinity;
+    for (size_t k = 0; k < outs.size(); ++k) {
+        const Vec2 out = pieces[outs[k]].direction(0.0);
+        double alpha = std::atan2(cross(out, -in), glm::dot(out, -in));
+        if (alpha <= 0.0) alpha += kTurn;
+        if (alpha < bestAngle) bestAngle = alpha, best = k;
+    }
+    return best;
+}
+
+namespace {
+
+// q appended to p when both are pieces of one line or one circle, turning the same way (p
+// ends where q starts).
+bool merge(BoundaryPiece& p, const BoundaryPiece& q, double eps) {
+    if (p.kind != q.kind) return false;
+    if (p.kind == BoundaryPiece::Kind::Line) {
+        const Vec2 d = q.b - p.a;
+        const double length = glm::length(d);
+        if (!(length > 0.0) || glm::dot(p.b - p.a, q.b - q.a) <= 0.0) return false;
+        if (std::abs(cross(d, p.b - p.a)) > eps * length) return false;
+        p.b = q.b;
+        return true;
+    }
+    if (glm::length(p.center - q.center) > eps || std::abs(p.radius - q.radius) > eps ||
+        (p.sweep > 0.0) != (q.sweep > 0.0) || std::abs(p.sweep + q.sweep) > kTurn + 1e-9)
+        return false;
+    p.sweep += q.sweep;
+    p.b = q.b;
+    if (std::abs(p.sweep) > kTurn - 1e-9) {  // the circle closed: a whole turn, no vertex
+        p.sweep = std::copysign(kTurn, p.sweep);
+        p.b = p.a;
+    }
+    return true;
+}
+
+// The contour with its mergeable neighbours merged (the last and the first too).
+Contour2D merged(const Contour2D& pieces, double eps) {
+    Contour2D out;
+    for (const BoundaryPiece& p : pieces)
+        if (out.empty() || !merge(out.back(), p, eps)) out.push_back(p);
+    while (out.size() > 1) {
+        BoundaryPiece last = out.back();
+        if (!merge(last, out.front(), eps)) break;
+        out.front() = last;
+        out.pop_back();
+    }
+    return out;
+}
+
+}  // namespace
+
+std::optional<std::vector<Contour2D>> contoursOf(const Boundary2D& boundary) {
+    const std::vector<BoundaryPiece>& pieces = boundary.pieces;
+    double size = 1.0;
+    for (const BoundaryPiece& p : pieces)
+        for (const Vec2 v : {p.a, p.b, p.center})
+            size = std::max({size, std::abs(v.x), std::abs(v.y)});
+    const double eps = tol::kBoundaryPointRel * size;
+
+    std::vector<Contour2D> contours;
+    std::map<std::pair<double, double>, std::vector<size_t>> starting;  // unused pieces by start
+    for (size_t i = 0; i < pieces.size(); ++i) {
+        if (pieces[i].a == pieces[i].b)
+            contours.push_back({pieces[i]});  // a whole circle
+        else
+            starting[{pieces[i].a.x, pieces[i].a.y}].push_back(i);
+    }
+    while (!starting.empty()) {
+        auto first = starting.begin();
+        const size_t start = first->second.front();
+        first->second.erase(first->second.begin());
+        if (first->second.empty()) starting.erase(first);
+        Contour2D contour{pieces[start]};
+        for (;;) {
+            const BoundaryPiece& last = contour.back();
+            const auto at = starting.find({last.b.x, last.b.y});
+            std::vector<size_t> outs = at == starting.end() ? std::vector<size_t>{} : at->second;
+            const bool closing = last.b == pieces[start].a;
+            if (closing) outs.push_back(start);
+            if (outs.empty()) return std::nullopt;
+            const size_t next = outs[cornerPartner(pieces, last.direction(1.0), outs)];
+            if (next == start) break;
+            contour.push_back(pieces[next]);
+            std::erase(at->second, next);
+            if (at->second.empty()) starting.erase(at);
+        }
+        contours.push_back(merged(contour, eps));
+    }
+    return contours;
 }
 
 }  // namespace csg

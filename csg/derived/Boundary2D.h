@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "csg/Tree.h"
@@ -98,5 +99,23 @@ private:
 // The boundary of the shape (see the top of this file). Never throws; a shape with no area
 // has no boundary.
 Boundary2D boundaryOf(const Region2D& region);
+
+// Where pieces meet at a vertex, the outgoing piece (an index into outs) that bounds the same
+// corner of the shape as an incoming piece arriving in direction `in`: the first met turning
+// clockwise from -in. Two shapes touching at a vertex keep their corners apart this way.
+size_t cornerPartner(const std::vector<BoundaryPiece>& pieces, Vec2 in,
+                     const std::vector<size_t>& outs);
+
+// A closed curve of the boundary: each piece starts where the one before it ends, and the
+// last ends where the first starts (a whole circle is a contour of one piece).
+using Contour2D = std::vector<BoundaryPiece>;
+
+// The boundary chained into closed contours, the shape on their left (outer contours turn
+// counter-clockwise, holes clockwise), each vertex joining the pieces cornerPartner() pairs.
+// Neighbouring pieces of one line (the vertex between them within tol::kBoundaryPointRel of
+// the shape's size of it) or of one circle are merged again: the splitting cut them, the
+// drawing does not need the cut. nullopt when a piece's end has no continuation, which the
+// splitting rules out (its ends are the very doubles of its neighbours').
+std::optional<std::vector<Contour2D>> contoursOf(const Boundary2D& boundary);
 
 }  // namespace csg

@@ -175,20 +175,12 @@ std::vector<Outline> offsetBand(const Boundary2D& boundary, double distance, Off
             band.disc(v, d);
             continue;
         }
-        // Each incoming piece pairs with the outgoing one that bounds the same corner of the
-        // shape: the first met turning clockwise from its reverse direction.
+        // Each incoming piece pairs with the outgoing one that bounds the same corner.
         std::vector<size_t> outs = joint.out;
         for (size_t in : joint.in) {
             if (outs.empty()) break;
             const Vec2 t1 = boundary.pieces[in].direction(1.0);
-            size_t best = 0;
-            double bestAngle = kInfinity;
-            for (size_t k = 0; k < outs.size(); ++k) {
-                const Vec2 t2 = boundary.pieces[outs[k]].direction(0.0);
-                double alpha = std::atan2(cross(t2, -t1), glm::dot(t2, -t1));
-                if (alpha <= 0.0) alpha += kTurn;
-                if (alpha < bestAngle) bestAngle = alpha, best = k;
-            }
+            const size_t best = cornerPartner(boundary.pieces, t1, outs);
             corner(band, v, t1, boundary.pieces[outs[best]].direction(0.0), d, outward, join);
             outs.erase(outs.begin() + std::ptrdiff_t(best));
         }

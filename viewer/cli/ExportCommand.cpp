@@ -5,8 +5,11 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "csg/derived/Boundary2D.h"
 #include "csg/mesh/Tessellate.h"
 #include "io/ChordFaceting.h"
+#include "io/DrawingFile.h"
+#include "io/Evaluate.h"
 #include "io/mesh/MeshFile.h"
 #include "viewer/cli/Cli.h"
 #include "viewer/cli/LoadPart.h"
@@ -27,6 +30,15 @@ std::string distanceText(double d) {
 
 const char* const kExportHelp =
     "usage: csgray export PART -o OUT.glb|OUT.gltf|OUT.obj|OUT.stl|OUT.3mf [options]\n"
+    "       csgray export PART2D -o OUT.svg|OUT.dxf\n"
+    "\n"
+    "A 2-D part (its top level a 2-D shape, as OpenSCAD exports to SVG and DXF) is drawn\n"
+    "as the boundary of its booleans, laid out as OpenSCAD lays its drawings out: lines,\n"
+    "and circular arcs kept exact (SVG arc commands; DXF ARC and CIRCLE entities) where\n"
+    "OpenSCAD writes chords; elliptic arcs and glyph curves become chords within 1e-7 of\n"
+    "the shape's size. Coordinates are the shortest decimals that read back as the same\n"
+    "doubles. --curves openscad draws OpenSCAD's own polygons. A 3-D part cannot be\n"
+    "drawn (projection() makes a 2-D shape of it), nor a 2-D part meshed.\n"
     "\n"
     "A part whose every leaf is a polyhedron (cube, polyhedron(), an import, or a cylinder\n"
     "or sphere faceted by $fn or --curves openscad) is a polyhedron itself: its mesh\n"
@@ -73,6 +85,58 @@ const char* const kExportHelp =
     "  --quiet            no summary on stderr\n"
     "  --verbose          also one line per grid pass (or on the exact boundary's\n"
     "                     pieces and phases) on stderr\n";
+
+// A 2-D part drawn to SVG or DXF (the help above).
+int exportDrawing(const CommonOptions& common, Report& report, const LoadedPart& part,
+                  const std::string& output, bool quiet) {
+    const io::Model& model = part.model;
+    if (model.root && !model.twoD) {
+        report.add(io::diagnosticAt(model, model.root->tags.source, io::Severity::Error,
+                                    "export: the top level object is not a 2-D object, as "
+                                    "OpenSCAD says: SVG and DXF hold drawings (projection() "
+                                    "makes a 2-D shape of a solid)"));
+        return kExitBadModel;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<csg::Contour2D> contours;
+    bool approximated = false;
+    if (model.shape2D) {
+        const csg::Boundary2D boundary = csg::boundaryOf(csg::Region2D(*model.shape2D));
+        approximated = boundary.approximated;
+        std::optional<std::vector<csg::Contour2D>> chained = csg::contoursOf(boundary);
+        if (!chained) {
+            report.add({common.part, 0, 0, io::Severity::Error,
+                        "cannot draw: the shape's boundary does not close into contours"});
+            return kExitBadModel;
+        }
+        contours = std::move(*chained);
+    }
+    if (contours.empty())
+        report.add({common.part, 0, 0, io::Severity::Warning,
+                    "the shape is empty (it has no area): wrote an empty drawing"});
+    if (auto error = io::writeDrawing(output, contours)) {
+        report.error(output, *error);
+        return kExitIo;
+    }
+    size_t lines = 0, arcs = 0;
+    for (const csg::Contour2D& contour : contours)
+        for (const csg::BoundaryPiece& p : contour)
+            ++(p.kind == csg::BoundaryPiece::Kind::Line ? lines : arcs);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const auto count = [](size_t n, const char* what) {
+        return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+    };
+    if (!quiet)
+        std::fprintf(stderr, "csgray: export: %s: %s: %s and %s%s, %.2f s\n", output.c_str(),
+                     count(contours.size(), "contour").c_str(), count(lines, "line").c_str(),
+                     count(arcs, "circular arc").c_str(),
+                     approximated ? " (elliptic arcs and curves as chords within 1e-7 of the "
+                                    "shape's size)"
+                                  : "",
+                     seconds);
+    return kExitOk;
+}
 
 }  // namespace
 
@@ -122,17 +186,21 @@ int exportCommand(std::span<const std::string> args) {
     }
     requirePart(common, "export");
     if (output.empty())
-        throw UsageError("export: -o OUT.glb|OUT.gltf|OUT.obj|OUT.stl|OUT.3mf is required");
+        throw UsageError(
+            "export: -o OUT.glb|OUT.gltf|OUT.obj|OUT.stl|OUT.3mf (or OUT.svg|OUT.dxf) is "
+            "required");
     const io::MeshFormat format = io::meshFormatOf(output);
-    if (format == io::MeshFormat::Unknown || format == io::MeshFormat::Off)
+    const bool drawing = io::drawingFormatOf(output) != io::DrawingFormat::Unknown;
+    if (!drawing && (format == io::MeshFormat::Unknown || format == io::MeshFormat::Off))
         throw UsageError("export: cannot tell the format of '" + output +
-                         "' (use .glb, .gltf, .obj, .stl or .3mf)");
+                         "' (use .glb, .gltf, .obj, .stl or .3mf; .svg or .dxf for a 2-D part)");
     if (writeOptions.asciiStl && format != io::MeshFormat::Stl)
         throw UsageError("export: --ascii applies to .stl output only");
 
     Report report(common.jsonDiagnostics);
     LoadedPart part;
     if (const int code = loadPart(common, report, part); code != kExitOk) return code;
+    if (drawing) return exportDrawing(common, report, part, output, quiet);
     if (const int code = requireSolids(part, report, "export"); code != kExitOk) return code;
 
     // Mesh the part: curved leaves faceted to a share of the tolerance first (io/ChordFaceting.h).
