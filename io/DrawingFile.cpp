@@ -29,27 +29,6 @@ void putLine(std::string& out, const char* text) {
     out += '\n';
 }
 
-Vec2 onArc(const BoundaryPiece& p, double angle) {
-    return p.center + p.radius * Vec2(std::cos(angle), std::sin(angle));
-}
-
-// The tightest box of the contours: an arc adds its ends and the points where it crosses the
-// axes through its centre.
-csg::Bounds2 boundsOf(const std::vector<Contour2D>& contours) {
-    csg::Bounds2 box;
-    for (const Contour2D& contour : contours)
-        for (const BoundaryPiece& p : contour) {
-            box.add(p.a);
-            box.add(p.b);
-            if (p.kind != BoundaryPiece::Kind::Arc) continue;
-            const double lo = std::min(p.angle0, p.angle0 + p.sweep),
-                         hi = std::max(p.angle0, p.angle0 + p.sweep);
-            for (double k = std::ceil(lo / (0.5 * csg::kPi)); k * 0.5 * csg::kPi <= hi; k += 1.0)
-                box.add(onArc(p, k * 0.5 * csg::kPi));
-        }
-    return box;
-}
-
 // SVG's y points down: a point (x, y) of the part is written (x, -y).
 void putSvgPoint(std::string& out, Vec2 p) {
     put(out, p.x);
@@ -72,7 +51,7 @@ void putSvgPiece(std::string& out, const BoundaryPiece& p) {
         out += ',';
         put(out, p.radius);
         out += flags;
-        putSvgPoint(out, k == steps ? p.b : onArc(p, p.angle0 + p.sweep * k / steps));
+        putSvgPoint(out, k == steps ? p.b : p.at(double(k) / steps));
     }
 }
 
@@ -122,7 +101,13 @@ DrawingFormat drawingFormatOf(const std::filesystem::path& file) {
 
 std::string svgText(const std::vector<Contour2D>& contours) {
     // OpenSCAD's page: the integer box around the shape, in millimetres, y negated.
-    const csg::Bounds2 box = boundsOf(contours);
+    csg::Bounds2 box;
+    for (const Contour2D& contour : contours)
+        for (const BoundaryPiece& p : contour) {
+            const csg::Bounds2 b = p.bounds();
+            box.add(b.lo);
+            box.add(b.hi);
+        }
     double minX = 0.0, minY = 0.0, width = 0.0, height = 0.0;
     if (!box.empty()) {
         minX = std::floor(box.lo.x);

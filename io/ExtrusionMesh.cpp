@@ -252,6 +252,8 @@ std::optional<csg::Polyhedron> extrusionMesh(const csg::Extrusion& e, double dev
         return prismOf(region, e.z0, e.z1, scale);
     }
     if (e.kind == Kind::Rotate) {
+        // A leaf reaching into x < 0 revolves only its part in x >= 0: the grid meshes it.
+        if (e.box.lo.x < 0.0) return std::nullopt;
         // Half the deviation for the profile's chords, half for the meridians' (the sagitta of
         // a step at the largest radius).
         if (!regionOf(*e.outline, e.box, 0.5 * deviation, region)) return std::nullopt;

@@ -4,12 +4,15 @@
 #include "io/Modules2D.h"
 
 #include <cmath>
+#include <cstdio>
 
+#include "csg/derived/Boundary2D.h"
 #include "io/BoundArgs.h"
 #include "io/Degrees.h"
 #include "io/DxfModules.h"
 #include "io/FacetedPrimitives.h"
 #include "io/Shapes2D.h"
+#include "primitives/base/Tolerances.h"
 
 namespace io {
 
@@ -265,19 +268,41 @@ Instance rotateExtrudeModule(Evaluator& e, const InstantiationStmt& s, const Con
     }
     if (!shape || !*shape) return shape;
     if (angle == 0.0) return csg::NodePtr();
-    // The profile's half-plane: x >= 0, or a profile wholly in x <= 0 mirrored into it. (A
-    // leaf reaching into x < 0 is fine: the revolution reads the half-plane x >= 0 only.)
-    bool mirrored = true;
+    // The profile's half-plane: x >= 0, or a profile wholly in x <= 0 mirrored into it. A
+    // leaf may reach across x = 0 (the revolution reads the half-plane x >= 0 only); the
+    // profile itself may not, as OpenSCAD says (OPENSCAD.md section 4).
+    csg::Bounds2 leaves;
     double rmax = 0.0, zlo = csg::kInfinity, zhi = -csg::kInfinity;
     std::function<void(const csg::Node*)> scan = [&](const csg::Node* n) {
         if (!n) return;
         if (n->op != csg::Op::Leaf) return scan(n->left.get()), scan(n->right.get());
         const csg::Bounds2 box = std::get<Extrusion>(n->primitive).box;
-        if (box.hi.x > 0.0) mirrored = false;
+        leaves.add(box.lo);
+        leaves.add(box.hi);
         rmax = std::max({rmax, std::abs(box.lo.x), std::abs(box.hi.x)});
         zlo = std::min(zlo, box.lo.y), zhi = std::max(zhi, box.hi.y);
     };
     scan(shape->get());
+    bool mirrored = leaves.hi.x <= 0.0;
+    if (leaves.lo.x < 0.0 && leaves.hi.x > 0.0) {
+        const csg::Region2D region(**shape);
+        csg::Bounds2 profile;
+        for (const csg::BoundaryPiece& p : csg::boundaryOf(region).pieces) {
+            const csg::Bounds2 b = p.bounds();
+            profile.add(b.lo);
+            profile.add(b.hi);
+        }
+        const double eps = csg::tol::kBoundaryPointRel * region.size();
+        if (profile.lo.x < -eps && profile.hi.x > eps) {
+            char range[64];
+            std::snprintf(range, sizeof range, "%.2f -> %.2f", profile.lo.x, profile.hi.x);
+            e.fail(s.loc,
+                   "all points for rotate_extrude() must have the same X coordinate sign "
+                   "(range is " +
+                       std::string(range) + ")");
+        }
+        mirrored = profile.hi.x <= eps;
+    }
     // A profile with no height (BOSL2's bottle adapter revolves a polygon of zero thickness)
     // or on the axis sweeps no volume: the empty solid, as OpenSCAD makes nothing of it.
     if (!(zhi > zlo) || !(rmax > 0.0)) return csg::NodePtr();

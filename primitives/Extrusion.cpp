@@ -180,9 +180,8 @@ const char* Extrusion::invalidReason() const {
                        : "linear_extrude needs a finite height > 0, scales >= 0 and a finite "
                          "twist";
         case Kind::Rotate:
-            return angle > 0.0 && angle <= 360.0 && (box.empty() || box.lo.x >= 0.0)
-                       ? nullptr
-                       : "rotate_extrude needs an angle in (0, 360] and a profile in x >= 0";
+            return angle > 0.0 && angle <= 360.0 ? nullptr
+                                                 : "rotate_extrude needs an angle in (0, 360]";
     }
     return nullptr;
 }

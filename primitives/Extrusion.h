@@ -57,8 +57,8 @@ struct Extrusion {
     const char* accuracy = nullptr;
     Kind kind = Kind::Plane;
     double z0 = -kInfinity, z1 = kInfinity;  // Linear
-    Vec2 scale{1.0};      // Linear: the top's size relative to the bottom's, per axis
-    double twist = 0.0;   // Linear: degrees over the height, positive clockwise seen from +z
+    Vec2 scale{1.0};       // Linear: the top's size relative to the bottom's, per axis
+    double twist = 0.0;    // Linear: degrees over the height, positive clockwise seen from +z
     double angle = 360.0;  // Rotate: degrees, in (0, 360]
     // Linear with a twist or sx != sy: the outline's carriers (shared, immutable).
     std::shared_ptr<const TwistedOutline> twisted;
@@ -69,7 +69,8 @@ struct Extrusion {
     // fraction s is the outline turned by -twist s degrees, then scaled by 1 + (scale - 1) s
     // per axis (OpenSCAD's linear_extrude).
     Extrusion linear(double bottom, double top, Vec2 topScale, double twistDegrees = 0.0) const;
-    // Revolved about z; the outline lies in x >= 0 (the caller mirrors one in x <= 0).
+    // Revolved about z: the region's part in x >= 0 (the caller mirrors a profile in x <= 0
+    // and refuses one on both sides, as OpenSCAD does).
     Extrusion rotated(double degrees) const;
 
     const char* invalidReason() const;

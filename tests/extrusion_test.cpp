@@ -143,6 +143,32 @@ TEST(Extrusion, RevolvedRectangleAndWedgeByHand) {
                 {1, 0, 0}, {{3, 4}, {6, 7}}, 1e-14);
 }
 
+// A profile on both sides of the axis is OpenSCAD's error (OPENSCAD.md section 4), judged on
+// the profile, not on its leaves: a square across x = 0 with the x < 0 half cut away revolves
+// into the cylinder of radius 5, and with the x > 0 half cut away into the same cylinder
+// (mirrored), faceted or not.
+TEST(Extrusion, RevolvedProfileMustKeepToOneSideOfTheAxis) {
+    const io::EvaluateResult r = evaluate("rotate_extrude() translate([-1, 0]) square([3, 1]);");
+    EXPECT_FALSE(r.ok());
+    EXPECT_NE(diagnosticsOf(r).find("1:1: error: all points for rotate_extrude() must have the "
+                                    "same X coordinate sign (range is -1.00 -> 2.00)"),
+              std::string::npos)
+        << diagnosticsOf(r);
+    for (const char* fn : {"", "$fn = 64; "})
+        for (const char* cut :
+             {"translate([-6, -1]) square([6, 12])", "translate([0, -1]) square([6, 12])"}) {
+            const std::string part = std::string(fn) +
+                                     "rotate_extrude() difference() { translate([-5, 0]) "
+                                     "square(10); " +
+                                     cut + "; }";
+            SCOPED_TRACE(part);
+            // Along z at radius 2: z in [0, 10]; along x at z = 5: |x| <= 5 (the 64-gon's
+            // apothem 5 cos(pi / 64) along x when faceted: its vertices are at +-5 on x).
+            expectSpans(compiled(part), {2, 0, -5}, {0, 0, 1}, {{5, 15}}, 1e-12);
+            expectSpans(compiled(part), {-10, 0, 5}, {1, 0, 0}, {{5, 15}}, 1e-12);
+        }
+}
+
 // A profile of no height sweeps no volume, faceted or not: the empty solid, which a difference
 // subtracts without effect (BOSL2's bottle_adapter_neck_to_neck revolves such a polygon with
 // $fn = 8; the faceted revolution's bounding box was an error).

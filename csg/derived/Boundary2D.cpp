@@ -326,6 +326,18 @@ BoundaryPiece BoundaryPiece::reversed() const {
     return r;
 }
 
+Bounds2 BoundaryPiece::bounds() const {
+    Bounds2 box;
+    box.add(a);
+    box.add(b);
+    if (kind != Kind::Arc) return box;
+    constexpr double kQuarter = 0.5 * kPi;
+    const double lo = std::min(angle0, angle0 + sweep), hi = std::max(angle0, angle0 + sweep);
+    for (double k = std::ceil(lo / kQuarter); k * kQuarter <= hi; k += 1.0)
+        box.add(center + radius * unitAt(k * kQuarter));
+    return box;
+}
+
 Region2D::Region2D(const Node& shape) {
     // The size first: the flattening tolerance is relative to it.
     root_ = add(shape, glm::dmat2(1.0), Vec2(0.0));

@@ -42,6 +42,8 @@ struct BoundaryPiece {
     double length() const;
     // The same piece run backwards (the shape then lies on its right).
     BoundaryPiece reversed() const;
+    // The tightest box: its ends and, for an arc, where it meets the axes through its centre.
+    Bounds2 bounds() const;
 };
 
 // The piece of a line or circular arc segment (isCircular in csg/derived/Flatten2D.h), in the
