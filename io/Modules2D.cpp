@@ -196,6 +196,12 @@ Instance linearExtrudeModule(Evaluator& e, const InstantiationStmt& s, const Con
                               : shapeChildren(e, b, ctx, state);
     if (!shape || !*shape) return shape;
     if (!(height > 0.0)) return csg::NodePtr();
+    // A twisted line finds its pieces per leaf: one leaf for the whole profile, as OpenSCAD
+    // extrudes the union of the children.
+    if (twist != 0.0 || scale.x != scale.y) {
+        shape = unitedShape(*shape);
+        if (!*shape) return shape;
+    }
     const double z0 = center ? -0.5 * height : 0.0;
     return liftLeaves(
         *shape, [&](const Extrusion& leaf) { return leaf.linear(z0, z0 + height, scale, twist); });

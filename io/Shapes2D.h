@@ -17,6 +17,13 @@ int dimensionOf(const csg::NodePtr& node);
 // z rows and columns are dropped).
 csg::NodePtr transformed2D(const csg::Mat4& m, const csg::NodePtr& shape);
 
+// The shape as one leaf whose outline is the boundary of its booleans (csg::contoursOf), as
+// OpenSCAD unions an extrusion's children before extruding them: the twisted extrusion then
+// finds a line's pieces once, not once per leaf. The shape itself when it is one leaf already,
+// or when its boundary would have to replace elliptic arcs or Beziers by chords; nullptr when
+// it has no area.
+csg::NodePtr unitedShape(const csg::NodePtr& shape);
+
 // The shape with every leaf replaced by lift(leaf); the tree's operators and tags stay.
 csg::NodePtr liftLeaves(const csg::NodePtr& shape,
                         const std::function<csg::Extrusion(const csg::Extrusion&)>& lift);

@@ -62,6 +62,42 @@ void setParabola(SegmentCarrier& c, Vec2 p0, Vec2 p1, Vec2 p2) {
     setLineForm(c, 2, p0, p1);
 }
 
+// An arc's box: its ends and the extremes along x and y that its angles reach (coordinate k
+// is centre_k + h_k cos(th - th_k), h_k = |(a_k, b_k)|, highest at th_k = atan2(b_k, a_k)),
+// widened by kArcBoxGuardRel of its size for the few ulps by which the stored ends may stand
+// off the ellipse (the neighbours' very doubles) and the rounding of th_k. Ellipse pieces
+// of one circle (a boundary cut where other shapes meet it) then claim only their own part
+// of the plane, not the whole circle's box each.
+constexpr double kArcBoxGuardRel = 1e-14;
+Bounds2 arcBox(const Segment2& s) {
+    const Vec2 centre = s.p[1], a = s.p[2], b = s.p[3];
+    const Vec2 half(std::hypot(a.x, b.x), std::hypot(a.y, b.y));
+    Bounds2 box;
+    if (s.th1 - s.th0 >= 2.0 * kPi) {
+        box.add(centre - half);
+        box.add(centre + half);
+        return box;
+    }
+    box.add(s.start());
+    box.add(s.finish());
+    for (int k = 0; k < 2; ++k) {
+        const double highest = std::atan2(b[k], a[k]);
+        for (const double extreme : {highest, highest + kPi}) {
+            // The first angle >= th0 at which the extreme recurs.
+            const double th = extreme + 2.0 * kPi * std::ceil((s.th0 - extreme) / (2.0 * kPi));
+            if (th > s.th1) continue;
+            Vec2 p = s.start();
+            p[k] = centre[k] + (extreme == highest ? half[k] : -half[k]);
+            box.add(p);
+        }
+    }
+    const double guard = kArcBoxGuardRel * (std::max(std::abs(centre.x), std::abs(centre.y)) +
+                                            std::max(half.x, half.y));
+    box.lo -= Vec2(guard);
+    box.hi += Vec2(guard);
+    return box;
+}
+
 }  // namespace
 
 SegmentCarrier SegmentCarrier::of(const Segment2& s) {
@@ -75,9 +111,7 @@ SegmentCarrier SegmentCarrier::of(const Segment2& s) {
             break;
         case Segment2::Kind::Arc: {
             const Vec2 centre = s.p[1], a = s.p[2], b = s.p[3];
-            const Vec2 half(std::hypot(a.x, b.x), std::hypot(a.y, b.y));
-            c.box.add(centre - half);
-            c.box.add(centre + half);
+            c.box = arcBox(s);
             const Interval det = exactly(a.x) * b.y - exactly(b.x) * a.y;
             const double la = glm::length(a), lb = glm::length(b);
             if (la == 0.0 && lb == 0.0) break;
@@ -116,8 +150,7 @@ SegmentCarrier SegmentCarrier::of(const Segment2& s) {
             const Vec2 lead = s.p[3] - 3.0 * s.p[2] + 3.0 * s.p[1] - s.p[0];
             if (glm::length(lead) <= tol::kFlatCurveRel * f.extent) {
                 // A raised quadratic: its middle control point from both inner ones.
-                setParabola(c, s.p[0], (3.0 * (s.p[1] + s.p[2]) - s.p[0] - s.p[3]) / 4.0,
-                            s.p[3]);
+                setParabola(c, s.p[0], (3.0 * (s.p[1] + s.p[2]) - s.p[0] - s.p[3]) / 4.0, s.p[3]);
                 break;
             }
             // Sederberg's forms l_ij = C(3,i) C(3,j) det[X Y W; P_i; P_j], in the order the

@@ -34,7 +34,7 @@ namespace csg {
 struct SegmentCarrier {
     enum class Kind : uint8_t { None, Line, Ellipse, Parabola, Cubic };
     Kind kind = Kind::None;
-    // The segment's box: its ends, its control points or its whole ellipse.
+    // The segment's box: its ends, its control points or its arc's (arcBox in the .cpp).
     Bounds2 box;
     // Affine forms a X + b Y + c W, three coefficients each: Line 1 form, Ellipse 2 (U, V) and
     // det^2 in the next slot, Parabola 3 (L0, L1, L2), Cubic 6 (l10, l20, l30, l21, l31, l32).

@@ -17,8 +17,8 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 #include <numbers>
+#include <sstream>
 
 #include "csg/Scene.h"
 #include "csg/Volume.h"
@@ -26,15 +26,15 @@
 #include "primitives/Extrusion.h"
 #include "primitives/SegmentCarrier.h"
 #include "tests/CountingNew.h"
+#include "tests/PartHelpers.h"
 #include "tests/SeededRng.h"
 #include "tests/TempDir.h"
-#include "tests/PartHelpers.h"
 #include "tests/TextFiles.h"
 
 namespace {
 
-using csg::testing::evaluate;
 using csg::testing::diagnosticsOf;
+using csg::testing::evaluate;
 using csg::testing::readFile;
 using csg::testing::shellQuote;
 
@@ -158,8 +158,8 @@ TEST(TwistedSpans, LevelLinesMatchTheTurnedSquare) {
             for (const double slope : {0.0, 1e-9}) {  // exactly level, and all but level
                 const double phi = 9.0 * z * kDeg;
                 double tIn, tOut;
-                const bool hit =
-                    squareChord(rotated(Vec2(-5.0, y0), phi), rotated(Vec2(1.0, 0.0), phi), tIn, tOut);
+                const bool hit = squareChord(rotated(Vec2(-5.0, y0), phi),
+                                             rotated(Vec2(1.0, 0.0), phi), tIn, tOut);
                 const csg::Ray ray{Vec3(-5.0, y0, z), Vec3(1.0, 0.0, slope), -csg::kInfinity,
                                    csg::kInfinity};
                 const auto spans = scene.spans(ray, ctx);
@@ -296,7 +296,8 @@ TEST(TwistedSpans, LevelLineGrazingACorner) {
 
 std::shared_ptr<const Outline> offsetCircle() {
     auto o = std::make_shared<Outline>();
-    o->segments.push_back(Segment2::arc(Vec2(1.5, 0.0), Vec2(1.0, 0.0), Vec2(0.0, 1.0), 0.0, 2 * kPi));
+    o->segments.push_back(
+        Segment2::arc(Vec2(1.5, 0.0), Vec2(1.0, 0.0), Vec2(0.0, 1.0), 0.0, 2 * kPi));
     return o;
 }
 
@@ -316,7 +317,8 @@ std::shared_ptr<const Outline> curvy() {
     const Vec2 a(-2, -1), b(2, -1.5), c(2.5, 1.5), d(-1.5, 2);
     o->segments.push_back(Segment2::quadratic(a, Vec2(0, -3), b));
     o->segments.push_back(Segment2::cubic(b, Vec2(4, -0.5), Vec2(1, 0.5), c));
-    o->segments.push_back(Segment2::arc(Vec2(0.5, 1.75), Vec2(2.0, -0.25), Vec2(0.1, 0.8), 0.0, kPi));
+    o->segments.push_back(
+        Segment2::arc(Vec2(0.5, 1.75), Vec2(2.0, -0.25), Vec2(0.1, 0.8), 0.0, kPi));
     o->segments.push_back(Segment2::line(o->segments.back().finish(), d));
     // d -> a as a raised quadratic (control points (d + 2m) / 3, (a + 2m) / 3).
     const Vec2 m(-3, 0.5);
@@ -365,7 +367,7 @@ TEST(TwistedSpans, AgreeWithInsideOnRandomLines) {
         for (int i = 0; i < 400; ++i) {
             const Vec3 target = rng.inBox(box.lo, box.hi);
             Vec3 dir = rng.unit();
-            if (i % 10 == 0) dir = Vec3(0, 0, 1);                   // vertical
+            if (i % 10 == 0) dir = Vec3(0, 0, 1);                       // vertical
             if (i % 10 == 1) dir = glm::normalize(Vec3(Vec2(dir), 0));  // level
             const Vec3 o = target - size * dir;
             const Vec3 d = dir * std::pow(10.0, rng.uniform(-2.0, 2.0));
@@ -489,8 +491,7 @@ TEST(TwistedSpans, NormalsPointOutOfScaledAndCurvedSolids) {
                 // distance; a normal off by an angle a would add a |q - p|.
                 const Vec3 q = o + 1e-5 * size * offset + near.entries[0].tIn * d;
                 const double gap = glm::distance(q, p);
-                EXPECT_LT(std::abs(glm::dot(q - p, n)), 10.0 * gap * gap + 1e-12 * size)
-                    << c.name;
+                EXPECT_LT(std::abs(glm::dot(q - p, n)), 10.0 * gap * gap + 1e-12 * size) << c.name;
             }
             if (!smooth) continue;
             EXPECT_FALSE(e.inside(p + 1e-6 * size * n)) << c.name << " line " << i;
@@ -641,8 +642,8 @@ TEST(AgainstOpenScad, VerticesAndVolumesWithinTheSlicingError) {
     for (const OpenScadCase& c : cases) {
         csg::testing::TempDir dir(std::string("csgray_twist_") + c.name);
         const auto stl = dir.path / "part.stl";
-        const std::string command = "openscad --export-format binstl -o " + shellQuote(stl) +
-                                    " " + shellQuote(c.file) + " >/dev/null 2>&1";
+        const std::string command = "openscad --export-format binstl -o " + shellQuote(stl) + " " +
+                                    shellQuote(c.file) + " >/dev/null 2>&1";
         ASSERT_EQ(std::system(command.c_str()), 0) << command;
         const StlMesh mesh = readBinaryStl(stl);
         ASSERT_GT(mesh.triangles.size(), 100u) << c.name;
@@ -667,15 +668,14 @@ TEST(AgainstOpenScad, VerticesAndVolumesWithinTheSlicingError) {
             if (distance > worst) worst = distance, worstAt = v;
         }
         EXPECT_LE(worst, c.slicingError)
-            << c.name << " over " << vertices.size() << " vertices; the farthest at "
-            << worstAt.x << ", " << worstAt.y << ", " << worstAt.z;
+            << c.name << " over " << vertices.size() << " vertices; the farthest at " << worstAt.x
+            << ", " << worstAt.y << ", " << worstAt.z;
         const MeshMeasures theirs = measure(mesh);
         const double ours = csg::volume(scene, 256);
         EXPECT_LE(std::abs(ours - theirs.volume), c.slicingError * theirs.area)
             << c.name << ": csgray " << ours << ", OpenSCAD " << theirs.volume;
-        std::printf("%s: OpenSCAD volume %.6g, exact %.6g (%.3g%%); farthest vertex %.3g\n",
-                    c.name, theirs.volume, ours, 100.0 * (ours - theirs.volume) / theirs.volume,
-                    worst);
+        std::printf("%s: OpenSCAD volume %.6g, exact %.6g (%.3g%%); farthest vertex %.3g\n", c.name,
+                    theirs.volume, ours, 100.0 * (ours - theirs.volume) / theirs.volume, worst);
     }
 }
 
@@ -715,16 +715,16 @@ TEST(SegmentCarrier, VanishesOnTheSegmentAndDifferentiates) {
     for (const Case& c : cases) {
         const SegmentCarrier carrier = SegmentCarrier::of(c.segment);
         EXPECT_EQ(carrier.kind, c.kind) << c.name;
-        const int degree = carrier.kind == SegmentCarrier::Kind::Line      ? 1
+        const int degree = carrier.kind == SegmentCarrier::Kind::Line    ? 1
                            : carrier.kind == SegmentCarrier::Kind::Cubic ? 3
-                                                                        : 2;
+                                                                         : 2;
         const auto F = [&](Vec3 z) { return csg::carrierValue(carrier, z.x, z.y, z.z); };
         for (int k = 0; k <= 20; ++k) {
             const double u = k / 20.0;
             const Vec2 q = c.segment.at(u);
             const Vec2 n = glm::normalize(Vec2(-c.segment.tangent(u).y, c.segment.tangent(u).x));
-            const double off = std::max(std::abs(F(Vec3(q + 0.1 * n, 1.0))),
-                                        std::abs(F(Vec3(q - 0.1 * n, 1.0))));
+            const double off =
+                std::max(std::abs(F(Vec3(q + 0.1 * n, 1.0))), std::abs(F(Vec3(q - 0.1 * n, 1.0))));
             EXPECT_LE(std::abs(F(Vec3(q, 1.0))), 1e-12 * off) << c.name << " u " << u;
         }
         for (int k = 0; k < 20; ++k) {
@@ -773,6 +773,80 @@ TEST(TwistLanguage, AcceptsTwistScalePairAndSlices) {
     ASSERT_TRUE(zero.ok()) << diagnosticsOf(zero);
     EXPECT_EQ(std::get<Extrusion>(zero.model->root->primitive).scale, Vec2(0.0, 2.0));
     EXPECT_FALSE(evaluate("linear_extrude(1, twist = \"a\") square(1);").ok());
+}
+
+// A twisted extrusion unions its children first, as OpenSCAD does: one leaf whose outline is
+// the boundary of the children's booleans (circular arcs kept, holes clockwise). Vertical lines
+// by hand, twist 90 over height 10 (a point turns by 9z degrees): in the square of half-width 5
+// with a hole of radius 3, the line at radius 4 is inside at every height and the one at
+// radius 2 nowhere; the one at (6, 0) is inside while its turned point (6 cos a, 6 sin a) has
+// both coordinates within 5: a in [acos(5/6), asin(5/6)]. In the bar [-5, 5] x [-2, 2] united
+// with the disc of radius 3, the line at (0, 3.5) is inside while |3.5 cos a| <= 2: from
+// a = acos(4/7) up.
+TEST(TwistLanguage, ChildrenAreUnitedIntoOneLeaf) {
+    const auto heightOf = [](double radians) { return radians / (kPi / 2) * 10.0; };
+    const io::EvaluateResult holed = evaluate(
+        "linear_extrude(10, twist = 90) difference() { square(10, center = true); circle(3); }");
+    ASSERT_TRUE(holed.ok()) << diagnosticsOf(holed);
+    ASSERT_EQ(holed.model->root->op, csg::Op::Leaf);
+    const auto& e = std::get<Extrusion>(holed.model->root->primitive);
+    const auto spans = [&](const Extrusion& x, Vec2 at) {
+        return spansOf(x, Vec3(at, -5.0), Vec3(0, 0, 1));
+    };
+    auto s = spans(e, {0.0, 4.0});
+    ASSERT_EQ(s.size(), 1u);
+    EXPECT_NEAR(s[0].in, 5.0, 1e-12);
+    EXPECT_NEAR(s[0].out, 15.0, 1e-12);
+    EXPECT_TRUE(spans(e, {-2.0, 0.0}).empty());
+    s = spans(e, {6.0, 0.0});
+    ASSERT_EQ(s.size(), 1u);
+    EXPECT_NEAR(s[0].in, 5.0 + heightOf(std::acos(5.0 / 6.0)), 1e-12);
+    EXPECT_NEAR(s[0].out, 5.0 + heightOf(std::asin(5.0 / 6.0)), 1e-12);
+
+    const io::EvaluateResult barred = evaluate(
+        "linear_extrude(10, twist = 90) union() { square([10, 4], center = true); circle(3); }");
+    ASSERT_TRUE(barred.ok()) << diagnosticsOf(barred);
+    ASSERT_EQ(barred.model->root->op, csg::Op::Leaf);
+    const auto& bar = std::get<Extrusion>(barred.model->root->primitive);
+    s = spans(bar, {0.0, 3.5});
+    ASSERT_EQ(s.size(), 1u);
+    EXPECT_NEAR(s[0].in, 5.0 + heightOf(std::acos(4.0 / 7.0)), 1e-12);
+    EXPECT_NEAR(s[0].out, 15.0, 1e-12);
+    s = spans(bar, {0.0, 2.5});  // in the disc at every height
+    ASSERT_EQ(s.size(), 1u);
+    EXPECT_NEAR(s[0].in, 5.0, 1e-12);
+    EXPECT_NEAR(s[0].out, 15.0, 1e-12);
+    // An ellipse has no circular boundary pieces: the children stay a tree, exactly.
+    const io::EvaluateResult elliptic =
+        evaluate("linear_extrude(10, twist = 90) union() { scale([2, 1]) circle(1); square(1); }");
+    ASSERT_TRUE(elliptic.ok()) << diagnosticsOf(elliptic);
+    EXPECT_EQ(elliptic.model->root->op, csg::Op::Union);
+}
+
+// A piece of an arc is carried by its whole ellipse, but its box is its own: the arc's points
+// (sampled) lie in it, and a quarter of a circle's box is a quarter of the circle's.
+TEST(SegmentCarrier, AnArcsBoxIsItsOwn) {
+    const Segment2 quarter = Segment2::arc({1, 2}, {3, 0}, {0, 3}, 0.25 * kPi, 0.75 * kPi);
+    const csg::Bounds2 box = csg::SegmentCarrier::of(quarter).box;
+    EXPECT_NEAR(box.lo.x, 1.0 - 3.0 * std::sqrt(0.5), 1e-13);
+    EXPECT_NEAR(box.hi.x, 1.0 + 3.0 * std::sqrt(0.5), 1e-13);
+    EXPECT_NEAR(box.lo.y, 2.0 + 3.0 * std::sqrt(0.5), 1e-13);
+    EXPECT_NEAR(box.hi.y, 5.0, 1e-13);  // the top of the circle, at pi / 2
+    csg::testing::Rng rng(4);
+    for (int k = 0; k < 200; ++k) {
+        const Vec2 centre{rng.uniform(-5, 5), rng.uniform(-5, 5)};  // braces: drawn in order
+        const Vec2 a{rng.uniform(-3, 3), rng.uniform(-3, 3)},
+            b{rng.uniform(-3, 3), rng.uniform(-3, 3)};
+        const double th0 = rng.uniform(-10, 10), th1 = th0 + rng.uniform(0.01, 6.2);
+        const Segment2 arc = Segment2::arc(centre, a, b, th0, th1);
+        const csg::Bounds2 arcBox = csg::SegmentCarrier::of(arc).box;
+        for (int j = 0; j <= 100; ++j) {
+            const Vec2 p = arc.at(j / 100.0);
+            EXPECT_TRUE(p.x >= arcBox.lo.x && p.x <= arcBox.hi.x && p.y >= arcBox.lo.y &&
+                        p.y <= arcBox.hi.y)
+                << k << " " << j;
+        }
+    }
 }
 
 // Twisted lines allocate nothing once the per-thread scratch has grown.

@@ -51,6 +51,17 @@ BoundaryPiece boundaryPieceOf(const Segment2& s) {
     return p;
 }
 
+Segment2 segmentOf(const BoundaryPiece& p) {
+    if (p.kind == BoundaryPiece::Kind::Line) return Segment2::line(p.a, p.b);
+    // Clockwise arcs run their angle down: th = -angle on the axes (r, 0), (0, -r).
+    const double turn = p.sweep >= 0.0 ? 1.0 : -1.0;
+    Segment2 s = Segment2::arc(p.center, Vec2(p.radius, 0.0), Vec2(0.0, turn * p.radius),
+                               turn * p.angle0, turn * p.angle0 + std::abs(p.sweep));
+    s.p[0] = p.a;
+    s.end = p.b;
+    return s;
+}
+
 namespace {
 
 Bounds2 boxOf(const BoundaryPiece& p) {

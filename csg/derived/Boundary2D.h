@@ -49,6 +49,8 @@ struct BoundaryPiece {
 // The piece of a line or circular arc segment (isCircular in csg/derived/Flatten2D.h), in the
 // segment's direction.
 BoundaryPiece boundaryPieceOf(const Segment2& s);
+// The segment of a piece, in its direction, starting and ending on the piece's very doubles.
+Segment2 segmentOf(const BoundaryPiece& p);
 
 // The shape's boundary, in no particular order: each piece's ends are the very doubles of its
 // neighbours' ends, so the pieces chain into closed curves.
