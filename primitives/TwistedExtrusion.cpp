@@ -83,6 +83,7 @@ struct ImageLine {
     LineConstants<double> nearest;
     // Bounds for the pieces, rounded up: |k| and the L1 norm of v''.
     double kAbs, ddvAbs;
+    double pieceAngle;  // TwistedOutline::pieceAngle
 
     template <class T>
     const LineConstants<T>& constants() const;
@@ -363,12 +364,12 @@ thread_local std::vector<Frame<Interval>> tlEnds;
 thread_local std::vector<FirstPiece> tlFirst;
 
 // Appends the first pieces of [ta, tb], over which phi turns by at most
-// tol::kSweepPieceAngle each (while there are at most tol::kSweepMaxFirstPieces).
+// TwistedOutline::pieceAngle each (while there are at most tol::kSweepMaxFirstPieces).
 void addFirstPieces(const ImageLine& line, double ta, double tb) {
-    const double turns = line.kAbs * (tb - ta) / tol::kSweepPieceAngle;
-    const int n = std::isfinite(turns) ? int(std::clamp(std::ceil(turns), 1.0,
-                                                        double(tol::kSweepMaxFirstPieces)))
-                                       : tol::kSweepMaxFirstPieces;
+    const double turns = line.kAbs * (tb - ta) / line.pieceAngle;
+    const int n = std::isfinite(turns)
+                      ? int(std::clamp(std::ceil(turns), 1.0, double(tol::kSweepMaxFirstPieces)))
+                      : tol::kSweepMaxFirstPieces;
     double a = ta;
     tlEnds.push_back(frameAt<Interval>(line, ta));
     for (int j = 1; j <= n; ++j) {
@@ -387,8 +388,8 @@ void isolate(const SegmentCarrier& c, const Bounds2& keep, uint32_t i, const Ima
     int budget = tol::kSweepMaxPieces;
     for (const FirstPiece& piece : tlFirst) {
         const PieceData& first = piece.data;
-        const double split = examine(c, keep, i, line, first, 0, &tlEnds[piece.endA],
-                                     &tlEnds[piece.endB], tm, out);
+        const double split =
+            examine(c, keep, i, line, first, 0, &tlEnds[piece.endA], &tlEnds[piece.endB], tm, out);
         if (std::isnan(split)) continue;
         // Parts, depth first, the lower first so that crossings come out ascending.
         stack.clear();
@@ -518,9 +519,22 @@ std::shared_ptr<const TwistedOutline> TwistedOutline::of(const Outline& outline)
     if (!box.empty()) {
         for (const Vec2 corner :
              {box.lo, box.hi, Vec2(box.lo.x, box.hi.y), Vec2(box.hi.x, box.lo.y)})
-            prepared->outerRadius = std::max(prepared->outerRadius, up(std::hypot(corner.x, corner.y)));
+            prepared->outerRadius =
+                std::max(prepared->outerRadius, up(std::hypot(corner.x, corner.y)));
         const Vec2 nearest = glm::clamp(Vec2(0.0), box.lo, box.hi);
         prepared->innerRadius = down(std::hypot(nearest.x, nearest.y));
+    }
+    // The first pieces' angle: a piece's image sweeps about one segment's extent at the outer
+    // radius (the median segment's), so that a segment meets few pieces and splits them little.
+    std::vector<double> extents;
+    for (const SegmentCarrier& c : prepared->carriers)
+        if (!c.box.empty())
+            extents.push_back(std::max(c.box.hi.x - c.box.lo.x, c.box.hi.y - c.box.lo.y));
+    if (!extents.empty() && prepared->outerRadius > 0.0) {
+        const auto median = extents.begin() + std::ptrdiff_t(extents.size() / 2);
+        std::nth_element(extents.begin(), median, extents.end());
+        prepared->pieceAngle = std::clamp(*median / prepared->outerRadius, tol::kSweepMinPieceAngle,
+                                          tol::kSweepPieceAngle);
     }
     return prepared;
 }
@@ -583,10 +597,10 @@ void twistedSpans(const Outline& outline, const TwistedOutline& prepared, const 
         e.w2 = e.sx1 * e.sy1;
     }
     const auto nearest = [](Interval v) { return v.lo + 0.5 * (v.hi - v.lo); };
-    line.nearest = {nearest(e.phi0), nearest(e.k),   nearest(e.sx0), nearest(e.sx1),
-                    nearest(e.sy0),  nearest(e.sy1), nearest(e.v2x), nearest(e.v2y),
-                    nearest(e.w2)};
+    line.nearest = {nearest(e.phi0), nearest(e.k),   nearest(e.sx0), nearest(e.sx1), nearest(e.sy0),
+                    nearest(e.sy1),  nearest(e.v2x), nearest(e.v2y), nearest(e.w2)};
     line.kAbs = line.twisted ? e.k.magnitude() : 0.0;
+    line.pieceAngle = prepared.pieceAngle;
     line.ddvAbs = (2.0 * (exactly(e.v2x.magnitude()) + e.v2y.magnitude())).hi;
 
     // Step 3: the candidates: the chord's ends and every segment's crossings.

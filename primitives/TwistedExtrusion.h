@@ -22,10 +22,11 @@
 // are isolated by
 // subdivision with proven enclosures:
 //   - the chord is cut into first pieces over which phi turns by at most
-//     tol::kSweepPieceAngle; a piece [m - r, m + r] gets enclosures of P, w and their
-//     derivatives from interval arithmetic at m (outward rounding, libm's cos and sin within
-//     their documented error, the carrier's coefficients enclosing the exact ones) and Taylor
-//     bounds over the piece from the closed-form derivatives
+//     TwistedOutline::pieceAngle (about a segment's extent over the outer radius, within
+//     tol::kSweepMinPieceAngle and tol::kSweepPieceAngle); a piece [m - r, m + r] gets enclosures
+//     of P, w and their derivatives from interval arithmetic at m (outward rounding, libm's cos and
+//     sin within their documented error, the carrier's coefficients enclosing the exact ones) and
+//     Taylor bounds over the piece from the closed-form derivatives
 //       P' = R(phi)(k J v + v'),  P'' = R(phi)(-k^2 v + 2 k J v' + v''),  k = dphi/dtau,
 //     and P''' likewise (v''' = 0);
 //   - a piece is dropped only when it provably holds no crossing of the segment: the enclosure
@@ -70,6 +71,7 @@
 #include "primitives/LocalSpans.h"
 #include "primitives/Outline.h"
 #include "primitives/SegmentCarrier.h"
+#include "primitives/base/Tolerances.h"
 
 namespace csg {
 
@@ -103,6 +105,9 @@ struct TwistedOutline {
     double innerRadius = 0.0, outerRadius = 0.0;
     // Whether every segment is carried by a line (or by nothing).
     bool straight = true;
+    // The most a first piece of a line turns (radians): tol::kSweepPieceAngle, or less when
+    // the segments are small against the outer radius (see of()).
+    double pieceAngle = tol::kSweepPieceAngle;
     static std::shared_ptr<const TwistedOutline> of(const Outline& outline);
 };
 
