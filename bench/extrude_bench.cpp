@@ -5,7 +5,11 @@
 //                                  (radii 1 and 0.6 alternating), n = 125 .. 2000 doubling
 //   vase/exact, vase/mesh          rotate_extrude of a 40-vertex vase profile; OpenSCAD's mesh
 //                                  with $fn = 128
-// Each scene is seen by a 128 x 128 camera framing its bounds from a slanted view. The mesh
+//   text/exact, text/mesh          linear_extrude(height = 2) of 20 characters of text() in
+//                                  Liberation Sans, its glyphs' quadratic curves exact; the
+//                                  mesh is OpenSCAD's (its glyph flattening)
+// Each scene is seen by a 128 x 128 camera framing its bounds from a slanted view (the text
+// from above). The mesh
 // scenes need `openscad` on the PATH (they are skipped without it).
 #include <benchmark/benchmark.h>
 
@@ -49,6 +53,12 @@ std::string vasePart(bool faceted) {
            points + "]);\n";
 }
 
+// Twenty characters in four lines of five (so that the text fills a square view): capitals,
+// lower case, digits and punctuation, glyphs with holes (a, e, 8, B, @) and many curves.
+const char* const kTextPart =
+    "linear_extrude(height = 2) for (line = [[0, \"Rays,\"], [1, \"2026:\"], [2, \"B8 @q\"],\n"
+    "    [3, \"exact\"]]) translate([0, -14 * line[0]]) text(line[1], size = 10);\n";
+
 struct ExtrudeScene {
     Scene scene;
     std::vector<Ray> rays;
@@ -59,6 +69,7 @@ std::string partText(const std::string& key, bool& mesh) {
     mesh = key.ends_with("/mesh");
     if (key.starts_with("star/")) return starPart(std::stoi(key.substr(5)));
     if (key.starts_with("vase/")) return vasePart(mesh);
+    if (key.starts_with("text/")) return kTextPart;
     throw std::invalid_argument("no extrusion benchmark scene named " + key);
 }
 
@@ -86,7 +97,9 @@ std::unique_ptr<ExtrudeScene> buildScene(const std::string& key) {
     const Bounds3 b = scene->scene.bounds();
     PinholeCamera camera;
     camera.lookAt = b.center();
-    camera.eye = b.center() + Vec3(1.2, -2.0, 1.6) * glm::length(b.extent());
+    // Text is flat: seen from above (slightly tilted) it fills the view.
+    const Vec3 view = key.starts_with("text/") ? Vec3(0.0, -0.5, 1.6) : Vec3(1.2, -2.0, 1.6);
+    camera.eye = b.center() + view * glm::length(b.extent());
     camera.up = Vec3(0.0, 0.0, 1.0);
     camera.horizontalFovDegrees = 30.0;
     scene->rays = camera.pixelRays(128, 128);
@@ -126,6 +139,8 @@ void registerAll() {
             keys.push_back("star/" + std::to_string(n) + "/" + kind);
     keys.push_back("vase/exact");
     keys.push_back("vase/mesh");
+    keys.push_back("text/exact");
+    keys.push_back("text/mesh");
     for (const std::string& key : keys)
         benchmark::RegisterBenchmark(("spans/" + key).c_str(),
                                      [key](benchmark::State& state) { spansBenchmark(state, key); });
