@@ -2,7 +2,9 @@
 // one input: parse it as every mesh format compare reads, check the readers' promises, and run
 // compare's mesh checks on any mesh that comes out; parse it as every format import() reads,
 // build the mesh primitive from it and check that lines through its vertices cross a closed
-// mesh an even number of times. Any crash, hang, sanitizer report or abort() here is a bug.
+// mesh an even number of times; parse it as a DXF drawing (import()'s 2-D reader), with exact
+// arcs and with OpenSCAD's chords, and cast a line through its outline. Any crash, hang,
+// sanitizer report or abort() here is a bug.
 #pragma once
 
 #include <cmath>
@@ -11,6 +13,7 @@
 
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/TriangleBvh.h"
+#include "io/DxfFile.h"
 #include "io/mesh/MeshFile.h"
 #include "primitives/Polyhedron.h"
 #include "primitives/base/Tolerances.h"
@@ -64,6 +67,28 @@ inline void readMeshInput(std::string_view bytes) {
                 csg::LocalSpans spans;
                 solid.spans(solid.data->vertices[v] - d, d, spans);
             }
+    }
+    for (const bool faceted : {true, false}) {
+        io::DxfOptions options;
+        options.faceted = faceted;
+        options.only2021 = faceted;
+        options.maxEdges = 100'000;  // what a 4 KB input may ask for is bounded by the reader
+        const io::DxfReadResult r = io::readDxf(bytes, options);
+        if (r.drawing.has_value() == !r.error.empty()) std::abort();
+        if (!r.drawing) continue;
+        csg::Outline outline = r.drawing->outline();
+        outline.buildIndex();
+        for (const csg::Segment2& segment : outline.segments)
+            for (const csg::Vec2& p : segment.p)
+                if (!std::isfinite(p.x) || !std::isfinite(p.y)) std::abort();
+        const csg::Bounds2 box = outline.bounds();
+        if (box.empty()) continue;
+        const csg::Vec2 middle = 0.5 * (box.lo + box.hi);
+        (void)outline.inside(middle);
+        std::vector<csg::Crossing2> crossings;
+        outline.crossings(middle, csg::Vec2(0.6, 0.8), crossings);
+        for (const csg::Crossing2& c : crossings)
+            if (std::isnan(c.t)) std::abort();
     }
 }
 

@@ -1,5 +1,5 @@
-// libFuzzer entry point for the mesh readers of compare: bytes in, parsed as OBJ, STL, OFF, 3MF,
-// GLB and glTF (see FuzzMeshInput.h). Built only with -DCSGRAY_FUZZ=ON and clang; run it with
+// libFuzzer entry point for the mesh readers of compare and import(): bytes in, parsed as OBJ,
+// STL, OFF, 3MF, GLB, glTF and DXF (see FuzzMeshInput.h). Built only with -DCSGRAY_FUZZ=ON and clang; run it with
 // scripts/fuzz.sh SECONDS mesh.
 #include <cstddef>
 #include <cstdint>
