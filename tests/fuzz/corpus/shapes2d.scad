@@ -1,26 +1,20 @@
-// 2-D shapes, their booleans and what grows or wraps them, good and bad: seeds for the part
-// fuzzer's 2-D side (text with odd strings, offset, hull, minkowski, projection).
-text("csgray");
-translate([0, 20]) text("Åé 漢 😀 \u00e9", size = 5, halign = "center", valign = "top");
-text("", size = 3);
-text(str(1 / 3), font = "Liberation Sans:style=Bold", spacing = 1.5, direction = "ttb");
-text("x", size = -1);
-offset(r = 1) square(4);
-offset(delta = -0.5, chamfer = true) polygon([[0, 0], [6, 0], [3, 5]]);
-offset(r = -10) circle(2);
-hull() { circle(1); translate([5, 2]) square(1); }
-minkowski() { square(2); circle(0.5); }
-minkowski() { polygon([[0, 0], [4, 0], [4, 4], [2, 1], [0, 4]]); square(0.5, center = true); }
-projection(cut = true) translate([0, 0, -0.5]) cube(2);
-projection() rotate([30, 40, 0]) cylinder(r = 1, h = 3);
-polygon(points = [[0, 0], [10, 0], [10, 10], [0, 10], [2, 2], [8, 2], [8, 8], [2, 8]],
-        paths = [[0, 1, 2, 3], [4, 5, 6, 7]]);
-polygon([[0, 0], [1, 1], [2, 0], [0, 1], [2, 1]]);
-polygon(points = [[0, 0], [1, 0]], paths = [[0, 1, 7]]);
-resize([10, 0], auto = true) circle(1);
-mirror([1, 0]) scale([2, -1]) square([1, 2]);
-difference() { square(10, center = true); circle(3); rotate(45) square([12, 1], center = true); }
-intersection() { circle(5, $fn = 7); square(4); }
-linear_extrude(height = 5, twist = 180, scale = [1, 0.5]) text("tw", size = 4);
-linear_extrude(height = 3, twist = -90) difference() { square(6, center = true); circle(2); }
-rotate_extrude() difference() { translate([-5, 0]) square(10); translate([-6, -1]) square([6, 12]); }
+// 2-D shapes, their transforms and booleans, and OpenSCAD's dimension rules.
+square();
+square(3, center = true);
+square([2, 0]);
+square("x");
+circle(2);
+circle(d = 3, $fn = 6);
+circle(-1);
+polygon([[0, 0], [4, 0], [4, 4], [0, 4], [1, 1], [3, 1], [3, 3], [1, 3]], [[0, 1, 2, 3], [4, 5, 6, 7]]);
+polygon([[0, 0], [1, 0]]);
+polygon([[0, 0], [1, 0], [0, 1]], [[0, 1, 9]]);
+polygon(points = [[0, 0, 5], [1, 0], [0, 1]]);
+translate([1, 2]) rotate(30) scale([2, 1]) mirror([1, 1]) square();
+rotate([90, 0, 0]) square();
+multmatrix([[1, 0.5, 0, 1], [0, 1, 0, 0], [0, 0, 1, 0]]) circle(1);
+difference() { circle(3); square(2, center = true); }
+intersection() { circle(1); translate([1, 0]) circle(1); }
+union() { square(2); cube(1); }
+union() { cube(1); square(2); }
+color("red") polygon([[0, 0], [1e300, 0], [0, 1e300]]);
