@@ -471,6 +471,7 @@ private:
             else
                 sink_.stroke(points, stroke);
         }
+        for (std::string& note : sink_.takeNotes()) warn(e, std::move(note));
         if (error_) return;
         if (sink_.error()) return fail(e, *sink_.error());
         std::vector<Segment2> segments = sink_.take();

@@ -422,6 +422,7 @@ std::optional<std::string> pathShape(std::string_view d, const Stroke& stroke, S
     // The previous command's last control point, for S and T.
     Vec2 lastCubic(0.0), lastQuad(0.0);
     char previous = 0;
+    bool notedFlags = false;
     while (pos < d.size() && isWsp(d[pos])) ++pos;
     while (pos < d.size() && !sink.error()) {
         const char c = d[pos];
@@ -454,6 +455,14 @@ std::optional<std::string> pathShape(std::string_view d, const Stroke& stroke, S
             if (command == 'A' && (k == 3 || k == 4)) {
                 if (pos < d.size() && (d[pos] == '0' || d[pos] == '1')) {
                     v[k] = d[pos++] == '1';
+                    // libsvg splits numbers at spaces, commas and signs only: "00" is one.
+                    if (!notedFlags && pos < d.size() && !isWsp(d[pos]) && d[pos] != ',') {
+                        notedFlags = true;
+                        sink.note("arc flags written without a separator (column " +
+                                  std::to_string(pos) +
+                                  " of the path data) are read as SVG defines them; OpenSCAD "
+                                  "2021 misreads them");
+                    }
                     continue;
                 }
                 return "expected an arc flag (0 or 1) at column " + std::to_string(pos + 1);

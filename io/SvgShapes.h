@@ -51,6 +51,9 @@ public:
     void fail(std::string message) {
         if (!error_) error_ = std::move(message);
     }
+    // A remark on how the element was read (for a warning at its line).
+    void note(std::string message) { notes_.push_back(std::move(message)); }
+    std::vector<std::string> takeNotes() { return std::move(notes_); }
     // Takes the current element's segments, leaving none.
     std::vector<csg::Segment2> take() { return std::move(segments_); }
     uint64_t total() const { return total_; }
@@ -64,6 +67,7 @@ private:
     uint64_t max_;
     uint64_t total_ = 0;
     std::vector<csg::Segment2> segments_;
+    std::vector<std::string> notes_;
     std::optional<std::string> error_;
 };
 
@@ -76,7 +80,8 @@ std::optional<std::string> numberList(std::string_view text, std::vector<double>
 std::optional<double> wholeNumber(std::string_view text);
 
 // <path d="...">: the path data (SVG 1.1's grammar: M m L l H h V v C c S s Q q T t A a Z z,
-// implicit repeats, flags without separators), its subpaths filled or stroked as libsvg does.
+// implicit repeats, flags without separators, which OpenSCAD 2021 misreads: noted), its
+// subpaths filled or stroked as libsvg does.
 // An error message (with the column in d) for data that does not follow the grammar or has a
 // number that is not finite or above 2^40.
 std::optional<std::string> pathShape(std::string_view d, const Stroke& stroke, ShapeSink& sink);
