@@ -2,7 +2,10 @@
 // one input: parse it as every mesh format compare reads, check the readers' promises, and run
 // compare's mesh checks on any mesh that comes out; parse it as every format import() reads,
 // build the mesh primitive from it and check that lines through its vertices cross a closed
-// mesh an even number of times. Any crash, hang, sanitizer report or abort() here is a bug.
+// mesh an even number of times; read it as an SVG drawing (import()'s 2-D reader, exact and
+// faceted) and check that every outline is finite and closed (lines through its segment ends
+// cross it an even number of times). Any crash, hang, sanitizer report or abort() here is a
+// bug.
 #pragma once
 
 #include <cmath>
@@ -11,6 +14,7 @@
 
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/TriangleBvh.h"
+#include "io/SvgFile.h"
 #include "io/mesh/MeshFile.h"
 #include "primitives/Polyhedron.h"
 #include "primitives/base/Tolerances.h"
@@ -64,6 +68,30 @@ inline void readMeshInput(std::string_view bytes) {
                 csg::LocalSpans spans;
                 solid.spans(solid.data->vertices[v] - d, d, spans);
             }
+    }
+    for (const bool faceted : {false, true}) {
+        io::SvgOptions options;
+        options.faceted = faceted;
+        options.center = true;
+        options.maxSegments = 200000;
+        const io::SvgReadResult r = io::readSvg(bytes, options);
+        if (r.drawing.has_value() == !r.error.empty()) std::abort();
+        if (!r.drawing) continue;
+        for (const csg::Outline& outline : r.drawing->shapes) {
+            if (outline.segments.empty()) std::abort();
+            for (const csg::Segment2& s : outline.segments)
+                for (const csg::Vec2& p : s.p)
+                    if (!std::isfinite(p.x) || !std::isfinite(p.y)) std::abort();
+            // Lines through (up to 16 of) the segments' starts, skew and along the axes.
+            std::vector<csg::Crossing2> crossings;
+            const size_t step = std::max<size_t>(1, outline.segments.size() / 16);
+            for (size_t i = 0; i < outline.segments.size(); i += step)
+                for (const csg::Vec2 d : {csg::Vec2(0.3, -0.7), csg::Vec2(1, 0), csg::Vec2(0, 1)}) {
+                    crossings.clear();
+                    outline.crossings(outline.segments[i].start() - d, d, crossings);
+                    if (crossings.size() % 2 != 0) std::abort();
+                }
+        }
     }
 }
 

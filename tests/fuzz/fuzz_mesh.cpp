@@ -1,6 +1,6 @@
 // libFuzzer entry point for the mesh readers of compare: bytes in, parsed as OBJ, STL, OFF, 3MF,
-// GLB and glTF (see FuzzMeshInput.h). Built only with -DCSGRAY_FUZZ=ON and clang; run it with
-// scripts/fuzz.sh SECONDS mesh.
+// GLB and glTF, and as an SVG drawing (see FuzzMeshInput.h). Built only with -DCSGRAY_FUZZ=ON and
+// clang; run it with scripts/fuzz.sh SECONDS mesh.
 #include <cstddef>
 #include <cstdint>
 
