@@ -227,7 +227,9 @@ public:
     }
 
     // Z: the subpath ends where it began (libsvg adds its first point again) and is filled;
-    // what follows starts a new one (libsvg: without the point Z returned to).
+    // what follows without a moveto starts a new one. Faceted, as libsvg, its first point is
+    // the next point made (the point Z returned to is left out); exact, as SVG says, it starts
+    // at the point Z returned to.
     void close() {
         if (started_) {
             if (sink_.faceted()) {
