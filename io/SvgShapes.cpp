@@ -27,8 +27,18 @@ constexpr double kStrokeScale = 10000.0;
 // Clipper's default arc tolerance (scaled units), which libsvg keeps for round joins and caps.
 constexpr double kClipperArcTolerance = 0.25;
 // Exact curves are stroked as polylines whose chords stray at most this far (user units) from
-// the curve: Clipper's grid is 10^-4, so a finer polyline would change nothing.
+// the curve: Clipper's grid is 10^-4, so a finer polyline would change nothing...
 constexpr double kStrokeChordTolerance = 1.0e-4;
+// ... in at most this many chords a curve (OpenSCAD takes 20): a Bezier 100 units across then
+// strays ~10^-3, and a long curvy open path stays within the budget.
+constexpr double kMaxStrokeChords = 256;
+// Pairs of a stroke's edges that may cross (see crossingCandidates) beyond which the stroke
+// is refused: Clipper's union takes time in the number of crossings, and a path that doubles
+// back on itself a million times would keep it for hours.
+constexpr uint64_t kMaxCrossingCandidates = 100'000'000;
+// The same for the sweep (see sweepWork): Clipper's active edge list is walked at every
+// scanline, so a long path that winds round many times costs it its length times its turns.
+constexpr uint64_t kMaxSweepWork = 100'000'000;
 // libsvg's is_open_path: a subpath whose ends are further apart than this is stroked.
 constexpr double kOpenDistance = 0.1;
 
@@ -85,9 +95,59 @@ void skipSeparator(std::string_view t, size_t& pos) {
     while (pos < t.size() && isWsp(t[pos])) ++pos;
 }
 
+// The pairs of polyline edges whose boxes share a cell of a grid of about n cells: at least
+// the pairs that cross. Counting stops past `limit` (the count is then above it), and so does
+// the work of filing long edges into many cells.
+uint64_t crossingCandidates(const std::vector<Vec2>& points, uint64_t limit) {
+    if (points.size() < 3) return 0;
+    csg::Bounds2 box;
+    for (const Vec2& p : points) box.add(p);
+    const int side = std::clamp(int(std::sqrt(double(points.size()))), 1, 2048);
+    const Vec2 size = box.hi - box.lo;
+    const Vec2 cell(size.x > 0 ? size.x / side : 1.0, size.y > 0 ? size.y / side : 1.0);
+    auto cellOf = [&](double v, double lo, double width) {
+        return std::clamp(int((v - lo) / width), 0, side - 1);
+    };
+    std::vector<uint32_t> filed(size_t(side) * size_t(side), 0);
+    uint64_t pairs = 0, work = 0;
+    for (size_t i = 0; i + 1 < points.size(); ++i) {
+        const Vec2 a = points[i], b = points[i + 1];
+        const int x0 = cellOf(std::min(a.x, b.x), box.lo.x, cell.x);
+        const int x1 = cellOf(std::max(a.x, b.x), box.lo.x, cell.x);
+        const int y0 = cellOf(std::min(a.y, b.y), box.lo.y, cell.y);
+        const int y1 = cellOf(std::max(a.y, b.y), box.lo.y, cell.y);
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x) {
+                uint32_t& count = filed[size_t(y) * size_t(side) + size_t(x)];
+                pairs += count++;
+                if (pairs > limit || ++work > limit) return limit + 1;
+            }
+    }
+    return pairs;
+}
+
+// The sum over the polyline's edges of the scanlines (distinct vertex y) each spans: the
+// length of Clipper's active edge lists summed over its sweep. Counting stops past `limit`.
+uint64_t sweepWork(const std::vector<Vec2>& points, uint64_t limit) {
+    std::vector<double> ys;
+    ys.reserve(points.size());
+    for (const Vec2& p : points) ys.push_back(p.y);
+    std::sort(ys.begin(), ys.end());
+    ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
+    uint64_t work = 0;
+    for (size_t i = 0; i + 1 < points.size(); ++i) {
+        const auto [lo, hi] = std::minmax(points[i].y, points[i + 1].y);
+        work += uint64_t(std::upper_bound(ys.begin(), ys.end(), hi) -
+                         std::lower_bound(ys.begin(), ys.end(), lo));
+        if (work > limit) return limit + 1;
+    }
+    return work;
+}
+
 // A polyline through the curve, its start excluded, with chords within kStrokeChordTolerance
-// (the second derivative bounds a chord's distance from the curve: |f''| h^2 / 8).
-void flatten(const Segment2& s, std::vector<Vec2>& out, uint64_t maxPoints) {
+// (the second derivative bounds a chord's distance from the curve: |f''| h^2 / 8), at most
+// kMaxStrokeChords of them.
+void flatten(const Segment2& s, std::vector<Vec2>& out) {
     double curvature = 0.0;  // a bound on |f''(u)|, u in [0, 1]
     switch (s.kind) {
         case Segment2::Kind::Line:
@@ -107,7 +167,7 @@ void flatten(const Segment2& s, std::vector<Vec2>& out, uint64_t maxPoints) {
         }
     }
     const double chords = std::ceil(std::sqrt(curvature / (8.0 * kStrokeChordTolerance)));
-    const uint64_t n = uint64_t(std::clamp(chords, 1.0, double(std::max<uint64_t>(maxPoints, 1))));
+    const uint64_t n = uint64_t(std::clamp(chords, 1.0, kMaxStrokeChords));
     for (uint64_t k = 1; k < n; ++k) out.push_back(s.at(double(k) / double(n)));
     out.push_back(s.finish());
 }
@@ -283,7 +343,15 @@ private:
                 sink_.polygon(points_);
         } else if (stroked) {
             std::vector<Vec2> polyline{first_};
-            for (const Segment2& s : segments_) flatten(s, polyline, sink_.remaining() / 4);
+            for (const Segment2& s : segments_) {
+                flatten(s, polyline);
+                // stroke() charges at least 4 segments a point: stop before the budget.
+                if (polyline.size() > sink_.remaining() / 4) {
+                    sink_.fail("a stroke would have more than " +
+                               std::to_string(sink_.remaining()) + " segments");
+                    break;
+                }
+            }
             sink_.stroke(polyline, stroke_);
         } else {
             for (const Segment2& s : segments_) sink_.add(s);
@@ -352,19 +420,42 @@ void ShapeSink::polygon(const std::vector<Vec2>& points) {
 void ShapeSink::stroke(const std::vector<Vec2>& polyline, const Stroke& stroke) {
     if (polyline.empty() || error_) return;
     const double delta = stroke.width * (kStrokeScale / 2.0);
-    // What Clipper will make, charged before it runs: round joins and caps of a wide stroke
-    // have pi / acos(1 - tolerance / delta) points to a turn.
-    double perVertex = 4.0;
+    // What Clipper will make, charged before it runs: a few points a vertex, and round joins
+    // and caps pi / acos(1 - tolerance / delta) points to a turn, for the turns the polyline
+    // makes and the two caps' half turns each side.
+    double estimate = 6.0 * double(polyline.size() + 2);
     if (stroke.join == StrokeJoin::Round || stroke.cap == StrokeCap::Round) {
         const double y = std::min(kClipperArcTolerance, delta * kClipperArcTolerance);
-        perVertex += kPi / std::acos(1.0 - y / delta);
+        const double perTurn = kPi / std::acos(1.0 - y / delta);
+        double turning = 2 * kPi;
+        Vec2 previous(0.0);
+        for (size_t i = 0; i + 1 < polyline.size(); ++i) {
+            const Vec2 d = polyline[i + 1] - polyline[i];
+            if (d == Vec2(0.0)) continue;
+            if (previous != Vec2(0.0))
+                turning += std::abs(std::atan2(previous.x * d.y - previous.y * d.x,
+                                               previous.x * d.x + previous.y * d.y));
+            previous = d;
+        }
+        estimate += 2.0 * perTurn * turning / (2 * kPi);
     }
-    const double estimate = perVertex * double(polyline.size() + 2);
     if (!(estimate < double(max_))) {
         fail("a stroke would have more than " + std::to_string(max_) + " segments");
         return;
     }
     if (!charge(uint64_t(estimate))) return;
+    if (crossingCandidates(polyline, kMaxCrossingCandidates) > kMaxCrossingCandidates) {
+        fail("a stroked path doubles back on itself too often to stroke (more than " +
+             std::to_string(kMaxCrossingCandidates) + " pairs of its " +
+             std::to_string(polyline.size() - 1) + " edges may cross)");
+        return;
+    }
+    if (sweepWork(polyline, kMaxSweepWork) > kMaxSweepWork) {
+        fail("a stroked path winds round too often to stroke (its " +
+             std::to_string(polyline.size() - 1) + " edges span more than " +
+             std::to_string(kMaxSweepWork) + " scanlines in all)");
+        return;
+    }
     cl::Path line;
     line.reserve(polyline.size());
     for (const Vec2& p : polyline)  // truncated toward zero, as libsvg converts

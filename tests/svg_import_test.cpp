@@ -431,6 +431,28 @@ TEST(SvgImport, ReaderNeverMakesNaNAndCapsWork) {
     EXPECT_FALSE(r.drawing);
     EXPECT_EQ(r.error, "a stroke would have more than 1000000 segments");
     EXPECT_EQ(r.line, 1u);
+    // A polyline going back and forth on one line 10^4 times: 2 10^8 pairs of edges may
+    // cross, which Clipper's union would take minutes over; refused at once.
+    std::string zigzag = "<svg>\n<polyline points=\"";
+    for (int k = 0; k < 10000; ++k) zigzag += "0,0 10,0 ";
+    const SvgReadResult z = readSvg(zigzag + "\"/></svg>", SvgOptions());
+    EXPECT_FALSE(z.drawing);
+    EXPECT_EQ(z.error,
+              "a stroked path doubles back on itself too often to stroke (more than 100000000 "
+              "pairs of its 19999 edges may cross)");
+    EXPECT_EQ(z.line, 2u);
+    // A spiral of 1600 turns: no crossings, but each scanline of Clipper's sweep meets ~3000
+    // edges, 300000 times; refused at once too.
+    std::ostringstream spiral;
+    spiral << "<svg><polyline points=\"";
+    for (int k = 0; k < 300000; ++k)
+        spiral << 50 + (1 + k / 4000.0) * std::cos(k / 30.0) << ","
+               << 50 + (1 + k / 4000.0) * std::sin(k / 30.0) << " ";
+    spiral << "\"/></svg>";
+    const SvgReadResult w = readSvg(spiral.str(), SvgOptions());
+    EXPECT_EQ(w.error,
+              "a stroked path winds round too often to stroke (its 299999 edges span more than "
+              "100000000 scanlines in all)");
 }
 
 // ---- against OpenSCAD 2021 ----
