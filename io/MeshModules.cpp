@@ -161,9 +161,7 @@ Instance importModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr
     const io::MeshFormat format = meshFormatOf(written);
     if (format != MeshFormat::Stl && format != MeshFormat::Off && format != MeshFormat::Obj &&
         format != MeshFormat::ThreeMf) {
-        std::string ext = std::filesystem::path(written).extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(),
-                       [](unsigned char c) { return char(std::tolower(c)); });
+        const std::string ext = lowerExtension(written);
         const bool openscadKnows =
             ext == ".amf" || ext == ".nef3" || ext == ".glb" || ext == ".gltf";
         e.fail(b.loc(0), "import(): " +

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 
 #include "io/Degrees.h"
@@ -187,7 +188,7 @@ void addTightBounds(const Segment2& s, Bounds2& b) {
                 const double th = std::atan2(s.p[3][k], s.p[2][k]);
                 const double span = s.th1 - s.th0;
                 if (span <= 0.0) break;
-                for (int j = -4; j <= 4; ++j) addAt((th + j * M_PI - s.th0) / span);
+                for (int j = -4; j <= 4; ++j) addAt((th + j * std::numbers::pi - s.th0) / span);
                 break;
             }
         }

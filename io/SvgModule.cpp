@@ -2,7 +2,6 @@
 // 2021 behaviour followed (src/import.cc, src/import_svg.cc).
 #include "io/SvgModule.h"
 
-#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -21,10 +20,7 @@ constexpr uint64_t kSegmentSteps = 50;
 }  // namespace
 
 bool isSvgFile(std::string_view name) {
-    std::string ext = std::filesystem::path(name).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return ext == ".svg";
+    return lowerExtension(name) == ".svg";
 }
 
 Instance importSvg(Evaluator& e, const BoundArgs& b, const GeomState& state) {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <numbers>
 
 #include "io/Degrees.h"
 
@@ -18,7 +19,7 @@ using csg::Segment2;
 using csg::Vec2;
 namespace cl = ClipperLib;
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = std::numbers::pi;
 // Numbers of a file beyond this are refused (as DXF coordinates are): far inside the range of
 // Clipper's integers at libsvg's scale, so a stroke never overflows it.
 constexpr double kMaxNumber = 1099511627776.0;  // 2^40
