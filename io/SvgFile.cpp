@@ -254,7 +254,10 @@ private:
         error_ = std::move(message);
         errorLine_ = uint32_t(std::max(e->GetLineNum(), 0));
     }
+    // Warnings one by one up to kMaxWarnings, then only counted (a file can have a
+    // misread attribute on every element).
     void warn(const xml::XMLElement* e, std::string message) {
+        if (++warnings_ > kMaxWarnings) return;
         drawing_.warnings.push_back({uint32_t(std::max(e->GetLineNum(), 0)), std::move(message)});
     }
     void warnOnce(const xml::XMLElement* e, bool& done, std::string message) {
@@ -537,6 +540,9 @@ private:
             }
             drawing_.shapes.push_back(std::move(outline));
         }
+        if (warnings_ > kMaxWarnings)
+            drawing_.warnings.push_back(
+                {0, "... and " + std::to_string(warnings_ - kMaxWarnings) + " more warnings"});
         drawing_.segments = sink_.total();
         return std::move(drawing_);
     }
@@ -550,6 +556,8 @@ private:
     std::optional<std::string> error_;
     uint32_t errorLine_ = 0;
     bool warnedText_ = false, warnedUse_ = false;
+    uint64_t warnings_ = 0;
+    static constexpr uint64_t kMaxWarnings = 20;
 };
 
 }  // namespace

@@ -393,6 +393,17 @@ TEST(SvgImport, ErrorsNameTheSvgLine) {
               ":5: arc flags written without a separator (column 28 of the path data) are read "
               "as SVG defines them; OpenSCAD 2021 misreads them"})
         EXPECT_NE(all.find(want + "\n"), std::string::npos) << want << "\n---\n" << all;
+    // Past 20 warnings a count.
+    std::string many;
+    for (int k = 0; k < 30; ++k) many += "<rect x=\"1mm\" width=\"1\" height=\"1\"/>\n";
+    writeFile(dir.path / "many.svg", svg(many));
+    const std::string manyDiagnostics = diagnostics(run(dir.path, "import(\"many.svg\");\n"));
+    EXPECT_NE(manyDiagnostics.find("many.svg:21: rect x="), std::string::npos);
+    EXPECT_EQ(manyDiagnostics.find("many.svg:22: rect x="), std::string::npos);
+    EXPECT_NE(manyDiagnostics.find("warning: import(): " + (dir.path / "many.svg").string() +
+                                   ": ... and 10 more warnings\n"),
+              std::string::npos)
+        << manyDiagnostics;
     // layer/origin/scale are DXF's.
     EXPECT_NE(diagnostics(run(dir.path, "import(\"w.svg\", scale = 2);\n"))
                   .find("import(): 'scale' applies to DXF files only; ignored"),
