@@ -1,5 +1,8 @@
 #include "io/DataFiles.h"
 
+#include <algorithm>
+#include <cctype>
+
 namespace io {
 
 std::filesystem::path lookupDataFile(Evaluator& e, Loc call, Loc at, const std::string& written) {
@@ -15,6 +18,13 @@ std::filesystem::path lookupDataFile(Evaluator& e, Loc call, Loc at, const std::
         return top;
     }
     return local;
+}
+
+std::string lowerExtension(std::string_view name) {
+    std::string ext = std::filesystem::path(name).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
 }
 
 }  // namespace io

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include "io/Evaluator.h"
 
@@ -14,5 +15,8 @@ namespace io {
 // with OpenSCAD's deprecation warning at `at`. The path beside the calling file when neither
 // exists, so that errors name where it was expected.
 std::filesystem::path lookupDataFile(Evaluator& e, Loc call, Loc at, const std::string& written);
+
+// A file name's extension, lower-cased (".dxf"), by which OpenSCAD picks a reader.
+std::string lowerExtension(std::string_view name);
 
 }  // namespace io

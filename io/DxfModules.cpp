@@ -62,10 +62,7 @@ std::optional<std::string> layerOf(const Value& v) {
 }  // namespace
 
 bool isDxfFile(std::string_view name) {
-    std::string ext = std::filesystem::path(name).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return ext == ".dxf";
+    return lowerExtension(name) == ".dxf";
 }
 
 Instance dxfShape(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx, const GeomState& state,

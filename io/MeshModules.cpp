@@ -7,6 +7,7 @@
 #include "io/BoundArgs.h"
 #include "io/DataFiles.h"
 #include "io/DxfModules.h"
+#include "io/SvgModule.h"
 #include "io/mesh/MeshFile.h"
 #include "primitives/Polyhedron.h"
 
@@ -17,8 +18,8 @@ namespace {
 constexpr const char* kPolyhedronForm =
     "polyhedron(points = [[x, y, z], ...], faces = [[i, j, k, ...], ...], convexity = 1)";
 constexpr const char* kImportForm =
-    "import(file = \"part.stl\" | \"part.off\" | \"part.obj\" | \"part.3mf\" | \"drawing.dxf\", "
-    "layer, convexity = 1, origin = [x, y], scale = 1)";
+    "import(file = \"part.stl\" | \"part.off\" | \"part.obj\" | \"part.3mf\" | \"drawing.dxf\" | "
+    "\"drawing.svg\", layer, convexity = 1, origin = [x, y], scale = 1, center = false, dpi = 72)";
 // Out-of-range indices warned about one by one (as OpenSCAD does) before a summary.
 constexpr uint64_t kMaxIndexWarnings = 10;
 
@@ -140,26 +141,29 @@ Instance polyhedronModule(Evaluator& e, const InstantiationStmt& s, const Contex
 
 Instance importModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
                       const GeomState& state) {
-    const BoundArgs b =
-        bindArgs(e, s, ctx, {"file", "layer", "convexity", "origin", "scale"}, kImportForm);
+    const BoundArgs b = bindArgs(
+        e, s, ctx, {"file", "layer", "convexity", "origin", "scale", "center", "dpi"}, kImportForm);
     if (!b.given(0)) e.fail(s.loc, "import() needs a file; expected " + std::string(b.form));
     if (!b[0].isString()) b.bad(e, 0, "a file name");
-    if (isDxfFile(b[0].string())) return importDxf(e, b, ctx, state);
-    for (size_t i : {size_t(1), size_t(3), size_t(4)})
-        if (b.given(i))
-            e.warn(b.loc(i), "import(): '" + std::string(b.names[i]) +
-                                 "' applies to 2-D files (DXF, SVG) only; ignored");
+    const bool dxf = isDxfFile(b[0].string()), svg = isSvgFile(b[0].string());
+    // OpenSCAD 2021 reads layer, origin and scale for DXF only, center and dpi for SVG only.
+    for (size_t i : {size_t(1), size_t(3), size_t(4), size_t(5), size_t(6)}) {
+        const bool forDxf = i <= 4;
+        if (b.given(i) && (forDxf ? !dxf : !svg))
+            e.warn(b.loc(i), "import(): '" + std::string(b.names[i]) + "' applies to " +
+                                 (forDxf ? "DXF" : "SVG") + " files only; ignored");
+    }
+    if (dxf) return importDxf(e, b, ctx, state);
+    if (svg) return importSvg(e, b, state);
     const std::string& written = b[0].string();
 
     // The type by the lower-cased extension, as OpenSCAD decides it.
     const io::MeshFormat format = meshFormatOf(written);
     if (format != MeshFormat::Stl && format != MeshFormat::Off && format != MeshFormat::Obj &&
         format != MeshFormat::ThreeMf) {
-        std::string ext = std::filesystem::path(written).extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(),
-                       [](unsigned char c) { return char(std::tolower(c)); });
+        const std::string ext = lowerExtension(written);
         const bool openscadKnows =
-            ext == ".amf" || ext == ".svg" || ext == ".nef3" || ext == ".glb" || ext == ".gltf";
+            ext == ".amf" || ext == ".nef3" || ext == ".glb" || ext == ".gltf";
         e.fail(b.loc(0), "import(): " +
                              std::string(openscadKnows ? "importing " + ext +
                                                              " files is not supported by csgray"

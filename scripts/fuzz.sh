@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fuzzes with libFuzzer under ASan and UBSan: the part language (parser, evaluator, compile;
 # target `part`, the default) or the file readers (compare's and import()'s OBJ, STL, OFF, 3MF,
-# GLB, glTF, and DXF drawings, and the checks on what they read; target `mesh`).
+# GLB, glTF, and the DXF and SVG drawings, and the checks on what they read; target `mesh`).
 # Usage: scripts/fuzz.sh [SECONDS] [part|mesh]   (default 600 part)
 # Installs clang and its sanitizer runtimes if missing, builds the target in build-fuzz/, and
 # runs it on its seed corpus (part: tests/fuzz/corpus and samples/; mesh: tests/fuzz/mesh_corpus;

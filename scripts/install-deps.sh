@@ -21,6 +21,7 @@ packages=(
     libfreetype-dev libharfbuzz-dev libfontconfig-dev  # text(): outlines, shaping, font lookup
     fonts-liberation2     # text()'s default font, Liberation Sans, the file Debian's openscad opens
     libpolyclipping-dev   # Clipper 6.4: offset() as OpenSCAD 2021 computes it (csg/derived/)
+    libtinyxml2-dev       # TinyXML-2: the XML of import("drawing.svg") (io/SvgFile.cpp)
     libqhull-dev          # qhull (reentrant libqhull_r): 3-D hull() (csg/derived/Hull3D.cpp)
     libboost-dev          # Boost.Multiprecision: 50-digit references (tests, csgray bench accuracy)
     libgmp-dev            # GMP rationals (gmpxx.h): the exact Groebner basis (primitives/patch/GroebnerExact.cpp)

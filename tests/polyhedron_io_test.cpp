@@ -248,10 +248,15 @@ TEST(PolyhedronIo, MissingAndMalformedFilesAreErrorsAtTheImport) {
               (dir.path / "main.scad").string() +
                   ":1:8: error: import(): " + (dir.path / "bad.off").string() +
                   ":6:7: vertex index 5 names no vertex (3 vertices)");
-    writeFile(dir.path / "main.scad", "import(\"drawing.svg\");\n");
+    // AMF is a format OpenSCAD imports and csgray does not (SVG now loads: svg_import_test).
+    writeFile(dir.path / "main.scad", "import(\"part.amf\");\n");
     EXPECT_NE(firstOf(evaluateFile(dir.path / "main.scad"), Severity::Error)
-                  .find("main.scad:1:8: error: import(): importing .svg files is not supported"),
+                  .find("main.scad:1:8: error: import(): importing .amf files is not supported"),
               std::string::npos);
+    // A drawing.svg that is there loads: a 2 x 3 rectangle, no error.
+    writeFile(dir.path / "drawing.svg", "<svg><rect width=\"2\" height=\"3\"/></svg>\n");
+    writeFile(dir.path / "main.scad", "import(\"drawing.svg\");\n");
+    EXPECT_EQ(firstOf(evaluateFile(dir.path / "main.scad"), Severity::Error), "<none>");
 }
 
 // The volume of a closed triangle soup by the divergence theorem: the sum of the signed volumes

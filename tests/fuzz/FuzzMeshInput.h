@@ -2,9 +2,10 @@
 // one input: parse it as every mesh format compare reads, check the readers' promises, and run
 // compare's mesh checks on any mesh that comes out; parse it as every format import() reads,
 // build the mesh primitive from it and check that lines through its vertices cross a closed
-// mesh an even number of times; parse it as a DXF drawing (import()'s 2-D reader), with exact
-// arcs and with OpenSCAD's chords, and cast a line through its outline. Any crash, hang,
-// sanitizer report or abort() here is a bug.
+// mesh an even number of times; read it as a DXF and as an SVG drawing (import()'s 2-D
+// readers, exact and faceted) and check that every outline is finite and closed (lines through
+// its segment ends cross it an even number of times). Any crash, hang, sanitizer report or
+// abort() here is a bug.
 #pragma once
 
 #include <cmath>
@@ -14,11 +15,28 @@
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/TriangleBvh.h"
 #include "io/DxfFile.h"
+#include "io/SvgFile.h"
 #include "io/mesh/MeshFile.h"
 #include "primitives/Polyhedron.h"
 #include "primitives/base/Tolerances.h"
 
 namespace fuzz {
+
+// A drawing's outline: finite, and closed: lines through (up to 16 of) its segments' starts,
+// skew and along the axes, cross it an even number of times.
+inline void checkDrawingOutline(const csg::Outline& outline) {
+    for (const csg::Segment2& s : outline.segments)
+        for (const csg::Vec2& p : s.p)
+            if (!std::isfinite(p.x) || !std::isfinite(p.y)) std::abort();
+    std::vector<csg::Crossing2> crossings;
+    const size_t step = std::max<size_t>(1, outline.segments.size() / 16);
+    for (size_t i = 0; i < outline.segments.size(); i += step)
+        for (const csg::Vec2 d : {csg::Vec2(0.3, -0.7), csg::Vec2(1, 0), csg::Vec2(0, 1)}) {
+            crossings.clear();
+            outline.crossings(outline.segments[i].start() - d, d, crossings);
+            if (crossings.size() % 2 != 0) std::abort();
+        }
+}
 
 inline void readMeshInput(std::string_view bytes) {
     using io::MeshFormat;
@@ -68,27 +86,28 @@ inline void readMeshInput(std::string_view bytes) {
                 solid.spans(solid.data->vertices[v] - d, d, spans);
             }
     }
-    for (const bool faceted : {true, false}) {
-        io::DxfOptions options;
+    for (const bool faceted : {false, true}) {
+        io::DxfOptions dxfOptions;
+        dxfOptions.faceted = faceted;
+        dxfOptions.only2021 = faceted;
+        dxfOptions.maxEdges = 100'000;  // what a 4 KB input may ask for is bounded by the reader
+        const io::DxfReadResult dxf = io::readDxf(bytes, dxfOptions);
+        if (dxf.drawing.has_value() == !dxf.error.empty()) std::abort();
+        if (dxf.drawing) {
+            const csg::Outline outline = dxf.drawing->outline();
+            if (!outline.segments.empty()) checkDrawingOutline(outline);
+        }
+        io::SvgOptions options;
         options.faceted = faceted;
-        options.only2021 = faceted;
-        options.maxEdges = 100'000;  // what a 4 KB input may ask for is bounded by the reader
-        const io::DxfReadResult r = io::readDxf(bytes, options);
+        options.center = true;
+        options.maxSegments = 200000;
+        const io::SvgReadResult r = io::readSvg(bytes, options);
         if (r.drawing.has_value() == !r.error.empty()) std::abort();
         if (!r.drawing) continue;
-        csg::Outline outline = r.drawing->outline();
-        outline.buildIndex();
-        for (const csg::Segment2& segment : outline.segments)
-            for (const csg::Vec2& p : segment.p)
-                if (!std::isfinite(p.x) || !std::isfinite(p.y)) std::abort();
-        const csg::Bounds2 box = outline.bounds();
-        if (box.empty()) continue;
-        const csg::Vec2 middle = 0.5 * (box.lo + box.hi);
-        (void)outline.inside(middle);
-        std::vector<csg::Crossing2> crossings;
-        outline.crossings(middle, csg::Vec2(0.6, 0.8), crossings);
-        for (const csg::Crossing2& c : crossings)
-            if (std::isnan(c.t)) std::abort();
+        for (const csg::Outline& outline : r.drawing->shapes) {
+            if (outline.segments.empty()) std::abort();
+            checkDrawingOutline(outline);
+        }
     }
 }
 

@@ -1,6 +1,6 @@
-// libFuzzer entry point for the mesh readers of compare and import(): bytes in, parsed as OBJ,
-// STL, OFF, 3MF, GLB, glTF and DXF (see FuzzMeshInput.h). Built only with -DCSGRAY_FUZZ=ON and clang; run it with
-// scripts/fuzz.sh SECONDS mesh.
+// libFuzzer entry point for the file readers of compare and import(): bytes in, parsed as OBJ,
+// STL, OFF, 3MF, GLB, glTF, and as DXF and SVG drawings (see FuzzMeshInput.h). Built only with
+// -DCSGRAY_FUZZ=ON and clang; run it with scripts/fuzz.sh SECONDS mesh.
 #include <cstddef>
 #include <cstdint>
 

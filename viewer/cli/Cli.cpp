@@ -22,6 +22,8 @@ const char* const kCommonOptionsHelp =
     "                           extrusion of a polygon has no other facets; with twist\n"
     "                           or scale = [sx, sy] OpenSCAD's sliced solid is not built\n"
     "                           (slices is read and ignored)\n"
+    "                         import()ed SVG keeps its Beziers and arcs exact except\n"
+    "                           under openscad (OpenSCAD's fixed chords; $fn ignored)\n"
     "  --accel=STRUCTURE      what organizes the objects of each union (every choice gives\n"
     "                         the same answers, only the time and memory differ):\n"
     "                         sah (default): surface area heuristic BVH; median: median\n"
