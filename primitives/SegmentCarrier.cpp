@@ -64,11 +64,8 @@ void setParabola(SegmentCarrier& c, Vec2 p0, Vec2 p1, Vec2 p2) {
 
 // An arc's box: its ends and the extremes along x and y that its angles reach (coordinate k
 // is centre_k + h_k cos(th - th_k), h_k = |(a_k, b_k)|, highest at th_k = atan2(b_k, a_k)),
-// widened by kArcBoxGuardRel of its size for the few ulps by which the stored ends may stand
-// off the ellipse (the neighbours' very doubles) and the rounding of th_k. Ellipse pieces
-// of one circle (a boundary cut where other shapes meet it) then claim only their own part
-// of the plane, not the whole circle's box each.
-constexpr double kArcBoxGuardRel = 1e-14;
+// widened by tol::kArcBoxGuardRel. Pieces of one circle (a boundary cut where other shapes
+// meet it) then claim only their own part of the plane, not the whole circle's box each.
 Bounds2 arcBox(const Segment2& s) {
     const Vec2 centre = s.p[1], a = s.p[2], b = s.p[3];
     const Vec2 half(std::hypot(a.x, b.x), std::hypot(a.y, b.y));
@@ -91,8 +88,8 @@ Bounds2 arcBox(const Segment2& s) {
             box.add(p);
         }
     }
-    const double guard = kArcBoxGuardRel * (std::max(std::abs(centre.x), std::abs(centre.y)) +
-                                            std::max(half.x, half.y));
+    const double guard = tol::kArcBoxGuardRel * (std::max(std::abs(centre.x), std::abs(centre.y)) +
+                                                 std::max(half.x, half.y));
     box.lo -= Vec2(guard);
     box.hi += Vec2(guard);
     return box;

@@ -512,11 +512,13 @@ bool merge(BoundaryPiece& p, const BoundaryPiece& q, double eps) {
         return true;
     }
     if (glm::length(p.center - q.center) > eps || std::abs(p.radius - q.radius) > eps ||
-        (p.sweep > 0.0) != (q.sweep > 0.0) || std::abs(p.sweep + q.sweep) > kTurn + 1e-9)
+        (p.sweep > 0.0) != (q.sweep > 0.0) ||
+        std::abs(p.sweep + q.sweep) > kTurn + tol::kArcSweepSlack)
         return false;
     p.sweep += q.sweep;
     p.b = q.b;
-    if (std::abs(p.sweep) > kTurn - 1e-9) {  // the circle closed: a whole turn, no vertex
+    if (std::abs(p.sweep) >=
+        kTurn - tol::kArcSweepSlack) {  // the circle closed: a whole turn, no vertex
         p.sweep = std::copysign(kTurn, p.sweep);
         p.b = p.a;
     }

@@ -545,6 +545,20 @@ inline constexpr double kBoundaryPointRel = 1e-10;
 // outline passes between them unless it lies on the piece (then they agree, see Boundary2D.h).
 inline constexpr double kBoundarySideRel = 1e-8;
 
+// Two pieces of one circle next to each other in a 2-D boundary's contour are one arc when
+// their sweeps add up to at most a whole turn plus this, and a whole circle when they add up to
+// a whole turn less this or more (unit: radians). Why: each sweep comes from atan2 of the
+// piece's ends, within a few ulps of 2 pi (~10^-15), 10^6 below this; and no arc a part draws
+// on purpose stops 10^-9 radians short of a whole turn.
+inline constexpr double kArcSweepSlack = 1e-9;
+
+// An arc's box (primitives/SegmentCarrier.cpp) is widened by this fraction of its size (the
+// larger of its centre's coordinates and its half-axes). Why: the arc's stored ends may stand a
+// few ulps (~10^-16 relative) off its ellipse, being its neighbours' very doubles, and the
+// angles of its extremes are rounded: 100 times that covers both, while keeping a piece of a
+// circle's box its own (a box only prunes; the crossings are exact).
+inline constexpr double kArcBoxGuardRel = 1e-14;
+
 // Elliptic arcs and Beziers, whose offsets are no circles or lines, are replaced by chords no
 // farther than this fraction of the shape's size from the curve before an offset or hull
 // (unit: relative). Why: 1e-7 of a 100 mm part is 10 nm, 150 times finer than OpenSCAD's own
