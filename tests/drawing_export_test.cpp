@@ -17,7 +17,9 @@
 
 #include "CliRunner.h"
 #include "MissingTool.h"
+#include "csg/Volume.h"
 #include "csg/derived/Boundary2D.h"
+#include "io/Evaluate.h"
 #include "tests/PartHelpers.h"
 
 namespace {
@@ -220,6 +222,28 @@ TEST(DrawingExport, SvgArcsTurnTheWayThePartDoes) {
     EXPECT_EQ(arcs, 2);  // a half turn is written as two arcs of at most a third of a turn
 }
 
+// csgray's import() reads its own drawings back, arcs exact: the extruded area is the part's,
+// to the volume estimate's accuracy (rays along a generic direction; 1e-6 relative here).
+TEST(DrawingExport, CsgrayReadsItsOwnDrawingsBack) {
+    ScratchDir dir;
+    writeFile(dir / "p.scad", kSquareAndHalfDisc);
+    for (const char* file : {"p.svg", "p.dxf"}) {
+        SCOPED_TRACE(file);
+        ASSERT_EQ(runCsgray({"export", (dir / "p.scad").string(), "-o", (dir / file).string()},
+                            dir.path())
+                      .exitCode,
+                  0);
+        writeFile(dir / "back.scad", "linear_extrude(1) import(\"" + std::string(file) + "\");\n");
+        const io::EvaluateResult r = io::evaluateFile(dir / "back.scad", io::EvaluateOptions{});
+        ASSERT_TRUE(r.ok()) << diagnosticsOf(r);
+        const csg::Mat4 turn = glm::rotate(glm::rotate(csg::Mat4(1.0), 0.61, csg::Vec3(1, 0, 0)),
+                                           0.37, csg::Vec3(0.2, 1, 0.3));
+        const double volume =
+            csg::volume(csg::Scene::compile(csg::transformed(turn, r.model->root)), 1024);
+        EXPECT_NEAR(volume / kSquareAndHalfDiscArea, 1.0, 1e-6);
+    }
+}
+
 bool haveOpenScad() {
     return std::system("openscad --version >/dev/null 2>&1") == 0;
 }
@@ -276,8 +300,7 @@ TEST(DrawingExport, OpenScadReadsTheArcsBack) {
     // are random. A wrong arc (bulging into the square) would lose 2 * 12.5 pi.
     writeFile(dir / "dxf.scad", "linear_extrude(1) import(\"p.dxf\", $fn = 360);\n");
     openscadExport(dir.path(), "dxf.scad", "dxf.stl");
-    EXPECT_NEAR(stlVolume(dir / "dxf.stl"), kSquareAndHalfDiscArea - chordLoss(5, 180, 180),
-                2e-3);
+    EXPECT_NEAR(stlVolume(dir / "dxf.stl"), kSquareAndHalfDiscArea - chordLoss(5, 180, 180), 2e-3);
 }
 
 // Under --curves openscad a part is OpenSCAD's polygons: its SVG holds the same area as
