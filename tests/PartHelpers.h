@@ -29,6 +29,13 @@ inline std::string diagnosticsOf(const io::EvaluateResult& r) {
     return all;
 }
 
+// The first diagnostic of a severity, formatted ("<none>" when there is none).
+inline std::string firstDiagnostic(const io::EvaluateResult& r, io::Severity severity) {
+    for (const io::Diagnostic& d : r.diagnostics)
+        if (d.severity == severity) return io::formatDiagnostic(d);
+    return "<none>";
+}
+
 inline csg::Scene compiled(const std::string& text, io::CurveMode curves = io::CurveMode::Auto,
                            const std::string& name = "part.scad") {
     const io::EvaluateResult r = evaluate(text, curves, name);

@@ -15,6 +15,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "BinaryStl.h"
 #include "CliRunner.h"
 #include "MissingTool.h"
 #include "csg/Volume.h"
@@ -248,23 +249,6 @@ bool haveOpenScad() {
     return std::system("openscad --version >/dev/null 2>&1") == 0;
 }
 
-// The volume of a binary STL (the divergence theorem).
-double stlVolume(const fs::path& file) {
-    const std::string bytes = readFile(file);
-    if (bytes.size() < 84) return 0.0;
-    uint32_t count = 0;
-    std::memcpy(&count, bytes.data() + 80, 4);
-    if (bytes.size() != 84 + size_t(count) * 50) return 0.0;
-    double volume = 0.0;
-    for (uint32_t i = 0; i < count; ++i) {
-        float f[9];
-        std::memcpy(f, bytes.data() + 84 + size_t(i) * 50 + 12, sizeof f);
-        const csg::Vec3 a(f[0], f[1], f[2]), b(f[3], f[4], f[5]), c(f[6], f[7], f[8]);
-        volume += glm::dot(a, glm::cross(b, c)) / 6.0;
-    }
-    return volume;
-}
-
 // OpenSCAD's file of a part, made in dir.
 void openscadExport(const fs::path& dir, const std::string& part, const std::string& out) {
     const std::string command = "cd " + cli::shellQuote(dir.string()) +
@@ -293,14 +277,16 @@ TEST(DrawingExport, OpenScadReadsTheArcsBack) {
     // SVG: each of the two 90-degree arc commands in floor(90 / 18 + 4) = 9 chords.
     writeFile(dir / "svg.scad", "linear_extrude(1) import(\"p.svg\");\n");
     openscadExport(dir.path(), "svg.scad", "svg.stl");
-    EXPECT_NEAR(stlVolume(dir / "svg.stl"), kSquareAndHalfDiscArea - 2 * chordLoss(5, 90, 9), 1e-4);
+    EXPECT_NEAR(csg::testing::binaryStlVolume(dir / "svg.stl"),
+                kSquareAndHalfDiscArea - 2 * chordLoss(5, 90, 9), 1e-4);
     // DXF: the 180-degree ARC in 180 chords ($fn = 360), whose points OpenSCAD snaps to its
     // 1/1024 grid: moving each of them up to 2^-11 along x and y moves the area up to about
     // 180 * 2^-11 * (2 pi 5 / 360) = 7.7e-3, and some 1/sqrt(180) of that when the roundings
     // are random. A wrong arc (bulging into the square) would lose 2 * 12.5 pi.
     writeFile(dir / "dxf.scad", "linear_extrude(1) import(\"p.dxf\", $fn = 360);\n");
     openscadExport(dir.path(), "dxf.scad", "dxf.stl");
-    EXPECT_NEAR(stlVolume(dir / "dxf.stl"), kSquareAndHalfDiscArea - chordLoss(5, 180, 180), 2e-3);
+    EXPECT_NEAR(csg::testing::binaryStlVolume(dir / "dxf.stl"),
+                kSquareAndHalfDiscArea - chordLoss(5, 180, 180), 2e-3);
 }
 
 // Under --curves openscad a part is OpenSCAD's polygons: its SVG holds the same area as

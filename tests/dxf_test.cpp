@@ -25,6 +25,7 @@
 #include "csg/Volume.h"
 #include "io/DxfFile.h"
 #include "io/Evaluate.h"
+#include "tests/PartHelpers.h"
 #include "tests/SeededRng.h"
 
 using namespace io;
@@ -68,17 +69,8 @@ std::string square(double x0, double y0, double a, const std::string& layer = "0
            line(x0, y0 + a, x0, y0, layer) + line(x0 + a, y0 + a, x0, y0 + a, layer);
 }
 
-std::string diagnostics(const EvaluateResult& r) {
-    std::string all;
-    for (const Diagnostic& d : r.diagnostics) all += formatDiagnostic(d) + "\n";
-    return all;
-}
-
-std::string firstOf(const EvaluateResult& r, Severity severity) {
-    for (const auto& d : r.diagnostics)
-        if (d.severity == severity) return formatDiagnostic(d);
-    return "<none>";
-}
+using csg::testing::diagnosticsOf;
+using csg::testing::firstDiagnostic;
 
 // The part `scad`, written as main.scad in dir; its echo() lines into *echoes when given.
 EvaluateResult run(const fs::path& dir, const std::string& scad, CurveMode curves = CurveMode::Auto,
@@ -93,7 +85,7 @@ EvaluateResult run(const fs::path& dir, const std::string& scad, CurveMode curve
 }
 
 csg::Scene compiled(const EvaluateResult& r) {
-    EXPECT_TRUE(r.ok()) << diagnostics(r);
+    EXPECT_TRUE(r.ok()) << diagnosticsOf(r);
     return csg::Scene::compile(r.ok() ? r.model->root : nullptr);
 }
 
@@ -280,7 +272,8 @@ TEST(DxfReader, MalformedInputIsAnErrorWithItsLine) {
 // Whatever the bytes, the reader answers with a drawing or an error and its line: the Debian
 // examples' DXF files with lines dropped, swapped, duplicated or replaced by junk.
 TEST(DxfReader, MutatedFilesNeverCrash) {
-    if (!fs::exists(kExamples)) SKIP_OR_FAIL_IN_CI(kExamples.string() + " is not installed (openscad-data)");
+    if (!fs::exists(kExamples))
+        SKIP_OR_FAIL_IN_CI(kExamples.string() + " is not installed (openscad-data)");
     csg::testing::Rng rng(20250405);
     const char* junk[] = {"",        "x",          "-",      "1e999",  "nan",  "0",
                           "SECTION", "ENTITIES",   "BLOCKS", "INSERT", "LINE", "ARC",
@@ -335,7 +328,7 @@ TEST(DxfLanguage, LinearExtrudeFileOfASquare) {
     csg::testing::TempDir dir("csgray_dxf_square");
     writeFile(dir.path / "sq.dxf", dxf(square(0, 0, 10)));
     const EvaluateResult r = run(dir.path, "linear_extrude(file = \"sq.dxf\", height = 5);\n");
-    EXPECT_NE(firstOf(r, Severity::Warning)
+    EXPECT_NE(firstDiagnostic(r, Severity::Warning)
                   .find("DEPRECATED: Support for reading files in "
                         "linear_extrude"),
               std::string::npos);
@@ -398,8 +391,9 @@ TEST(DxfLanguage, BulgeIsAnArcExceptAsOpenScad) {
     // --curves openscad: OpenSCAD 2021 reads no bulges, the edge stays straight (and says so).
     const EvaluateResult asOpenScad =
         run(dir.path, "linear_extrude(height = 1) import(\"up.dxf\");\n", CurveMode::OpenScad);
-    EXPECT_NE(firstOf(asOpenScad, Severity::Warning).find("bulges (arcs) are read as straight"),
-              std::string::npos);
+    EXPECT_NE(
+        firstDiagnostic(asOpenScad, Severity::Warning).find("bulges (arcs) are read as straight"),
+        std::string::npos);
     expectSpans(spans(compiled(asOpenScad), {8, -1, 0.5}, {0, 1, 0}), {{1, 11}});
 }
 
@@ -431,7 +425,7 @@ TEST(DxfLanguage, ImportLayerOriginScaleAndInsert) {
     expectSpans(spans(b, {0, 1, 0.5}, {1, 0, 0}), {{12, 18}});
     // Layer given as the number 0 is layer "0", which has nothing here; no layer: both.
     const EvaluateResult zero = run(dir.path, "linear_extrude(1) import(\"d.dxf\", layer = 0);\n");
-    EXPECT_TRUE(zero.ok()) << diagnostics(zero);
+    EXPECT_TRUE(zero.ok()) << diagnosticsOf(zero);
     expectSpans(spans(compiled(run(dir.path, "linear_extrude(1) import(\"d.dxf\");\n")),
                       {-1, 0.5, 0.5}, {1, 0, 0}),
                 {{1, 2}, {8, 11}});
@@ -452,7 +446,7 @@ TEST(DxfLanguage, RotateExtrudeFileIsARing) {
                       {-10, 0, 0.5}, {1, 0, 0}),
                 {{4, 6}, {14, 16}});
     // A number first is OpenSCAD 2021's file, not an angle: an error that says so.
-    EXPECT_NE(firstOf(run(dir.path, "rotate_extrude(90) square(1);\n"), Severity::Error)
+    EXPECT_NE(firstDiagnostic(run(dir.path, "rotate_extrude(90) square(1);\n"), Severity::Error)
                   .find("main.scad:1:16: error: rotate_extrude(): 'file' must be a DXF file name"),
               std::string::npos);
 }
@@ -461,31 +455,32 @@ TEST(DxfLanguage, ErrorsAndWarningsNameTheDxfLine) {
     csg::testing::TempDir dir("csgray_dxf_errors");
     const std::string main = (dir.path / "main.scad").string();
     writeFile(dir.path / "bad.dxf", "0\nSECTION\n2\nENTITIES\n0\nLINE\n10\nwide\n");
-    EXPECT_EQ(firstOf(run(dir.path, "\n  import(\"bad.dxf\");\n"), Severity::Error),
+    EXPECT_EQ(firstDiagnostic(run(dir.path, "\n  import(\"bad.dxf\");\n"), Severity::Error),
               main + ":2:10: error: import(): " + (dir.path / "bad.dxf").string() +
                   ":8: group 10 needs a finite number, got 'wide'");
-    EXPECT_EQ(firstOf(run(dir.path, "linear_extrude(file = \"none.dxf\");\n"), Severity::Error),
-              main + ":1:16: error: linear_extrude(): " + (dir.path / "none.dxf").string() +
-                  ": cannot open the DXF file");
+    EXPECT_EQ(
+        firstDiagnostic(run(dir.path, "linear_extrude(file = \"none.dxf\");\n"), Severity::Error),
+        main + ":1:16: error: linear_extrude(): " + (dir.path / "none.dxf").string() +
+            ": cannot open the DXF file");
     writeFile(dir.path / "s.dxf", dxf(square(0, 0, 1) + "0\nSPLINE\n8\n0\n0\nSPLINE\n8\n0\n"));
-    EXPECT_EQ(firstOf(run(dir.path, "import(\"s.dxf\");\n"), Severity::Warning),
+    EXPECT_EQ(firstDiagnostic(run(dir.path, "import(\"s.dxf\");\n"), Severity::Warning),
               main + ":1:1: warning: Unsupported DXF Entity 'SPLINE' (2) in \"s.dxf\".");
-    EXPECT_NE(firstOf(run(dir.path, "import(\"s.dxf\", origin = 5);\n"), Severity::Warning)
+    EXPECT_NE(firstDiagnostic(run(dir.path, "import(\"s.dxf\", origin = 5);\n"), Severity::Warning)
                   .find("import(..., origin=5) could not be converted"),
               std::string::npos);
-    EXPECT_NE(firstOf(run(dir.path, "import(\"s.dxf\", scale = \"x\");\n"), Severity::Error)
+    EXPECT_NE(firstDiagnostic(run(dir.path, "import(\"s.dxf\", scale = \"x\");\n"), Severity::Error)
                   .find("import(): 'scale' must be a finite number"),
               std::string::npos);
     // dxf_dim: OpenSCAD's warnings and undef for a missing file or dimension.
     const EvaluateResult missing =
         run(dir.path, "x = dxf_dim(file = \"none.dxf\", name = \"w\");\necho(x);\n");
-    EXPECT_TRUE(missing.ok()) << diagnostics(missing);
-    EXPECT_NE(diagnostics(missing).find("Can't open DXF file 'none.dxf'!"), std::string::npos);
+    EXPECT_TRUE(missing.ok()) << diagnosticsOf(missing);
+    EXPECT_NE(diagnosticsOf(missing).find("Can't open DXF file 'none.dxf'!"), std::string::npos);
     const EvaluateResult noDim =
         run(dir.path, "x = dxf_dim(file = \"s.dxf\", name = \"w\");\necho(x);\n");
-    EXPECT_NE(diagnostics(noDim).find("Can't find dimension 'w' in 's.dxf', layer ''!"),
+    EXPECT_NE(diagnosticsOf(noDim).find("Can't find dimension 'w' in 's.dxf', layer ''!"),
               std::string::npos);
-    EXPECT_NE(firstOf(run(dir.path, "x = dxf_dim(file = \"bad.dxf\");\n"), Severity::Error)
+    EXPECT_NE(firstDiagnostic(run(dir.path, "x = dxf_dim(file = \"bad.dxf\");\n"), Severity::Error)
                   .find("dxf_dim(): " + (dir.path / "bad.dxf").string() + ":8: group 10"),
               std::string::npos);
 }
@@ -516,7 +511,7 @@ TEST(DxfLanguage, DimensionTypesAndCross) {
             "echo(dxf_cross(file = \"d.dxf\"), dxf_cross(file = \"d.dxf\", origin = [1, 0], "
             "scale = 2));\n",
             CurveMode::Auto, &echoes);
-    EXPECT_TRUE(r.diagnostics.empty()) << diagnostics(r);
+    EXPECT_TRUE(r.diagnostics.empty()) << diagnosticsOf(r);
     EXPECT_EQ(echoes, (std::vector<std::string>{"ECHO: [3, 4, 5, 10, 2.5, 7, 45]", "ECHO: 10",
                                                 "ECHO: [2, 2], [2, 4]"}));
     // Unnamed arguments, which OpenSCAD 2021 ignores: csgray takes them in order, and says so.
@@ -524,7 +519,7 @@ TEST(DxfLanguage, DimensionTypesAndCross) {
     const EvaluateResult positional =
         run(dir.path, "echo(dxf_dim(\"d.dxf\", \"aligned\"));\n", CurveMode::Auto, &echoes);
     EXPECT_EQ(echoes, (std::vector<std::string>{"ECHO: 5"}));
-    EXPECT_NE(firstOf(positional, Severity::Warning).find("OpenSCAD 2021 ignores unnamed"),
+    EXPECT_NE(firstDiagnostic(positional, Severity::Warning).find("OpenSCAD 2021 ignores unnamed"),
               std::string::npos);
 }
 
@@ -628,7 +623,7 @@ void expectAgreesWithOpenScad(const fs::path& part, const fs::path& dir) {
     EvaluateOptions options;
     options.curves = CurveMode::OpenScad;
     const EvaluateResult r = evaluateFile(part, options);
-    ASSERT_TRUE(r.ok()) << diagnostics(r);
+    ASSERT_TRUE(r.ok()) << diagnosticsOf(r);
     const csg::Mat4 turn = glm::rotate(glm::rotate(csg::Mat4(1.0), 0.61, csg::Vec3(1, 0, 0)), 0.37,
                                        csg::Vec3(0.2, 1, 0.3));
     const double volume =
@@ -740,7 +735,7 @@ TEST(DxfOpenScad, LineSoupsChainAsOpenScadChainsThem) {
         EvaluateOptions options;
         options.curves = CurveMode::OpenScad;
         const EvaluateResult r = evaluateFile(part, options);
-        ASSERT_TRUE(r.ok()) << name << ": " << diagnostics(r);
+        ASSERT_TRUE(r.ok()) << name << ": " << diagnosticsOf(r);
         const csg::Mat4 turn = glm::rotate(glm::rotate(csg::Mat4(1.0), 0.61, csg::Vec3(1, 0, 0)),
                                            0.37, csg::Vec3(0.2, 1, 0.3));
         const double volume =
@@ -788,7 +783,7 @@ TEST(DxfOpenScad, Example009Dimensions) {
     std::istringstream lines(scad);
     for (std::string l; std::getline(lines, l);) {
         const EvaluateResult r = run(dir.path, l + "\n", CurveMode::Auto, &ours);
-        ASSERT_TRUE(r.diagnostics.empty()) << diagnostics(r);
+        ASSERT_TRUE(r.diagnostics.empty()) << diagnosticsOf(r);
     }
     ASSERT_EQ(ours.size(), 5u);
     const std::vector<double> values = echoedValues(ours);

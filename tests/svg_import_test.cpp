@@ -20,12 +20,14 @@
 #include <numbers>
 #include <sstream>
 
+#include "BinaryStl.h"
 #include "MissingTool.h"
 #include "TempDir.h"
 #include "csg/Scene.h"
 #include "csg/Volume.h"
 #include "io/Evaluate.h"
 #include "io/SvgFile.h"
+#include "tests/PartHelpers.h"
 
 using namespace io;
 
@@ -45,17 +47,8 @@ std::string svg(const std::string& body, const std::string& page = "") {
            body + "\n</svg>\n";
 }
 
-std::string diagnostics(const EvaluateResult& r) {
-    std::string all;
-    for (const Diagnostic& d : r.diagnostics) all += formatDiagnostic(d) + "\n";
-    return all;
-}
-
-std::string firstOf(const EvaluateResult& r, Severity severity) {
-    for (const auto& d : r.diagnostics)
-        if (d.severity == severity) return formatDiagnostic(d);
-    return "<none>";
-}
+using csg::testing::diagnosticsOf;
+using csg::testing::firstDiagnostic;
 
 EvaluateResult run(const fs::path& dir, const std::string& scad,
                    CurveMode curves = CurveMode::Auto) {
@@ -66,7 +59,7 @@ EvaluateResult run(const fs::path& dir, const std::string& scad,
 }
 
 csg::Scene compiled(const EvaluateResult& r) {
-    EXPECT_TRUE(r.ok()) << diagnostics(r);
+    EXPECT_TRUE(r.ok()) << diagnosticsOf(r);
     return csg::Scene::compile(r.ok() ? r.model->root : nullptr);
 }
 
@@ -348,26 +341,26 @@ TEST(SvgImport, ErrorsNameTheSvgLine) {
     const std::string main = (dir.path / "main.scad").string();
     const std::string bad = (dir.path / "bad.svg").string();
     writeFile(dir.path / "bad.svg", "<svg>\n<g>\n<rect/>\n</svg>\n");
-    EXPECT_EQ(firstOf(run(dir.path, "\n  import(\"bad.svg\");\n"), Severity::Error),
+    EXPECT_EQ(firstDiagnostic(run(dir.path, "\n  import(\"bad.svg\");\n"), Severity::Error),
               main + ":2:10: error: import(): " + bad +
                   ":2: malformed XML: the element here is closed by the end tag of another");
     writeFile(dir.path / "bad.svg", svg("<path d=\"M 0 0 L 10\"/>"));
-    EXPECT_EQ(firstOf(run(dir.path, "import(\"bad.svg\");\n"), Severity::Error),
+    EXPECT_EQ(firstDiagnostic(run(dir.path, "import(\"bad.svg\");\n"), Severity::Error),
               main + ":1:8: error: import(): " + bad +
                   ":2: path d: the path data ends where a number of 'L' is due");
     writeFile(dir.path / "bad.svg", svg("\n<path d=\"L 0 0\"/>"));
-    EXPECT_EQ(firstOf(run(dir.path, "import(\"bad.svg\");\n"), Severity::Error),
+    EXPECT_EQ(firstDiagnostic(run(dir.path, "import(\"bad.svg\");\n"), Severity::Error),
               main + ":1:8: error: import(): " + bad +
                   ":3: path d: path data must begin with a moveto (M or m), not 'L'");
     writeFile(dir.path / "bad.svg", svg("<polygon points=\"0,0 1e99,0 1,1\"/>"));
-    EXPECT_EQ(firstOf(run(dir.path, "import(\"bad.svg\");\n"), Severity::Error),
+    EXPECT_EQ(firstDiagnostic(run(dir.path, "import(\"bad.svg\");\n"), Severity::Error),
               main + ":1:8: error: import(): " + bad +
                   ":2: polygon points: the number 1e99 is beyond +-2^40");
     writeFile(dir.path / "bad.svg",
               svg("<rect transform=\"skewX(90)\" width=\"1\" height=\"1\"/>"));
-    EXPECT_EQ(firstOf(run(dir.path, "import(\"bad.svg\");\n"), Severity::Error),
+    EXPECT_EQ(firstDiagnostic(run(dir.path, "import(\"bad.svg\");\n"), Severity::Error),
               main + ":1:8: error: import(): " + bad + ":2: transform \"skewX(90)\" is not finite");
-    EXPECT_EQ(firstOf(run(dir.path, "import(\"none.svg\");\n"), Severity::Error),
+    EXPECT_EQ(firstDiagnostic(run(dir.path, "import(\"none.svg\");\n"), Severity::Error),
               main + ":1:8: error: import(): " + (dir.path / "none.svg").string() +
                   ": cannot open the SVG file");
     // Warnings where OpenSCAD reads the file otherwise than it means, and goes on.
@@ -375,8 +368,8 @@ TEST(SvgImport, ErrorsNameTheSvgLine) {
                                       "<line x2=\"1\" stroke-width=\"2px\"/>\n<text>hi</text>\n"
                                       "<path d=\"M0 0 a1 1 0 0 1 2 0 a1 1 0 012 0z\"/>"));
     const EvaluateResult w = run(dir.path, "import(\"w.svg\", center = 1, dpi = 0);\n");
-    EXPECT_TRUE(w.ok()) << diagnostics(w);
-    const std::string all = diagnostics(w);
+    EXPECT_TRUE(w.ok()) << diagnosticsOf(w);
+    const std::string all = diagnosticsOf(w);
     const std::string ws = (dir.path / "w.svg").string();
     for (const std::string& want :
          {main + ":1:17: warning: import(): center = 1 is not a boolean; false is used, as in "
@@ -397,7 +390,7 @@ TEST(SvgImport, ErrorsNameTheSvgLine) {
     std::string many;
     for (int k = 0; k < 30; ++k) many += "<rect x=\"1mm\" width=\"1\" height=\"1\"/>\n";
     writeFile(dir.path / "many.svg", svg(many));
-    const std::string manyDiagnostics = diagnostics(run(dir.path, "import(\"many.svg\");\n"));
+    const std::string manyDiagnostics = diagnosticsOf(run(dir.path, "import(\"many.svg\");\n"));
     EXPECT_NE(manyDiagnostics.find("many.svg:21: rect x="), std::string::npos);
     EXPECT_EQ(manyDiagnostics.find("many.svg:22: rect x="), std::string::npos);
     EXPECT_NE(manyDiagnostics.find("warning: import(): " + (dir.path / "many.svg").string() +
@@ -405,7 +398,7 @@ TEST(SvgImport, ErrorsNameTheSvgLine) {
               std::string::npos)
         << manyDiagnostics;
     // layer/origin/scale are DXF's.
-    EXPECT_NE(diagnostics(run(dir.path, "import(\"w.svg\", scale = 2);\n"))
+    EXPECT_NE(diagnosticsOf(run(dir.path, "import(\"w.svg\", scale = 2);\n"))
                   .find("import(): 'scale' applies to DXF files only; ignored"),
               std::string::npos);
 }
@@ -473,20 +466,7 @@ bool haveOpenScad() {
 }
 
 double stlVolume(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (bytes.size() < 84) return 0;
-    uint32_t count = 0;
-    std::memcpy(&count, bytes.data() + 80, 4);
-    if (bytes.size() != 84 + size_t(count) * 50) return 0;
-    double v = 0;
-    for (uint32_t i = 0; i < count; ++i) {
-        float f[9];
-        std::memcpy(f, bytes.data() + 84 + size_t(i) * 50 + 12, sizeof f);
-        const csg::Vec3 a(f[0], f[1], f[2]), b(f[3], f[4], f[5]), c(f[6], f[7], f[8]);
-        v += glm::dot(a, glm::cross(b, c)) / 6.0;
-    }
-    return std::abs(v);
+    return std::abs(csg::testing::binaryStlVolume(file));
 }
 
 // A drawing of every element kind, under a page map and transforms, extruded by both: with
@@ -509,7 +489,7 @@ void expectOpenScadsVolume(const fs::path& dir, const std::string& file, const s
     const double theirs = stlVolume(dir / "part.stl");
     ASSERT_GT(theirs, 0);
     const EvaluateResult r = run(dir, scad, CurveMode::OpenScad);
-    ASSERT_TRUE(r.ok()) << diagnostics(r);
+    ASSERT_TRUE(r.ok()) << diagnosticsOf(r);
     // Turned generically, so that no edge is parallel to the rays (dxf_test's way).
     const csg::Mat4 turn = glm::rotate(glm::rotate(csg::Mat4(1.0), 0.61, csg::Vec3(1, 0, 0)), 0.37,
                                        csg::Vec3(0.2, 1, 0.3));
