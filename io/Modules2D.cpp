@@ -294,9 +294,9 @@ Instance rotateExtrudeModule(Evaluator& e, const InstantiationStmt& s, const Con
         const csg::Region2D region(**shape);
         csg::Bounds2 profile;
         for (const csg::BoundaryPiece& p : csg::boundaryOf(region).pieces) {
-            const csg::Bounds2 b = p.bounds();
-            profile.add(b.lo);
-            profile.add(b.hi);
+            const csg::Bounds2 piece = p.bounds();
+            profile.add(piece.lo);
+            profile.add(piece.hi);
         }
         const double eps = csg::tol::kBoundaryPointRel * region.size();
         if (profile.lo.x < -eps && profile.hi.x > eps) {
