@@ -49,8 +49,8 @@ std::string vasePart(bool faceted) {
                   std::to_string(z) + "]";
     }
     points += ",[0,4]";
-    return std::string("rotate_extrude(") + (faceted ? "$fn = 128" : "") + ") polygon([" +
-           points + "]);\n";
+    return std::string("rotate_extrude(") + (faceted ? "$fn = 128" : "") + ") polygon([" + points +
+           "]);\n";
 }
 
 // Twenty characters in four lines of five (so that the text fills a square view): capitals,
@@ -85,8 +85,8 @@ std::unique_ptr<ExtrudeScene> buildScene(const std::string& key) {
             if (c == '/') c = '_';
         const std::filesystem::path scad = dir / (name + ".scad"), stl = dir / (name + ".stl");
         std::ofstream(scad) << text;
-        const std::string command = "openscad --export-format binstl -o '" + stl.string() +
-                                    "' '" + scad.string() + "' >/dev/null 2>&1";
+        const std::string command = "openscad --export-format binstl -o '" + stl.string() + "' '" +
+                                    scad.string() + "' >/dev/null 2>&1";
         if (std::system(command.c_str()) != 0) return nullptr;
         text = "import(\"" + stl.string() + "\");\n";
     }
@@ -142,8 +142,9 @@ void registerAll() {
     keys.push_back("text/exact");
     keys.push_back("text/mesh");
     for (const std::string& key : keys)
-        benchmark::RegisterBenchmark(("spans/" + key).c_str(),
-                                     [key](benchmark::State& state) { spansBenchmark(state, key); });
+        benchmark::RegisterBenchmark(("spans/" + key).c_str(), [key](benchmark::State& state) {
+            spansBenchmark(state, key);
+        });
 }
 
 }  // namespace

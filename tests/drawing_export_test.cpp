@@ -164,11 +164,19 @@ std::vector<DxfEntity> dxfEntities(const std::string& text) {
 const char* const kSquareAndHalfDisc = "union() { square(10); translate([10, 5]) circle(5); }\n";
 const double kSquareAndHalfDiscArea = 100.0 + 12.5 * kPi;
 
+// `csgray export` of dir/p.scad to dir/file (and any further options).
+cli::RunResult exportPart(const ScratchDir& dir, const std::string& file,
+                          const std::vector<std::string>& options = {}) {
+    std::vector<std::string> args = {"export", (dir / "p.scad").string(), "-o",
+                                     (dir / file).string()};
+    args.insert(args.end(), options.begin(), options.end());
+    return runCsgray(args, dir.path());
+}
+
 TEST(DrawingExport, DxfHoldsExactLinesAndArcs) {
     ScratchDir dir;
     writeFile(dir / "p.scad", kSquareAndHalfDisc);
-    const auto r = runCsgray({"export", (dir / "p.scad").string(), "-o", (dir / "p.dxf").string()},
-                             dir.path());
+    const auto r = exportPart(dir, "p.dxf");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.err.find("1 contour: 3 lines and 1 circular arc"), std::string::npos) << r.err;
     const auto entities = dxfEntities(readFile(dir / "p.dxf"));
@@ -202,8 +210,7 @@ TEST(DrawingExport, DxfHoldsExactLinesAndArcs) {
 TEST(DrawingExport, SvgArcsTurnTheWayThePartDoes) {
     ScratchDir dir;
     writeFile(dir / "p.scad", kSquareAndHalfDisc);
-    const auto r = runCsgray({"export", (dir / "p.scad").string(), "-o", (dir / "p.svg").string()},
-                             dir.path());
+    const auto r = exportPart(dir, "p.svg");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const std::string svg = readFile(dir / "p.svg");
     EXPECT_NE(svg.find("width=\"15mm\" height=\"10mm\" viewBox=\"0 -10 15 10\""), std::string::npos)
@@ -230,10 +237,7 @@ TEST(DrawingExport, CsgrayReadsItsOwnDrawingsBack) {
     writeFile(dir / "p.scad", kSquareAndHalfDisc);
     for (const char* file : {"p.svg", "p.dxf"}) {
         SCOPED_TRACE(file);
-        ASSERT_EQ(runCsgray({"export", (dir / "p.scad").string(), "-o", (dir / file).string()},
-                            dir.path())
-                      .exitCode,
-                  0);
+        ASSERT_EQ(exportPart(dir, file).exitCode, 0);
         writeFile(dir / "back.scad", "linear_extrude(1) import(\"" + std::string(file) + "\");\n");
         const io::EvaluateResult r = io::evaluateFile(dir / "back.scad", io::EvaluateOptions{});
         ASSERT_TRUE(r.ok()) << diagnosticsOf(r);
@@ -269,11 +273,7 @@ TEST(DrawingExport, OpenScadReadsTheArcsBack) {
     if (!haveOpenScad()) SKIP_OR_FAIL_IN_CI("openscad (2021.01, Debian's) is not installed");
     ScratchDir dir;
     writeFile(dir / "p.scad", kSquareAndHalfDisc);
-    for (const char* file : {"p.svg", "p.dxf"})
-        ASSERT_EQ(runCsgray({"export", (dir / "p.scad").string(), "-o", (dir / file).string()},
-                            dir.path())
-                      .exitCode,
-                  0);
+    for (const char* file : {"p.svg", "p.dxf"}) ASSERT_EQ(exportPart(dir, file).exitCode, 0);
     // SVG: each of the two 90-degree arc commands in floor(90 / 18 + 4) = 9 chords.
     writeFile(dir / "svg.scad", "linear_extrude(1) import(\"p.svg\");\n");
     openscadExport(dir.path(), "svg.scad", "svg.stl");
@@ -305,9 +305,7 @@ TEST(DrawingExport, FacetedDrawingsMatchOpenScads) {
     for (const std::string& part : parts) {
         SCOPED_TRACE(part);
         writeFile(dir / "p.scad", part + "\n");
-        const auto r = runCsgray({"export", (dir / "p.scad").string(), "--curves", "openscad", "-o",
-                                  (dir / "ours.svg").string()},
-                                 dir.path());
+        const auto r = exportPart(dir, "ours.svg", {"--curves", "openscad"});
         ASSERT_EQ(r.exitCode, 0) << r.err;
         openscadExport(dir.path(), "p.scad", "theirs.svg");
         const double ours = svgPolygonArea(svgPath(readFile(dir / "ours.svg")));
@@ -320,8 +318,7 @@ TEST(DrawingExport, FacetedDrawingsMatchOpenScads) {
 TEST(DrawingExport, ASolidIsNotDrawn) {
     ScratchDir dir;
     writeFile(dir / "p.scad", "cube(3);\n");
-    const auto r = runCsgray({"export", (dir / "p.scad").string(), "-o", (dir / "p.svg").string()},
-                             dir.path());
+    const auto r = exportPart(dir, "p.svg");
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.err.find("p.scad:1:1: error: export: the top level object is not a 2-D object"),
               std::string::npos)
@@ -332,8 +329,7 @@ TEST(DrawingExport, ASolidIsNotDrawn) {
 TEST(DrawingExport, AnEmptyShapeIsAnEmptyDrawingWithAWarning) {
     ScratchDir dir;
     writeFile(dir / "p.scad", "intersection() { square(1); translate([5, 0]) square(1); }\n");
-    const auto r = runCsgray({"export", (dir / "p.scad").string(), "-o", (dir / "p.dxf").string()},
-                             dir.path());
+    const auto r = exportPart(dir, "p.dxf");
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.err.find("the shape is empty"), std::string::npos) << r.err;
     EXPECT_TRUE(dxfEntities(readFile(dir / "p.dxf")).empty());
