@@ -16,11 +16,16 @@ inline bool inCi() {
     return ci != nullptr && std::strcmp(ci, "true") == 0;
 }
 
+// Whether Debian's openscad runs here: the oracle of the tests that compare with OpenSCAD 2021.
+inline bool haveOpenScad() {
+    return std::system("openscad --version >/dev/null 2>&1") == 0;
+}
+
 }  // namespace csg::testing
 
 // In a test body (or SetUp): skip with `why`, or fail with it under CI=true.
-#define SKIP_OR_FAIL_IN_CI(why)                                                   \
-    do {                                                                          \
+#define SKIP_OR_FAIL_IN_CI(why)                                                        \
+    do {                                                                               \
         if (::csg::testing::inCi()) FAIL() << "in CI a missing tool fails: " << (why); \
-        GTEST_SKIP() << (why);                                                    \
+        GTEST_SKIP() << (why);                                                         \
     } while (0)

@@ -9,8 +9,8 @@
 #include <map>
 #include <random>
 
-#include "MissingTool.h"
 #include "CliRunner.h"
+#include "MissingTool.h"
 
 namespace cli {
 namespace {
@@ -257,9 +257,9 @@ TEST_P(SampleSpans, MatchHandDerivedSpans) {
 }
 
 const std::vector<std::string> kOpenScadSamples = {
-    "emblem.scad", "csg_grid.scad", "bracket.scad", "gear_ring.scad", "pipe_tee.scad", "pawn.scad",
-    "flange.scad", "hinge.scad",    "dice.scad",    "table.scad",     "knob.scad",     "gem.scad",
-    "vase.scad"};
+    "emblem.scad", "csg_grid.scad", "bracket.scad", "gear_ring.scad", "pipe_tee.scad",
+    "pawn.scad",   "flange.scad",   "hinge.scad",   "dice.scad",      "table.scad",
+    "knob.scad",   "gem.scad",      "vase.scad"};
 
 INSTANTIATE_TEST_SUITE_P(Samples, SampleSpans, ::testing::ValuesIn(kOpenScadSamples),
                          sampleTestName);
@@ -284,9 +284,7 @@ TEST(SampleSpans, EverySampleHasHandDerivedRays) {
 
 // ---- OpenSCAD round trip ----
 
-bool haveOpenScad() {
-    return std::system("command -v openscad >/dev/null 2>&1") == 0;
-}
+using csg::testing::haveOpenScad;
 
 // Rays from a sphere around the part's bounds toward random points inside them (seeded).
 std::string roundTripRays(const nlohmann::json& bounds, int count) {
@@ -324,7 +322,10 @@ std::string roundTripRays(const nlohmann::json& bounds, int count) {
 // sine of the grazing angle. Those parts are compared at 1e-4 of their size; every other part
 // (only right angles and short decimals, which the .csg keeps exactly) must match to 1e-9.
 const std::map<std::string, bool> kTurnedByNonRightAngles = {
-    {"csg_grid.scad", true}, {"gear_ring.scad", true}, {"flange.scad", true}, {"knob.scad", true},
+    {"csg_grid.scad", true},
+    {"gear_ring.scad", true},
+    {"flange.scad", true},
+    {"knob.scad", true},
     {"vase.scad", true}};  // the foot's hexagon is turned by 30 degrees
 
 class OpenScadRoundTrip : public ::testing::TestWithParam<std::string> {};

@@ -249,9 +249,7 @@ TEST(DrawingExport, CsgrayReadsItsOwnDrawingsBack) {
     }
 }
 
-bool haveOpenScad() {
-    return std::system("openscad --version >/dev/null 2>&1") == 0;
-}
+using csg::testing::haveOpenScad;
 
 // OpenSCAD's file of a part, made in dir.
 void openscadExport(const fs::path& dir, const std::string& part, const std::string& out) {

@@ -525,9 +525,7 @@ TEST(DxfLanguage, DimensionTypesAndCross) {
 
 // ---- against OpenSCAD 2021 ----
 
-bool haveOpenScad() {
-    return std::system("openscad --version >/dev/null 2>&1") == 0;
-}
+using csg::testing::haveOpenScad;
 
 // OpenSCAD's binary STL, read here: the volume by the divergence theorem, the bounds and, per
 // axis, a vertex at each end of them.

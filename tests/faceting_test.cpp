@@ -58,9 +58,7 @@ const ConvexPolytope* onlyPolytope(const io::Model& model) {
     return std::get_if<ConvexPolytope>(&leaves[0]->primitive);
 }
 
-bool haveOpenScad() {
-    return std::system("command -v openscad >/dev/null 2>&1") == 0;
-}
+using csg::testing::haveOpenScad;
 
 using Vec3f = std::array<float, 3>;
 

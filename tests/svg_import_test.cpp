@@ -461,9 +461,7 @@ TEST(SvgImport, ReaderNeverMakesNaNAndCapsWork) {
 
 // ---- against OpenSCAD 2021 ----
 
-bool haveOpenScad() {
-    return std::system("openscad --version >/dev/null 2>&1") == 0;
-}
+using csg::testing::haveOpenScad;
 
 double stlVolume(const fs::path& file) {
     return std::abs(csg::testing::binaryStlVolume(file));

@@ -25,19 +25,19 @@
 #include FT_FREETYPE_H
 #include FT_OUTLINE_H
 
-#include "MissingTool.h"
 #include "csg/Scene.h"
 #include "io/Evaluate.h"
 #include "io/TextLayout.h"
 #include "io/TextModule.h"
-#include "tests/TempDir.h"
+#include "tests/MissingTool.h"
 #include "tests/PartHelpers.h"
+#include "tests/TempDir.h"
 #include "tests/TextFiles.h"
 
 namespace {
 
-using csg::testing::evaluate;
 using csg::testing::diagnosticsOf;
+using csg::testing::evaluate;
 using csg::testing::readFile;
 using csg::testing::shellQuote;
 
@@ -55,9 +55,7 @@ const char* const kLiberationSans =
 // 1e5 * 100/72 outline units.
 constexpr double kEmUnits = 1e5 * 100.0 / 72.0;
 
-bool haveOpenScad() {
-    return std::system("command -v openscad >/dev/null 2>&1") == 0;
-}
+using csg::testing::haveOpenScad;
 
 // ---- the font's own metrics, unscaled, through FreeType directly ----
 
