@@ -175,7 +175,8 @@ bool write(const csg::NodePtr& node, const csg::Mat4& parent, std::string& out, 
     if (const auto* extrusion = std::get_if<csg::Extrusion>(&p))
         why += extrusion->kind == csg::Extrusion::Kind::Plane ? "is a 2-D shape (no solid)"
                : extrusion->kind == csg::Extrusion::Kind::Linear
-                   ? "is a twisted linear_extrude (OpenSCAD's slices are not known here)"
+                   ? "is a twisted linear_extrude, exact (--curves openscad makes it OpenSCAD's "
+                     "sliced polyhedron)"
                    : "has curved faces (a rotate_extrude, exact)";
     else if (std::holds_alternative<csg::HalfSpace>(p))
         why += "is an unbounded half-space (Manifold takes bounded solids)";

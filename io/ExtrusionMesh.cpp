@@ -12,6 +12,7 @@
 
 #include "csg/derived/Flatten2D.h"
 #include "csg/mesh/EarClip.h"
+#include "io/Degrees.h"
 
 namespace io {
 
@@ -31,15 +32,9 @@ using csg::Vec3;
 constexpr int kGridBits = 28;
 constexpr double kCleanDistance = 1.415;
 
-// A polygon of the region: its outer contour (counter-clockwise) and its holes (clockwise).
-struct Polygon {
-    std::vector<Vec2> outer;
-    std::vector<std::vector<Vec2>> holes;
-};
+using Polygon = RegionPolygon;
 
-// The outline's region by its fill rule as polygons, its curves replaced by chords within
-// chordDeviation; false when its segments do not chain into closed walks, when the chords
-// would have more than kMaxExtrusionMeshCorners corners, or when Clipper refuses them.
+// chordRegion's work: false where it gives nullopt.
 bool regionOf(const csg::Outline& outline, const csg::Bounds2& box, double chordDeviation,
               std::vector<Polygon>& region) {
     const double size = std::max({std::abs(box.lo.x), std::abs(box.lo.y), std::abs(box.hi.x),
@@ -150,11 +145,14 @@ struct Cap {
     }
 };
 
-std::optional<csg::Polyhedron> closedMesh(std::vector<Vec3> points,
-                                          const csg::PolygonFaces& faces) {
+// The mesh when it is closed (every edge used by an even number of faces) and, when asked, a
+// manifold; nullopt otherwise.
+std::optional<csg::Polyhedron> closedMesh(std::vector<Vec3> points, const csg::PolygonFaces& faces,
+                                          bool manifold = true) {
     if (faces.size() == 0) return std::nullopt;
     csg::Polyhedron mesh = csg::Polyhedron::make(std::move(points), faces);
-    if (mesh.invalidReason() || !mesh.edges().manifold()) return std::nullopt;
+    if (mesh.invalidReason() || !mesh.edges().closed()) return std::nullopt;
+    if (manifold && !mesh.edges().manifold()) return std::nullopt;
     return mesh;
 }
 
@@ -235,7 +233,99 @@ std::optional<csg::Polyhedron> revolutionOf(const std::vector<Polygon>& region, 
     return closedMesh(std::move(points), faces);
 }
 
+// OpenSCAD's sgn_vdiff: the sign of |a| - |b|, 0 when they differ by at most 1e-5 of their
+// mean (10 ppm, so that the choice does not depend on the part's size).
+int compareLengths(Vec2 a, Vec2 b) {
+    const double la = glm::length(a), lb = glm::length(b);
+    return 2 * std::fabs(la - lb) * 1e5 > la + lb ? (la < lb ? -1 : 1) : 0;
+}
+
 }  // namespace
+
+std::optional<std::vector<RegionPolygon>> chordRegion(const csg::Outline& outline,
+                                                      const csg::Bounds2& box, double deviation) {
+    std::vector<RegionPolygon> region;
+    if (!(deviation > 0.0) || box.empty() || !regionOf(outline, box, deviation, region))
+        return std::nullopt;
+    return region;
+}
+
+// Corner k of a cap on layer j is point base + j corners + k.
+std::optional<csg::Polyhedron> slicedExtrusionMesh(const std::vector<RegionPolygon>& region,
+                                                   double z0, double z1, double twist, Vec2 scale,
+                                                   int64_t slices) {
+    if (region.empty() || slices < 1 || !(z1 > z0)) return std::nullopt;
+    // Layer j's map, as extrudePolygon and add_slice compute it: the turn by -twist j / slices
+    // (OpenSCAD's rotate_degrees, exact at multiples of 30 and 45 degrees), then the scale.
+    struct Layer {
+        glm::dmat2 map;  // column-major: map[column][row]
+        double z;
+        Vec2 scale;
+        double turn;
+    };
+    std::vector<Layer> layers(size_t(slices) + 1);
+    const double n = double(slices);
+    for (int64_t j = 0; j <= slices; ++j) {
+        Layer& layer = layers[size_t(j)];
+        const double k = double(j);
+        layer.turn = twist * k / n;
+        layer.z = z0 + (z1 - z0) * k / n;
+        layer.scale = Vec2(1 - (1 - scale.x) * k / n, 1 - (1 - scale.y) * k / n);
+        const double c = openscadCosDegrees(-layer.turn), s = openscadSinDegrees(-layer.turn);
+        layer.map = glm::dmat2(layer.scale.x * c, layer.scale.y * s,      // first column
+                               -(layer.scale.x * s), layer.scale.y * c);  // second column
+    }
+    std::vector<Vec3> points;
+    csg::PolygonFaces faces;
+    for (const Polygon& polygon : region) {
+        Cap cap;
+        if (!cap.fill(polygon)) return std::nullopt;
+        const size_t corners = cap.corners.size();
+        if (points.size() + corners * layers.size() > csg::Polyhedron::kMaxTriangles)
+            return std::nullopt;
+        const uint32_t base = uint32_t(points.size());
+        for (const Layer& layer : layers)
+            for (const Vec2& p : cap.corners) {
+                const Vec2 q(layer.map[0][0] * p.x + layer.map[1][0] * p.y,
+                             layer.map[0][1] * p.x + layer.map[1][1] * p.y);
+                points.emplace_back(q, layer.z);
+            }
+        const auto at = [&](int64_t j, uint32_t k) { return base + uint32_t(j * corners) + k; };
+        const auto planOf = [&](uint32_t index) { return Vec2(points[index]); };
+        for (const auto& t : cap.triangles) {
+            faces.add({at(0, t[0]), at(0, t[2]), at(0, t[1])});  // facing down
+            if (scale.x != 0.0 && scale.y != 0.0)
+                faces.add({at(slices, t[0]), at(slices, t[1]), at(slices, t[2])});
+        }
+        for (int64_t j = 0; j < slices; ++j) {
+            const Layer &below = layers[size_t(j)], &above = layers[size_t(j) + 1];
+            const bool anyZero = above.scale.x == 0.0 || above.scale.y == 0.0;
+            const bool anyNonZero = above.scale.x != 0.0 || above.scale.y != 0.0;
+            const bool turnsBack = above.turn <= below.turn;
+            for (size_t loop = 0; loop < cap.loops.size(); ++loop) {
+                const std::vector<uint32_t>& corner = cap.loops[loop];
+                const bool flip = (loop > 0) != turnsBack;  // loop 0 is the outer contour
+                for (size_t i = 1, m = corner.size(); i <= m; ++i) {
+                    const uint32_t p1 = at(j, corner[i - 1]), c1 = at(j, corner[i % m]);
+                    const uint32_t p2 = at(j + 1, corner[i - 1]), c2 = at(j + 1, corner[i % m]);
+                    const int sign =
+                        compareLengths(planOf(p1) - planOf(c2), planOf(c1) - planOf(p2));
+                    const bool splitFirst = sign == -1 || (sign == 0 && !flip);
+                    const bool second = !anyZero || (anyNonZero && planOf(p2) != planOf(c2));
+                    if (splitFirst != anyZero) {
+                        faces.add({p1, c2, c1});
+                        if (second) faces.add({c2, p1, p2});
+                    } else {
+                        faces.add({p1, p2, c1});
+                        if (second) faces.add({p2, c2, c1});
+                    }
+                }
+            }
+        }
+        if (faces.size() > csg::Polyhedron::kMaxTriangles) return std::nullopt;
+    }
+    return closedMesh(std::move(points), faces, /*manifold=*/false);
+}
 
 std::optional<csg::Polyhedron> extrusionMesh(const csg::Extrusion& e, double deviation) {
     using Kind = csg::Extrusion::Kind;

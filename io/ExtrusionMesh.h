@@ -24,6 +24,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <vector>
 
 #include "primitives/Extrusion.h"
 #include "primitives/Polyhedron.h"
@@ -34,6 +35,36 @@ namespace io {
 inline constexpr size_t kMaxExtrusionMeshCorners = 1 << 16;
 // Points of a revolution (corners times steps) beyond which none is built.
 inline constexpr size_t kMaxRevolutionPoints = 1 << 22;
+
+// A polygon of an outline's region: its outer contour (counter-clockwise) and its holes
+// (clockwise), each a list of corners.
+struct RegionPolygon {
+    std::vector<csg::Vec2> outer;
+    std::vector<std::vector<csg::Vec2>> holes;
+};
+
+// The outline's region by its fill rule as polygons, its curves replaced by chords within
+// `deviation` (> 0), on Clipper's grid as described above; nullopt when its segments do not
+// chain into closed walks, when the chords would have more than kMaxExtrusionMeshCorners
+// corners, or when Clipper refuses them.
+std::optional<std::vector<RegionPolygon>> chordRegion(const csg::Outline& outline,
+                                                      const csg::Bounds2& box, double deviation);
+
+// OpenSCAD 2021's linear_extrude of the region from z0 to z1 turning by `twist` degrees and
+// scaling to `scale` at the top, in `slices` layers (OPENSCAD.md section 3; its
+// GeometryEvaluator's extrudePolygon and add_slice): layer j, at z0 + (z1 - z0) j / slices, is
+// the region turned by -twist j / slices (OpenSCAD's degree trigonometry) and then scaled by
+// 1 - (1 - scale) j / slices per axis. Between two layers each contour edge p -> c (p1, c1
+// below, p2, c2 above) becomes two triangles split along the shorter diagonal; when the two
+// are equal within 10 ppm, along p1 c2 unless the contour is a hole or the slice does not turn
+// forward (twist <= 0), not both. A zero top scale inverts the choice and leaves out the
+// triangle that would have no area. The caps are the region (ear-clipped) at the bottom and its
+// last layer at the top when both top scales are above 0. The solid is the mesh's by crossing
+// parity; nullopt when it is not closed (a top scale of 0 on one axis can fold it), larger than
+// a polyhedron may be, or a cap cannot be ear-clipped.
+std::optional<csg::Polyhedron> slicedExtrusionMesh(const std::vector<RegionPolygon>& region,
+                                                   double z0, double z1, double twist,
+                                                   csg::Vec2 scale, int64_t slices);
 
 // The extrusion as a closed polyhedron in its own frame, its curves within `deviation` (local
 // units, > 0) of their chords, or nullopt (see above).

@@ -3,6 +3,7 @@
 // same operations in the same order as there: a faceted solid's vertices are OpenSCAD's.
 #include "io/Faceting.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -158,6 +159,81 @@ int64_t fragments(double r, double fn, double fa, double fs) {
     if (fn > 0.0) return int64_t(std::min(fn >= 3 ? fn : 3.0, kMaxCount));
     const double count = std::ceil(std::fmax(std::fmin(360.0 / fa, r * 2 * M_PI / fs), 5));
     return int64_t(std::min(count, kMaxCount));
+}
+
+namespace {
+
+// OpenSCAD's static_cast<int>(ceil(x)) for the counts it can reach, saturating instead of
+// overflowing (a count past INT32_MAX, or $fa = 0, is refused later by its size).
+int64_t ceilCount(double x) {
+    constexpr double kMaxCount = double(std::numeric_limits<int32_t>::max());
+    if (std::isnan(x)) return 1;
+    return int64_t(std::clamp(std::ceil(x), -kMaxCount, kMaxCount));
+}
+
+// calc.cc's helix_arc_length: a vertex at radius sqrt(rSquared) climbing `height` while it
+// turns through `twist` degrees (> 0).
+double helixLength(double rSquared, double height, double twist) {
+    const double turn = twist * kDegreesToRadians;
+    const double c = height / turn;
+    return turn * std::sqrt(rSquared + c * c);
+}
+
+// calc.cc's archimedes_length: the arc of the spiral r = a theta from 0 to theta.
+double archimedesLength(double a, double theta) {
+    return 0.5 * a * (theta * std::sqrt(1 + theta * theta) + std::asinh(theta));
+}
+
+int64_t helixSlices(double rSquared, double height, double twist, const FragmentSettings& s) {
+    twist = std::fabs(twist);
+    // At least 3 slices a turn: 180 degrees in one slice is never a manifold.
+    const int64_t least = std::max<int64_t>(ceilCount(twist / 120.0), 1);
+    if (std::sqrt(rSquared) < kGridFine || std::isinf(s.fn) || std::isnan(s.fn)) return least;
+    if (s.fn > 0.0) return std::max(ceilCount(twist / 360.0 * s.fn), least);
+    const int64_t byAngle = ceilCount(twist / s.fa);
+    const int64_t byLength = ceilCount(helixLength(rSquared, height, twist) / s.fs);
+    return std::max(std::min(byAngle, byLength), least);
+}
+
+// A uniform scale k != 1 with the twist: the vertex follows a conical helix, whose plan is a
+// piece of an Archimedean spiral.
+int64_t conicalHelixSlices(double rSquared, double height, double twist, double k,
+                           const FragmentSettings& s) {
+    twist = std::fabs(twist);
+    const double r = std::sqrt(rSquared);
+    const int64_t least = std::max<int64_t>(ceilCount(twist / 120.0), 1);
+    if (r < kGridFine || std::isinf(s.fn) || std::isnan(s.fn)) return least;
+    if (s.fn > 0.0) return std::max(ceilCount(twist * s.fn / 360), least);
+    const double turn = twist * kDegreesToRadians;
+    // The spiral's angle where the scale would reach 0, and where this piece starts.
+    const double end = k > 1 ? turn * k / (k - 1) : turn / (1 - k);
+    const double start = end - turn;
+    const double a = r / end;
+    const double spiral = archimedesLength(a, end) - archimedesLength(a, start);
+    const double length = std::sqrt(spiral * spiral + height * height);
+    const int64_t byLength = ceilCount(length / s.fs);
+    const int64_t byAngle = ceilCount(twist / s.fa);
+    return std::max(std::min(byAngle, byLength), least);
+}
+
+int64_t diagonalSlices(double deltaSquared, double height, const FragmentSettings& s) {
+    if (std::sqrt(deltaSquared) < kGridFine || std::isinf(s.fn) || std::isnan(s.fn)) return 1;
+    if (s.fn > 0.0) return std::max<int64_t>(ceilCount(std::trunc(s.fn)), 1);
+    return std::max<int64_t>(ceilCount(std::sqrt(deltaSquared + height * height) / s.fs), 1);
+}
+
+}  // namespace
+
+int64_t extrudeSlices(double rmaxSquared, double deltaSquared, double height, double twist,
+                      csg::Vec2 scale, const FragmentSettings& settings) {
+    if (twist != 0.0) {
+        // OpenSCAD 2021 takes the plain helix for two unequal scales too.
+        if ((scale.x == 1.0 && scale.y == 1.0) || scale.x != scale.y)
+            return helixSlices(rmaxSquared, height, twist, settings);
+        return conicalHelixSlices(rmaxSquared, height, twist, scale.x, settings);
+    }
+    if (scale.x != scale.y) return diagonalSlices(deltaSquared, height, settings);
+    return 1;
 }
 
 bool fnDecidesCount(const FragmentSettings& settings) {

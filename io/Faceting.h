@@ -56,6 +56,15 @@ bool fnDecidesCount(const FragmentSettings& settings);
 // Whether a curve with these settings is faceted in this mode (see CurveMode).
 bool isFaceted(CurveMode mode, const FragmentSettings& settings);
 
+// OpenSCAD 2021's slices of a linear_extrude that twists or scales its axes unevenly, when the
+// call gives no slices > 0 (GeometryEvaluator's extrudePolygon choosing among src/calc.cc's
+// get_helix_slices, get_conical_helix_slices and get_diagonal_slices): rmaxSquared is the
+// largest squared distance of a profile vertex from the origin, deltaSquared the largest
+// squared distance a vertex v moves to diag(scale) v (read only without twist). 1 for an
+// extrusion that neither twists nor scales unevenly. A count beyond INT32_MAX saturates there.
+int64_t extrudeSlices(double rmaxSquared, double deltaSquared, double height, double twist,
+                      csg::Vec2 scale, const FragmentSettings& settings);
+
 // circle(r) with n fragments (OpenSCAD's generate_circle): vertex i = (r cos(360 i / n),
 // r sin(360 i / n)), i = 0 .. n - 1, the first on +x, counter-clockwise, inscribed.
 std::vector<csg::Vec2> circleVertices(double r, int64_t n);

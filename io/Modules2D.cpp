@@ -3,6 +3,7 @@
 // ../shared/OPENSCAD.md sections 1 to 4 for the semantics followed.
 #include "io/Modules2D.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -10,6 +11,7 @@
 #include "io/BoundArgs.h"
 #include "io/Degrees.h"
 #include "io/DxfModules.h"
+#include "io/ExtrusionMesh.h"
 #include "io/FacetedPrimitives.h"
 #include "io/Shapes2D.h"
 #include "primitives/base/Tolerances.h"
@@ -159,6 +161,71 @@ Instance legacyDxfShape(Evaluator& e, const BoundArgs& b, const ContextPtr& ctx,
     return dxfShape(e, b, ctx, state, args);
 }
 
+// What OpenSCAD's sliced linear_extrude reads (OPENSCAD.md section 3).
+struct SlicedExtrusionArgs {
+    double z0, z1;
+    double twist;
+    Vec2 scale;
+    int64_t slices;  // given by the call when above 0
+    FragmentSettings settings;
+};
+
+// OpenSCAD 2021's sliced solid of a twisted or unevenly scaled linear_extrude (--curves
+// openscad): the polyhedron it builds, as a leaf. Null, with a warning, when the profile does
+// not close into polygons or its slices into a solid: the caller keeps the exact solid.
+csg::NodePtr slicedExtrusion(Evaluator& e, const InstantiationStmt& s, const csg::NodePtr& shape,
+                             const SlicedExtrusionArgs& a) {
+    const auto keepExact = [&](const std::string& why) {
+        e.warn(s.loc, "linear_extrude(): OpenSCAD's sliced solid is not built (" + why +
+                          "); the exact twisted solid stands in for it");
+        return csg::NodePtr();
+    };
+    // The profile's boundary as closed contours, as OpenSCAD extrudes the union of the
+    // children (a leaf too: an imported drawing's segments need not chain as they come).
+    const std::optional<BoundaryOutline> united = boundaryOutline(*shape);
+    std::optional<std::vector<RegionPolygon>> region;
+    if (united) {
+        const csg::Bounds2 box = united->outline->bounds();
+        const double size = std::max(
+            {std::abs(box.lo.x), std::abs(box.lo.y), std::abs(box.hi.x), std::abs(box.hi.y), 1.0});
+        region = chordRegion(*united->outline, box, csg::tol::kFlattenRel * size);
+    }
+    if (!region) return keepExact("its profile does not close into polygons");
+    // The slices OpenSCAD counts from the profile's vertices, and what they make.
+    double rmaxSquared = 0.0, deltaSquared = 0.0;
+    uint64_t corners = 0;
+    const auto scan = [&](const std::vector<Vec2>& contour) {
+        for (const Vec2& v : contour) {
+            rmaxSquared = std::fmax(rmaxSquared, glm::dot(v, v));
+            const Vec2 moved = v - v * a.scale;
+            deltaSquared = std::fmax(deltaSquared, glm::dot(moved, moved));
+        }
+        corners += contour.size();
+    };
+    for (const RegionPolygon& polygon : *region) {
+        scan(polygon.outer);
+        for (const std::vector<Vec2>& hole : polygon.holes) scan(hole);
+    }
+    const int64_t slices = a.slices > 0 ? a.slices
+                                        : extrudeSlices(rmaxSquared, deltaSquared, a.z1 - a.z0,
+                                                        a.twist, a.scale, a.settings);
+    const uint64_t triangles = 2 * uint64_t(slices) * corners;
+    if (triangles > csg::Polyhedron::kMaxTriangles)
+        e.fail(s.loc, "linear_extrude(): " + std::to_string(slices) + " slices of " +
+                          std::to_string(corners) + " corners make " + std::to_string(triangles) +
+                          " triangles; OpenSCAD's sliced solid (--curves openscad) may have at "
+                          "most " +
+                          std::to_string(csg::Polyhedron::kMaxTriangles) +
+                          "; expected fewer slices (slices, $fn, or a larger $fa or $fs), or "
+                          "--curves auto for the exact solid");
+    // A triangle and a point for each corner and slice, as polyhedron() charges them.
+    e.spend(s.loc, 2 * triangles);
+    std::optional<csg::Polyhedron> mesh =
+        slicedExtrusionMesh(*region, a.z0, a.z1, a.twist, a.scale, slices);
+    if (!mesh) return keepExact("its slices do not close into a solid");
+    return csg::leaf(std::move(*mesh), shape->tags);
+}
+
 }  // namespace
 
 Instance linearExtrudeModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr& ctx,
@@ -189,20 +256,32 @@ Instance linearExtrudeModule(Evaluator& e, const InstantiationStmt& s, const Con
             b.bad(e, 4, "a number or [sx, sy]");
     }
     const double twist = numberArg(e, b, 6, 0.0);
-    numberArg(e, b, 7, 1.0);  // slices: the exact solid needs none
+    // slices: read by OpenSCAD's sliced solid only (the exact one needs none); OpenSCAD takes
+    // its integer part when that is above 0.
+    const double slices = numberArg(e, b, 7, 0.0);
     // OpenSCAD 2021 reads the drawing with the extrusion's scale (so it also scales the
     // drawing) and ignores the children.
     Instance shape = fromFile ? legacyDxfShape(e, b, ctx, state, DxfArgs{0, 1, 3, scale.x})
                               : shapeChildren(e, b, ctx, state);
     if (!shape || !*shape) return shape;
     if (!(height > 0.0)) return csg::NodePtr();
+    const double z0 = center ? -0.5 * height : 0.0;
     // A twisted line finds its pieces per leaf: one leaf for the whole profile, as OpenSCAD
     // extrudes the union of the children.
     if (twist != 0.0 || scale.x != scale.y) {
         shape = unitedShape(*shape);
         if (!*shape) return shape;
+        if (e.solidCurveMode() == CurveMode::OpenScad) {
+            const SlicedExtrusionArgs args{
+                z0,
+                z0 + height,
+                twist,
+                scale,
+                std::isfinite(slices) ? int64_t(std::clamp(std::trunc(slices), 0.0, 0x1p31)) : 0,
+                unclampedFragmentSettings(e, b, ctx)};
+            if (csg::NodePtr sliced = slicedExtrusion(e, s, *shape, args)) return sliced;
+        }
     }
-    const double z0 = center ? -0.5 * height : 0.0;
     return liftLeaves(
         *shape, [&](const Extrusion& leaf) { return leaf.linear(z0, z0 + height, scale, twist); });
 }

@@ -56,18 +56,24 @@ NodePtr transformed2D(const csg::Mat4& m, const NodePtr& shape) {
     return mapLeaves(shape, map, done);
 }
 
+std::optional<BoundaryOutline> boundaryOutline(const csg::Node& shape) {
+    const csg::Boundary2D boundary = csg::boundaryOf(csg::Region2D(shape));
+    const std::optional<std::vector<csg::Contour2D>> contours = csg::contoursOf(boundary);
+    if (!contours) return std::nullopt;
+    BoundaryOutline result{std::make_shared<csg::Outline>(), boundary.approximated};
+    result.outline->rule = csg::FillRule::NonZero;  // contours that never cross, holes clockwise
+    for (const csg::Contour2D& contour : *contours)
+        for (const csg::BoundaryPiece& p : contour)
+            result.outline->segments.push_back(csg::segmentOf(p));
+    return result;
+}
+
 NodePtr unitedShape(const NodePtr& shape) {
     if (!shape || shape->op == csg::Op::Leaf) return shape;
-    const csg::Boundary2D boundary = csg::boundaryOf(csg::Region2D(*shape));
-    if (boundary.approximated) return shape;
-    const std::optional<std::vector<csg::Contour2D>> contours = csg::contoursOf(boundary);
-    if (!contours) return shape;
-    auto outline = std::make_shared<csg::Outline>();
-    outline->rule = csg::FillRule::NonZero;  // contours that never cross, holes clockwise
-    for (const csg::Contour2D& contour : *contours)
-        for (const csg::BoundaryPiece& p : contour) outline->segments.push_back(csg::segmentOf(p));
-    if (outline->segments.empty()) return NodePtr();
-    return csg::leaf(Extrusion::plane(std::move(outline), "union"), shape->tags);
+    std::optional<BoundaryOutline> united = boundaryOutline(*shape);
+    if (!united || united->approximated) return shape;
+    if (united->outline->segments.empty()) return NodePtr();
+    return csg::leaf(Extrusion::plane(std::move(united->outline), "union"), shape->tags);
 }
 
 NodePtr liftLeaves(const NodePtr& shape, const std::function<Extrusion(const Extrusion&)>& lift) {

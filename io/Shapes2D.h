@@ -5,6 +5,8 @@
 #pragma once
 
 #include <functional>
+#include <memory>
+#include <optional>
 
 #include "csg/Tree.h"
 
@@ -16,6 +18,16 @@ int dimensionOf(const csg::NodePtr& node);
 // The shape under the x-y part of m, as OpenSCAD applies a transform to 2-D geometry (its
 // z rows and columns are dropped).
 csg::NodePtr transformed2D(const csg::Mat4& m, const csg::NodePtr& shape);
+
+// The boundary of a shape's booleans (csg::boundaryOf) chained into closed contours
+// (csg::contoursOf) as one outline: outer contours counter-clockwise, holes clockwise, never
+// crossing, filled by the nonzero rule; nullopt when the boundary does not chain. approximated:
+// elliptic arcs or Beziers became chords within tol::kFlattenRel of the shape's size.
+struct BoundaryOutline {
+    std::shared_ptr<csg::Outline> outline;
+    bool approximated = false;
+};
+std::optional<BoundaryOutline> boundaryOutline(const csg::Node& shape);
 
 // The shape as one leaf whose outline is the boundary of its booleans (csg::contoursOf), as
 // OpenSCAD unions an extrusion's children before extruding them: the twisted extrusion then

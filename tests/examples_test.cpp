@@ -15,8 +15,8 @@
 // Lists keep the test honest, each entry with its reason: examples that do not load yet (a
 // test fails if one of them loads, so the list only shrinks), examples whose OpenSCAD export
 // takes too long for the default test run (scripts/compare-examples.sh compares them all),
-// examples whose twist OpenSCAD slices (held to its slicing error), examples csgray itself is
-// too slow on, and examples whose OpenSCAD mesh has inner faces.
+// examples csgray itself is too slow on, and examples whose OpenSCAD mesh has inner faces.
+// Twisted extrusions are compared like the rest: --curves openscad builds OpenSCAD's slices.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -40,26 +40,6 @@ const fs::path kLibraries = "/usr/share/openscad/libraries";
 
 // Examples csgray cannot load yet, and why (none now; an example that stops loading fails).
 const std::map<std::string, std::string> kNotLoadingYet = {};
-
-// Examples whose twisted extrusions OpenSCAD slices into flat layers while csgray keeps the
-// exact helicoids: their meshes differ by OpenSCAD's slicing error, far above T, so they are
-// held to that error instead (both one-sided maxima; the volume is not compared here, the
-// slices' chords cut or add volume of that error times the area). The bounds are derived as in
-// twist_test's AgainstOpenScad (chord sagitta plus the bilinear quads' twist) from the slices
-// OpenSCAD's get_helix_slices makes.
-const std::map<std::string, double> kSlicedByOpenScad = {
-    // The cyan block: twist 90 over 20 in 7 slices of 0.224 rad, rho 11.2, edges <= 20:
-    // 0.224^2 * 11.2 / 8 + 0.224 * 20 / 4 = 1.2.
-    {"Basics/linear_extrude.scad", 1.2},
-    // The fan: twist -57.53 over 20 in min(ceil(57.53 / 12), ceil(26.4 / 2)) = 5 slices of
-    // 0.2008 rad, rho <= 17.12, the DXF's lines <= 10.92: 0.2008^2 * 17.12 / 8 +
-    // 0.2008 * 10.92 / 4 = 0.64.
-    {"Old/example009.scad", 0.64},
-    // hypotrochoidLinear(4, 1, 1, 40, 40, 10, 30): twist 30 over 10 with $fn = 30 in
-    // ceil(30 / 360 * 30) = 3 slices of 0.1745 rad, rho <= R - r + d = 4, the triangles' edges
-    // from the centre <= 4: 0.1745^2 * 4 / 8 + 0.1745 * 4 / 4 = 0.19.
-    {"MCAD/trochoids.scad", 0.19},
-};
 
 // Examples OpenSCAD takes more than ~25 s to export here (CGAL's exact booleans), measured
 // with `time openscad -o x.stl`: compared by scripts/compare-examples.sh, not by default.
@@ -96,12 +76,7 @@ const std::map<std::string, std::string> kOpenScadMeshFlaws = {
 // at all...
 const std::map<std::string, std::string> kSlowToLoad = {};
 // ... or to compare (they load in the test).
-const std::map<std::string, std::string> kSlowToCompare = {
-    {"Old/example020.scad",
-     "161 s with default curves (312 s before the twisted profile became one leaf, 50ea4e5): "
-     "535k surface samples through the spring's helicoids; twist_test holds its vertices and "
-     "volume to OpenSCAD's within its slicing error (3.2)"},
-};
+const std::map<std::string, std::string> kSlowToCompare = {};
 
 std::vector<std::string> exampleNames() {
     std::vector<std::string> names;
@@ -171,17 +146,6 @@ TEST_P(OpenScadExample, LoadsAndLiesOnOpenScadsMesh) {
         diagonal += std::pow(hi[a].get<double>() - lo[a].get<double>(), 2.0);
     diagonal = std::sqrt(diagonal);
     ASSERT_FALSE(j["surfaceToMesh"]["max"].is_null()) << j.dump();
-    if (const auto it = kSlicedByOpenScad.find(name); it != kSlicedByOpenScad.end()) {
-        EXPECT_LE(j["surfaceToMesh"]["max"].get<double>(), it->second) << j.dump();
-        // The maximum is null when a sample is unresolved (see below); the mean then stands in.
-        const auto& toSurface = j["meshToSurface"];
-        EXPECT_LE((toSurface["max"].is_null() ? toSurface["mean"] : toSurface["max"]).get<double>(),
-                  it->second)
-            << j.dump();
-        EXPECT_LE(toSurface["unresolved"].get<double>(), 0.02 * toSurface["samples"].get<double>())
-            << j.dump();
-        return;
-    }
     const double tolerance = 1e-5 * diagonal;
     EXPECT_LE(j["surfaceToMesh"]["max"].get<double>(), tolerance) << j.dump();
     if (!kOpenScadMeshFlaws.count(name)) {

@@ -20,6 +20,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "MissingTool.h"
 #include "csg/Scene.h"
 #include "csg/Volume.h"
 #include "io/Evaluate.h"
@@ -545,9 +546,7 @@ TEST(TwistedVolume, IsAreaTimesHeight) {
 
 // ---- (f) against OpenSCAD 2021's own meshes ----
 
-bool haveOpenScad() {
-    return std::system("command -v openscad >/dev/null 2>&1") == 0;
-}
+using csg::testing::haveOpenScad;
 
 struct StlMesh {
     std::vector<std::array<Vec3, 3>> triangles;
@@ -630,8 +629,10 @@ TEST(AgainstOpenScad, VerticesAndVolumesWithinTheSlicingError) {
     // edges <= 20): 411.4 / 35 = 11.76 degrees a slice, 0.205 rad: 0.205^2 * 40 / 8 +
     // 0.205 * 20 / 4 = 1.24. The nut's screw: 2 x 411.4 degrees over 40, 69 slices: 0.208 rad,
     // rho <= 42: 1.27. The spring: twist 1500 over 100, $fn = 19.2 -> 80 slices of 0.327 rad,
-    // rho <= 110, edges <= 20 (a segment's radial side): 1.47 + 1.64 = 3.1. Its circle is
-    // OpenSCAD's 30-gon in both (--curves openscad).
+    // rho <= 110, edges <= 20 (a segment's radial side): 1.47 + 1.64 = 3.1. csgray's solid is
+    // the exact one (--curves auto: --curves openscad would build OpenSCAD's slices, see
+    // sliced_extrusion_test), so its circles are exact where OpenSCAD's are 30-gons: the
+    // sagitta, 20 (1 - cos 6 degrees) = 0.11, fits in each margin.
     // Basics/linear_extrude: the cyan block (twist 90 over 20, 7 slices: 0.224 rad, rho 11.2,
     // L 20: 0.07 + 1.12 = 1.2) and the gray pyramid (twist -360 over 40 with scale 0 and 200
     // slices: 0.0314 rad, rho 11.2, L 20, d sigma = 0.005: 0.0014 + 0.0014 + 0.2 = 0.2).
@@ -649,7 +650,7 @@ TEST(AgainstOpenScad, VerticesAndVolumesWithinTheSlicingError) {
         ASSERT_GT(mesh.triangles.size(), 100u) << c.name;
 
         io::EvaluateOptions options;
-        options.curves = io::CurveMode::OpenScad;
+        options.curves = io::CurveMode::Auto;
         const io::EvaluateResult r = io::evaluateString(readFile(c.file), c.file, options);
         ASSERT_TRUE(r.ok()) << diagnosticsOf(r);
         const csg::Scene scene = csg::Scene::compile(r.model->root);
