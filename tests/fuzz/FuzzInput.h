@@ -23,8 +23,19 @@ inline io::EvaluateOptions fuzzOptions() {
     return options;
 }
 
+// Every curve mode gets its share of the inputs, by their length (stable across runs, so that
+// the corpus replays as it was fuzzed): openscad builds faceted solids and OpenSCAD's sliced
+// extrusions, exact and auto the exact ones.
+inline io::CurveMode curveModeFor(std::string_view text) {
+    constexpr io::CurveMode kModes[] = {io::CurveMode::Auto, io::CurveMode::OpenScad,
+                                        io::CurveMode::Exact};
+    return kModes[text.size() % 3];
+}
+
 inline void evaluateInput(std::string_view text) {
-    const io::EvaluateResult result = io::evaluateString(text, "fuzz.scad", fuzzOptions());
+    io::EvaluateOptions options = fuzzOptions();
+    options.curves = curveModeFor(text);
+    const io::EvaluateResult result = io::evaluateString(text, "fuzz.scad", options);
     // A model exactly when no diagnostic is an error, and every diagnostic formats.
     if (result.ok() == io::hasErrors(result.diagnostics)) std::abort();
     for (const io::Diagnostic& d : result.diagnostics)
