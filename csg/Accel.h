@@ -36,8 +36,4 @@ inline std::optional<Accel> parseAccel(std::string_view name) {
     return std::nullopt;
 }
 
-struct CompileOptions {
-    Accel accel = Accel::Sah;
-};
-
 }  // namespace csg

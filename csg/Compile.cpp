@@ -247,6 +247,8 @@ struct Compiler {
         if (!isFinite(localFromWorld))
             throw CompileError("the accumulated transform cannot be inverted", node.tags.source);
         LeafGeometry geometry{node.primitive, {}};
+        if (auto* mesh = std::get_if<Polyhedron>(&geometry.shape))
+            mesh->method = options.polygonMethod;
         setFrame(geometry, placement, node);
         Bounds3 box;
         std::visit(

@@ -20,6 +20,7 @@
 #include "csg/Ray.h"
 #include "csg/Span.h"
 #include "csg/Tree.h"
+#include "primitives/Polyhedron.h"
 #include "primitives/base/Bounds.h"
 
 namespace csg {
@@ -81,6 +82,15 @@ struct BvhNode;
 struct BoundingBall;
 struct UniformGrid;
 struct HalvingGrid;
+
+// What Scene::compile builds beyond the tree: neither changes a span's extent on a closed mesh
+// away from its edges, only the time, the memory and, for polygon meshes, the edge cases and
+// normals.
+struct CompileOptions {
+    Accel accel = Accel::Sah;  // the structure over each union's objects (csg/Accel.h)
+    // The crossing test of every polygon mesh (primitives/Polyhedron.h).
+    PolygonMethod polygonMethod = PolygonMethod::Watertight;
+};
 
 class Scene {
 public:

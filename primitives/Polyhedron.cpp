@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <numeric>
+#include <optional>
 
 #include "primitives/base/Fma.h"
 #include "primitives/base/Tolerances.h"
@@ -117,6 +119,85 @@ inline bool crosses(const Projected& A, const Projected& B, const Projected& C, 
     t = std::clamp(t, std::min({A.z, B.z, C.z}), std::max({A.z, B.z, C.z}));
     return true;
 }
+
+// ---- the lecture's methods (Polyhedron.h): each triangle alone, in rounded arithmetic ----
+
+// The axis of n's largest component, and the two after it in cyclic order, so that
+// cross(a, b)[i0] = a[i1] b[i2] - a[i2] b[i1].
+struct DroppedAxis {
+    int i0, i1, i2;
+    explicit DroppedAxis(const Vec3& n) {
+        const Vec3 a = glm::abs(n);
+        i0 = a.x >= a.y ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2);
+        i1 = (i0 + 1) % 3;
+        i2 = (i0 + 2) % 3;
+    }
+    Vec2 of(const Vec3& v) const { return Vec2(v[i1], v[i2]); }
+};
+
+double cross2(const Vec2& a, const Vec2& b) {
+    return a.x * b.y - a.y * b.x;
+}
+
+// The line's parameter at the triangle's plane, false when the line runs along it.
+inline bool planeCrossing(const Vec3& p0, const Vec3& n, const Vec3& o, const Vec3& d, double& t) {
+    const double along = glm::dot(n, d);
+    if (along == 0.0) return false;
+    t = glm::dot(n, p0 - o) / along;
+    return std::isfinite(t);
+}
+
+// Snyder's barycentric coordinates of the plane point q (projected) in triangle (a, b, c).
+inline std::array<double, 3> snyderWeights(const Vec2& a, const Vec2& b, const Vec2& c,
+                                           const Vec2& q, double n0) {
+    return {cross2(c - b, q - b) / n0, cross2(a - c, q - c) / n0, cross2(b - a, q - a) / n0};
+}
+
+struct SnyderTest {
+    bool operator()(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& o, const Vec3& d,
+                    double& t) const {
+        const Vec3 n = glm::cross(p1 - p0, p2 - p0);
+        if (!planeCrossing(p0, n, o, d, t)) return false;
+        const DroppedAxis axis(n);
+        const Vec2 q(o[axis.i1] + t * d[axis.i1], o[axis.i2] + t * d[axis.i2]);
+        const std::array<double, 3> b =
+            snyderWeights(axis.of(p0), axis.of(p1), axis.of(p2), q, n[axis.i0]);
+        return b[0] >= 0.0 && b[1] >= 0.0 && b[2] >= 0.0 && b[0] <= 1.0 && b[1] <= 1.0 &&
+               b[2] <= 1.0;
+    }
+};
+
+// Marchal's test of the plane point (w = I - P0, projected) against the edge P1 P2 (a = P1 - P0,
+// b = P2 - P0): where the half-line from P0 through I crosses it, as M = a + s (b - a), and
+// r = |P0 I| / |P0 M|; nullopt when it does not cross it.
+struct MarchalPoint {
+    double s, r;
+};
+inline std::optional<MarchalPoint> marchalPoint(const Vec2& a, const Vec2& b, const Vec2& w) {
+    // The u coordinates (across the half-line, scaled by |w|) of P1 and P2: opposite signs.
+    const double ua = cross2(w, a), ub = cross2(w, b);
+    if (!(ua * ub < 0.0)) return std::nullopt;
+    const double s = ua / (ua - ub);
+    const Vec2 m = a + s * (b - a);
+    // |w| |P0 M| when M lies ahead on the half-line (its v coordinate, scaled by |w|).
+    const double along = glm::dot(m, w);
+    if (!(along > 0.0)) return std::nullopt;
+    return MarchalPoint{s, glm::dot(w, w) / along};
+}
+
+struct MarchalTest {
+    bool operator()(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& o, const Vec3& d,
+                    double& t) const {
+        const Vec3 n = glm::cross(p1 - p0, p2 - p0);
+        if (!planeCrossing(p0, n, o, d, t)) return false;
+        const DroppedAxis axis(n);
+        const Vec2 origin = axis.of(p0);
+        const Vec2 w = Vec2(o[axis.i1] + t * d[axis.i1], o[axis.i2] + t * d[axis.i2]) - origin;
+        const std::optional<MarchalPoint> m =
+            marchalPoint(axis.of(p1) - origin, axis.of(p2) - origin, w);
+        return m && m->r < 1.0;
+    }
+};
 
 // ---- building ----
 
@@ -493,12 +574,21 @@ void Polyhedron::describe(JsonWriter& json) const {
 
 namespace {
 
-// Every crossing of the line with the mesh's triangles, unsorted, appended to out; the line's
-// origin must lie near the mesh's box (the BVH margin assumes it: see Polyhedron.h).
-void collectCrossings(const PolyhedronData& mesh, const Vec3& o, const Vec3& d,
-                      std::vector<Polyhedron::Crossing>& out) {
-    if (!(d.x != 0.0 || d.y != 0.0 || d.z != 0.0)) return;
-    const ShearedRay ray(o, d);
+// The watertight test, on the sheared frame's projections.
+struct WatertightTest {
+    ShearedRay ray;
+    bool operator()(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3&, const Vec3&,
+                    double& t) const {
+        return crosses(project(ray, p0), project(ray, p1), project(ray, p2), t);
+    }
+};
+
+// Every crossing of the line with the mesh's triangles by `test`, unsorted, appended to out;
+// the line's origin must lie near the mesh's box (the BVH margin assumes it: see
+// Polyhedron.h).
+template <class Test>
+void collectCrossingsBy(const Test& test, const PolyhedronData& mesh, const Vec3& o, const Vec3& d,
+                        std::vector<Polyhedron::Crossing>& out) {
     const SlabRay slab(o, d);
     uint32_t todo[3 * kBvhMaxDepth + 4];
     int pending = 0;
@@ -517,13 +607,26 @@ void collectCrossings(const PolyhedronData& mesh, const Vec3& o, const Vec3& d,
             for (uint32_t i = first; i < last; ++i) {
                 const std::array<uint32_t, 3>& t = mesh.triangles[i];
                 double at;
-                if (crosses(project(ray, mesh.vertices[t[0]]), project(ray, mesh.vertices[t[1]]),
-                            project(ray, mesh.vertices[t[2]]), at))
+                if (test(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], o, d, at))
                     out.push_back({at, i});
             }
         }
         if (pending == 0) return;
         node = &mesh.nodes[todo[--pending]];
+    }
+}
+
+void collectCrossings(const PolyhedronData& mesh, const Vec3& o, const Vec3& d,
+                      std::vector<Polyhedron::Crossing>& out,
+                      PolygonMethod method = PolygonMethod::Watertight) {
+    if (!(d.x != 0.0 || d.y != 0.0 || d.z != 0.0)) return;
+    switch (method) {
+        case PolygonMethod::Watertight:
+            return collectCrossingsBy(WatertightTest{ShearedRay(o, d)}, mesh, o, d, out);
+        case PolygonMethod::Snyder:
+            return collectCrossingsBy(SnyderTest{}, mesh, o, d, out);
+        case PolygonMethod::Marchal:
+            return collectCrossingsBy(MarchalTest{}, mesh, o, d, out);
     }
 }
 
@@ -565,7 +668,7 @@ void Polyhedron::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     if (!data || data->invalid) return;
     std::vector<Crossing>& c = lineCrossings;
     c.clear();
-    collectCrossings(*data, o, d, c);
+    collectCrossings(*data, o, d, c, method);
     if (c.size() < 2) return;
     sortCrossings(c);
     // Step 1: pairs; an odd count (an open mesh) loses its last crossing; touches (a ray
@@ -592,6 +695,57 @@ bool Polyhedron::inside(const Vec3& p) const {
     return ahead % 2 == 1;
 }
 
+namespace {
+
+Vec3 unitOr(const Vec3& v, const Vec3& fallback) {
+    const double length = glm::length(v);
+    return length > 0.0 && std::isfinite(length) ? v / length : fallback;
+}
+
+// Each triangle's corner normals (Polyhedron.h): at each corner, the normals of the triangles
+// around that vertex within kSmoothCreaseDegrees of this one's, weighted by their angles there.
+void buildCornerNormals(const PolyhedronData& mesh) {
+    const size_t n = mesh.triangles.size();
+    std::vector<Vec3> unit(n);
+    // Each (vertex, triangle, corner) use, grouped by vertex.
+    std::vector<uint32_t> start(mesh.vertices.size() + 1, 0);
+    for (size_t i = 0; i < n; ++i) {
+        const auto& t = mesh.triangles[i];
+        const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+        unit[i] = unitOr(glm::cross(b - a, c - a), Vec3(0.0));
+        for (const uint32_t v : t) ++start[v + 1];
+    }
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    std::vector<uint32_t> around(3 * n), fill(start.begin(), start.end() - 1);
+    for (uint32_t i = 0; i < n; ++i)
+        for (const uint32_t v : mesh.triangles[i]) around[fill[v]++] = i;
+    // The triangle's angle at corner k.
+    const auto angleAt = [&](uint32_t i, int k) {
+        const auto& t = mesh.triangles[i];
+        const Vec3& p = mesh.vertices[t[size_t(k)]];
+        const Vec3 e1 = mesh.vertices[t[size_t(k + 1) % 3]] - p;
+        const Vec3 e2 = mesh.vertices[t[size_t(k + 2) % 3]] - p;
+        return std::atan2(glm::length(glm::cross(e1, e2)), glm::dot(e1, e2));
+    };
+    const double crease = std::cos(kSmoothCreaseDegrees * std::numbers::pi / 180.0);
+    mesh.cornerNormals.resize(n);
+    for (uint32_t i = 0; i < n; ++i)
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t v = mesh.triangles[i][size_t(k)];
+            Vec3 sum(0.0);
+            for (uint32_t u = start[v]; u < start[v + 1]; ++u) {
+                const uint32_t j = around[u];
+                if (glm::dot(unit[j], unit[i]) < crease) continue;
+                const auto& tj = mesh.triangles[j];
+                const int corner = tj[0] == v ? 0 : tj[1] == v ? 1 : 2;
+                sum += angleAt(j, corner) * unit[j];
+            }
+            mesh.cornerNormals[i][size_t(k)] = unitOr(sum, unit[i]);
+        }
+}
+
+}  // namespace
+
 Vec3 Polyhedron::normal(const Vec3& p, uint16_t face) const {
     if (!data || data->invalid || face >= data->triangles.size()) return Vec3(0.0, 0.0, 1.0);
     const auto corners = [&](uint32_t i) {
@@ -613,8 +767,42 @@ Vec3 Polyhedron::normal(const Vec3& p, uint16_t face) const {
     // Step 2: its plane's unit normal (triangles are wound outward).
     const auto v = corners(best);
     const Vec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
-    const double length = glm::length(n);
-    return length > 0.0 && std::isfinite(length) ? n / length : Vec3(0.0, 0.0, 1.0);
+    const Vec3 flat = unitOr(n, Vec3(0.0, 0.0, 1.0));
+    if (method == PolygonMethod::Watertight) return flat;
+    // Step 3: the interpolating methods' weights of p's projection on the plane.
+    const DroppedAxis axis(n);
+    std::array<double, 3> b;
+    if (method == PolygonMethod::Snyder) {
+        b = snyderWeights(axis.of(v[0]), axis.of(v[1]), axis.of(v[2]), axis.of(p), n[axis.i0]);
+    } else {
+        const Vec2 origin = axis.of(v[0]);
+        const std::optional<MarchalPoint> m =
+            marchalPoint(axis.of(v[1]) - origin, axis.of(v[2]) - origin, axis.of(p) - origin);
+        if (!m) return flat;  // p at P0, or off the triangle (a point on its edge P0 P1)
+        b = {1.0 - m->r, m->r * (1.0 - m->s), m->r * m->s};
+    }
+    std::call_once(data->smoothOnce, [&] { buildCornerNormals(*data); });
+    const std::array<Vec3, 3>& corner = data->cornerNormals[best];
+    return unitOr(b[0] * corner[0] + b[1] * corner[1] + b[2] * corner[2], flat);
+}
+
+const char* polygonMethodName(PolygonMethod method) {
+    switch (method) {
+        case PolygonMethod::Watertight:
+            return "watertight";
+        case PolygonMethod::Snyder:
+            return "snyder";
+        case PolygonMethod::Marchal:
+            return "marchal";
+    }
+    return "watertight";
+}
+
+std::optional<PolygonMethod> parsePolygonMethod(std::string_view name) {
+    for (PolygonMethod m :
+         {PolygonMethod::Watertight, PolygonMethod::Snyder, PolygonMethod::Marchal})
+        if (name == polygonMethodName(m)) return m;
+    return std::nullopt;
 }
 
 }  // namespace csg

@@ -24,6 +24,26 @@
 // span, dropped by the caller). The BVH boxes are widened by tol::kMeshBoxMarginRel so that no
 // triangle this test crosses is culled by its box.
 //
+// Polygon methods (--polygon-method; Polyhedron::method): the crossing test above is the
+// default, Watertight. The ray-tracing lecture's two methods are there to compare with it:
+//   Snyder   the line meets the triangle's plane at t = n . (P0 - o) / (n . d); the hit point's
+//            barycentric coordinates b_i come from 2x2 cross products in the projection that
+//            drops the normal's largest axis, and it is inside when every b_i is in [0, 1];
+//   Marchal  the same plane point I; in the plane, the half-line from P0 through I crosses the
+//            opposite edge P1 P2 at M (when P1 and P2 lie strictly on either side of it), and I
+//            is inside when |P0 I| < |P0 M|.
+// Both compute each triangle's normal per test (no per-triangle planes are stored) and decide
+// every triangle alone, in rounded arithmetic: a line through a shared edge or vertex may be
+// counted by both triangles or by neither, so a line's crossings may not pair (spans() then
+// drops the last of an odd count). bench/mesh_bench measures how often, against Watertight's
+// never. Their normal() interpolates corner normals: Snyder by b0 N0 + b1 N1 + b2 N2, Marchal by
+// N_M = (1 - s) N1 + s N2 at M = P1 + s (P2 - P1), then (1 - r) N0 + r N_M with r = |P0 I| /
+// |P0 M| (the same weights, reached another way). A corner's normal is the angle-weighted mean
+// of the normals of the triangles around the vertex that turn less than kSmoothCreaseDegrees
+// from this triangle's, so a faceted sphere shades round while a cube keeps its edges. The
+// method changes spans() and normal() only: inside() and crossings(), which decide orientation
+// and membership, stay watertight.
+//
 // Faces: a span end's face is the crossed triangle's index modulo kFaceIds (65535; kClipFace is
 // the 65536th value), so meshes of up to 65535 triangles name the triangle itself; in larger
 // ones normal() takes, among the triangles of that residue, the one nearest the point (the
@@ -46,6 +66,9 @@
 
 #include <array>
 #include <memory>
+#include <mutex>
+#include <optional>
+#include <string_view>
 #include <vector>
 
 #include "primitives/Primitive.h"
@@ -54,6 +77,17 @@
 namespace csg {
 
 struct PolyhedronData;
+
+// How spans() tests a line against the triangles (see the head of this file).
+enum class PolygonMethod : uint8_t { Watertight, Snyder, Marchal };
+// "watertight", "snyder", "marchal".
+const char* polygonMethodName(PolygonMethod method);
+// The method of a name polygonMethodName gives; nullopt for anything else.
+std::optional<PolygonMethod> parsePolygonMethod(std::string_view name);
+// Triangles whose normals turn more than this from each other meet at a crease: their corner
+// normals are not averaged (30 degrees: OpenSCAD's default facets, 12 degrees apart, shade
+// round; a cube's 90-degree edges and a hexagonal prism's 60 stay sharp).
+inline constexpr double kSmoothCreaseDegrees = 30.0;
 
 // Faces as lists of corners: face f is corners[faceStart[f]] .. corners[faceStart[f + 1] - 1],
 // indices into the points; faceStart has one entry more than there are faces.
@@ -88,7 +122,8 @@ struct Polyhedron {
     // invalidReason() of a mesh with no face of positive area (the empty solid to a caller).
     static constexpr const char* kNoFaces = "the mesh has no faces of positive area";
 
-    std::shared_ptr<const PolyhedronData> data;  // shared, immutable
+    std::shared_ptr<const PolyhedronData> data;        // shared, immutable
+    PolygonMethod method = PolygonMethod::Watertight;  // set by Scene::compile's options
 
     // Builds the mesh from points (finite) and faces of at least 3 corners (indices below
     // points.size(); checked by the caller). Corners at equal positions are welded; faces of
@@ -133,6 +168,9 @@ struct PolyhedronData {
     MeshEdges edges;
     uint64_t droppedFaces = 0;  // faces of no area
     const char* invalid = nullptr;
+    // Each triangle's corner normals for the interpolating methods, built on first use.
+    mutable std::once_flag smoothOnce;
+    mutable std::vector<std::array<Vec3, 3>> cornerNormals;
 };
 
 }  // namespace csg

@@ -68,6 +68,7 @@ TEST(Usage, BadCommandLinesExitWithTwo) {
         {"render", kEmblem, "-o", (dir / "x.png").string(), "--format", "jpg"},
         {"info", kEmblem, "-D", "novalue"},
         {"info", kEmblem, "--diagnostics=xml"},
+        {"info", kEmblem, "--polygon-method", "woop"},
         {"bench"},                                             // no report
         {"bench", "accuracy"},                                 // no -o
         {"bench", "accuracy", "-o", "r", "--min-time", "61"},  // above 60 s
@@ -246,6 +247,39 @@ TEST(Probe, OutputIsOneJsonObjectWithNormalsAndObjects) {
     EXPECT_FALSE(in.contains("inside"));
 }
 
+// --polygon-method reaches the compiled mesh: a low regular 8-sided pyramid (apex 0.2 above a
+// unit circle, faces 24.4 degrees apart at most, under the 30-degree crease) probed just beside
+// its apex. The watertight test answers the face's own normal, whose z component is
+// cos(22.5 deg) / hypot(cos(22.5 deg), 0.2) = 0.97736; Snyder's and Marchal's interpolate the
+// corner normals, the apex's being +z: within 0.0022 of the apex (3e-3 of the way to the
+// rim), z above 0.9999.
+TEST(Probe, PolygonMethodChangesTheMeshNormal) {
+    ScratchDir dir;
+    writeFile(
+        dir / "pyramid.scad",
+        "polyhedron(concat([[0, 0, 0.2]], [for (k = [0:7]) [cos(45 * k), sin(45 * k), 0]]), "
+        "concat([for (k = [0:7]) [0, 1 + (k + 1) % 8, 1 + k]], [[1, 2, 3, 4, 5, 6, 7, 8]]));");
+    const double flatZ = std::cos(M_PI / 8) / std::hypot(std::cos(M_PI / 8), 0.2);
+    for (const char* method : {"watertight", "snyder", "marchal"}) {
+        const RunResult r =
+            runCsgray({"probe", (dir / "pyramid.scad").string(), "--origin", "0.001,0.002,1",
+                       "--dir", "0,0,-1", "--polygon-method", method},
+                      dir.path());
+        ASSERT_EQ(r.exitCode, 0) << method << ": " << r.err;
+        const auto json = nlohmann::json::parse(r.out);
+        ASSERT_EQ(json["spans"].size(), 1u) << r.out;
+        const auto& in = json["spans"][0]["in"];
+        EXPECT_EQ(in["object"]["primitive"], "polyhedron");
+        const double z = in["normal"][2].get<double>();
+        if (std::string(method) == "watertight")
+            EXPECT_NEAR(z, flatZ, 1e-12) << r.out;
+        else
+            EXPECT_GT(z, 0.9999) << method << ": " << r.out;
+        // The span itself is the mesh's in every method: in just below the apex, out at z = 0.
+        EXPECT_NEAR(json["spans"][0]["out"]["t"].get<double>(), 1.0, 1e-12) << method;
+    }
+}
+
 TEST(Probe, RayStartingInsideBeginsAtZeroMarkedInside) {
     ScratchDir dir;
     const RunResult r =
@@ -278,8 +312,9 @@ TEST(Probe, DefineOverridesATopLevelVariable) {
 TEST(Define, EveryPartCommandTakesIt) {
     ScratchDir dir;
     const fs::path part = dir / "sized.scad";
-    writeFile(part, "s = 1;\nk = 0;\nassert(s == 3 && k == 2, \"-D did not reach the part\");\n"
-                    "cube(s);\n");
+    writeFile(part,
+              "s = 1;\nk = 0;\nassert(s == 3 && k == 2, \"-D did not reach the part\");\n"
+              "cube(s);\n");
     const std::vector<std::string> defines = {"-D", "s=3", "-D", "k=1+1"};
     const auto with = [&](std::vector<std::string> args) {
         args.insert(args.begin() + 2, defines.begin(), defines.end());
@@ -303,8 +338,8 @@ TEST(Define, EveryPartCommandTakesIt) {
     for (std::string line; std::getline(obj, line);)
         if (line.rfind("v ", 0) == 0) top = std::max(top, std::stod(line.substr(line.rfind(' '))));
     EXPECT_EQ(top, 3.0);
-    const RunResult compare = runCsgray(
-        with({"compare", part.string(), (dir / "e.obj").string(), "--json"}), dir.path());
+    const RunResult compare =
+        runCsgray(with({"compare", part.string(), (dir / "e.obj").string(), "--json"}), dir.path());
     EXPECT_EQ(compare.exitCode, 0) << compare.err;
     EXPECT_NEAR(nlohmann::json::parse(compare.out)["volume"]["mesh"].get<double>(), 27.0, 1e-4);
 }
@@ -315,8 +350,9 @@ TEST(Define, EveryPartCommandTakesIt) {
 TEST(Info, PlanIsTheRenderersWithItsDefaults) {
     ScratchDir dir;
     const fs::path part = dir / "plan.scad";
-    writeFile(part, "light([0, 0, 10]);\nsphere(1);\n"
-                    "material(reflect = 0.5) translate([0, 5, 0]) cube(1);\n");
+    writeFile(part,
+              "light([0, 0, 10]);\nsphere(1);\n"
+              "material(reflect = 0.5) translate([0, 5, 0]) cube(1);\n");
     const RunResult r = runCsgray({"info", part.string()}, dir.path());
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const nlohmann::json plan = nlohmann::json::parse(r.out)["plan"];

@@ -2,12 +2,14 @@
 // windings, a tetrahedron, an L-shaped prism whose caps are non-convex faces), and the edge
 // rule's promises on a faceted sphere: a ray through a vertex or an edge gives the spans of the
 // same ray nudged by one ulp, a ray grazing an edge or a face never breaks the pairing, and the
-// crossing count of every line is even. Also: the capacity rule, an open mesh's answer, and
-// face ids beyond 65535 triangles.
+// crossing count of every line is even. Also: the capacity rule, an open mesh's answer, face
+// ids beyond 65535 triangles, and the lecture's two polygon methods (Snyder's, Marchal's):
+// spans by hand, agreement away from edges, a shared edge counted twice, interpolated normals.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "primitives/Polyhedron.h"
 #include "primitives/solvers/LinePoint.h"
@@ -437,6 +439,158 @@ TEST(Polyhedron, DegenerateInput) {
     EXPECT_EQ(Polyhedron::make(m.points, m.faces).invalidReason(), Polyhedron::kNoFaces);
     m.points[0].x = std::nan("");
     EXPECT_NE(Polyhedron::make(m.points, m.faces).invalidReason(), nullptr);
+}
+
+// ---- the lecture's polygon methods (--polygon-method) ----
+
+Polyhedron withMethod(Polyhedron p, PolygonMethod method) {
+    p.method = method;
+    return p;
+}
+
+constexpr PolygonMethod kLectureMethods[] = {PolygonMethod::Snyder, PolygonMethod::Marchal};
+
+// Rays through face interiors: the cube's spans by hand, the same for every method.
+TEST(PolygonMethods, CubeSpansByHand) {
+    const Polyhedron cube1 = build(cube(true));
+    for (PolygonMethod method : kLectureMethods) {
+        SCOPED_TRACE(polygonMethodName(method));
+        const Polyhedron p = withMethod(cube1, method);
+        // Along +x at (0.3, 0.4): in at x = 0 (t = 1), out at x = 1 (t = 2).
+        auto s = solidSpans(p, Vec3(-1, 0.3, 0.4), Vec3(1, 0, 0), 0.0);
+        ASSERT_EQ(s.size(), 1u);
+        EXPECT_NEAR(s[0].first, 1.0, 1e-15);
+        EXPECT_NEAR(s[0].second, 2.0, 1e-15);
+        // A slanted line from (0.1, 0.2, -1) along (0.25, 0.25, 1): in through the bottom at
+        // (0.35, 0.45, 0) (t = 1), out through the top at (0.6, 0.7, 1) (t = 2), both off the
+        // quads' diagonals.
+        s = solidSpans(p, Vec3(0.1, 0.2, -1), Vec3(0.25, 0.25, 1), 0.0);
+        ASSERT_EQ(s.size(), 1u);
+        EXPECT_NEAR(s[0].first, 1.0, 1e-15);
+        EXPECT_NEAR(s[0].second, 2.0, 1e-15);
+    }
+}
+
+// Where two triangles share an edge, each method decides each triangle alone: a line through
+// the diagonal of the cube's x = 0 and x = 1 faces (both quads are cut along it or its
+// mirror: y = z at x = 0 holds an edge of the ear-clipped quad) is counted by both triangles
+// in Snyder's closed test, whose four crossings pair into two touches: no span. Watertight
+// counts each face once.
+TEST(PolygonMethods, SnyderCountsASharedEdgeTwice) {
+    const Polyhedron cube1 = build(cube(true));
+    std::vector<Polyhedron::Crossing> watertight;
+    cube1.crossings(Vec3(-1, 0.5, 0.5), Vec3(1, 0, 0), watertight);
+    ASSERT_EQ(watertight.size(), 2u);
+    const auto s = solidSpans(cube1, Vec3(-1, 0.5, 0.5), Vec3(1, 0, 0), 0.0);
+    ASSERT_EQ(s.size(), 1u);
+    // Whether the diagonal through (0.5, 0.5) is an edge of both faces' triangulations, read
+    // from the mesh: then Snyder's line sees two touches.
+    const auto& d = *cube1.data;
+    int diagonals = 0;
+    for (const auto& t : d.triangles)
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 a = d.vertices[t[k]], b = d.vertices[t[(k + 1) % 3]];
+            const Vec3 mid = 0.5 * (a + b);
+            diagonals += a.x == b.x && mid.y == 0.5 && mid.z == 0.5;
+        }
+    // Each diagonal edge is seen from its two triangles: two faces, two uses each.
+    ASSERT_EQ(diagonals, 4) << "the cube's quads are not cut through their centres";
+    const Polyhedron snyder = withMethod(cube1, PolygonMethod::Snyder);
+    EXPECT_TRUE(solidSpans(snyder, Vec3(-1, 0.5, 0.5), Vec3(1, 0, 0), 0.0).empty());
+}
+
+// Lines through random interior points of a faceted sphere's triangles (barycentric weights
+// at least 0.05, far from every edge in rounded arithmetic): all three methods find the same
+// spans, to the rounding of their different formulas.
+TEST(PolygonMethods, AgreeAwayFromEdges) {
+    const Polyhedron sphere24 = build(sphere(24, 12, 1.0));
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const auto& d = *sphere24.data;
+    int compared = 0;
+    for (int n = 0; n < 2000; ++n) {
+        const auto& t = d.triangles[random() % d.triangles.size()];
+        double b1 = 0.05 + 0.9 * unit(random), b2 = 0.05 + 0.9 * unit(random);
+        if (b1 + b2 > 0.95) b1 = 1.0 - b1, b2 = 1.0 - b2;
+        if (b1 + b2 > 0.95 || b1 < 0.05 || b2 < 0.05) continue;
+        const Vec3 target =
+            (1 - b1 - b2) * d.vertices[t[0]] + b1 * d.vertices[t[1]] + b2 * d.vertices[t[2]];
+        const Vec3 from =
+            3.0 * glm::normalize(Vec3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
+        const Vec3 dir = target - from;
+        const auto reference = solidSpans(sphere24, from, dir, 1e-9);
+        ASSERT_FALSE(reference.empty());
+        for (PolygonMethod method : kLectureMethods) {
+            const auto s = solidSpans(withMethod(sphere24, method), from, dir, 1e-9);
+            EXPECT_TRUE(sameSpans(s, reference, 1e-12))
+                << polygonMethodName(method) << " from " << str(from) << " to " << str(target);
+        }
+        ++compared;
+    }
+    EXPECT_GT(compared, 1000);
+}
+
+// The interpolated normals: Snyder's barycentric weights and Marchal's two steps are the same
+// weights reached two ways, so the normals agree; at a cube's face (creases of 90 degrees)
+// they are the face's own normal; at the apex of a low regular pyramid (faces 20 degrees
+// apart at most, all averaged) the corner normal is +z by symmetry.
+TEST(PolygonMethods, InterpolatedNormals) {
+    const Polyhedron sphere24 = build(sphere(24, 12, 1.0));
+    const auto& d = *sphere24.data;
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> unit(0.05, 0.45);
+    double worst = 0.0, flatGap = 0.0, smoothGap = 0.0;
+    for (uint32_t i = 0; i < d.triangles.size() && i < 65535; ++i) {
+        const auto& t = d.triangles[i];
+        const double b1 = unit(random), b2 = unit(random);
+        const Vec3 p =
+            (1 - b1 - b2) * d.vertices[t[0]] + b1 * d.vertices[t[1]] + b2 * d.vertices[t[2]];
+        const Vec3 snyder = withMethod(sphere24, PolygonMethod::Snyder).normal(p, uint16_t(i));
+        const Vec3 marchal = withMethod(sphere24, PolygonMethod::Marchal).normal(p, uint16_t(i));
+        worst = std::max(worst, glm::length(snyder - marchal));
+        // The round sphere's normal at p's direction: the smooth normal is nearer to it.
+        const Vec3 round = glm::normalize(p);
+        flatGap += glm::length(sphere24.normal(p, uint16_t(i)) - round);
+        smoothGap += glm::length(snyder - round);
+    }
+    EXPECT_LT(worst, 1e-13);
+    EXPECT_LT(smoothGap, 0.5 * flatGap);
+
+    const Polyhedron cube1 = build(cube(true));
+    for (PolygonMethod method : kLectureMethods) {
+        const Polyhedron p = withMethod(cube1, method);
+        // Hit the x = 0 face near a corner: its triangles' corner normals are all -x.
+        std::vector<Polyhedron::Crossing> c;
+        p.crossings(Vec3(-1, 0.1, 0.05), Vec3(1, 0, 0), c);
+        ASSERT_FALSE(c.empty());
+        const Vec3 n = p.normal(Vec3(0, 0.1, 0.05), uint16_t(c[0].triangle));
+        EXPECT_EQ(n, Vec3(-1, 0, 0)) << polygonMethodName(method) << ": " << str(n);
+    }
+
+    // A regular 8-sided pyramid, apex (0, 0, 0.2) over a unit circle: each face rises
+    // atan(0.2 / cos(22.5 degrees)) = 12.2 degrees, so two faces turn 24.4 degrees from each
+    // other at most, under the crease: the apex averages all eight.
+    MeshInput pyramid;
+    pyramid.points.push_back(Vec3(0, 0, 0.2));
+    for (int k = 0; k < 8; ++k)
+        pyramid.points.push_back(Vec3(std::cos(k * M_PI / 4), std::sin(k * M_PI / 4), 0.0));
+    for (uint32_t k = 0; k < 8; ++k) pyramid.faces.add({0, 1 + k, 1 + (k + 1) % 8});
+    pyramid.faces.add({8, 7, 6, 5, 4, 3, 2, 1});
+    const Polyhedron cone = withMethod(build(pyramid), PolygonMethod::Snyder);
+    std::vector<Polyhedron::Crossing> c;
+    cone.crossings(Vec3(0.01, 0.02, 1), Vec3(0, 0, -1), c);
+    ASSERT_FALSE(c.empty());
+    const Vec3 apex = cone.normal(Vec3(0, 0, 0.2), uint16_t(c[0].triangle));
+    EXPECT_NEAR(apex.x, 0.0, 1e-15);
+    EXPECT_NEAR(apex.y, 0.0, 1e-15);
+    EXPECT_NEAR(apex.z, 1.0, 1e-15);
+}
+
+TEST(PolygonMethods, NamesRoundTrip) {
+    for (PolygonMethod m :
+         {PolygonMethod::Watertight, PolygonMethod::Snyder, PolygonMethod::Marchal})
+        EXPECT_EQ(parsePolygonMethod(polygonMethodName(m)), m);
+    EXPECT_FALSE(parsePolygonMethod("woop"));
 }
 
 }  // namespace

@@ -33,6 +33,14 @@ const char* const kCommonOptionsHelp =
     "                         along x, y, z, walked as an octree; auto: the uniform grid\n"
     "                         for a union of 4096 or more objects spread evenly, SAH\n"
     "                         otherwise (bench/README.md, spatial structures)\n"
+    "  --polygon-method=M     how a ray is tested against the triangles of polygon meshes\n"
+    "                         (polyhedron(), import(), OpenSCAD's sliced extrusions):\n"
+    "                         watertight (default): Woop, Benthin and Wald's test, exact\n"
+    "                           at shared edges and vertices, flat facets;\n"
+    "                         snyder, marchal: the ray-tracing lecture's two methods, each\n"
+    "                           triangle alone in rounded arithmetic (a ray through an edge\n"
+    "                           may count it twice or not at all), with normals interpolated\n"
+    "                           across facets that meet at less than 30 degrees\n"
     "  --diagnostics=FORMAT   text (default): file:line:col: error: message on stderr;\n"
     "                         json: one JSON array of diagnostics on stderr\n"
     "  -h, --help             show this help\n";
@@ -93,6 +101,14 @@ bool ArgCursor::common(CommonOptions& options) {
                 "nonuniform-grid or auto, got '" +
                 *name + "'");
         options.accel = *accel;
+        return true;
+    }
+    if (auto name = option("--polygon-method")) {
+        const std::optional<csg::PolygonMethod> method = csg::parsePolygonMethod(*name);
+        if (!method)
+            throw UsageError("--polygon-method expects watertight, snyder or marchal, got '" +
+                             *name + "'");
+        options.polygonMethod = *method;
         return true;
     }
     if (auto format = option("--diagnostics")) {

@@ -13,6 +13,7 @@
 
 #include "csg/Accel.h"
 #include "io/Faceting.h"
+#include "primitives/Polyhedron.h"
 #include "primitives/base/Math.h"
 
 namespace viewer {
@@ -27,12 +28,13 @@ struct UsageError : std::runtime_error {
 
 // What every subcommand that reads a part accepts.
 struct CommonOptions {
-    std::string part;                                          // the part file
-    std::vector<std::pair<std::string, std::string>> defines;  // -D name=value, in order
-    bool jsonDiagnostics = false;                              // --diagnostics=json
-    io::CurveMode curves = io::CurveMode::Auto;                // --curves
-    csg::Accel accel = csg::Accel::Sah;                        // --accel
-    bool help = false;                                         // --help or -h
+    std::string part;                                                   // the part file
+    std::vector<std::pair<std::string, std::string>> defines;           // -D name=value, in order
+    bool jsonDiagnostics = false;                                       // --diagnostics=json
+    io::CurveMode curves = io::CurveMode::Auto;                         // --curves
+    csg::Accel accel = csg::Accel::Sah;                                 // --accel
+    csg::PolygonMethod polygonMethod = csg::PolygonMethod::Watertight;  // --polygon-method
+    bool help = false;                                                  // --help or -h
     double time = 0.0;  // $t (render --frames sets it per frame; no option of its own)
 };
 
@@ -52,6 +54,7 @@ public:
     bool flag(std::string_view name);
     // Consumes one of -D name=value (or -Dname=value), --curves=auto|exact|openscad,
     // --accel=sah|median|goldsmith-salmon|grid|nonuniform-grid|auto,
+    // --polygon-method=watertight|snyder|marchal,
     // --diagnostics=text|json, --help/-h, or
     // the part (the first argument that is not an option). Returns false for anything else.
     bool common(CommonOptions& options);
