@@ -7,8 +7,9 @@
 //     part that is none of these (a difference, a polyhedron, a concave extrusion), its exact
 //     boundary (csg/mesh/PolyhedralBoundary.h). Every pair of convex pieces gives the hull of
 //     their vertices' sums, as OpenSCAD's; a non-convex part P and a convex piece K give
-//     (P + k) ∪ one hull per boundary triangle, which needs no convex decomposition. Two
-//     non-convex parts are not summed yet: an error that says so.
+//     (P + k) ∪ one hull per boundary triangle, which needs no convex decomposition; two
+//     non-convex parts P and Q give their translates by a vertex of each other's boundary
+//     sheets ∪ one hull per pair of boundary triangles.
 // Curves that are still exact (curve mode auto without $fn) are faceted with minkowski()'s own
 // $fn, $fa, $fs, as hull() facets them.
 // Of 2-D shapes: with an exact circle (circle() the curve mode keeps exact, under a transform
@@ -143,11 +144,6 @@ public:
         split(b, Mat4(1.0), opB);
         if (opA.empty()) return b;
         if (opB.empty()) return a;
-        if (!opA.general.empty() && !opB.general.empty())
-            e_.fail(s_.loc,
-                    "minkowski(): csgray sums a non-convex solid (a difference, a polyhedron, a "
-                    "concave extrusion) only with convex ones or unions of them, and here both "
-                    "operands have such a part");
         std::vector<NodePtr> parts;
         for (const auto& pa : opA.pieces)
             for (const auto& pb : opB.pieces) {
@@ -158,6 +154,7 @@ public:
             }
         sumGeneral(opA, opB, parts);
         sumGeneral(opB, opA, parts);
+        sumGeneralPairs(opA, opB, parts);
         return csg::uniteAll(parts, tags_);
     }
 
@@ -339,6 +336,39 @@ private:
             }
         }
     }
+
+    // The non-convex parts of one operand summed with those of the other (Minkowski3D.h: the
+    // translates by a vertex of each boundary sheet, and a hull per pair of triangles).
+    void sumGeneralPairs(const Operand& a, const Operand& b, std::vector<NodePtr>& parts) {
+        for (const General& p : a.general)
+            for (const General& q : b.general) {
+                const uint64_t pairs =
+                    uint64_t(p.boundary.triangles.size()) * q.boundary.triangles.size();
+                if (pairs > kMaxTrianglePairs)
+                    e_.fail(s_.loc, "minkowski(): two non-convex operands whose boundaries have " +
+                                        std::to_string(p.boundary.triangles.size()) + " and " +
+                                        std::to_string(q.boundary.triangles.size()) +
+                                        " triangles make " + std::to_string(pairs) +
+                                        " pairs to sum; csgray sums at most " +
+                                        std::to_string(kMaxTrianglePairs) +
+                                        " (expected coarser operands, or a convex one)");
+                // A hull of 9 points and its leaf for each pair.
+                e_.spend(s_.loc, 16 * pairs);
+                const auto translates = [&](const General& solid, const General& by) {
+                    for (const Vec3& v : csg::sheetVertices(by.boundary))
+                        parts.push_back(
+                            csg::transformed(glm::translate(Mat4(1.0), v), solid.solid));
+                };
+                translates(p, q);
+                translates(q, p);
+                std::vector<NodePtr> hulls = csg::sumsOfBoundaries(p.boundary, q.boundary, tags_);
+                parts.insert(parts.end(), hulls.begin(), hulls.end());
+            }
+    }
+
+    // The most pairs of boundary triangles two non-convex operands may make: each becomes a
+    // convex polytope leaf of ~1 KB, so 2^20 pairs take about a gigabyte.
+    static constexpr uint64_t kMaxTrianglePairs = uint64_t(1) << 20;
 
     // solid ⊕ the ball (ballNode); the ball alone when solid is empty.
     NodePtr withBall(const NodePtr& solid, const NodePtr& ballNode, const Ball& ball) {

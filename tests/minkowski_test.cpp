@@ -1,7 +1,8 @@
 // minkowski() (io/Minkowski.cpp, csg/derived/Minkowski3D.h, csg/derived/Clipper2D.h): boxes
 // summed by hand, the exact rounded box against its closed-form volume and its corner ball, a
-// non-convex operand (a frame) summed with a box and with a ball, OpenSCAD 2021's own sums of
-// faceted solids and polygons against csgray's, the case csgray refuses with its reason; 2-D
+// non-convex operand (a frame) summed with a box and with a ball, two non-convex operands by
+// hand, OpenSCAD 2021's own sums of faceted solids and polygons against csgray's, the size
+// csgray refuses with its reason; 2-D
 // shapes rounded by an exact circle and summed as Clipper sums them, by hand.
 #include <gtest/gtest.h>
 
@@ -140,6 +141,10 @@ TEST(Minkowski, FacetedSumsAreOpenScadsPolyhedra) {
         "minkowski() { cylinder(r = 2, h = 1, $fn = 6); rotate([30, 20, 10]) cube(1); }",
         "minkowski() { difference() { cube(4); translate([1, 1, -1]) cube([2, 2, 6]); } "
         "cylinder(r = 0.5, h = 0.5, $fn = 8); }",
+        // Two non-convex operands: OpenSCAD decomposes both into convex pieces (CGAL).
+        "minkowski() { difference() { cube(4); translate([1, 1, -1]) cube([2, 2, 6]); } "
+        "rotate([10, 20, 30]) difference() { cube([1, 1, 0.5]); translate([0.5, 0.5, -1]) "
+        "cube(2); } }",
         // 2-D: Clipper's sums, on its grid, extruded.
         "linear_extrude(1) minkowski() { square([3, 2]); circle(1, $fn = 8); }",
         "linear_extrude(1) minkowski() { polygon([[0,0],[4,0],[4,1],[1,1],[1,4],[0,4]]); "
@@ -176,15 +181,45 @@ TEST(Minkowski, FacetedSumsAreOpenScadsPolyhedra) {
     }
 }
 
-TEST(Minkowski, RefusesWhatItCannotSumWithTheReason) {
-    const auto twoConcave = evaluate(
-        "minkowski() { difference() { cube(4); cube(2); } difference() { cube(3); cube(1); } }");
-    EXPECT_FALSE(twoConcave.ok());
-    EXPECT_NE(diagnosticsOf(twoConcave)
-                  .find("part.scad:1:1: error: minkowski(): csgray sums a "
-                        "non-convex solid"),
+// Two non-convex solids: an L (three unit squares, [0, 2]^2 without its (1, 2]^2 corner, one
+// high) summed with itself. Minkowski sums distribute over unions, so the sum is the union of
+// the six 2 x 2 squares at offsets (0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2), two high:
+// x in [0, 4] for y in [0, 2], [0, 3] for y in [2, 3], [0, 2] for y in [3, 4]; area 8 + 3 + 2.
+TEST(Minkowski, TwoNonConvexSolidsByHand) {
+    const std::string l = "difference() { cube([2, 2, 1]); translate([1, 1, -1]) cube(3); }";
+    const csg::Scene sum = compiled("minkowski() { " + l + " " + l + " }");
+    expectSpans(sum, {-5, 0.5, 1}, {1, 0, 0}, {{5, 9}}, 1e-12);
+    expectSpans(sum, {-5, 2.5, 1}, {1, 0, 0}, {{5, 8}}, 1e-12);
+    expectSpans(sum, {-5, 3.5, 1}, {1, 0, 0}, {{5, 7}}, 1e-12);
+    expectSpans(sum, {2.5, 2.5, -5}, {0, 0, 1}, {{5, 7}}, 1e-12);
+    expectSpans(sum, {3.5, 2.5, -5}, {0, 0, 1}, {}, 0.0);
+    expectSpans(sum, {3.5, 3.5, -5}, {0, 0, 1}, {}, 0.0);
+    // 400 x 400 lines over [0, 4]^2: the edges at whole coordinates lie between cells.
+    EXPECT_NEAR(csg::volume(sum, 400), 13.0 * 2.0, 1e-9);
+
+    // A thick frame (walls 2 wide) and a small L (0.5 wide, 0.25 high): deep in the wall the
+    // sum holds points that no pair of boundary triangles reaches (x - Q lies inside the
+    // frame), only the frame moved by a point of the L. Along z at (1.1, 1.1): the wall's
+    // [0, 6] grown by the L's 0.25.
+    const std::string frame = "difference() { cube(6); translate([2, 2, -1]) cube([2, 2, 8]); }";
+    const std::string small =
+        "difference() { cube([0.5, 0.5, 0.25]); translate([0.25, 0.25, -1]) cube(3); }";
+    const csg::Scene thick = compiled("minkowski() { " + frame + " " + small + " }");
+    expectSpans(thick, {1.1, 1.1, -5}, {0, 0, 1}, {{5, 11.25}}, 1e-12);
+    // Through the hole, which the L narrows by its 0.5 on the low sides only.
+    expectSpans(thick, {-5, 3, 3}, {1, 0, 0}, {{5, 7.5}, {9, 11.5}}, 1e-12);
+}
+
+TEST(Minkowski, RefusesTooManyTrianglePairsWithTheReason) {
+    // Two hollow faceted spheres: boundaries of 2 x 64 x 31 x 2 triangles and more each, some
+    // 6.3e7 pairs, past the 2^20 csgray sums.
+    const std::string shell = "difference() { sphere(5, $fn = 64); sphere(4, $fn = 64); }";
+    const auto r = evaluate("minkowski() { " + shell + " " + shell + " }");
+    EXPECT_FALSE(r.ok());
+    EXPECT_NE(diagnosticsOf(r).find("part.scad:1:1: error: minkowski(): two non-convex operands "
+                                    "whose boundaries have"),
               std::string::npos)
-        << diagnosticsOf(twoConcave);
+        << diagnosticsOf(r);
 }
 
 TEST(Minkowski2D, ExactCircleRoundsAShape) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <utility>
 
@@ -85,6 +86,40 @@ std::vector<NodePtr> sumsOfBoundaryWithConvex(const TriangleMesh& boundary,
             leaves.push_back(leaf(std::move(*hull), tags));
     }
     return leaves;
+}
+
+std::vector<NodePtr> sumsOfBoundaries(const TriangleMesh& a, const TriangleMesh& b, Tags tags) {
+    std::vector<NodePtr> leaves;
+    for (const auto& s : b.triangles) {
+        const std::array<Vec3, 3> corners = cornersOf(b, s);
+        std::vector<NodePtr> hulls = sumsOfBoundaryWithConvex(a, corners, tags);
+        leaves.insert(leaves.end(), std::make_move_iterator(hulls.begin()),
+                      std::make_move_iterator(hulls.end()));
+    }
+    return leaves;
+}
+
+std::vector<Vec3> sheetVertices(const TriangleMesh& mesh) {
+    // Union-find over the vertices, joined along each triangle.
+    std::vector<uint32_t> parent(mesh.positions.size());
+    for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
+    const auto root = [&](uint32_t i) {
+        while (parent[i] != i) i = parent[i] = parent[parent[i]];
+        return i;
+    };
+    for (const auto& t : mesh.triangles) {
+        parent[root(t[1])] = root(t[0]);
+        parent[root(t[2])] = root(t[0]);
+    }
+    std::vector<Vec3> vertices;
+    std::vector<bool> seen(parent.size(), false);
+    for (const auto& t : mesh.triangles) {
+        const uint32_t r = root(t[0]);
+        if (seen[r]) continue;
+        seen[r] = true;
+        vertices.push_back(mesh.positions[t[0]]);
+    }
+    return vertices;
 }
 
 std::vector<NodePtr> sumsOfBoundaryWithBall(const TriangleMesh& boundary, const Vec3& center,

@@ -8,6 +8,15 @@
 //                     then x - k does, or, being connected, it meets P's boundary, some T;
 //                     and T ⊕ K is convex, the hull of its vertices' sums. So no convex
 //                     decomposition of P is needed, which OpenSCAD gets from CGAL;
+//   P ⊕ Q, neither    (P + q_j) ∪ (Q + p_i) ∪ ⋃_{T,S} hull(T ⊕ S) over the triangles T of P's
+//     convex          boundary and S of Q's, with p_i a vertex of each connected sheet of P's
+//                     boundary and q_j of Q's. Why: for x in P ⊕ Q take a connected piece Q_j
+//                     of Q with x - Q_j meeting P: either x - Q_j lies in P (x is in P + q_j)
+//                     or some q of Q_j has x - q on a triangle T of P's boundary, so x is in
+//                     T ⊕ Q_j = (Q_j + t) ∪ ⋃_S hull(T ⊕ S) by the construction above (K = T,
+//                     t in T). Along the connected sheet C that holds t, either x - C lies in
+//                     Q_j (x is in Q_j + p_C) or some c of C has x - c on Q's boundary, in a
+//                     hull T' ⊕ S. Again no convex decomposition, at |∂P| |∂Q| hulls;
 //   P ⊕ ball(c, r)    the exact rounded solid, no faceting of the ball: by the same argument
 //                     (P + c) ∪ ⋃_T (T ⊕ ball), and T ⊕ ball is the prism T ± r n with a
 //                     cylinder of radius r along each edge and a ball at each corner. Edges
@@ -33,6 +42,14 @@ std::optional<ConvexPolytope> hullOfSums(std::span<const Vec3> a, std::span<cons
 // volume and lie in the others' closure). The caller adds P + k.
 std::vector<NodePtr> sumsOfBoundaryWithConvex(const TriangleMesh& boundary,
                                               std::span<const Vec3> convex, Tags tags);
+
+// The leaves of ⋃_{T,S} hull(T ⊕ S) over the triangles T of a and S of b (flat hulls left
+// out, as above). The caller adds the translates (sheetVertices).
+std::vector<NodePtr> sumsOfBoundaries(const TriangleMesh& a, const TriangleMesh& b, Tags tags);
+
+// One vertex of each connected sheet of the mesh (triangles joined at shared vertices), in the
+// order of their first triangles.
+std::vector<Vec3> sheetVertices(const TriangleMesh& mesh);
 
 // The leaves of ⋃_T (T ⊕ ball(c, r)) over boundary's triangles, in boundary's frame: a prism
 // per face (coplanar triangles joined across flat edges, one prism when the face is convex,
