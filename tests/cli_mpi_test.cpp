@@ -1,5 +1,5 @@
-// csgray under mpirun (issue 22): a render, a probe --rays and an animation made by three
-// oversubscribed ranks are byte for byte those of one process; a job whose rank is killed
+// csgray under mpirun (issue 22): a render, a probe --rays, an animation and an export made by
+// three oversubscribed ranks are byte for byte those of one process; a job whose rank is killed
 // midway fails without an output file and --resume finishes it with the same bytes.
 // CSGRAY_MPIEXEC is CMake's MPIEXEC_EXECUTABLE (Open MPI's mpirun). Every command runs under
 // timeout(1), so a hung job fails the test instead of hanging ctest; -k follows the TERM with a
@@ -81,6 +81,49 @@ TEST(CliMpi, RenderIsByteIdenticalToOneProcess) {
         EXPECT_FALSE(readFile(alone).empty());
         EXPECT_TRUE(readFile(alone) == readFile(ranks)) << name << " differs";
     }
+}
+
+// An export by three ranks writes the bytes one process writes, on each path export takes
+// (csg/mesh/Tessellate.h): a torus (--grid: its rows cast and its samples measured on the
+// ranks), the emblem (its curves faceted, the faceted boundary measured on the ranks) and a
+// box with a box cut out (the exact polyhedral boundary, made on every rank alike). The same
+// file name on both sides: a GLB names its mesh after it. The summary is printed once.
+TEST(CliMpi, ExportIsByteIdenticalToOneProcess) {
+    ScratchDir dir;
+    cli::writeFile(dir / "torus.scad", "rotate_extrude() translate([3, 0]) circle(1);\n");
+    cli::writeFile(dir / "box.scad", "difference() { cube(10); translate([2, 2, 2]) cube(10); }\n");
+    fs::create_directories(dir / "alone");
+    fs::create_directories(dir / "ranks");
+    const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+        {(dir / "torus.scad").string(), {"stl", "glb", "obj", "3mf"}},
+        {kPart, {"stl", "glb"}},
+        {(dir / "box.scad").string(), {"stl", "3mf"}},
+    };
+    for (const auto& [part, formats] : cases)
+        for (const std::string& format : formats) {
+            SCOPED_TRACE(part + " to " + format);
+            const fs::path alone = dir / "alone" / ("mesh." + format);
+            const fs::path ranks = dir / "ranks" / ("mesh." + format);
+            // The torus on the grid (its faceted boundary would measure within the default
+            // tolerance at once), at a tolerance that takes one pass.
+            std::vector<std::string> args = {"export",       part,        "-o",
+                                             alone.string(), "--threads", "2"};
+            if (part.ends_with("torus.scad"))
+                args.insert(args.end(), {"--grid", "--tolerance", "0.01"});
+            const Outcome a = run("", args, dir.path());
+            ASSERT_EQ(a.exitCode, 0) << a.err;
+            args[3] = ranks.string();
+            args[5] = "1";
+            const Outcome b = run(mpirun(3), args, dir.path());
+            ASSERT_EQ(b.exitCode, 0) << b.err;
+            EXPECT_GT(readFile(alone).size(), 1000u);
+            EXPECT_TRUE(readFile(alone) == readFile(ranks)) << "the ranks' mesh differs";
+            size_t summaries = 0;
+            for (size_t at = b.err.find("csgray: export: "); at != std::string::npos;
+                 at = b.err.find("csgray: export: ", at + 1))
+                ++summaries;
+            EXPECT_EQ(summaries, 1u) << b.err;
+        }
 }
 
 // Rays that cross the emblem from every side, some missing it, in a fixed order.

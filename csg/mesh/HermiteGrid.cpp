@@ -64,11 +64,12 @@ struct RowResult {
 
 }  // namespace
 
-HermiteGrid HermiteGrid::cast(const Scene& scene, const GridSpec& spec, int threads) {
+HermiteGrid HermiteGrid::cast(const Scene& scene, const GridSpec& spec, int threads,
+                              const ItemDistributor* distribute) {
     HermiteGrid grid;
     grid.spec_ = spec;
     grid.inside_.assign(spec.nodeCount(), 0);
-    const int workers = resolveThreads(threads);
+    const int workers = distribute ? distribute->threads : resolveThreads(threads);
     std::vector<QueryContext> contexts(static_cast<size_t>(workers));
     uint64_t rays = 0;
 
@@ -87,10 +88,11 @@ HermiteGrid HermiteGrid::cast(const Scene& scene, const GridSpec& spec, int thre
         };
 
         // Cast: each row of lines on one worker; the ray runs from one cell before node 0 to
-        // one cell after the last node, so every span end inside the grid is a surface.
-        parallelFor(uint64_t(nc), workers, [&](int worker, uint64_t rowIndex) {
+        // one cell after the last node, so every span end inside the grid is a surface. The
+        // nodes a z row finds inside go to `inside` (as indices into inside_).
+        auto castRow = [&](int worker, uint64_t rowIndex, RowResult& row,
+                           std::vector<uint64_t>& inside) {
             QueryContext& ctx = contexts[size_t(worker)];
-            RowResult& row = rows[rowIndex];
             row.counts.assign(size_t(nb), 0);
             std::array<int, 3> node{};
             node[c] = int(rowIndex);
@@ -130,14 +132,50 @@ HermiteGrid HermiteGrid::cast(const Scene& scene, const GridSpec& spec, int thre
                         while (s < spans.size() && spans[s].out.t < t) ++s;
                         if (s < spans.size() && spans[s].in.t <= t) {
                             node[a] = n;
-                            grid.inside_[node[0] +
-                                         size_t(spec.nodes[0]) *
-                                             (node[1] + size_t(spec.nodes[1]) * node[2])] = 1;
+                            inside.push_back(node[0] +
+                                             size_t(spec.nodes[0]) *
+                                                 (node[1] + size_t(spec.nodes[1]) * node[2]));
                         }
                     }
                 }
             }
-        });
+        };
+        const auto setInside = [&](const std::vector<uint64_t>& inside) {
+            for (const uint64_t i : inside) grid.inside_[i] = 1;
+        };
+        if (!distribute) {
+            parallelFor(uint64_t(nc), workers, [&](int worker, uint64_t rowIndex) {
+                std::vector<uint64_t> inside;
+                castRow(worker, rowIndex, rows[rowIndex], inside);
+                setInside(inside);  // rows set disjoint nodes
+            });
+        } else {
+            distribute->run(
+                uint64_t(nc),
+                [&](int worker, uint64_t rowIndex, std::string& bytes) {
+                    RowResult row;
+                    std::vector<uint64_t> inside;
+                    castRow(worker, rowIndex, row, inside);
+                    ByteWriter out(bytes);
+                    out.values(row.crossings);
+                    out.values(row.counts);
+                    out.value(row.thinEdges);
+                    out.value(row.thinAt);
+                    out.values(row.thin);
+                    out.values(inside);
+                },
+                [&](uint64_t rowIndex, std::string_view bytes) {
+                    ByteReader in(bytes);
+                    RowResult& row = rows[rowIndex];
+                    row.crossings = in.values<Crossing>();
+                    row.counts = in.values<uint32_t>();
+                    row.counts.resize(size_t(nb), 0);  // whatever came, one count a line
+                    row.thinEdges = in.value<uint64_t>();
+                    row.thinAt = in.value<Vec3>();
+                    row.thin = in.values<ThinInterval>();
+                    setInside(in.values<uint64_t>());
+                });
+        }
 
         // Gather: rows in order into one array per axis with line offsets.
         std::vector<Crossing>& all = grid.crossings_[size_t(a)];

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "csg/Scene.h"
+#include "csg/mesh/Distribute.h"
 
 namespace csg {
 
@@ -62,8 +63,10 @@ struct Crossing {
 class HermiteGrid {
 public:
     // Casts every line of the three axes through scene with `threads` threads (0: all cores),
-    // one QueryContext per thread.
-    static HermiteGrid cast(const Scene& scene, const GridSpec& spec, int threads);
+    // one QueryContext per thread; with `distribute`, row by row on the processes of a job
+    // (csg/mesh/Distribute.h: the same grid on every one).
+    static HermiteGrid cast(const Scene& scene, const GridSpec& spec, int threads,
+                            const ItemDistributor* distribute = nullptr);
 
     const GridSpec& spec() const { return spec_; }
     bool inside(int i, int j, int k) const {

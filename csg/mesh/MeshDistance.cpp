@@ -87,12 +87,41 @@ double bestOfDirections(const Vec3& first, double goodEnough, Measure&& measure)
     return best;
 }
 
+// Runs measure(worker, item, accumulator) over count items and merges what they found: on this
+// process's workers, one accumulator each; or on the processes of a job (options.distribute),
+// one accumulator per item, merged in item order.
+template <class Measure>
+DistanceStats measureItems(uint64_t count, int workers, const DistanceOptions& options,
+                           Measure&& measure) {
+    if (!options.distribute) {
+        std::vector<Accumulator> acc(static_cast<size_t>(workers));
+        parallelFor(count, workers,
+                    [&](int w, uint64_t item) { measure(w, item, acc[size_t(w)]); });
+        return merge(acc);
+    }
+    std::vector<Accumulator> acc(static_cast<size_t>(count));
+    options.distribute->run(
+        count,
+        [&](int w, uint64_t item, std::string& bytes) {
+            Accumulator found;
+            measure(w, item, found);
+            ByteWriter(bytes).value(found);
+        },
+        [&](uint64_t item, std::string_view bytes) {
+            acc[size_t(item)] = ByteReader(bytes).value<Accumulator>();
+        });
+    return merge(acc);
+}
+
+int workersOf(const DistanceOptions& options) {
+    return options.distribute ? options.distribute->threads : resolveThreads(options.threads);
+}
+
 }  // namespace
 
 DistanceStats meshToSurface(const Scene& scene, const TriangleMesh& mesh,
                             const DistanceOptions& options) {
-    const int workers = resolveThreads(options.threads);
-    std::vector<Accumulator> acc(static_cast<size_t>(workers));
+    const int workers = workersOf(options);
     std::vector<QueryContext> ctx(static_cast<size_t>(workers));
     // Each vertex is sampled from the first triangle that has it.
     std::vector<uint32_t> owner(mesh.positions.size(), UINT32_MAX);
@@ -100,14 +129,14 @@ DistanceStats meshToSurface(const Scene& scene, const TriangleMesh& mesh,
         for (const uint32_t v : mesh.triangles[t]) owner[v] = t;
     const uint64_t triangles = mesh.triangles.size();
     constexpr uint64_t kChunk = 1024;
-    parallelFor((triangles + kChunk - 1) / kChunk, workers, [&](int w, uint64_t chunk) {
+    const auto chunkOf = [&](int w, uint64_t chunk, Accumulator& acc) {
         // The mesh point p, measured first along the normal n of its triangle.
         auto measureAt = [&](const Vec3& p, const Vec3& n) {
             const double d =
                 bestOfDirections(n, options.goodEnough, [&](const Vec3& dir, const Vec3& shift) {
                     return alongLine(scene, ctx[size_t(w)], p + shift, dir, options.reach);
                 });
-            acc[size_t(w)].add(p, d);
+            acc.add(p, d);
         };
         for (uint64_t t = chunk * kChunk; t < std::min((chunk + 1) * kChunk, triangles); ++t) {
             const auto& tri = mesh.triangles[size_t(t)];
@@ -130,20 +159,19 @@ DistanceStats meshToSurface(const Scene& scene, const TriangleMesh& mesh,
                 if (i < j) measureAt(inset(0.5 * (p + q)), n);
             }
         }
-    });
-    return merge(acc);
+    };
+    return measureItems((triangles + kChunk - 1) / kChunk, workers, options, chunkOf);
 }
 
 DistanceStats surfaceToMesh(const Scene& scene, const TriangleBvh& bvh, int raysPerAxis,
                             const DistanceOptions& options) {
     const Bounds3 box = scene.bounds();
     if (box.empty() || !box.finite() || raysPerAxis <= 0) return {};
-    const int workers = resolveThreads(options.threads);
-    std::vector<Accumulator> acc(static_cast<size_t>(workers));
+    const int workers = workersOf(options);
     std::vector<QueryContext> ctx(static_cast<size_t>(workers));
     const Vec3 size = box.extent();
     // One work item per row of lines; rows of the three axes one after another.
-    parallelFor(uint64_t(3) * uint64_t(raysPerAxis), workers, [&](int w, uint64_t item) {
+    const auto rowOf = [&](int w, uint64_t item, Accumulator& acc) {
         const int a = int(item / uint64_t(raysPerAxis)), row = int(item % uint64_t(raysPerAxis));
         const int b = (a + 1) % 3, c = (a + 2) % 3;
         for (int col = 0; col < raysPerAxis; ++col) {
@@ -169,11 +197,11 @@ DistanceStats surfaceToMesh(const Scene& scene, const TriangleBvh& bvh, int rays
             // explicit, unlike the surface: no line has to find it, and no normal is needed).
             for (int i = 0; i < count; ++i) {
                 const Vec3 point = ray.at(hits[i]);
-                acc[size_t(w)].add(point, bvh.distance(point, options.reach));
+                acc.add(point, bvh.distance(point, options.reach));
             }
         }
-    });
-    return merge(acc);
+    };
+    return measureItems(uint64_t(3) * uint64_t(raysPerAxis), workers, options, rowOf);
 }
 
 }  // namespace csg

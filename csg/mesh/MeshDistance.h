@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "csg/Scene.h"
+#include "csg/mesh/Distribute.h"
 #include "csg/mesh/TriangleBvh.h"
 #include "csg/mesh/TriangleMesh.h"
 
@@ -35,6 +36,8 @@ struct DistanceOptions {
     // near a crease whose normal line runs almost along the surface).
     double goodEnough = 0.0;
     int threads = 0;
+    // The processes of a job that share the samples (csg/mesh/Distribute.h); null: this one.
+    const ItemDistributor* distribute = nullptr;
 };
 
 // Mesh to surface: every triangle's centroid, every vertex (from the first triangle that has it)

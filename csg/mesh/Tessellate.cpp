@@ -141,6 +141,7 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
     DistanceOptions measure;
     measure.threads = options.threads;
     measure.goodEnough = tolerance;
+    measure.distribute = options.distribute;
     // Measures a mesh of the exact boundary both ways into result (the figures are upper
     // bounds, tight to rounding on an exact mesh: MeshDistance.h samples off its edges).
     const auto measureExactMesh = [&](const TriangleMesh& mesh) {
@@ -215,8 +216,8 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
         };
         result.contour = {};
         result.thinPlanes = {};
-        const HermiteGrid grid = castResolvingThinFeatures(scene, box, h, options.threads,
-                                                           &result.rays, &result.thinPlanes);
+        const HermiteGrid grid = castResolvingThinFeatures(
+            scene, box, h, options.threads, &result.rays, &result.thinPlanes, options.distribute);
         record.castSeconds = lap();
         DualContourOptions contour;
         contour.threads = options.threads;

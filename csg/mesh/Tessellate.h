@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "csg/Scene.h"
+#include "csg/mesh/Distribute.h"
 #include "csg/mesh/DualContour.h"
 #include "csg/mesh/MeshDistance.h"
 #include "csg/mesh/PolyhedralBoundary.h"
@@ -90,6 +91,9 @@ struct TessellateOptions {
     // `csgray export --simplify` lifts the limit.
     uint64_t simplifyMaxTriangles = 1'000'000;
     int threads = 0;  // 0: all cores
+    // The processes of a job (csg/mesh/Distribute.h) that cast the grid's rows and measure the
+    // meshes with this one; null: this process alone. The mesh is the same either way.
+    const ItemDistributor* distribute = nullptr;
 };
 
 // What one grid pass of tessellate() measured.

@@ -57,11 +57,12 @@ GridSpec withThinPlanes(const GridSpec& spec, const HermiteGrid& grid, double mi
 }
 
 HermiteGrid castResolvingThinFeatures(const Scene& scene, const Bounds3& bounds, double h,
-                                      int threads, uint64_t* rays, ThinPlanes* planes) {
+                                      int threads, uint64_t* rays, ThinPlanes* planes,
+                                      const ItemDistributor* distribute) {
     ThinPlanes local;
     ThinPlanes& p = planes ? *planes : local;
     const GridSpec uniform = makeGrid(bounds, h);
-    HermiteGrid grid = HermiteGrid::cast(scene, uniform, threads);
+    HermiteGrid grid = HermiteGrid::cast(scene, uniform, threads, distribute);
     if (rays) *rays += grid.rays();
     for (int round = 0; round < kThinRounds; ++round) {
         // The allowance left on the tightest axis bounds every axis of this round.
@@ -79,7 +80,7 @@ HermiteGrid castResolvingThinFeatures(const Scene& scene, const Bounds3& bounds,
         if (added == 0) break;
         p.added += added;
         ++p.rounds;
-        grid = HermiteGrid::cast(scene, refined, threads);
+        grid = HermiteGrid::cast(scene, refined, threads, distribute);
         if (rays) *rays += grid.rays();
     }
     for (const std::vector<ThinInterval>& axis : grid.thinIntervals()) p.unresolved += axis.size();

@@ -36,7 +36,9 @@ GridSpec withThinPlanes(const GridSpec& spec, const HermiteGrid& grid, double mi
 // Casts the uniform grid of spacing h over bounds, then adds planes through its thin walls and
 // gaps and casts again, for up to three rounds, adding at most half of each axis's uniform node
 // count in all. rays (when given) accumulates every cast's rays.
+// distribute: as for HermiteGrid::cast.
 HermiteGrid castResolvingThinFeatures(const Scene& scene, const Bounds3& bounds, double h,
-                                      int threads, uint64_t* rays, ThinPlanes* planes);
+                                      int threads, uint64_t* rays, ThinPlanes* planes,
+                                      const ItemDistributor* distribute = nullptr);
 
 }  // namespace csg

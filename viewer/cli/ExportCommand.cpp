@@ -11,7 +11,10 @@
 #include "io/DrawingFile.h"
 #include "io/Evaluate.h"
 #include "io/mesh/MeshFile.h"
+#include "primitives/base/ParallelFor.h"
+#include "primitives/base/Tolerances.h"
 #include "viewer/cli/Cli.h"
+#include "viewer/cli/ExportFarm.h"
 #include "viewer/cli/LoadPart.h"
 #include "viewer/cli/MeshOptions.h"
 
@@ -27,6 +30,9 @@ std::string distanceText(double d) {
     std::snprintf(text, sizeof text, "%.3g", d);
     return text;
 }
+
+// The help and the export summary state tol::kFlattenRel as "1e-7".
+static_assert(csg::tol::kFlattenRel == 1e-7, "update \"1e-7\" in kExportHelp and exportDrawing");
 
 const char* const kExportHelp =
     "usage: csgray export PART -o OUT.glb|OUT.gltf|OUT.obj|OUT.stl|OUT.3mf [options]\n"
@@ -63,6 +69,9 @@ const char* const kExportHelp =
     "millimetres, the part's colours as base materials. Every format holds the same float\n"
     "vertices. The file is written atomically; an empty part gives an empty file and\n"
     "a warning. A one-line summary goes to stderr.\n"
+    "Under mpirun the loops that cast rays (the grid's rows, the samples measuring each\n"
+    "mesh) are spread over the ranks and rank 0 writes the file: the bytes one process\n"
+    "writes (README.md, MPI).\n"
     "\n"
     "options:\n"
     "  -o FILE            the mesh file; the format follows the extension\n"
@@ -179,7 +188,9 @@ int exportCommand(std::span<const std::string> args) {
             throw UsageError("export: unknown option '" + cursor.peek() + "'");
         }
     }
+    const dist::Ranks& ranks = dist::Ranks::job();
     if (common.help) {
+        if (!ranks.root()) return kExitOk;  // under mpirun: once, by rank 0
         std::fputs(kExportHelp, stdout);
         std::fputs(kCommonOptionsHelp, stdout);
         return kExitOk;
@@ -197,14 +208,26 @@ int exportCommand(std::span<const std::string> args) {
     if (writeOptions.asciiStl && format != io::MeshFormat::Stl)
         throw UsageError("export: --ascii applies to .stl output only");
 
+    // Under mpirun every rank loads the part and meshes it, the loops that cast rays spread
+    // over the ranks (ExportFarm.h); rank 0 writes the file.
     Report report(common.jsonDiagnostics);
     LoadedPart part;
-    if (const int code = loadPart(common, report, part); code != kExitOk) return code;
-    if (drawing) return exportDrawing(common, report, part, output, quiet);
+    const int loaded = loadPart(common, report, part);
+    if (!ranks.allOk(loaded == kExitOk)) {
+        if (loaded == kExitOk && ranks.root())
+            report.error(common.part, "another rank cannot load it");
+        return loaded != kExitOk ? loaded : kExitBadModel;
+    }
+    if (drawing) return ranks.root() ? exportDrawing(common, report, part, output, quiet) : kExitOk;
     if (const int code = requireSolids(part, report, "export"); code != kExitOk) return code;
 
     // Mesh the part: curved leaves faceted to a share of the tolerance first (io/ChordFaceting.h).
     options.facetCurves = io::curveFaceter(part.model.root);
+    csg::ItemDistributor onRanks;
+    if (ranks.mpi() && ranks.size() > 1) {
+        onRanks = itemsOnRanks(ranks, csg::resolveThreads(options.threads));
+        options.distribute = &onRanks;
+    }
     const auto start = std::chrono::steady_clock::now();
     csg::TessellateResult result;
     try {
@@ -216,6 +239,7 @@ int exportCommand(std::span<const std::string> args) {
     }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!ranks.root()) return kExitOk;
     if (result.mesh.empty())
         report.add({common.part, 0, 0, io::Severity::Warning,
                     "the part is empty (nothing is left after its differences): wrote an empty "

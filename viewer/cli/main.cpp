@@ -37,7 +37,7 @@ constexpr Command kCommands[] = {
      viewer::infoCommand},
     {"render", "a part to a PNG image", viewer::renderCommand, true},
     {"export", "a part to a mesh (GLB, glTF, OBJ, STL, 3MF) within a distance tolerance",
-     viewer::exportCommand},
+     viewer::exportCommand, true},
     {"compare", "a mesh against the part's exact surface: distances, volume, topology",
      viewer::compareCommand},
     {"view", "an interactive window: progressive ray tracing, hot reload, click to probe",

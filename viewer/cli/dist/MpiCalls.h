@@ -33,6 +33,8 @@ struct CsgrayMpiCalls {
     // Starts a send whose data must stay alive until wait(handle) returns (a null handle: none).
     void* (*startSend)(const void* data, int bytes, int to, int tag);
     void (*wait)(void* handle);
+    // Rank 0's bytes[0, n) to every rank's (collective; n the same on every rank).
+    void (*broadcast)(void* bytes, long long n);
 };
 
 // The module's one exported function.

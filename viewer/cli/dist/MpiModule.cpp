@@ -2,6 +2,8 @@
 // mpirun or srun started csgray.
 #include <mpi.h>
 
+#include <algorithm>
+
 #include "viewer/cli/dist/MpiCalls.h"
 
 namespace {
@@ -81,8 +83,16 @@ void wait(void* handle) {
     delete request;
 }
 
+void broadcast(void* bytes, long long n) {
+    // MPI counts are ints: pieces of at most 2^30 bytes.
+    constexpr long long kPiece = 1LL << 30;
+    for (long long done = 0; done < n; done += kPiece)
+        MPI_Bcast(static_cast<char*>(bytes) + done, int(std::min(kPiece, n - done)), MPI_BYTE, 0,
+                  MPI_COMM_WORLD);
+}
+
 constexpr CsgrayMpiCalls kCalls = {init,  finalize, allMin, sumToRoot, abortJob, poll,
-                                   probe, receive,  send,   startSend, wait};
+                                   probe, receive,  send,   startSend, wait,     broadcast};
 
 }  // namespace
 

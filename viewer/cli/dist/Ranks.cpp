@@ -75,6 +75,14 @@ void Ranks::sumToRoot(unsigned long long* values, int n) const {
     if (calls_ && size_ > 1) calls_->sumToRoot(values, n, root() ? 1 : 0);
 }
 
+void Ranks::broadcast(std::string& bytes) const {
+    if (!calls_ || size_ == 1) return;
+    unsigned long long n = bytes.size();
+    calls_->broadcast(&n, sizeof n);
+    bytes.resize(n);
+    calls_->broadcast(bytes.data(), static_cast<long long>(n));
+}
+
 void Ranks::abort(int code) const {
     if (calls_) calls_->abort(code);
     std::exit(code);

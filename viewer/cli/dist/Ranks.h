@@ -8,6 +8,8 @@
 // starts as fast as a csgray without MPI and needs no mpirun (bench/README.md, MPI start-up).
 #pragma once
 
+#include <string>
+
 #include "viewer/cli/dist/MpiCalls.h"
 
 namespace viewer::dist {
@@ -32,6 +34,8 @@ public:
     bool allOk(bool ok) const;
     // Sums values[0, n) over the ranks into rank 0's values (a collective; others keep theirs).
     void sumToRoot(unsigned long long* values, int n) const;
+    // Rank 0's bytes to every rank (a collective): the others' are replaced.
+    void broadcast(std::string& bytes) const;
     // Ends the whole job at once with code (an error on one rank that the others cannot see).
     [[noreturn]] void abort(int code) const;
 
