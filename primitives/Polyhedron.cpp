@@ -139,12 +139,23 @@ double cross2(const Vec2& a, const Vec2& b) {
     return a.x * b.y - a.y * b.x;
 }
 
-// The line's parameter at the triangle's plane, false when the line runs along it.
-inline bool planeCrossing(const Vec3& p0, const Vec3& n, const Vec3& o, const Vec3& d, double& t) {
+// Both methods' first step: where the line meets the triangle's plane (t), that point in the
+// projection that drops the normal's largest axis, and that axis; nullopt when the line runs
+// along the plane.
+struct PlanePoint {
+    Vec3 n;  // cross(P1 - P0, P2 - P0)
+    DroppedAxis axis;
+    Vec2 at;
+};
+inline std::optional<PlanePoint> planePoint(const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                                            const Vec3& o, const Vec3& d, double& t) {
+    const Vec3 n = glm::cross(p1 - p0, p2 - p0);
     const double along = glm::dot(n, d);
-    if (along == 0.0) return false;
+    if (along == 0.0) return std::nullopt;
     t = glm::dot(n, p0 - o) / along;
-    return std::isfinite(t);
+    if (!std::isfinite(t)) return std::nullopt;
+    const DroppedAxis axis(n);
+    return PlanePoint{n, axis, Vec2(o[axis.i1] + t * d[axis.i1], o[axis.i2] + t * d[axis.i2])};
 }
 
 // Snyder's barycentric coordinates of the plane point q (projected) in triangle (a, b, c).
@@ -156,12 +167,11 @@ inline std::array<double, 3> snyderWeights(const Vec2& a, const Vec2& b, const V
 struct SnyderTest {
     bool operator()(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& o, const Vec3& d,
                     double& t) const {
-        const Vec3 n = glm::cross(p1 - p0, p2 - p0);
-        if (!planeCrossing(p0, n, o, d, t)) return false;
-        const DroppedAxis axis(n);
-        const Vec2 q(o[axis.i1] + t * d[axis.i1], o[axis.i2] + t * d[axis.i2]);
+        const std::optional<PlanePoint> q = planePoint(p0, p1, p2, o, d, t);
+        if (!q) return false;
+        const DroppedAxis& axis = q->axis;
         const std::array<double, 3> b =
-            snyderWeights(axis.of(p0), axis.of(p1), axis.of(p2), q, n[axis.i0]);
+            snyderWeights(axis.of(p0), axis.of(p1), axis.of(p2), q->at, q->n[axis.i0]);
         return b[0] >= 0.0 && b[1] >= 0.0 && b[2] >= 0.0 && b[0] <= 1.0 && b[1] <= 1.0 &&
                b[2] <= 1.0;
     }
@@ -188,13 +198,11 @@ inline std::optional<MarchalPoint> marchalPoint(const Vec2& a, const Vec2& b, co
 struct MarchalTest {
     bool operator()(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& o, const Vec3& d,
                     double& t) const {
-        const Vec3 n = glm::cross(p1 - p0, p2 - p0);
-        if (!planeCrossing(p0, n, o, d, t)) return false;
-        const DroppedAxis axis(n);
-        const Vec2 origin = axis.of(p0);
-        const Vec2 w = Vec2(o[axis.i1] + t * d[axis.i1], o[axis.i2] + t * d[axis.i2]) - origin;
+        const std::optional<PlanePoint> q = planePoint(p0, p1, p2, o, d, t);
+        if (!q) return false;
+        const Vec2 origin = q->axis.of(p0);
         const std::optional<MarchalPoint> m =
-            marchalPoint(axis.of(p1) - origin, axis.of(p2) - origin, w);
+            marchalPoint(q->axis.of(p1) - origin, q->axis.of(p2) - origin, q->at - origin);
         return m && m->r < 1.0;
     }
 };
