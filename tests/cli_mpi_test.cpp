@@ -86,7 +86,7 @@ TEST(CliMpi, RenderIsByteIdenticalToOneProcess) {
 // An export by three ranks writes the bytes one process writes, on each path export takes
 // (csg/mesh/Tessellate.h): a torus (--grid: its rows cast and its samples measured on the
 // ranks), the emblem (its curves faceted, the faceted boundary measured on the ranks) and a
-// box with a box cut out (the exact polyhedral boundary, made on every rank alike). The same
+// box with a box cut out (the exact polyhedral boundary: its faces cut on the ranks). The same
 // file name on both sides: a GLB names its mesh after it. The summary is printed once.
 TEST(CliMpi, ExportIsByteIdenticalToOneProcess) {
     ScratchDir dir;

@@ -603,7 +603,8 @@ bool allLeavesPolyhedral(const Scene& scene) {
 }
 
 std::optional<TriangleMesh> polyhedralBoundary(const Scene& scene, int threads,
-                                               PolyhedralBoundaryStats* stats) {
+                                               PolyhedralBoundaryStats* stats,
+                                               const ItemDistributor* distribute) {
     PolyhedralBoundaryStats local;
     PolyhedralBoundaryStats& s = stats ? *stats : local;
     s = {};
@@ -671,15 +672,44 @@ std::optional<TriangleMesh> polyhedralBoundary(const Scene& scene, int threads,
         box.lo -= Vec3(onPlane), box.hi += Vec3(onPlane);
         grid.insert(i, box);
     }
-    const int workers = resolveThreads(threads);
+    const int workers = distribute ? distribute->threads : resolveThreads(threads);
     std::vector<QueryContext> contexts(static_cast<size_t>(workers));
     std::vector<CutScratch> scratch(static_cast<size_t>(workers));
     std::vector<std::vector<Piece>> kept(faces.size());
     std::vector<uint64_t> made(faces.size(), 0);
-    parallelFor(faces.size(), workers, [&](int worker, uint64_t i) {
+    const auto cut = [&](int worker, uint64_t i, std::vector<Piece>& pieces, uint64_t& count) {
         boundaryPieces(scene, faces, grid, convexPlanes, uint32_t(i), onPlane,
-                       contexts[size_t(worker)], scratch[size_t(worker)], kept[i], made[i]);
-    });
+                       contexts[size_t(worker)], scratch[size_t(worker)], pieces, count);
+    };
+    if (!distribute) {
+        parallelFor(faces.size(), workers,
+                    [&](int worker, uint64_t i) { cut(worker, i, kept[i], made[i]); });
+    } else {
+        distribute->run(
+            faces.size(),
+            [&](int worker, uint64_t i, std::string& bytes) {
+                std::vector<Piece> pieces;
+                uint64_t count = 0;
+                cut(worker, i, pieces, count);
+                ByteWriter out(bytes);
+                out.value(count);
+                out.value(uint64_t(pieces.size()));
+                for (const Piece& piece : pieces) {
+                    out.value(piece.material);
+                    out.values(piece.corners);
+                }
+            },
+            [&](uint64_t i, std::string_view bytes) {
+                ByteReader in(bytes);
+                made[i] = in.value<uint64_t>();
+                const uint64_t pieces = std::min<uint64_t>(in.value<uint64_t>(), bytes.size());
+                for (uint64_t k = 0; k < pieces; ++k) {
+                    Piece& piece = kept[i].emplace_back();
+                    piece.material = in.value<uint32_t>();
+                    piece.corners = in.values<Vec3>();
+                }
+            });
+    }
 
     s.classifySeconds = lap();
 

@@ -34,6 +34,7 @@
 #include <optional>
 
 #include "csg/Scene.h"
+#include "csg/mesh/Distribute.h"
 #include "csg/mesh/TriangleMesh.h"
 
 namespace csg {
@@ -65,8 +66,11 @@ bool allLeavesPolyhedral(const Scene& scene);
 
 // The part's exact boundary as a closed, outward-oriented triangle mesh (no normals; materials
 // per triangle from the leaves' tags), or nothing when the part is not all polyhedra or the
-// result would not be a closed manifold. threads: 0 for all cores.
+// result would not be a closed manifold. threads: 0 for all cores. With `distribute`, the faces
+// are cut and classified on the processes of a job (csg/mesh/Distribute.h: the same mesh on
+// every one).
 std::optional<TriangleMesh> polyhedralBoundary(const Scene& scene, int threads,
-                                               PolyhedralBoundaryStats* stats = nullptr);
+                                               PolyhedralBoundaryStats* stats = nullptr,
+                                               const ItemDistributor* distribute = nullptr);
 
 }  // namespace csg

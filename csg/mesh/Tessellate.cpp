@@ -155,7 +155,8 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
         return std::max(result.error.max, result.backError.max);
     };
     if (options.exactPolyhedra && allLeavesPolyhedral(scene)) {
-        if (auto mesh = polyhedralBoundary(scene, options.threads, &result.polyhedral)) {
+        if (auto mesh = polyhedralBoundary(scene, options.threads, &result.polyhedral,
+                                           options.distribute)) {
             result.mesh = std::move(*mesh);
             result.exact = true;
             result.gridTriangles = result.mesh.triangles.size();
@@ -176,8 +177,8 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
         for (int attempt = 0; attempt < tol::kFacetAttempts; ++attempt, deviation *= 0.5) {
             const std::optional<Scene> faceted = options.facetCurves(deviation);
             if (!faceted) break;
-            std::optional<TriangleMesh> mesh =
-                polyhedralBoundary(*faceted, options.threads, &result.polyhedral);
+            std::optional<TriangleMesh> mesh = polyhedralBoundary(
+                *faceted, options.threads, &result.polyhedral, options.distribute);
             if (!mesh) break;
             if (measureExactMesh(*mesh) > tol::kMeshMeasureMargin * tolerance) {
                 result.polyhedral.declined =

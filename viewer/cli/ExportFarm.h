@@ -3,8 +3,8 @@
 // rank 0, computed on every rank's threads), rank 0 joins their results in item order and
 // broadcasts them, and every rank takes them in that order: all ranks then hold the same grid
 // and the same figures, make the same mesh, and rank 0 writes it, the bytes a single process
-// writes. What the loops do not cover (contouring, simplification, the exact polyhedral
-// boundary) runs on every rank alike.
+// writes. What the loops do not cover (contouring, the exact boundary's welding and merging,
+// simplification) runs on every rank alike.
 #pragma once
 
 #include "csg/mesh/Distribute.h"
