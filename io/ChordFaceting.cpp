@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "csg/derived/Flatten2D.h"
 #include "csg/mesh/PolyhedralBoundary.h"
 #include "csg/mesh/Qef.h"
 #include "io/ExtrusionMesh.h"
@@ -26,12 +27,12 @@ double largestScale(const csg::Mat4& m) {
 }
 
 // Fragments for a circle of world radius r whose chords may stand `sagitta` off it: the least
-// n >= 3 with r (1 - cos(pi / n)) <= sagitta; 0 when that is more than `most`.
+// n >= 3 with r (1 - cos(pi / n)) <= sagitta (csg::chordSteps over a turn); 0 when that is more
+// than `most` (below chordSteps' own cap).
 int64_t fragmentsFor(double r, double sagitta, int64_t most) {
-    if (!(r > sagitta)) return 3;
-    const double n = std::ceil(std::numbers::pi / std::acos(1.0 - sagitta / r));
-    if (!(n <= double(most))) return 0;
-    return std::max<int64_t>(3, int64_t(n));
+    const int64_t n = csg::chordSteps(r, 2.0 * std::numbers::pi, sagitta);
+    if (n > most) return 0;
+    return std::max<int64_t>(3, n);
 }
 
 // The faceted sphere, cylinder or extrusion (without the node's transform), or nullptr

@@ -130,11 +130,9 @@ void addPrism(WorldMesh& out, const Extrusion& e, const std::vector<std::array<V
 }
 
 // Segments per turn that keep a circle of radius r within t of its inscribed polygon (the
-// sagitta r (1 - cos(pi / n)) <= t), at least 8 and at most 4096 (t >= 3e-7 r).
+// sagitta r (1 - cos(pi / n)) <= t: csg::chordSteps), at least 8 and at most 4096 (t >= 3e-7 r).
 int segmentsFor(double r, double t) {
-    const double c = std::clamp(1.0 - t / r, -1.0, 1.0);
-    const double n = std::ceil(kPi / std::max(std::acos(c), 1e-300));
-    return int(std::clamp(n, 8.0, 4096.0));
+    return int(std::clamp<int64_t>(chordSteps(r, 2.0 * kPi, t), 8, 4096));
 }
 
 // A closed surface of revolution about z through the profile points (rho, z), first and last
