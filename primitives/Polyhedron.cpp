@@ -794,22 +794,9 @@ Vec3 Polyhedron::normal(const Vec3& p, uint16_t face) const {
     return unitOr(b[0] * corner[0] + b[1] * corner[1] + b[2] * corner[2], flat);
 }
 
-const char* polygonMethodName(PolygonMethod method) {
-    switch (method) {
-        case PolygonMethod::Watertight:
-            return "watertight";
-        case PolygonMethod::Snyder:
-            return "snyder";
-        case PolygonMethod::Marchal:
-            return "marchal";
-    }
-    return "watertight";
-}
-
 std::optional<PolygonMethod> parsePolygonMethod(std::string_view name) {
-    for (PolygonMethod m :
-         {PolygonMethod::Watertight, PolygonMethod::Snyder, PolygonMethod::Marchal})
-        if (name == polygonMethodName(m)) return m;
+    for (size_t i = 0; i < kPolygonMethodNames.size(); ++i)
+        if (kPolygonMethodNames[i] == name) return static_cast<PolygonMethod>(i);
     return std::nullopt;
 }
 

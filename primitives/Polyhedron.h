@@ -80,8 +80,12 @@ struct PolyhedronData;
 
 // How spans() tests a line against the triangles (see the head of this file).
 enum class PolygonMethod : uint8_t { Watertight, Snyder, Marchal };
-// "watertight", "snyder", "marchal".
-const char* polygonMethodName(PolygonMethod method);
+// The names of --polygon-method, in the enum's order.
+inline constexpr std::array<std::string_view, 3> kPolygonMethodNames = {"watertight", "snyder",
+                                                                        "marchal"};
+inline const char* polygonMethodName(PolygonMethod method) {
+    return kPolygonMethodNames[static_cast<size_t>(method)].data();
+}
 // The method of a name polygonMethodName gives; nullopt for anything else.
 std::optional<PolygonMethod> parsePolygonMethod(std::string_view name);
 // Triangles whose normals turn more than this from each other meet at a crease: their corner
