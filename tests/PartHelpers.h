@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "csg/Scene.h"
@@ -69,6 +70,25 @@ inline void expectSpans(const csg::Scene& scene, Vec3 o, Vec3 d,
     for (size_t i = 0; i < got.size(); ++i) {
         EXPECT_NEAR(got[i].in, expected[i].in, tol) << "span " << i;
         EXPECT_NEAR(got[i].out, expected[i].out, tol) << "span " << i;
+    }
+}
+
+// The spans of the ray o + t d, t >= 0, through the scene as (in, out) pairs.
+inline std::vector<std::pair<double, double>> spanPairs(const csg::Scene& scene, Vec3 o, Vec3 d) {
+    csg::QueryContext ctx;
+    std::vector<std::pair<double, double>> out;
+    for (const csg::Span& s : scene.spans(csg::Ray{o, d, 0.0, csg::kInfinity}, ctx))
+        out.push_back({s.in.t, s.out.t});
+    return out;
+}
+
+// Two span lists given as (in, out) pairs: the same count, in order, each end within tol.
+inline void expectSpanPairs(const std::vector<std::pair<double, double>>& got,
+                            const std::vector<std::pair<double, double>>& want, double tol) {
+    ASSERT_EQ(got.size(), want.size()) << "got " << got.size() << " spans";
+    for (size_t i = 0; i < want.size(); ++i) {
+        EXPECT_NEAR(got[i].first, want[i].first, tol) << "span " << i;
+        EXPECT_NEAR(got[i].second, want[i].second, tol) << "span " << i;
     }
 }
 

@@ -89,20 +89,10 @@ csg::Scene compiled(const EvaluateResult& r) {
     return csg::Scene::compile(r.ok() ? r.model->root : nullptr);
 }
 
-Spans spans(const csg::Scene& scene, csg::Vec3 o, csg::Vec3 d) {
-    csg::QueryContext ctx;
-    Spans out;
-    for (const csg::Span& s : scene.spans(csg::Ray{o, d, 0.0, csg::kInfinity}, ctx))
-        out.push_back({s.in.t, s.out.t});
-    return out;
-}
+constexpr auto* spans = &csg::testing::spanPairs;
 
 void expectSpans(const Spans& got, const Spans& want, double tol = 1e-12) {
-    ASSERT_EQ(got.size(), want.size()) << "got " << got.size() << " spans";
-    for (size_t i = 0; i < want.size(); ++i) {
-        EXPECT_NEAR(got[i].first, want[i].first, tol) << "span " << i;
-        EXPECT_NEAR(got[i].second, want[i].second, tol) << "span " << i;
-    }
+    csg::testing::expectSpanPairs(got, want, tol);
 }
 
 DxfDrawing readOk(const std::string& text, DxfOptions options = {}) {

@@ -70,13 +70,7 @@ csg::Scene drawing(const fs::path& dir, const std::string& body, const std::stri
     return compiled(run(dir, "linear_extrude(1) import(\"d.svg\"" + args + ");\n", curves));
 }
 
-Spans spans(const csg::Scene& scene, csg::Vec3 o, csg::Vec3 d) {
-    csg::QueryContext ctx;
-    Spans out;
-    for (const csg::Span& s : scene.spans(csg::Ray{o, d, 0.0, csg::kInfinity}, ctx))
-        out.push_back({s.in.t, s.out.t});
-    return out;
-}
+constexpr auto* spans = &csg::testing::spanPairs;
 
 // Spans of the line y = y0 (z = 0.5) from x = -100, as x intervals.
 Spans alongX(const csg::Scene& scene, double y0) {
@@ -92,11 +86,7 @@ Spans alongY(const csg::Scene& scene, double x0) {
 }
 
 void expectSpans(const Spans& got, const Spans& want, double tol = 1e-9) {
-    ASSERT_EQ(got.size(), want.size()) << "got " << got.size() << " spans";
-    for (size_t i = 0; i < want.size(); ++i) {
-        EXPECT_NEAR(got[i].first, want[i].first, tol) << "span " << i;
-        EXPECT_NEAR(got[i].second, want[i].second, tol) << "span " << i;
-    }
+    csg::testing::expectSpanPairs(got, want, tol);
 }
 
 // The area of the drawing (its extrusion's volume): csg::volume's quadrature across a curved
@@ -344,22 +334,20 @@ TEST(SvgImport, ErrorsNameTheSvgLine) {
     EXPECT_EQ(firstDiagnostic(run(dir.path, "\n  import(\"bad.svg\");\n"), Severity::Error),
               main + ":2:10: error: import(): " + bad +
                   ":2: malformed XML: the element here is closed by the end tag of another");
-    writeFile(dir.path / "bad.svg", svg("<path d=\"M 0 0 L 10\"/>"));
-    EXPECT_EQ(firstDiagnostic(run(dir.path, "import(\"bad.svg\");\n"), Severity::Error),
-              main + ":1:8: error: import(): " + bad +
-                  ":2: path d: the path data ends where a number of 'L' is due");
-    writeFile(dir.path / "bad.svg", svg("\n<path d=\"L 0 0\"/>"));
-    EXPECT_EQ(firstDiagnostic(run(dir.path, "import(\"bad.svg\");\n"), Severity::Error),
-              main + ":1:8: error: import(): " + bad +
-                  ":3: path d: path data must begin with a moveto (M or m), not 'L'");
-    writeFile(dir.path / "bad.svg", svg("<polygon points=\"0,0 1e99,0 1,1\"/>"));
-    EXPECT_EQ(firstDiagnostic(run(dir.path, "import(\"bad.svg\");\n"), Severity::Error),
-              main + ":1:8: error: import(): " + bad +
-                  ":2: polygon points: the number 1e99 is beyond +-2^40");
-    writeFile(dir.path / "bad.svg",
-              svg("<rect transform=\"skewX(90)\" width=\"1\" height=\"1\"/>"));
-    EXPECT_EQ(firstDiagnostic(run(dir.path, "import(\"bad.svg\");\n"), Severity::Error),
-              main + ":1:8: error: import(): " + bad + ":2: transform \"skewX(90)\" is not finite");
+    // A drawing whose one element is wrong: the error at the import, then the SVG's line.
+    const auto expectError = [&](const std::string& body, const std::string& message) {
+        writeFile(dir.path / "bad.svg", svg(body));
+        EXPECT_EQ(firstDiagnostic(run(dir.path, "import(\"bad.svg\");\n"), Severity::Error),
+                  main + ":1:8: error: import(): " + bad + message);
+    };
+    expectError("<path d=\"M 0 0 L 10\"/>",
+                ":2: path d: the path data ends where a number of 'L' is due");
+    expectError("\n<path d=\"L 0 0\"/>",
+                ":3: path d: path data must begin with a moveto (M or m), not 'L'");
+    expectError("<polygon points=\"0,0 1e99,0 1,1\"/>",
+                ":2: polygon points: the number 1e99 is beyond +-2^40");
+    expectError("<rect transform=\"skewX(90)\" width=\"1\" height=\"1\"/>",
+                ":2: transform \"skewX(90)\" is not finite");
     EXPECT_EQ(firstDiagnostic(run(dir.path, "import(\"none.svg\");\n"), Severity::Error),
               main + ":1:8: error: import(): " + (dir.path / "none.svg").string() +
                   ": cannot open the SVG file");

@@ -29,6 +29,7 @@
 #include "io/Evaluate.h"
 #include "io/TextLayout.h"
 #include "io/TextModule.h"
+#include "tests/BinaryStl.h"
 #include "tests/MissingTool.h"
 #include "tests/PartHelpers.h"
 #include "tests/TempDir.h"
@@ -38,7 +39,6 @@ namespace {
 
 using csg::testing::diagnosticsOf;
 using csg::testing::evaluate;
-using csg::testing::readFile;
 using csg::testing::shellQuote;
 
 using csg::Vec2;
@@ -191,21 +191,12 @@ struct Stl {
 };
 
 Stl readBinaryStl(const std::filesystem::path& path) {
-    const std::string bytes = readFile(path);
     Stl stl;
-    if (bytes.size() < 84) return stl;
-    uint32_t count = 0;
-    std::memcpy(&count, bytes.data() + 80, 4);
-    if (bytes.size() != 84 + size_t(count) * 50) return stl;
-    for (uint32_t i = 0; i < count; ++i) {
-        float f[9];
-        std::memcpy(f, bytes.data() + 84 + size_t(i) * 50 + 12, sizeof f);
-        Vec3 p[3];
-        for (int k = 0; k < 3; ++k) {
-            p[k] = Vec3(f[3 * k], f[3 * k + 1], f[3 * k + 2]);
-            stl.lo = glm::min(stl.lo, p[k]);
-            stl.hi = glm::max(stl.hi, p[k]);
-            if (p[k].z == 0.0) stl.bottom.push_back(Vec2(p[k]));
+    for (const auto& p : csg::testing::binaryStlTriangles(path)) {
+        for (const Vec3& v : p) {
+            stl.lo = glm::min(stl.lo, v);
+            stl.hi = glm::max(stl.hi, v);
+            if (v.z == 0.0) stl.bottom.push_back(Vec2(v));
         }
         stl.volume += glm::dot(p[0], glm::cross(p[1], p[2])) / 6.0;
     }

@@ -20,6 +20,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "BinaryStl.h"
 #include "MissingTool.h"
 #include "csg/Scene.h"
 #include "csg/Volume.h"
@@ -554,22 +555,7 @@ struct StlMesh {
 
 // A binary STL as OpenSCAD writes it with --export-format binstl.
 StlMesh readBinaryStl(const std::filesystem::path& path) {
-    const std::string bytes = readFile(path);
-    StlMesh mesh;
-    if (bytes.size() < 84) return mesh;
-    uint32_t count = 0;
-    std::memcpy(&count, bytes.data() + 80, 4);
-    if (bytes.size() != 84 + size_t(count) * 50) return mesh;
-    for (uint32_t i = 0; i < count; ++i) {
-        std::array<Vec3, 3> t;
-        for (int k = 0; k < 3; ++k) {
-            float v[3];
-            std::memcpy(v, bytes.data() + 84 + size_t(i) * 50 + 12 + 12 * k, 12);
-            t[k] = Vec3(v[0], v[1], v[2]);
-        }
-        mesh.triangles.push_back(t);
-    }
-    return mesh;
+    return {csg::testing::binaryStlTriangles(path)};
 }
 
 struct MeshMeasures {
