@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/Evaluate.h"
-#include "viewer/cli/InfoTree.h"
+#include "io/TreeJson.h"
 
 namespace {
 
@@ -18,9 +18,8 @@ io::Model cubeAt123() {
     return std::move(*r.model);
 }
 
-nlohmann::json writeTree(const io::Model& model, const csg::Node& root,
-                         viewer::NodeCounts* counts) {
-    viewer::TreeWriter writer(model);
+nlohmann::json writeTree(const io::Model& model, const csg::Node& root, io::NodeCounts* counts) {
+    io::TreeWriter writer(model);
     *counts = writer.count(root);
     std::string out;
     csg::JsonWriter json(out);
@@ -34,7 +33,7 @@ TEST(InfoTree, ASharedSubtreeIsWrittenOnceAndCountedPerUse) {
     ASSERT_TRUE(post && post->op == csg::Op::Leaf);
     // (post u post) - post: three uses of one leaf.
     const csg::NodePtr dag = csg::subtract(csg::unite(post, post), post);
-    viewer::NodeCounts counts;
+    io::NodeCounts counts;
     const nlohmann::json tree = writeTree(model, *dag, &counts);
 
     EXPECT_EQ(counts.leaves.at("cube"), 3u);
@@ -63,8 +62,8 @@ TEST(InfoTree, ASubtreeUsedAMillionTimesStaysSmall) {
     const io::Model model = cubeAt123();
     csg::NodePtr dag = model.root;
     for (int level = 0; level < 20; ++level) dag = csg::unite(dag, dag);
-    viewer::TreeWriter writer(model);
-    const viewer::NodeCounts counts = writer.count(*dag);
+    io::TreeWriter writer(model);
+    const io::NodeCounts counts = writer.count(*dag);
     EXPECT_EQ(counts.leafTotal(), uint64_t(1) << 20);
     EXPECT_EQ(counts.unions, (uint64_t(1) << 20) - 1);
     std::string out;
@@ -80,8 +79,8 @@ TEST(InfoTree, CountsSaturateInsteadOfWrapping) {
     const io::Model model = cubeAt123();
     csg::NodePtr dag = model.root;
     for (int level = 0; level < 70; ++level) dag = csg::unite(dag, dag);  // 2^70 leaves
-    viewer::TreeWriter writer(model);
-    const viewer::NodeCounts counts = writer.count(*dag);
+    io::TreeWriter writer(model);
+    const io::NodeCounts counts = writer.count(*dag);
     EXPECT_EQ(counts.leafTotal(), UINT64_MAX);
     EXPECT_EQ(counts.transformed, UINT64_MAX);
     EXPECT_EQ(counts.total(), UINT64_MAX);

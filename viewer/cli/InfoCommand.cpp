@@ -2,9 +2,9 @@
 
 #include <cstdio>
 
+#include "io/TreeJson.h"
 #include "primitives/base/Json.h"
 #include "viewer/cli/Cli.h"
-#include "viewer/cli/InfoTree.h"
 #include "viewer/cli/LoadPart.h"
 #include "viewer/render/EffectsPlan.h"
 #include "viewer/render/RenderCamera.h"
@@ -123,8 +123,8 @@ int infoCommand(std::span<const std::string> args) {
     LoadedPart part;
     if (const int code = loadPart(options, report, part); code != kExitOk) return code;
 
-    TreeWriter tree(part.model);
-    const NodeCounts counts = part.model.root ? tree.count(*part.model.root) : NodeCounts{};
+    io::TreeWriter tree(part.model);
+    const io::NodeCounts counts = part.model.root ? tree.count(*part.model.root) : io::NodeCounts{};
 
     std::string out;
     csg::JsonWriter json(out);
@@ -133,7 +133,7 @@ int infoCommand(std::span<const std::string> args) {
     json.key("curves").value(io::curveModeName(options.curves));
     // A 2-D part's tree is its shape shown 1 unit thick (io::Model::twoD).
     json.key("dimensions").value(part.model.twoD ? 2 : 3);
-    writeCounts(json, counts);
+    io::writeCounts(json, counts);
     writeBounds(json, part.scene.bounds());
     json.key("compiledLeaves").value(uint64_t(part.scene.leafCount()));
     writeExtras(json, part.model);

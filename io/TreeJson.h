@@ -1,8 +1,9 @@
-// The "counts" and "tree" of `csgray info`. The tree is a DAG (a subtree may be shared by many
-// parents), so counts are of the tree as written out (every use counts) while the walk visits
-// each distinct node once, and the JSON prints a node used more than once in full at its first
-// use, with an "id", and as {"ref": id} afterwards: a part that reuses a subtree 2^20 times
-// stays small.
+// An evaluated part's "counts" and "tree" as JSON, as `csgray info` prints them. The tree is a
+// DAG (a subtree may be shared by many parents), so counts are of the tree as written out
+// (every use counts) while the walk visits each distinct node once, and the JSON prints a node
+// used more than once in full at its first use, with an "id", and as {"ref": id} afterwards: a
+// part that reuses a subtree 2^20 times stays small. The evaluator itself shares no nodes
+// today; a caller building trees by hand may.
 #pragma once
 
 #include <cstdint>
@@ -14,7 +15,7 @@
 #include "io/Model.h"
 #include "primitives/base/Json.h"
 
-namespace viewer {
+namespace io {
 
 // Counts of the expanded tree, saturating rather than wrapping for astronomically shared DAGs.
 // Leaves are counted by primitive name, so a newly registered primitive needs no change here.
@@ -34,7 +35,7 @@ void writeCounts(csg::JsonWriter& json, const NodeCounts& counts);
 
 class TreeWriter {
 public:
-    explicit TreeWriter(const io::Model& model) : model_(model) {}
+    explicit TreeWriter(const Model& model) : model_(model) {}
 
     // Counts of the subtree at node, memoized per distinct node; also counts each node's uses.
     // Call it on the root before write(), which needs the uses.
@@ -44,10 +45,10 @@ public:
     void write(csg::JsonWriter& json, const csg::Node& node);
 
 private:
-    const io::Model& model_;
+    const Model& model_;
     std::unordered_map<const csg::Node*, uint32_t> uses_;
     std::unordered_map<const csg::Node*, NodeCounts> counts_;
     std::unordered_map<const csg::Node*, uint32_t> ids_;
 };
 
-}  // namespace viewer
+}  // namespace io

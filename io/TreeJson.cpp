@@ -1,6 +1,6 @@
-#include "viewer/cli/InfoTree.h"
+#include "io/TreeJson.h"
 
-namespace viewer {
+namespace io {
 
 void NodeCounts::addAll(const NodeCounts& o) {
     for (const auto& [name, n] : o.leaves) leaves[name] = add(leaves[name], n);
@@ -110,4 +110,4 @@ void TreeWriter::write(csg::JsonWriter& json, const csg::Node& node) {
     json.endObject();
 }
 
-}  // namespace viewer
+}  // namespace io
