@@ -35,31 +35,78 @@ int64_t fragmentsFor(double r, double sagitta, int64_t most) {
     return std::max<int64_t>(3, n);
 }
 
+// A polytope inscribed in a curve of radius r has its vertices on the curve and its faces up to
+// r (1 - c) inside it (c r: the distance of its nearest face plane from the centre or axis).
+// Balanced, it is scaled by 2 / (1 + c) about that centre or axis: its vertices stand
+// r (1 - c) / (1 + c) outside and its nearest faces as far inside, and every point between (the
+// polytope is convex and star-shaped about the centre). Returns the scale for the fit, or 0
+// when the faces would stand more than `deviation` off a curve of world radius r.
+double fitScale(csg::FacetFit fit, double c, double r, double deviation) {
+    if (fit == csg::FacetFit::Inscribed) return r * (1.0 - c) <= deviation ? 1.0 : 0.0;
+    return r * (1.0 - c) / (1.0 + c) <= deviation ? 2.0 / (1.0 + c) : 0.0;
+}
+
+// Where a search for the fewest fragments that fit may start: below the chord rule at the
+// deviation (inscribed) or twice it (balanced), an equator face alone stands too far off, since
+// c <= cos(pi / n) and 1 + c <= 2.
+int64_t leastFragmentsToTry(csg::FacetFit fit, double r, double deviation, int64_t most) {
+    return fragmentsFor(r, fit == csg::FacetFit::Balanced ? 2.0 * deviation : deviation, most);
+}
+
+// c of facetedSphere(1, n): its nearest face plane's distance from the centre. In the meridian
+// plane through a side face's middle, the face's edges on rings i and i + 1 are the points
+// (cos(pi / n) sin(phi), cos(phi)) at the rings' polar angles, and its plane is the line through
+// them; the caps stand cos(phi_0) off.
+double nearestSphereFace(int64_t n) {
+    const int64_t rings = sphereRingCount(n);
+    const double edge = std::cos(std::numbers::pi / double(n));
+    auto polar = [rings](int64_t i) {
+        return std::numbers::pi * (double(i) + 0.5) / double(rings);
+    };
+    double c = std::cos(polar(0));
+    for (int64_t i = 0; i + 1 < rings; ++i) {
+        const double a1 = edge * std::sin(polar(i)), b1 = std::cos(polar(i));
+        const double a2 = edge * std::sin(polar(i + 1)), b2 = std::cos(polar(i + 1));
+        c = std::min(c, std::abs(a1 * b2 - a2 * b1) / std::hypot(a1 - a2, b1 - b2));
+    }
+    return c;
+}
+
 // The faceted sphere, cylinder or extrusion (without the node's transform), or nullptr
-// for any other leaf.
-csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double deviation) {
+// for any other leaf. Spheres and cylinders get the fewest fragments whose fit stands within the
+// deviation, checked with their faces' exact planes.
+csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double deviation,
+                       csg::FacetFit fit) {
     const csg::Primitive& p = node.primitive;
     const double scale = largestScale(world);
     constexpr int64_t kMost = 1 << 15;
     if (const auto* sphere = std::get_if<csg::Sphere>(&p)) {
-        // A face between two rings stands off the sphere by about the sagitta across the rings
-        // plus the one along them: half the deviation each.
-        const int64_t n = fragmentsFor(sphere->radius * scale, 0.5 * deviation, kMost);
-        if (n == 0 || facetedSphereFaceCount(n) >= csg::ConvexPolytope::kMaxPlanes) return nullptr;
-        return csg::leaf(polytopeOf(facetedSphere(sphere->radius, n),
-                                    {"sphere", uint32_t(n), uint32_t(sphereRingCount(n))}),
-                         node.tags);
+        const double r = sphere->radius * scale;
+        for (int64_t n = leastFragmentsToTry(fit, r, deviation, kMost); n != 0 && n <= kMost; ++n) {
+            if (facetedSphereFaceCount(n) >= csg::ConvexPolytope::kMaxPlanes) return nullptr;
+            if (const double f = fitScale(fit, nearestSphereFace(n), r, deviation); f > 0.0)
+                return csg::leaf(polytopeOf(facetedSphere(f * sphere->radius, n),
+                                            {"sphere", uint32_t(n), uint32_t(sphereRingCount(n))}),
+                                 node.tags);
+        }
+        return nullptr;
     }
     if (const auto* cylinder = std::get_if<csg::Cylinder>(&p)) {
-        const double r = std::max(cylinder->r1, cylinder->r2);
-        const int64_t n = fragmentsFor(r * scale, deviation, kMost);
-        if (n == 0 || facetedCylinderFaceCount(n, cylinder->r1, cylinder->r2) >=
-                          csg::ConvexPolytope::kMaxPlanes)
-            return nullptr;
-        return csg::leaf(
-            polytopeOf(facetedCylinder(cylinder->r1, cylinder->r2, 0.0, cylinder->height, n),
-                       {"cylinder", uint32_t(n), 0}),
-            node.tags);
+        // The sides of an n-gon's prism or frustum stand r (1 - cos(pi / n)) inside the curve
+        // at each height (less across a cone's slant): c = cos(pi / n).
+        const double r = std::max(cylinder->r1, cylinder->r2) * scale;
+        for (int64_t n = leastFragmentsToTry(fit, r, deviation, kMost); n != 0 && n <= kMost; ++n) {
+            if (facetedCylinderFaceCount(n, cylinder->r1, cylinder->r2) >=
+                csg::ConvexPolytope::kMaxPlanes)
+                return nullptr;
+            const double c = std::cos(std::numbers::pi / double(n));
+            if (const double f = fitScale(fit, c, r, deviation); f > 0.0)
+                return csg::leaf(polytopeOf(facetedCylinder(f * cylinder->r1, f * cylinder->r2, 0.0,
+                                                            cylinder->height, n),
+                                            {"cylinder", uint32_t(n), 0}),
+                                 node.tags);
+        }
+        return nullptr;
     }
     if (const auto* extrusion = std::get_if<csg::Extrusion>(&p)) {
         std::optional<csg::Polyhedron> mesh = extrusionMesh(*extrusion, deviation / scale);
@@ -70,12 +117,12 @@ csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double dev
 }
 
 csg::NodePtr facet(const csg::NodePtr& node, const csg::Mat4& parent, double deviation,
-                   bool& curvedLeft) {
+                   csg::FacetFit fit, bool& curvedLeft) {
     if (!node || curvedLeft) return node;
     const csg::Mat4 world = parent * node->parentFromNode;
     if (node->op == csg::Op::Leaf) {
         if (csg::polyhedralLeaf(node->primitive)) return node;
-        csg::NodePtr leaf = facetLeaf(*node, world, deviation);
+        csg::NodePtr leaf = facetLeaf(*node, world, deviation, fit);
         if (!leaf) {
             curvedLeft = true;
             return nullptr;
@@ -85,25 +132,27 @@ csg::NodePtr facet(const csg::NodePtr& node, const csg::Mat4& parent, double dev
         return placed;
     }
     auto copy = std::make_shared<csg::Node>(*node);
-    copy->left = facet(node->left, world, deviation, curvedLeft);
-    copy->right = facet(node->right, world, deviation, curvedLeft);
+    copy->left = facet(node->left, world, deviation, fit, curvedLeft);
+    copy->right = facet(node->right, world, deviation, fit, curvedLeft);
     return copy;
 }
 
 }  // namespace
 
-csg::NodePtr facetToDeviation(const csg::NodePtr& root, double deviation) {
+csg::NodePtr facetToDeviation(const csg::NodePtr& root, double deviation, csg::FacetFit fit) {
     bool curvedLeft = false;
-    csg::NodePtr out = facet(root, csg::Mat4(1.0), deviation, curvedLeft);
+    csg::NodePtr out = facet(root, csg::Mat4(1.0), deviation, fit, curvedLeft);
     return curvedLeft ? nullptr : out;
 }
 
-std::function<std::optional<csg::Scene>(double deviation)> curveFaceter(csg::NodePtr root) {
-    return [root = std::move(root)](double deviation) -> std::optional<csg::Scene> {
-        const csg::NodePtr faceted = facetToDeviation(root, deviation);
-        if (!faceted) return std::nullopt;
-        return csg::Scene::compile(faceted);
-    };
+std::function<std::optional<csg::Scene>(double deviation, csg::FacetFit fit)> curveFaceter(
+    csg::NodePtr root) {
+    return
+        [root = std::move(root)](double deviation, csg::FacetFit fit) -> std::optional<csg::Scene> {
+            const csg::NodePtr faceted = facetToDeviation(root, deviation, fit);
+            if (!faceted) return std::nullopt;
+            return csg::Scene::compile(faceted);
+        };
 }
 
 }  // namespace io

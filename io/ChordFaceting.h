@@ -1,11 +1,12 @@
-// A part's exact spheres and cylinders (cones too) replaced by inscribed polytopes whose faces
-// stand at most a given distance off the exact surface in world units: the faceting an export
-// to a tolerance needs, sized by each curve's own radius (a chord of a circle of radius R with
-// n fragments stands R (1 - cos(pi / n)) off it), not by OpenSCAD's $fa and $fs. Straight
-// linear_extrudes and rotate_extrudes become prisms and revolutions of their outlines' chords
-// within the same distance (io/ExtrusionMesh.h). The result is all polyhedra when nothing else is
-// curved, so it has an exact boundary (csg/mesh/PolyhedralBoundary.h) that is the part to within
-// that distance.
+// A part's exact spheres and cylinders (cones too) replaced by polytopes whose faces stand at
+// most a given distance off the exact surface in world units: the faceting an export to a
+// tolerance needs, sized by each curve's own radius, not by OpenSCAD's $fa and $fs. A sphere or
+// cylinder gets OpenSCAD's vertex layout, inscribed or balanced (csg::FacetFit: scaled out so
+// that its vertices stand as far outside the curve as its faces stand inside, half the
+// inscribed polytope's distance for the same fragments). Straight linear_extrudes and
+// rotate_extrudes become prisms and revolutions of their outlines' chords within the same distance
+// (io/ExtrusionMesh.h; inscribed). The result is all polyhedra when nothing else is curved, so it
+// has an exact boundary (csg/mesh/PolyhedralBoundary.h) that is the part to within that distance.
 #pragma once
 
 #include <functional>
@@ -13,6 +14,7 @@
 
 #include "csg/Scene.h"
 #include "csg/Tree.h"
+#include "csg/mesh/Tessellate.h"
 
 namespace io {
 
@@ -20,11 +22,13 @@ namespace io {
 // that no face stands more than `deviation` (world units, > 0) off the exact surface, or nullptr
 // when a leaf stays curved (a torus, a surface, a twisted extrusion, an outline extrusionMesh
 // declines) or a curve would need more faces than a polytope may have. Spheres and cylinders get
-// OpenSCAD's vertices (io/Faceting.h), with the fragment count from the chord rule at the leaf's
-// largest world scale.
-csg::NodePtr facetToDeviation(const csg::NodePtr& root, double deviation);
+// OpenSCAD's vertices (io/Faceting.h), inscribed, or balanced: scaled out by 2 / (1 + c), c the
+// nearest face's distance over the radius. Each gets the fewest fragments whose faces stand
+// within the deviation at the leaf's largest world scale.
+csg::NodePtr facetToDeviation(const csg::NodePtr& root, double deviation, csg::FacetFit fit);
 
 // TessellateOptions::facetCurves for the part whose tree is root: facetToDeviation, compiled.
-std::function<std::optional<csg::Scene>(double deviation)> curveFaceter(csg::NodePtr root);
+std::function<std::optional<csg::Scene>(double deviation, csg::FacetFit fit)> curveFaceter(
+    csg::NodePtr root);
 
 }  // namespace io

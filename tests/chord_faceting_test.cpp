@@ -1,14 +1,21 @@
 // Faceting curves to a deviation (io/ChordFaceting.h) and the export that uses it
-// (TessellateOptions::facetCurves). Fragment counts are the chord rule's by hand: the least n
-// with R (1 - cos(pi / n)) <= sagitta (python: ceil(pi / acos(1 - s / R))); a sphere's
-// sagitta is half the deviation (across and along its rings).
+// (TessellateOptions::facetCurves). OpenSCAD's vertex layout, inscribed (faces up to R (1 - c)
+// inside, c R the nearest face plane's distance) or balanced (scaled by 2 / (1 + c): faces
+// R (1 - c) / (1 + c) off both ways). Fragment counts by hand: the least n >= 3 whose fit stands
+// within the deviation; a cylinder's c is cos(pi / n); a sphere's c is the least plane distance
+// of its rings' trapezoids and caps, found (python, from the 3-D vertices, n counted up from 3):
+// balanced, n = 23 for R = 1 at 0.01 (c = 0.98221) and 31 for R = 10 at 0.05; inscribed, 31
+// and 45 (the chord rule at half the deviation, used before, gave 32 and 45).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "csg/Tree.h"
 #include "csg/mesh/MeshCheck.h"
+#include "csg/mesh/MeshDistance.h"
+#include "csg/mesh/PolyhedralBoundary.h"
 #include "csg/mesh/Tessellate.h"
 #include "io/ChordFaceting.h"
 #include "primitives/ConvexPolytope.h"
@@ -21,43 +28,69 @@ const ConvexPolytope& polytopeOf(const NodePtr& node) {
 }
 
 TEST(ChordFaceting, FragmentsFollowTheChordRuleAtTheWorldRadius) {
-    // sphere(1), deviation 0.01: sagitta 0.005, ceil(pi / acos(0.995)) = 32.
-    const NodePtr sphere = io::facetToDeviation(leaf(Sphere{1.0}), 0.01);
-    ASSERT_TRUE(sphere);
-    EXPECT_EQ(polytopeOf(sphere).data->origin.fragments, 32u);
-    // cylinder(r = 1), deviation 0.01: sagitta 0.01, ceil(pi / acos(0.99)) = 23.
-    const NodePtr cylinder = io::facetToDeviation(leaf(Cylinder{2.0, 1.0, 1.0}), 0.01);
-    ASSERT_TRUE(cylinder);
-    EXPECT_EQ(polytopeOf(cylinder).data->origin.fragments, 23u);
+    const FacetFit balanced = FacetFit::Balanced, inscribed = FacetFit::Inscribed;
+    // sphere(1), deviation 0.01: balanced 23, inscribed 31.
+    for (auto [fit, n] : {std::pair{balanced, 23u}, {inscribed, 31u}}) {
+        const NodePtr sphere = io::facetToDeviation(leaf(Sphere{1.0}), 0.01, fit);
+        ASSERT_TRUE(sphere);
+        EXPECT_EQ(polytopeOf(sphere).data->origin.fragments, n);
+    }
+    // cylinder(r = 1), deviation 0.01: balanced, tan(pi / 2n)^2 <= 0.01, n >= pi / (2 atan 0.1)
+    // = 15.76: 16; inscribed, 1 - cos(pi / n) <= 0.01, n >= pi / acos(0.99) = 22.2: 23.
+    for (auto [fit, n] : {std::pair{balanced, 16u}, {inscribed, 23u}}) {
+        const NodePtr cylinder = io::facetToDeviation(leaf(Cylinder{2.0, 1.0, 1.0}), 0.01, fit);
+        ASSERT_TRUE(cylinder);
+        EXPECT_EQ(polytopeOf(cylinder).data->origin.fragments, n);
+    }
     // Stretched threefold along y, the sphere is as long as a sphere of radius 3: at deviation
-    // 0.03 (sagitta 0.015), ceil(pi / acos(1 - 0.005)) = 32 again; the transform is kept.
+    // 0.03, 0.03 / 3 = 0.01 / 1, so 23 again; the transform is kept.
     const Mat4 stretch = glm::scale(Mat4(1.0), Vec3(1.0, 3.0, 1.0));
-    const NodePtr stretched = io::facetToDeviation(transformed(stretch, leaf(Sphere{1.0})), 0.03);
+    const NodePtr stretched =
+        io::facetToDeviation(transformed(stretch, leaf(Sphere{1.0})), 0.03, balanced);
     ASSERT_TRUE(stretched);
-    EXPECT_EQ(polytopeOf(stretched).data->origin.fragments, 32u);
+    EXPECT_EQ(polytopeOf(stretched).data->origin.fragments, 23u);
     EXPECT_EQ(stretched->parentFromNode, stretch);
 }
 
-TEST(ChordFaceting, FacesStandWithinTheDeviationAndCornersOnTheSphere) {
+TEST(ChordFaceting, FacesAndCornersStandWithinTheDeviationBothWays) {
     const double r = 10.0, deviation = 0.05;
-    const NodePtr node = io::facetToDeviation(leaf(Sphere{r}), deviation);
+    const NodePtr node = io::facetToDeviation(leaf(Sphere{r}), deviation, FacetFit::Balanced);
     ASSERT_TRUE(node);
     const ConvexPolytopeData& d = *polytopeOf(node).data;
-    for (const Vec3& v : d.vertices) EXPECT_NEAR(glm::length(v), r, 1e-12 * r);
-    // Each face's plane passes within the deviation of the sphere: the origin is at least
-    // r - deviation from it (planes are n . p <= offset with unit n).
-    for (const PolytopePlane& plane : d.planes) {
-        EXPECT_GE(plane.offset / glm::length(plane.normal), r - deviation);
-        EXPECT_LE(plane.offset / glm::length(plane.normal), r);
+    EXPECT_EQ(d.origin.fragments, 31u);
+    // Corners outside the sphere, faces' planes inside it (planes are n . p <= offset), each
+    // within the deviation; balanced, the farthest corner and the nearest plane stand equally
+    // far off.
+    double farthestCorner = 0.0, nearestPlane = r;
+    for (const Vec3& v : d.vertices) farthestCorner = std::max(farthestCorner, glm::length(v));
+    for (const PolytopePlane& plane : d.planes)
+        nearestPlane = std::min(nearestPlane, plane.offset / glm::length(plane.normal));
+    EXPECT_GT(farthestCorner, r);
+    EXPECT_LE(farthestCorner, r + deviation);
+    EXPECT_LT(nearestPlane, r);
+    EXPECT_GE(nearestPlane, r - deviation);
+    EXPECT_NEAR(farthestCorner - r, r - nearestPlane, 1e-12 * r);
+    // The cylinder's corners likewise, its side planes at r cos(pi / n) of the scaled radius.
+    const NodePtr rod =
+        io::facetToDeviation(leaf(Cylinder{5.0, r, r}), deviation, FacetFit::Balanced);
+    ASSERT_TRUE(rod);
+    const ConvexPolytopeData& c = *polytopeOf(rod).data;
+    for (const Vec3& v : c.vertices) {
+        EXPECT_GT(std::hypot(v.x, v.y), r);
+        EXPECT_LE(std::hypot(v.x, v.y), r + deviation);
     }
+    for (const PolytopePlane& plane : c.planes)
+        if (plane.normal.z == 0.0)
+            EXPECT_GE(plane.offset / glm::length(plane.normal), r - deviation);
 }
 
 TEST(ChordFaceting, LeavesThatStayCurvedGiveNothing) {
-    EXPECT_FALSE(io::facetToDeviation(leaf(Torus{2.0, 0.5}), 0.01));
-    EXPECT_FALSE(
-        io::facetToDeviation(unite(leaf(Box{Vec3(0.0), Vec3(1.0)}), leaf(Torus{2.0, 0.5})), 0.01));
+    const FacetFit fit = FacetFit::Balanced;
+    EXPECT_FALSE(io::facetToDeviation(leaf(Torus{2.0, 0.5}), 0.01, fit));
+    EXPECT_FALSE(io::facetToDeviation(unite(leaf(Box{Vec3(0.0), Vec3(1.0)}), leaf(Torus{2.0, 0.5})),
+                                      0.01, fit));
     EXPECT_TRUE(
-        io::facetToDeviation(unite(leaf(Box{Vec3(0.0), Vec3(1.0)}), leaf(Sphere{1.0})), 0.01));
+        io::facetToDeviation(unite(leaf(Box{Vec3(0.0), Vec3(1.0)}), leaf(Sphere{1.0})), 0.01, fit));
 }
 
 TEST(ChordFaceting, ACurvedPartExportsAsTheBoundaryOfItsFacetedLeaves) {
@@ -71,8 +104,8 @@ TEST(ChordFaceting, ACurvedPartExportsAsTheBoundaryOfItsFacetedLeaves) {
     options.facetCurves = io::curveFaceter(part);
     const TessellateResult result = tessellate(scene, options);
     ASSERT_TRUE(result.exact);
-    EXPECT_GT(result.facetDeviation, 0.0);
-    EXPECT_LE(result.facetDeviation, 0.5 * options.tolerance);
+    EXPECT_EQ(result.facetDeviation, 0.5 * options.tolerance);
+    EXPECT_EQ(result.facetFit, FacetFit::Balanced);
     EXPECT_TRUE(result.toleranceMet);
     EXPECT_LE(result.error.max, options.tolerance);
     EXPECT_LE(result.backError.max, options.tolerance);
@@ -89,9 +122,38 @@ TEST(ChordFaceting, ACurvedPartExportsAsTheBoundaryOfItsFacetedLeaves) {
     // surface (outer sphere and bore, < 4 pi r^2 + 2 pi a 2 r) times T.
     const double area = 4.0 * std::numbers::pi * r * r + 2.0 * std::numbers::pi * a * 2.0 * r;
     EXPECT_NEAR(six / 6.0, exact, area * options.tolerance);
-    // Far fewer triangles than a grid at that tolerance needs (its cells are ~T): the chord rule
-    // gives the sphere ~60 fragments and 30 rings.
+    // Far fewer triangles than a grid at that tolerance needs (its cells are ~T): balanced at
+    // 0.025, the sphere has ~45 fragments and 23 rings.
     EXPECT_LT(result.mesh.triangles.size(), 20'000u);
+}
+
+// A pocket cut from z = 10 down into sphere(10): the balanced sphere's top cap stands above the
+// pole, so the pocket keeps a skin over it, points with no exact surface within reach. The
+// export measures that, and takes the inscribed fit at the same deviation.
+TEST(ChordFaceting, ASkinOverAFlushCutFallsBackToTheInscribedFit) {
+    const NodePtr part =
+        subtract(leaf(Sphere{10.0}), leaf(Box{Vec3(-3.0, -3.0, 7.0), Vec3(3.0, 3.0, 10.0)}));
+    const Scene scene = Scene::compile(part);
+    const double tolerance = 0.05;
+    const NodePtr skinned = io::facetToDeviation(part, 0.5 * tolerance, FacetFit::Balanced);
+    ASSERT_TRUE(skinned);
+    const std::optional<TriangleMesh> skin = polyhedralBoundary(Scene::compile(skinned), 0);
+    ASSERT_TRUE(skin);
+    DistanceOptions reach;
+    reach.reach = reach.goodEnough = tolerance;
+    EXPECT_GT(meshToSurface(scene, *skin, reach).unresolved, 0u);
+
+    TessellateOptions options;
+    options.tolerance = tolerance;
+    options.facetCurves = io::curveFaceter(part);
+    const TessellateResult result = tessellate(scene, options);
+    ASSERT_TRUE(result.exact);
+    EXPECT_EQ(result.facetFit, FacetFit::Inscribed);
+    EXPECT_EQ(result.facetDeviation, 0.5 * tolerance);
+    EXPECT_LE(result.error.max, tolerance);
+    EXPECT_LE(result.backError.max, tolerance);
+    EXPECT_EQ(result.error.unresolved, 0u);
+    EXPECT_TRUE(checkTopology(result.mesh).closedManifold());
 }
 
 }  // namespace

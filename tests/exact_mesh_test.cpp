@@ -111,7 +111,8 @@ TEST(ExactMesh, CoincidentFacesOfFacetedLeavesCloseTheBoundary) {
     const io::EvaluateResult r = csg::testing::evaluate(text);
     ASSERT_TRUE(r.ok()) << csg::testing::diagnosticsOf(r);
     const csg::Scene scene = csg::Scene::compile(r.model->root);
-    const csg::NodePtr faceted = io::facetToDeviation(r.model->root, 0.05);
+    const csg::NodePtr faceted =
+        io::facetToDeviation(r.model->root, 0.05, csg::FacetFit::Inscribed);
     ASSERT_TRUE(faceted);
     const TriangleMesh mesh = exactMesh(csg::Scene::compile(faceted));
     // Within the faceting's reach of the exact part's volume (span quadrature, ~1e-3).

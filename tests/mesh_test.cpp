@@ -580,6 +580,37 @@ TEST(MeshDistance, GrazingNormalLinesDoNotInflateAndDisplacedMeshesAreCaught) {
     EXPECT_GE(surfaceToMesh(scene, bvh, 16, options).mean, shift * (1.0 - 1e-9));
 }
 
+// Debian's example001 in part: sphere(25) with a hole of radius 12.5 along z, whose rim is the
+// circle rho = 12.5 at z = sqrt(25^2 - 12.5^2). A mesh point just above the rim and inside the
+// hole's radius (where a faceted sphere's rim stands when the faceted hole is narrower) is
+// within 0.19 of the rim, but its normal line, the axes and the body diagonals all pass beside
+// the wedge of material there: the fan of lines must find it, and no closer than the truth.
+TEST(MeshDistance, APointBesideAThinWedgeIsFoundByTheFan) {
+    const NodePtr hole = transformed(glm::translate(Mat4(1.0), Vec3(0.0, 0.0, -31.25)),
+                                     leaf(Cylinder{62.5, 12.5, 12.5}));
+    const Scene scene = Scene::compile(subtract(leaf(Sphere{25.0}), hole));
+    const Vec3 p(10.1633, 7.07283, 21.7981);
+    const double rimZ = std::sqrt(25.0 * 25.0 - 12.5 * 12.5);
+    const double rho = std::hypot(p.x, p.y);
+    ASSERT_LT(rho, 12.5);
+    ASSERT_GT(p.z, rimZ);
+    const double truth = std::hypot(12.5 - rho, p.z - rimZ);  // to the nearest rim point
+
+    const Vec3 n = glm::normalize(p);  // the sphere's normal, as a faceted sphere's face has
+    const Vec3 u = glm::normalize(glm::cross(n, Vec3(0.0, 0.0, 1.0))) * 1e-4;
+    const Vec3 v = glm::cross(n, u);
+    TriangleMesh mesh;
+    mesh.positions = {p + u, p - u + v, p - u - v};
+    mesh.normals = {n, n, n};
+    mesh.triangles = {{0, 1, 2}};
+    DistanceOptions options;
+    options.reach = options.goodEnough = 0.273;  // the tolerance the benchmark exported it at
+    const DistanceStats d = meshToSurface(scene, mesh, options);
+    EXPECT_EQ(d.unresolved, 0u);
+    EXPECT_GE(d.max, truth - 1e-4);  // the samples lie within 1e-4 of p
+    EXPECT_LE(d.max, 1.5 * truth) << "truth " << truth;
+}
+
 TEST(Tessellate, SphereWithinTolerance) {
     const Scene scene = Scene::compile(leaf(Sphere{1.0}));
     const double tol = 0.005;

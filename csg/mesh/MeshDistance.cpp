@@ -1,6 +1,8 @@
 #include "csg/mesh/MeshDistance.h"
 
+#include <array>
 #include <cmath>
+#include <numbers>
 
 #include "primitives/base/ParallelFor.h"
 #include "primitives/base/Tolerances.h"
@@ -58,6 +60,24 @@ double alongLine(const Scene& scene, QueryContext& ctx, const Vec3& p, const Vec
     return best;
 }
 
+// kFanLines unit directions on a golden-angle spiral over the upper half of the sphere
+// (z from 1 down to 0): read as two-sided lines they cover all directions, the angle between
+// neighbours about 180 / sqrt(kFanLines) degrees.
+constexpr int kFanLines = 64;
+const std::array<Vec3, kFanLines>& fanDirections() {
+    static const std::array<Vec3, kFanLines> fan = [] {
+        std::array<Vec3, kFanLines> d{};
+        const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+        for (int i = 0; i < kFanLines; ++i) {
+            const double z = 1.0 - (double(i) + 0.5) / kFanLines;
+            const double r = std::sqrt(1.0 - z * z);
+            d[size_t(i)] = Vec3(r * std::cos(golden * i), r * std::sin(golden * i), z);
+        }
+        return d;
+    }();
+    return fan;
+}
+
 // The first direction, then the three axes and four body diagonals when the first answer is
 // not well within goodEnough (tol::kDistanceFirstLineFraction: near a crease the first line can
 // run almost along the surface and overestimate several times, and a loose bound just under
@@ -84,6 +104,12 @@ double bestOfDirections(const Vec3& first, double goodEnough, Measure&& measure)
         for (const Vec3& d : kExtra)
             best = std::min(best, glm::length(shift) + measure(glm::normalize(d), shift));
     }
+    // A point just off an edge of the part, beside a thin wedge of its material (a faceted
+    // sphere's rim standing above the exact rim of a hole through it), can have the nearest
+    // surface within goodEnough while all of those lines pass beside the wedge: then a fan of
+    // lines (two-sided, so each is two directions) spread evenly over the sphere of directions.
+    if (best > goodEnough)
+        for (const Vec3& d : fanDirections()) best = std::min(best, measure(d, Vec3(0.0)));
     return best;
 }
 

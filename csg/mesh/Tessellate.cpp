@@ -171,11 +171,15 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
     }
 
     // A part with curved leaves faceted within a share of the tolerance: the exact boundary of
-    // that polyhedron, kept when it measures within the margin against the exact part.
+    // that polyhedron, kept when it measures within the margin against the exact part. The
+    // balanced fit first (about 1 / sqrt(2) of the fragments per curved direction); where it
+    // misses (a skin over a flush cut, errors adding up at a rim), the inscribed one at the same
+    // deviation, as many faces as balanced at half of it, then inscribed at halved deviations.
     if (options.exactPolyhedra && options.facetCurves) {
         double deviation = tol::kFacetDeviationFraction * tolerance;
-        for (int attempt = 0; attempt < tol::kFacetAttempts; ++attempt, deviation *= 0.5) {
-            const std::optional<Scene> faceted = options.facetCurves(deviation);
+        FacetFit fit = FacetFit::Balanced;
+        for (int attempt = 0; attempt <= tol::kFacetAttempts; ++attempt) {
+            const std::optional<Scene> faceted = options.facetCurves(deviation, fit);
             if (!faceted) break;
             std::optional<TriangleMesh> mesh = polyhedralBoundary(
                 *faceted, options.threads, &result.polyhedral, options.distribute);
@@ -183,11 +187,16 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
             if (measureExactMesh(*mesh) > tol::kMeshMeasureMargin * tolerance) {
                 result.polyhedral.declined =
                     "the faceted part did not measure within the tolerance";
+                if (fit == FacetFit::Balanced)
+                    fit = FacetFit::Inscribed;
+                else
+                    deviation *= 0.5;
                 continue;
             }
             result.mesh = std::move(*mesh);
             result.exact = true;
             result.facetDeviation = deviation;
+            result.facetFit = fit;
             result.toleranceMet = true;
             result.gridTriangles = result.mesh.triangles.size();
             return result;

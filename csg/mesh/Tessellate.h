@@ -51,6 +51,12 @@ namespace csg {
 // Surface samples of the surface-to-mesh measurement: lines per axis along each of x, y, z.
 inline constexpr int kSurfaceRaysPerAxis = 128;
 
+// How a faceted curve sits on the exact one. Inscribed: its vertices on the curve, its faces
+// inside. Balanced: scaled out until its vertices stand as far outside as its faces inside, so
+// the same faces stand half as far off; but a curve's extremes then stand out of the exact
+// solid, and a cut flush with one (a pocket from a sphere's pole down) keeps a skin over it.
+enum class FacetFit { Inscribed, Balanced };
+
 struct TessellateOptions {
     // Largest allowed mesh-to-surface distance (world units); <= 0 means 1/500 of the bounds'
     // diagonal.
@@ -77,11 +83,12 @@ struct TessellateOptions {
     // `export --check` turns it on.
     bool measureExact = true;
     // A part with curved leaves: when given, the same part with its curves faceted so that no
-    // face stands more than `deviation` (world units) off them, all polyhedra; or nothing when
-    // some leaf stays curved. tessellate() then writes that part's exact boundary when it
-    // measures within the tolerance of the exact part (a smaller deviation is tried when it
-    // does not), before it takes the grid. The CLI facets with io/ChordFaceting.h.
-    std::function<std::optional<Scene>(double deviation)> facetCurves = nullptr;
+    // face stands more than `deviation` (world units) off them, all polyhedra, fitted as `fit`
+    // says; or nothing when some leaf stays curved. tessellate() then writes that part's exact
+    // boundary when it measures within the tolerance of the exact part (balanced first, then
+    // inscribed, then inscribed at smaller deviations), before it takes the grid. The CLI
+    // facets with io/ChordFaceting.h.
+    std::function<std::optional<Scene>(double deviation, FacetFit fit)> facetCurves = nullptr;
     bool simplify = true;  // coarsen flat regions after the grid passes (Simplify.h)
     // Grid meshes larger than this are not simplified (0: no limit). Decimation (in slabs on
     // all workers, then once over the whole) and its re-measurement both ways cost more than
@@ -129,8 +136,9 @@ struct TessellateResult {
     // The deviation the curves were faceted to when the mesh is the exact boundary of the part
     // faceted by TessellateOptions::facetCurves (exact is then true too); 0 otherwise.
     double facetDeviation = 0.0;
-    PolyhedralBoundaryStats polyhedral;   // how it was made, or why it was declined
-    bool capped = false;                  // maxCells stopped the refinement
+    FacetFit facetFit = FacetFit::Inscribed;  // how those faceted curves sat on the exact ones
+    PolyhedralBoundaryStats polyhedral;       // how it was made, or why it was declined
+    bool capped = false;                      // maxCells stopped the refinement
     bool stalled = false;                 // refinement stopped paying (see Tessellate.h's header)
     uint64_t gridTriangles = 0;           // triangles of the grid's mesh, before simplification
     bool simplified = false;              // the simplified mesh was kept

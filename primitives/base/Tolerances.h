@@ -275,9 +275,10 @@ inline constexpr double kDistanceFirstLineFraction = 0.25;
 // boundary moves by about their deviation (more where they meet at a grazing angle), and the
 // measurement must find it within kMeshMeasureMargin (0.8 T): half of T leaves that margin.
 inline constexpr double kFacetDeviationFraction = 0.5;
-// ... and halves the deviation up to this many times in all while the measurement misses (unit:
-// attempts). Why: a faceting that misses at 0.5 T, 0.25 T and 0.125 T has curves meeting at
-// grazing angles that the grid serves better, and each attempt costs a full boundary.
+// ... fitted inscribed at this many deviations in all, halving, after the balanced fit at the
+// first misses (csg::FacetFit; unit: attempts). Why: a faceting that misses at 0.5 T, 0.25 T
+// and 0.125 T has curves meeting at grazing angles that the grid serves better, and each
+// attempt costs a full boundary.
 inline constexpr int kFacetAttempts = 3;
 
 // A mesh's corners and edge midpoints are distance-sampled at the point this fraction of the way

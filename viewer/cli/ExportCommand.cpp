@@ -54,7 +54,9 @@ const char* const kExportHelp =
     "rotate_extrudes is meshed the same way after faceting them so that no face stands\n"
     "more than T/2 off the curve (each by its own radius; an extrusion becomes the prism or\n"
     "the revolution of its outline's chords), kept when it measures within the tolerance of\n"
-    "the exact part (T/4 and T/8 are tried next). Every other part (tori, surfaces, twisted\n"
+    "the exact part. Spheres and cylinders are faceted balanced first (their corners as far\n"
+    "outside the curve as their faces inside: fewer faces for the same distance), then\n"
+    "inscribed, at T/2, then T/4 and T/8. Every other part (tori, surfaces, twisted\n"
     "or unevenly scaled extrusions) is meshed from its own ray casts: rays along x, y and z\n"
     "through a grid (with planes added through walls and gaps thinner than a cell) give\n"
     "the exact surface crossings and normals on every grid edge; dual contouring with a\n"
@@ -313,8 +315,9 @@ int exportCommand(std::span<const std::string> args) {
                      output.c_str(), writeSeconds);
     char faceted[96] = "";
     if (result.facetDeviation > 0.0)
-        std::snprintf(faceted, sizeof faceted, " of the part with its curves faceted within %.3g",
-                      result.facetDeviation);
+        std::snprintf(faceted, sizeof faceted,
+                      " of the part with its curves faceted within %.3g, %s", result.facetDeviation,
+                      result.facetFit == csg::FacetFit::Balanced ? "balanced" : "inscribed");
     if (!quiet && result.exact && !result.measured)
         std::fprintf(stderr,
                      "csgray: export: %s: %zu triangles (the exact polyhedral boundary), %zu "
