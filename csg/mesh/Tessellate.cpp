@@ -198,6 +198,28 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
             result.facetDeviation = deviation;
             result.facetFit = fit;
             result.toleranceMet = true;
+            // The measured distance sits near the deviation, often well under the margin: one
+            // coarser attempt with the deviation scaled up to the slack, kept when it measures
+            // within the margin too.
+            const double measured = std::max(result.error.max, result.backError.max);
+            const double coarser =
+                deviation * std::min(tol::kFacetSlackMaxGain,
+                                     tol::kFacetSlackTarget * tol::kMeshMeasureMargin *
+                                         tolerance / std::max(measured, 1e-300));
+            if (coarser >= tol::kFacetSlackMinGain * deviation) {
+                const TessellateResult kept = result;
+                std::optional<TriangleMesh> mesh;
+                if (const std::optional<Scene> faceted = options.facetCurves(coarser, fit))
+                    mesh = polyhedralBoundary(*faceted, options.threads, &result.polyhedral,
+                                              options.distribute);
+                if (mesh && measureExactMesh(*mesh) <= tol::kMeshMeasureMargin * tolerance &&
+                    mesh->triangles.size() < kept.mesh.triangles.size()) {
+                    result.mesh = std::move(*mesh);
+                    result.facetDeviation = coarser;
+                } else {
+                    result = kept;
+                }
+            }
             result.gridTriangles = result.mesh.triangles.size();
             return result;
         }

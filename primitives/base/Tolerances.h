@@ -280,6 +280,17 @@ inline constexpr double kFacetDeviationFraction = 0.5;
 // and 0.125 T has curves meeting at grazing angles that the grid serves better, and each
 // attempt costs a full boundary.
 inline constexpr int kFacetAttempts = 3;
+// Once a faceting measures within the margin, one coarser faceting is tried: the deviation
+// scaled by this fraction of the margin over the distance measured (unit: relative), at most
+// kFacetSlackMaxGain times the first deviation, and only when that is at least
+// kFacetSlackMinGain times it. Why: the measured distance sits near the deviation (T/2), so
+// about 0.3 T of the margin (0.8 T) is unspent, and faces grow with 1 / sqrt(deviation) per
+// curved direction; 0.8 keeps a fifth of the margin, since a coarser faceting measures up to
+// 1.1 times its deviation where curves meet at rims (samples/emblem.scad and gem.scad missed
+// with 0.9), and below a 1.25-fold gain the attempt costs more time than it saves triangles.
+inline constexpr double kFacetSlackTarget = 0.8;
+inline constexpr double kFacetSlackMaxGain = 2.0;
+inline constexpr double kFacetSlackMinGain = 1.25;
 
 // A mesh's corners and edge midpoints are distance-sampled at the point this fraction of the way
 // towards their triangle's centroid (unit: relative to the distance to the centroid;
