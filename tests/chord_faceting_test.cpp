@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 #include "csg/Tree.h"
 #include "csg/mesh/MeshCheck.h"
@@ -154,6 +156,34 @@ TEST(ChordFaceting, ASkinOverAFlushCutFallsBackToTheInscribedFit) {
     EXPECT_LE(result.backError.max, tolerance);
     EXPECT_EQ(result.error.unresolved, 0u);
     EXPECT_TRUE(checkTopology(result.mesh).closedManifold());
+}
+
+// A faceter that overshoots: asked for deviation d, it facets at 1.8 d, so the first attempt
+// (T/2) measures about 0.9 T (a sphere's sampled maximum sits at or a little under its
+// deviation), over the margin 0.8 T but under the skin factor (3 d). The next attempt stays
+// balanced, finer in proportion: d times 0.8 of the margin (0.64 T) over the distance measured,
+// 0.7-0.8 of d (halving would give 0.5), which then measures within the margin. The slack rule
+// then finds too little to gain for a coarser attempt.
+TEST(ChordFaceting, AMissIsTriedFinerInProportionToIt) {
+    const NodePtr ball = leaf(Sphere{10.0});
+    const Scene scene = Scene::compile(ball);
+    const auto faceter = io::curveFaceter(ball);
+    std::vector<std::pair<double, FacetFit>> asked;
+    TessellateOptions options;
+    options.tolerance = 0.05;
+    options.facetCurves = [&](double deviation, FacetFit fit) {
+        asked.push_back({deviation, fit});
+        return faceter(1.8 * deviation, fit);
+    };
+    const TessellateResult result = tessellate(scene, options);
+    ASSERT_TRUE(result.exact);
+    ASSERT_EQ(asked.size(), 2u);
+    EXPECT_EQ(asked[0], std::pair(0.5 * options.tolerance, FacetFit::Balanced));
+    EXPECT_EQ(asked[1].second, FacetFit::Balanced);
+    EXPECT_GT(asked[1].first, 0.65 * asked[0].first);
+    EXPECT_LT(asked[1].first, 0.8 * asked[0].first);
+    EXPECT_EQ(result.facetDeviation, asked[1].first);
+    EXPECT_LE(std::max(result.error.max, result.backError.max), 0.8 * options.tolerance);
 }
 
 // A lone sphere measures about its deviation, T/2, well under the margin (0.8 T): the export

@@ -106,9 +106,10 @@ double bestOfDirections(const Vec3& first, double goodEnough, Measure&& measure)
     }
     // A point just off an edge of the part, beside a thin wedge of its material (a faceted
     // sphere's rim standing above the exact rim of a hole through it), can have the nearest
-    // surface within goodEnough while all of those lines pass beside the wedge: then a fan of
-    // lines (two-sided, so each is two directions) spread evenly over the sphere of directions.
-    if (best > goodEnough)
+    // surface within goodEnough while all of those lines pass beside the wedge or graze it:
+    // then a fan of lines (two-sided, so each is two directions) spread evenly over the sphere
+    // of directions, for any answer the meshing would reject (its margin of goodEnough).
+    if (best > tol::kMeshMeasureMargin * goodEnough)
         for (const Vec3& d : fanDirections()) best = std::min(best, measure(d, Vec3(0.0)));
     return best;
 }

@@ -144,8 +144,9 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
     measure.distribute = options.distribute;
     // Measures a mesh of the exact boundary both ways into result (the figures are upper
     // bounds, tight to rounding on an exact mesh: MeshDistance.h samples off its edges).
-    const auto measureExactMesh = [&](const TriangleMesh& mesh) {
-        measure.reach = tolerance;
+    // reach: how far a sample looks for the surface (farther is +inf, unresolved).
+    const auto measureExactMesh = [&](const TriangleMesh& mesh, double reach) {
+        measure.reach = reach;
         const auto start = std::chrono::steady_clock::now();
         result.error = meshToSurface(scene, mesh, measure);
         const TriangleBvh bvh(mesh, options.threads);
@@ -165,17 +166,20 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
                 result.toleranceMet = true;
                 return result;
             }
-            result.toleranceMet = measureExactMesh(result.mesh) <= tolerance;
+            result.toleranceMet = measureExactMesh(result.mesh, tolerance) <= tolerance;
             return result;
         }
     }
 
     // A part with curved leaves faceted within a share of the tolerance: the exact boundary of
     // that polyhedron, kept when it measures within the margin against the exact part. The
-    // balanced fit first (about 1 / sqrt(2) of the fragments per curved direction); where it
-    // misses (a skin over a flush cut, errors adding up at a rim), the inscribed one at the same
-    // deviation, as many faces as balanced at half of it, then inscribed at halved deviations.
+    // balanced fit first (about 1 / sqrt(2) of the fragments per curved direction). A miss
+    // far beyond the deviation is material the exact part lacks (a balanced pole's skin over a
+    // flush cut), which no finer balanced fit removes: then the inscribed fit at the same
+    // deviation. Any other miss (curves meeting at a rim move it by up to about twice the
+    // deviation) is tried again finer, in proportion to how far it missed.
     if (options.exactPolyhedra && options.facetCurves) {
+        const double margin = tol::kMeshMeasureMargin * tolerance;
         double deviation = tol::kFacetDeviationFraction * tolerance;
         FacetFit fit = FacetFit::Balanced;
         for (int attempt = 0; attempt <= tol::kFacetAttempts; ++attempt) {
@@ -184,13 +188,17 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
             std::optional<TriangleMesh> mesh = polyhedralBoundary(
                 *faceted, options.threads, &result.polyhedral, options.distribute);
             if (!mesh) break;
-            if (measureExactMesh(*mesh) > tol::kMeshMeasureMargin * tolerance) {
+            // Far enough to tell a miss of the faceting (up to kFacetSkinFactor times the
+            // deviation) from material the part lacks.
+            const double reach = std::max(tolerance, tol::kFacetSkinFactor * deviation);
+            if (const double measured = measureExactMesh(*mesh, reach); measured > margin) {
                 result.polyhedral.declined =
                     "the faceted part did not measure within the tolerance";
-                if (fit == FacetFit::Balanced)
+                if (fit == FacetFit::Balanced && !(measured <= tol::kFacetSkinFactor * deviation))
                     fit = FacetFit::Inscribed;
                 else
-                    deviation *= 0.5;
+                    deviation *= std::clamp(tol::kFacetSlackTarget * margin / measured,
+                                            tol::kFacetFinerMin, tol::kFacetFinerMax);
                 continue;
             }
             result.mesh = std::move(*mesh);
@@ -204,15 +212,14 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
             const double measured = std::max(result.error.max, result.backError.max);
             const double coarser =
                 deviation * std::min(tol::kFacetSlackMaxGain,
-                                     tol::kFacetSlackTarget * tol::kMeshMeasureMargin *
-                                         tolerance / std::max(measured, 1e-300));
+                                     tol::kFacetSlackTarget * margin / std::max(measured, 1e-300));
             if (coarser >= tol::kFacetSlackMinGain * deviation) {
                 const TessellateResult kept = result;
                 std::optional<TriangleMesh> mesh;
                 if (const std::optional<Scene> faceted = options.facetCurves(coarser, fit))
                     mesh = polyhedralBoundary(*faceted, options.threads, &result.polyhedral,
                                               options.distribute);
-                if (mesh && measureExactMesh(*mesh) <= tol::kMeshMeasureMargin * tolerance &&
+                if (mesh && measureExactMesh(*mesh, tolerance) <= margin &&
                     mesh->triangles.size() < kept.mesh.triangles.size()) {
                     result.mesh = std::move(*mesh);
                     result.facetDeviation = coarser;

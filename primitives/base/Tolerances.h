@@ -275,20 +275,33 @@ inline constexpr double kDistanceFirstLineFraction = 0.25;
 // boundary moves by about their deviation (more where they meet at a grazing angle), and the
 // measurement must find it within kMeshMeasureMargin (0.8 T): half of T leaves that margin.
 inline constexpr double kFacetDeviationFraction = 0.5;
-// ... fitted inscribed at this many deviations in all, halving, after the balanced fit at the
-// first misses (csg::FacetFit; unit: attempts). Why: a faceting that misses at 0.5 T, 0.25 T
-// and 0.125 T has curves meeting at grazing angles that the grid serves better, and each
+// ... tried up to this many times after the first (unit: attempts). Why: a faceting that misses
+// four times has curves meeting at grazing angles that the grid serves better, and each
 // attempt costs a full boundary.
 inline constexpr int kFacetAttempts = 3;
-// Once a faceting measures within the margin, one coarser faceting is tried: the deviation
-// scaled by this fraction of the margin over the distance measured (unit: relative), at most
-// kFacetSlackMaxGain times the first deviation, and only when that is at least
-// kFacetSlackMinGain times it. Why: the measured distance sits near the deviation (T/2), so
-// about 0.3 T of the margin (0.8 T) is unspent, and faces grow with 1 / sqrt(deviation) per
-// curved direction; 0.8 keeps a fifth of the margin, since a coarser faceting measures up to
-// 1.1 times its deviation where curves meet at rims (samples/emblem.scad and gem.scad missed
-// with 0.9), and below a 1.25-fold gain the attempt costs more time than it saves triangles.
+// A balanced faceting (csg::FacetFit) that measures more than this many times its deviation
+// off keeps material the exact part lacks (a pole's skin over a cut flush with it), and the
+// inscribed fit is tried instead (unit: relative to the deviation). Why: the faceting's own
+// error, where curves meet at rims, measured up to about twice the deviation (csg_grid3's
+// parts, --curves exact: 1.66 balanced, 1.85 inscribed); a skin measures its distance to the
+// cut's walls, or nothing within reach.
+inline constexpr double kFacetSkinFactor = 3.0;
+// When a faceting's measured distance m says how far to move its deviation d, the next one is
+// d times this fraction of the margin over m (unit: relative). Why: the distance grows about
+// linearly with the deviation; 0.8 keeps a fifth of the margin for the next measurement, since
+// after a step a faceting measured up to 1.1 times as far off as that line expects where curves
+// meet at rims (samples/emblem.scad and gem.scad missed with 0.9).
 inline constexpr double kFacetSlackTarget = 0.8;
+// A miss that is not a skin is tried again finer by that rule, the factor kept between these
+// (unit: relative). Why: at most 0.8 so that every retry is finer, at least 0.25 so that one
+// wild sample does not spend all the faces.
+inline constexpr double kFacetFinerMin = 0.25;
+inline constexpr double kFacetFinerMax = 0.8;
+// A faceting that measures within the margin is tried once coarser by that rule, at most
+// kFacetSlackMaxGain times the deviation, and only for a gain of kFacetSlackMinGain or more
+// (unit: relative). Why: the measured distance sits near the deviation (T/2), so about 0.3 T of
+// the margin (0.8 T) is unspent, and faces grow with 1 / sqrt(deviation) per curved direction;
+// below a 1.25-fold gain the attempt costs more time than it saves triangles.
 inline constexpr double kFacetSlackMaxGain = 2.0;
 inline constexpr double kFacetSlackMinGain = 1.25;
 
