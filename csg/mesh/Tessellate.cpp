@@ -214,17 +214,21 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
                 deviation * std::min(tol::kFacetSlackMaxGain,
                                      tol::kFacetSlackTarget * margin / std::max(measured, 1e-300));
             if (coarser >= tol::kFacetSlackMinGain * deviation) {
-                const TessellateResult kept = result;
+                // The figures the attempt overwrites, restored when it is not kept.
+                const DistanceStats error = result.error, backError = result.backError;
+                const PolyhedralBoundaryStats stats = result.polyhedral;
                 std::optional<TriangleMesh> mesh;
                 if (const std::optional<Scene> faceted = options.facetCurves(coarser, fit))
                     mesh = polyhedralBoundary(*faceted, options.threads, &result.polyhedral,
                                               options.distribute);
                 if (mesh && measureExactMesh(*mesh, tolerance) <= margin &&
-                    mesh->triangles.size() < kept.mesh.triangles.size()) {
+                    mesh->triangles.size() < result.mesh.triangles.size()) {
                     result.mesh = std::move(*mesh);
                     result.facetDeviation = coarser;
                 } else {
-                    result = kept;
+                    result.error = error;
+                    result.backError = backError;
+                    result.polyhedral = stats;
                 }
             }
             result.gridTriangles = result.mesh.triangles.size();
