@@ -29,6 +29,14 @@ const ConvexPolytope& polytopeOf(const NodePtr& node) {
     return std::get<ConvexPolytope>(node->primitive);
 }
 
+// The export of part at tolerance T with its curves faceted (as `csgray export` does it).
+TessellateResult exportFaceted(const NodePtr& part, double tolerance) {
+    TessellateOptions options;
+    options.tolerance = tolerance;
+    options.facetCurves = io::curveFaceter(part);
+    return tessellate(Scene::compile(part), options);
+}
+
 TEST(ChordFaceting, FragmentsFollowTheChordRuleAtTheWorldRadius) {
     const FacetFit balanced = FacetFit::Balanced, inscribed = FacetFit::Inscribed;
     // sphere(1), deviation 0.01: balanced 23, inscribed 31.
@@ -81,9 +89,10 @@ TEST(ChordFaceting, FacesAndCornersStandWithinTheDeviationBothWays) {
         EXPECT_GT(std::hypot(v.x, v.y), r);
         EXPECT_LE(std::hypot(v.x, v.y), r + deviation);
     }
-    for (const PolytopePlane& plane : c.planes)
+    for (const PolytopePlane& plane : c.planes) {
         if (plane.normal.z == 0.0)
             EXPECT_GE(plane.offset / glm::length(plane.normal), r - deviation);
+    }
 }
 
 TEST(ChordFaceting, LeavesThatStayCurvedGiveNothing) {
@@ -100,17 +109,14 @@ TEST(ChordFaceting, ACurvedPartExportsAsTheBoundaryOfItsFacetedLeaves) {
     const NodePtr part =
         subtract(leaf(Sphere{10.0}), transformed(glm::translate(Mat4(1.0), Vec3(0.0, 0.0, -12.0)),
                                                  leaf(Cylinder{24.0, 3.0, 3.0})));
-    const Scene scene = Scene::compile(part);
-    TessellateOptions options;
-    options.tolerance = 0.05;
-    options.facetCurves = io::curveFaceter(part);
-    const TessellateResult result = tessellate(scene, options);
+    const double tolerance = 0.05;
+    const TessellateResult result = exportFaceted(part, tolerance);
     ASSERT_TRUE(result.exact);
-    EXPECT_EQ(result.facetDeviation, 0.5 * options.tolerance);
+    EXPECT_EQ(result.facetDeviation, 0.5 * tolerance);
     EXPECT_EQ(result.facetFit, FacetFit::Balanced);
     EXPECT_TRUE(result.toleranceMet);
-    EXPECT_LE(result.error.max, options.tolerance);
-    EXPECT_LE(result.backError.max, options.tolerance);
+    EXPECT_LE(result.error.max, tolerance);
+    EXPECT_LE(result.backError.max, tolerance);
     EXPECT_TRUE(checkTopology(result.mesh).closedManifold());
     // The solid by formula: the ball less the bore, a cylinder of radius a through it with its
     // two spherical caps: 4/3 pi (r^2 - a^2)^(3/2) is what remains (the napkin ring).
@@ -123,7 +129,7 @@ TEST(ChordFaceting, ACurvedPartExportsAsTheBoundaryOfItsFacetedLeaves) {
     // Every point of the mesh is within T of the surface: the volumes differ by at most the
     // surface (outer sphere and bore, < 4 pi r^2 + 2 pi a 2 r) times T.
     const double area = 4.0 * std::numbers::pi * r * r + 2.0 * std::numbers::pi * a * 2.0 * r;
-    EXPECT_NEAR(six / 6.0, exact, area * options.tolerance);
+    EXPECT_NEAR(six / 6.0, exact, area * tolerance);
     // Far fewer triangles than a grid at that tolerance needs (its cells are ~T): balanced at
     // 0.025, the sphere has ~45 fragments and 23 rings.
     EXPECT_LT(result.mesh.triangles.size(), 20'000u);
@@ -145,10 +151,7 @@ TEST(ChordFaceting, ASkinOverAFlushCutFallsBackToTheInscribedFit) {
     reach.reach = reach.goodEnough = tolerance;
     EXPECT_GT(meshToSurface(scene, *skin, reach).unresolved, 0u);
 
-    TessellateOptions options;
-    options.tolerance = tolerance;
-    options.facetCurves = io::curveFaceter(part);
-    const TessellateResult result = tessellate(scene, options);
+    const TessellateResult result = exportFaceted(part, tolerance);
     ASSERT_TRUE(result.exact);
     EXPECT_EQ(result.facetFit, FacetFit::Inscribed);
     EXPECT_GE(result.facetDeviation, 0.5 * tolerance);  // or coarser, if the slack allowed it
@@ -190,18 +193,15 @@ TEST(ChordFaceting, AMissIsTriedFinerInProportionToIt) {
 // spends the slack on one coarser faceting, kept because it too measures within the margin.
 TEST(ChordFaceting, TheSlackUnderTheMarginBuysACoarserFaceting) {
     const NodePtr ball = leaf(Sphere{10.0});
-    const Scene scene = Scene::compile(ball);
-    TessellateOptions options;
-    options.tolerance = 0.05;
-    options.facetCurves = io::curveFaceter(ball);
-    const TessellateResult result = tessellate(scene, options);
+    const double tolerance = 0.05;
+    const TessellateResult result = exportFaceted(ball, tolerance);
     ASSERT_TRUE(result.exact);
     EXPECT_EQ(result.facetFit, FacetFit::Balanced);
-    EXPECT_GT(result.facetDeviation, 0.5 * options.tolerance);
-    EXPECT_LE(result.facetDeviation, options.tolerance);
-    EXPECT_LE(std::max(result.error.max, result.backError.max), 0.8 * options.tolerance);
+    EXPECT_GT(result.facetDeviation, 0.5 * tolerance);
+    EXPECT_LE(result.facetDeviation, tolerance);
+    EXPECT_LE(std::max(result.error.max, result.backError.max), 0.8 * tolerance);
     const std::optional<TriangleMesh> first = polyhedralBoundary(
-        Scene::compile(io::facetToDeviation(ball, 0.5 * options.tolerance, FacetFit::Balanced)), 0);
+        Scene::compile(io::facetToDeviation(ball, 0.5 * tolerance, FacetFit::Balanced)), 0);
     ASSERT_TRUE(first);
     EXPECT_LT(result.mesh.triangles.size(), first->triangles.size());
 }
