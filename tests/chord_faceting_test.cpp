@@ -90,8 +90,9 @@ TEST(ChordFaceting, FacesAndCornersStandWithinTheDeviationBothWays) {
         EXPECT_LE(std::hypot(v.x, v.y), r + deviation);
     }
     for (const PolytopePlane& plane : c.planes) {
-        if (plane.normal.z == 0.0)
+        if (plane.normal.z == 0.0) {
             EXPECT_GE(plane.offset / glm::length(plane.normal), r - deviation);
+        }
     }
 }
 
