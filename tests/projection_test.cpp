@@ -199,7 +199,9 @@ const csg::Extrusion* exactShadow(const io::EvaluateResult& r, const std::string
     EXPECT_TRUE(r.ok()) << part << "\n" << diagnosticsOf(r);
     const csg::Extrusion* e = shapeOf(r);
     EXPECT_NE(e, nullptr) << part;
-    if (e) EXPECT_EQ(e->accuracy, nullptr) << part << ": " << e->accuracy;
+    if (e) {
+        EXPECT_EQ(e->accuracy, nullptr) << part << ": " << e->accuracy;
+    }
     return e;
 }
 

@@ -254,7 +254,7 @@ INSTANTIATE_TEST_SUITE_P(
         OpenScadCase{"union_of_children",
                      "linear_extrude(8, twist = 120) { square([3, 1]); translate([2, 0]) "
                      "square([1, 3]); }"}),
-    [](const ::testing::TestParamInfo<OpenScadCase>& info) { return info.param.name; });
+    [](const ::testing::TestParamInfo<OpenScadCase>& test) { return test.param.name; });
 
 }  // namespace
 }  // namespace csg

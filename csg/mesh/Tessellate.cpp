@@ -217,13 +217,13 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
                 // The figures the attempt overwrites, restored when it is not kept.
                 const DistanceStats error = result.error, backError = result.backError;
                 const PolyhedralBoundaryStats stats = result.polyhedral;
-                std::optional<TriangleMesh> mesh;
-                if (const std::optional<Scene> faceted = options.facetCurves(coarser, fit))
-                    mesh = polyhedralBoundary(*faceted, options.threads, &result.polyhedral,
-                                              options.distribute);
-                if (mesh && measureExactMesh(*mesh, tolerance) <= margin &&
-                    mesh->triangles.size() < result.mesh.triangles.size()) {
-                    result.mesh = std::move(*mesh);
+                std::optional<TriangleMesh> coarserMesh;
+                if (const std::optional<Scene> coarserPart = options.facetCurves(coarser, fit))
+                    coarserMesh = polyhedralBoundary(*coarserPart, options.threads,
+                                                     &result.polyhedral, options.distribute);
+                if (coarserMesh && measureExactMesh(*coarserMesh, tolerance) <= margin &&
+                    coarserMesh->triangles.size() < result.mesh.triangles.size()) {
+                    result.mesh = std::move(*coarserMesh);
                     result.facetDeviation = coarser;
                 } else {
                     result.error = error;
