@@ -85,9 +85,9 @@ struct TessellateOptions {
     // A part with curved leaves: when given, the same part with its curves faceted so that no
     // face stands more than `deviation` (world units) off them, all polyhedra, fitted as `fit`
     // says; or nothing when some leaf stays curved. tessellate() then writes that part's exact
-    // boundary when it measures within the tolerance of the exact part (balanced first, then
-    // inscribed, then inscribed at smaller deviations), before it takes the grid. The CLI
-    // facets with io/ChordFaceting.h.
+    // boundary when it measures within the tolerance of the exact part (balanced first; a miss
+    // is tried finer, or inscribed where the balanced fit kept material the part lacks), before
+    // it takes the grid. The CLI facets with io/ChordFaceting.h.
     std::function<std::optional<Scene>(double deviation, FacetFit fit)> facetCurves = nullptr;
     bool simplify = true;  // coarsen flat regions after the grid passes (Simplify.h)
     // Grid meshes larger than this are not simplified (0: no limit). Decimation (in slabs on
