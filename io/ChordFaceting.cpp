@@ -53,6 +53,24 @@ int64_t leastFragmentsToTry(csg::FacetFit fit, double r, double deviation, int64
     return fragmentsFor(r, fit == csg::FacetFit::Balanced ? 2.0 * deviation : deviation, most);
 }
 
+// The fewest fragments n, counting up from leastFragmentsToTry, whose fit stands within the
+// deviation (nearest(n): the nearest face's c), with the fit's scale; nothing when faces(n)
+// reaches what a polytope may have first, or n passes `most`.
+struct Fragments {
+    int64_t n;
+    double scale;
+};
+template <class FaceCount, class Nearest>
+std::optional<Fragments> fewestFragments(csg::FacetFit fit, double r, double deviation,
+                                         int64_t most, FaceCount faces, Nearest nearest) {
+    for (int64_t n = leastFragmentsToTry(fit, r, deviation, most); n != 0 && n <= most; ++n) {
+        if (faces(n) >= csg::ConvexPolytope::kMaxPlanes) return std::nullopt;
+        if (const double f = fitScale(fit, nearest(n), r, deviation); f > 0.0)
+            return Fragments{n, f};
+    }
+    return std::nullopt;
+}
+
 // c of facetedSphere(1, n): its nearest face plane's distance from the centre. In the meridian
 // plane through a side face's middle, the face's edges on rings i and i + 1 are the points
 // (cos(pi / n) sin(phi), cos(phi)) at the rings' polar angles, and its plane is the line through
@@ -81,32 +99,27 @@ csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double dev
     const double scale = largestScale(world);
     constexpr int64_t kMost = 1 << 15;
     if (const auto* sphere = std::get_if<csg::Sphere>(&p)) {
-        const double r = sphere->radius * scale;
-        for (int64_t n = leastFragmentsToTry(fit, r, deviation, kMost); n != 0 && n <= kMost; ++n) {
-            if (facetedSphereFaceCount(n) >= csg::ConvexPolytope::kMaxPlanes) return nullptr;
-            if (const double f = fitScale(fit, nearestSphereFace(n), r, deviation); f > 0.0)
-                return csg::leaf(polytopeOf(facetedSphere(f * sphere->radius, n),
-                                            {"sphere", uint32_t(n), uint32_t(sphereRingCount(n))}),
-                                 node.tags);
-        }
-        return nullptr;
+        const std::optional<Fragments> k =
+            fewestFragments(fit, sphere->radius * scale, deviation, kMost, facetedSphereFaceCount,
+                            nearestSphereFace);
+        if (!k) return nullptr;
+        return csg::leaf(polytopeOf(facetedSphere(k->scale * sphere->radius, k->n),
+                                    {"sphere", uint32_t(k->n), uint32_t(sphereRingCount(k->n))}),
+                         node.tags);
     }
     if (const auto* cylinder = std::get_if<csg::Cylinder>(&p)) {
         // The sides of an n-gon's prism or frustum stand r (1 - cos(pi / n)) inside the curve
         // at each height (less across a cone's slant): c = cos(pi / n).
-        const double r = std::max(cylinder->r1, cylinder->r2) * scale;
-        for (int64_t n = leastFragmentsToTry(fit, r, deviation, kMost); n != 0 && n <= kMost; ++n) {
-            if (facetedCylinderFaceCount(n, cylinder->r1, cylinder->r2) >=
-                csg::ConvexPolytope::kMaxPlanes)
-                return nullptr;
-            const double c = std::cos(std::numbers::pi / double(n));
-            if (const double f = fitScale(fit, c, r, deviation); f > 0.0)
-                return csg::leaf(polytopeOf(facetedCylinder(f * cylinder->r1, f * cylinder->r2, 0.0,
-                                                            cylinder->height, n),
-                                            {"cylinder", uint32_t(n), 0}),
-                                 node.tags);
-        }
-        return nullptr;
+        const std::optional<Fragments> k = fewestFragments(
+            fit, std::max(cylinder->r1, cylinder->r2) * scale, deviation, kMost,
+            [&](int64_t n) { return facetedCylinderFaceCount(n, cylinder->r1, cylinder->r2); },
+            [](int64_t n) { return std::cos(std::numbers::pi / double(n)); });
+        if (!k) return nullptr;
+        return csg::leaf(
+            polytopeOf(facetedCylinder(k->scale * cylinder->r1, k->scale * cylinder->r2, 0.0,
+                                       cylinder->height, k->n),
+                       {"cylinder", uint32_t(k->n), 0}),
+            node.tags);
     }
     if (const auto* extrusion = std::get_if<csg::Extrusion>(&p)) {
         std::optional<csg::Polyhedron> mesh = extrusionMesh(*extrusion, deviation / scale);

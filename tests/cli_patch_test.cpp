@@ -2,7 +2,6 @@
 // crossings as zero-length spans with normals facing the ray's origin, the teapot sample
 // renders the silhouette its patches have by the textbook formula, and commands that need a
 // volume reject a surface at its file:line:col.
-#include <png.h>
 
 #include <algorithm>
 #include <array>
@@ -12,6 +11,7 @@
 #include <vector>
 
 #include "CliRunner.h"
+#include "PngImage.h"
 
 namespace {
 
@@ -180,14 +180,10 @@ TEST(CliPatch, TheTeapotRendersItsOwnSilhouette) {
         {"render", samplePath("teapot.scad").string(), "-o", png.string(), "--size", "160x120"},
         dir.path());
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    png_image image{};
-    image.version = PNG_IMAGE_VERSION;
-    ASSERT_TRUE(png_image_begin_read_from_file(&image, png.c_str()));
-    image.format = PNG_FORMAT_RGB;
-    std::vector<uint8_t> rgb(PNG_IMAGE_SIZE(image));
-    ASSERT_TRUE(png_image_finish_read(&image, nullptr, rgb.data(), 0, nullptr));
-    ASSERT_EQ(image.width, unsigned(width));
-    ASSERT_EQ(image.height, unsigned(height));
+    const csg::testing::RgbImage image = csg::testing::readPng(png);
+    const std::vector<uint8_t>& rgb = image.rgb;
+    ASSERT_EQ(image.width, width);
+    ASSERT_EQ(image.height, height);
 
     // The oracle's chords: 48 x 48 cells a patch put a chord at most h^2 / (8 r) from the
     // surface; with cells h <= 0.065 (a body patch's quarter turn of radius 2 is 3.1 long) and

@@ -2,7 +2,6 @@
 // 2 usage, 3 I/O), diagnostics in both formats, no partial output file on failure, stdout
 // carrying only the requested output, info's counts and bounds, and the rendered PNG decoded
 // back with libpng.
-#include <png.h>
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -11,6 +10,7 @@
 #include <string>
 
 #include "CliRunner.h"
+#include "PngImage.h"
 
 namespace cli {
 namespace {
@@ -498,27 +498,6 @@ TEST(Info, IncludeFindsMcadInTheLibraryFolder) {
 
 // ---- render ----
 
-struct DecodedPng {
-    int width = 0, height = 0;
-    std::vector<uint8_t> rgb;
-};
-
-DecodedPng decodePng(const fs::path& path) {
-    png_image image{};
-    image.version = PNG_IMAGE_VERSION;
-    DecodedPng out;
-    if (!png_image_begin_read_from_file(&image, path.c_str())) return out;
-    image.format = PNG_FORMAT_RGB;
-    out.rgb.resize(PNG_IMAGE_SIZE(image));
-    if (!png_image_finish_read(&image, nullptr, out.rgb.data(), 0, nullptr)) {
-        png_image_free(&image);
-        return out;
-    }
-    out.width = int(image.width);
-    out.height = int(image.height);
-    return out;
-}
-
 TEST(Render, PngDecodesWithTheRequestedSizeAndShowsThePart) {
     ScratchDir dir;
     const fs::path png = dir / "emblem.png";
@@ -526,7 +505,7 @@ TEST(Render, PngDecodesWithTheRequestedSizeAndShowsThePart) {
         runCsgray({"render", kEmblem, "-o", png.string(), "--size", "64x48"}, dir.path());
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(r.out, "");
-    const DecodedPng image = decodePng(png);
+    const csg::testing::RgbImage image = csg::testing::readPng(png);
     ASSERT_EQ(image.width, 64);
     ASSERT_EQ(image.height, 48);
     // The corner is background (the default camera frames the part with a margin); the part
@@ -550,7 +529,7 @@ TEST(Render, EverySampleRenders) {
         const RunResult r = runCsgray(
             {"render", entry.path().string(), "-o", png.string(), "--size", "40x30"}, dir.path());
         EXPECT_EQ(r.exitCode, 0) << entry.path() << "\n" << r.err;
-        EXPECT_EQ(decodePng(png).width, 40) << entry.path();
+        EXPECT_EQ(csg::testing::readPng(png).width, 40) << entry.path();
     }
     // A folder that went missing or moved would render nothing and pass: samples/ has 17.
     EXPECT_GE(rendered, 17);

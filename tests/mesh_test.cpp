@@ -320,8 +320,8 @@ TEST(Simplify, MaterialBordersStay) {
 TEST(Simplify, GridMeshesOverTheLimitAreKept) {
     const Scene scene = Scene::compile(leaf(Box{Vec3(0.1, 0.2, 0.3), Vec3(2.1, 1.2, 1.8)}));
     // The grid's meshes are the subject: a box alone would get its exact boundary.
-    const TessellateResult free = tessellate(
-        scene, {.tolerance = 0.01, .exactPolyhedra = false, .simplifyMaxTriangles = 0});
+    const TessellateResult free =
+        tessellate(scene, {.tolerance = 0.01, .exactPolyhedra = false, .simplifyMaxTriangles = 0});
     ASSERT_GT(free.gridTriangles, 1000u);
     EXPECT_TRUE(free.simplified);
     EXPECT_FALSE(free.simplifySkipped);

@@ -7,7 +7,6 @@
 // starts the next one. Tests skip, saying why, where Xvfb or xdotool is missing or no X server
 // starts.
 #include <gtest/gtest.h>
-#include <png.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -18,8 +17,9 @@
 #include <thread>
 #include <utility>
 
-#include "MissingTool.h"
 #include "CliRunner.h"
+#include "MissingTool.h"
+#include "PngImage.h"
 #include "viewer/window/SdlLibrary.h"
 
 namespace {
@@ -99,26 +99,8 @@ private:
     std::string name_, reason_;
 };
 
-struct Image {
-    int width = 0, height = 0;
-    std::vector<uint8_t> rgb;
-};
-
-Image readPng(const fs::path& path) {
-    Image out;
-    png_image image{};
-    image.version = PNG_IMAGE_VERSION;
-    if (!png_image_begin_read_from_file(&image, path.c_str())) return out;
-    image.format = PNG_FORMAT_RGB;
-    out.rgb.resize(PNG_IMAGE_SIZE(image));
-    if (!png_image_finish_read(&image, nullptr, out.rgb.data(), 0, nullptr)) {
-        png_image_free(&image);
-        return {};
-    }
-    out.width = int(image.width);
-    out.height = int(image.height);
-    return out;
-}
+using Image = csg::testing::RgbImage;
+using csg::testing::readPng;
 
 int maxDifference(const Image& a, const Image& b) {
     if (a.width != b.width || a.height != b.height) return 256;
@@ -413,8 +395,7 @@ TEST_F(ViewerTest, EditReloadsAndSyntaxErrorKeepsTheLastGoodFrame) {
         const size_t failed = log.find("view: reload failed");
         const size_t fixed = log.find("view: reloaded part.scad", failed);
         ASSERT_NE(fixed, std::string::npos) << log;
-        EXPECT_EQ(log.substr(failed, fixed - failed).find("view: frame"), std::string::npos)
-            << log;
+        EXPECT_EQ(log.substr(failed, fixed - failed).find("view: frame"), std::string::npos) << log;
         EXPECT_GT(log.find("view: frame 3 written"), fixed) << log;
     }
     EXPECT_LE(maxDifference(readPng(dir_ / "frame.png"), first), 2);
@@ -492,8 +473,9 @@ std::pair<double, double> centroid(const Image& image) {
 // Esc quits with status 0.
 TEST_F(ViewerTest, DefineProgressiveLevelsPanAndEscape) {
     if (!onPath("xdotool")) SKIP_OR_FAIL_IN_CI("xdotool is not installed (Debian package xdotool)");
-    writeFile(part_, "s = 1;\nassert(s == 7, \"-D did not reach the part\");\n"
-                     "cube(s, center = true);\n");
+    writeFile(part_,
+              "s = 1;\nassert(s == 7, \"-D did not reach the part\");\n"
+              "cube(s, center = true);\n");
     launch("-D s=7");
     ASSERT_TRUE(waitForFrame(1)) << err();
     EXPECT_EQ(err().find("error"), std::string::npos) << err();

@@ -182,11 +182,16 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
         const double margin = tol::kMeshMeasureMargin * tolerance;
         double deviation = tol::kFacetDeviationFraction * tolerance;
         FacetFit fit = FacetFit::Balanced;
+        // The exact boundary of the part faceted so; nothing when a leaf stays curved or the
+        // boundary does not close.
+        const auto facetedBoundary = [&](double d) -> std::optional<TriangleMesh> {
+            const std::optional<Scene> faceted = options.facetCurves(d, fit);
+            if (!faceted) return std::nullopt;
+            return polyhedralBoundary(*faceted, options.threads, &result.polyhedral,
+                                      options.distribute);
+        };
         for (int attempt = 0; attempt <= tol::kFacetAttempts; ++attempt) {
-            const std::optional<Scene> faceted = options.facetCurves(deviation, fit);
-            if (!faceted) break;
-            std::optional<TriangleMesh> mesh = polyhedralBoundary(
-                *faceted, options.threads, &result.polyhedral, options.distribute);
+            std::optional<TriangleMesh> mesh = facetedBoundary(deviation);
             if (!mesh) break;
             // Far enough to tell a miss of the faceting (up to kFacetSkinFactor times the
             // deviation) from material the part lacks.
@@ -217,10 +222,7 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
                 // The figures the attempt overwrites, restored when it is not kept.
                 const DistanceStats error = result.error, backError = result.backError;
                 const PolyhedralBoundaryStats stats = result.polyhedral;
-                std::optional<TriangleMesh> coarserMesh;
-                if (const std::optional<Scene> coarserPart = options.facetCurves(coarser, fit))
-                    coarserMesh = polyhedralBoundary(*coarserPart, options.threads,
-                                                     &result.polyhedral, options.distribute);
+                std::optional<TriangleMesh> coarserMesh = facetedBoundary(coarser);
                 if (coarserMesh && measureExactMesh(*coarserMesh, tolerance) <= margin &&
                     coarserMesh->triangles.size() < result.mesh.triangles.size()) {
                     result.mesh = std::move(*coarserMesh);
