@@ -9,7 +9,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -124,6 +127,64 @@ TEST(CliMpi, ExportIsByteIdenticalToOneProcess) {
                 ++summaries;
             EXPECT_EQ(summaries, 1u) << b.err;
         }
+}
+
+// An export whose last rank dies midway fails, leaving no mesh, only the journal; restarted with
+// --resume (on other ranks) it takes the journal's results instead of casting them again, says
+// how many, and writes the bytes one process writes.
+TEST(CliMpi, KilledExportResumes) {
+    constexpr int kKilledJobSeconds = 30;  // see KilledAnimationResumes
+    ScratchDir dir;
+    const fs::path part = dir / "torus.scad", reference = dir / "alone" / "mesh.stl",
+                   out = dir / "ranks" / "mesh.stl";
+    const fs::path journal = out.string() + ".journal";
+    cli::writeFile(part, "rotate_extrude() translate([3, 0]) circle(1);\n");
+    fs::create_directories(reference.parent_path());
+    fs::create_directories(out.parent_path());
+    const auto args = [&](const fs::path& to, std::vector<std::string> more) {
+        std::vector<std::string> a = {"export",    part.string(), "-o",
+                                      to.string(), "--grid",      "--tolerance",
+                                      "0.005",     "--threads",   "1"};
+        a.insert(a.end(), more.begin(), more.end());
+        return a;
+    };
+    ASSERT_EQ(run("", args(reference, {}), dir.path()).exitCode, 0);
+
+    // The last rank dies in the second loop (the grid's rows were the first), after 2 of its
+    // items: mpirun ends the job, and the journal holds items of both loops.
+    const Outcome killed =
+        run("env CSGRAY_TEST_KILL_AFTER_TASKS=2 CSGRAY_TEST_KILL_IN_FARM=1 " +
+                mpirun(3, "CSGRAY_TEST_KILL_AFTER_TASKS -x CSGRAY_TEST_KILL_IN_FARM"),
+            args(out, {"--resume"}), dir.path(), kKilledJobSeconds);
+    EXPECT_NE(killed.exitCode, 0) << killed.err;
+    EXPECT_FALSE(fs::exists(out));
+    ASSERT_TRUE(fs::exists(journal));
+    for (const auto& entry : fs::directory_iterator(out.parent_path()))  // no temporary mesh
+        EXPECT_EQ(entry.path(), journal);
+    // Its records (dist/Journal.h: a header line, then u64 id, u64 size, the bytes, u64 hash),
+    // whole ones only: a record torn by the kill is dropped), and how many loops they come from
+    // (the id's bits above the item's 40).
+    const std::string records = readFile(journal);
+    size_t count = 0, at = records.find('\n') + 1;
+    std::vector<uint64_t> loops;
+    for (uint64_t id = 0, size = 0; at + 16 <= records.size(); at += 24 + size, ++count) {
+        std::memcpy(&id, records.data() + at, 8);
+        std::memcpy(&size, records.data() + at + 8, 8);
+        if (size > records.size() - at - 16 || records.size() - at - 16 - size < 8) break;
+        if (std::find(loops.begin(), loops.end(), id >> 40) == loops.end())
+            loops.push_back(id >> 40);
+    }
+    EXPECT_EQ(loops.size(), 2u);
+
+    const Outcome resumed = run(mpirun(2), args(out, {"--resume", "--verbose"}), dir.path());
+    ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+    EXPECT_TRUE(readFile(out) == readFile(reference)) << "the resumed mesh differs";
+    EXPECT_FALSE(fs::exists(journal));
+    const std::string said = "--resume: ";
+    const size_t told = resumed.err.find(said);
+    ASSERT_NE(told, std::string::npos) << resumed.err;
+    EXPECT_EQ(std::strtoull(resumed.err.c_str() + told + said.size(), nullptr, 10), count)
+        << "every record of the journal is taken: " << resumed.err;
 }
 
 // Rays that cross the emblem from every side, some missing it, in a fixed order.

@@ -15,6 +15,7 @@
 #include "primitives/base/Tolerances.h"
 #include "viewer/cli/Cli.h"
 #include "viewer/cli/ExportFarm.h"
+#include "viewer/cli/JobKey.h"
 #include "viewer/cli/LoadPart.h"
 #include "viewer/cli/MeshOptions.h"
 
@@ -96,6 +97,11 @@ const char* const kExportHelp =
     "  --simplify         coarsen even a grid mesh over a million triangles (skipped by\n"
     "                     default: there it takes longer than the meshing, e.g. 2.7x)\n"
     "  --threads N        worker threads (default: all cores)\n"
+    "  --resume           keep the results of the loops that cast rays in OUT.journal as\n"
+    "                     they finish; a job killed midway (a rank that died) and started\n"
+    "                     again with the same part and options computes only what is\n"
+    "                     missing, and writes the same bytes. The journal is removed once\n"
+    "                     the mesh is written\n"
     "  --quiet            no summary on stderr\n"
     "  --verbose          also one line per grid pass (or on the exact boundary's\n"
     "                     pieces and phases) on stderr\n";
@@ -152,6 +158,17 @@ int exportDrawing(const CommonOptions& common, Report& report, const LoadedPart&
     return kExitOk;
 }
 
+// What decides the results of an export's loops beyond the part (JobKey.h): the options of
+// the meshing. The format and --ascii only write them, --threads and ranks only share the work.
+std::string exportKey(const CommonOptions& common, const csg::TessellateOptions& o) {
+    char line[160];
+    std::snprintf(line, sizeof line, "%a %llu %d %d %d %d %d %llu", o.tolerance,
+                  (unsigned long long)o.maxCells, o.maxPasses, int(o.adaptive),
+                  int(o.exactPolyhedra), int(o.measureExact), int(o.simplify),
+                  (unsigned long long)o.simplifyMaxTriangles);
+    return jobKey("export", common, line);
+}
+
 }  // namespace
 
 int exportCommand(std::span<const std::string> args) {
@@ -160,7 +177,7 @@ int exportCommand(std::span<const std::string> args) {
     csg::TessellateOptions options;
     options.measureExact = false;  // --check
     io::MeshWriteOptions writeOptions;
-    bool quiet = false, verbose = false;
+    bool quiet = false, verbose = false, resume = false;
     ArgCursor cursor(args);
     while (!cursor.done()) {
         if (auto o = cursor.option("-o")) {
@@ -185,6 +202,8 @@ int exportCommand(std::span<const std::string> args) {
             options.simplify = false;
         } else if (cursor.flag("--simplify")) {
             options.simplifyMaxTriangles = 0;
+        } else if (cursor.flag("--resume")) {
+            resume = true;
         } else if (cursor.flag("--quiet")) {
             quiet = true;
         } else if (cursor.flag("--verbose")) {
@@ -228,9 +247,19 @@ int exportCommand(std::span<const std::string> args) {
 
     // Mesh the part: curved leaves faceted to a share of the tolerance first (io/ChordFaceting.h).
     options.facetCurves = io::curveFaceter(part.model.root);
+    ExportJournal journal;
+    if (resume && ranks.root())
+        if (const std::string error =
+                journal.open(dist::journalPathFor(output), exportKey(common, options));
+            !error.empty()) {
+            report.error(dist::journalPathFor(output).string(), error);
+            report.finish();
+            ranks.abort(kExitIo);
+        }
     csg::ItemDistributor onRanks;
-    if (ranks.mpi() && ranks.size() > 1) {
-        onRanks = itemsOnRanks(ranks, csg::resolveThreads(options.threads));
+    if (resume || (ranks.mpi() && ranks.size() > 1)) {
+        onRanks = itemsOnRanks(ranks, csg::resolveThreads(options.threads), report,
+                               resume && ranks.root() ? &journal : nullptr);
         options.distribute = &onRanks;
     }
     const auto start = std::chrono::steady_clock::now();
@@ -282,6 +311,12 @@ int exportCommand(std::span<const std::string> args) {
     if (auto error = io::writeMesh(output, result.mesh, part.model.materials, writeOptions)) {
         report.error(output, *error);
         return kExitIo;
+    }
+    if (resume) {
+        if (verbose && !quiet)
+            std::fprintf(stderr, "csgray: export: --resume: %llu results taken from %s\n",
+                         (unsigned long long)journal.reused(), journal.path().c_str());
+        journal.remove();
     }
     const double writeSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();

@@ -13,8 +13,6 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -23,6 +21,7 @@
 #include "primitives/base/Json.h"
 #include "primitives/base/ParallelFor.h"
 #include "viewer/cli/Cli.h"
+#include "viewer/cli/JobKey.h"
 #include "viewer/cli/LoadPart.h"
 #include "viewer/cli/RenderFarm.h"
 #include "viewer/cli/Report.h"
@@ -269,21 +268,15 @@ RenderOptions parseRenderOptions(std::span<const std::string> args) {
     return o;
 }
 
-// What decides a render's bytes, hashed: a --resume journal made for another part, size or
-// option is not taken for this job's. The part's own text counts (files it includes do not).
-std::string jobKey(const RenderOptions& o) {
-    std::string text = "render\n" + o.common.part + "\n";
-    for (const auto& [name, value] : o.common.defines) text += "-D" + name + "=" + value + "\n";
+// What decides a render's bytes beyond the part (JobKey.h): the image's size, sampling, format
+// and effects, and the frames of an animation.
+std::string renderKey(const RenderOptions& o) {
     char line[256];
-    std::snprintf(line, sizeof line, "%d %d %d %d %d %a %d %d %d %d %d\n", int(o.common.curves),
-                  o.width, o.height, o.samplesPerAxis, int(o.format), o.plan.minWeight,
-                  o.plan.maxDepth, int(o.plan.shadows), o.frames ? o.frames->first : -1,
+    std::snprintf(line, sizeof line, "%d %d %d %d %a %d %d %d %d %d", o.width, o.height,
+                  o.samplesPerAxis, int(o.format), o.plan.minWeight, o.plan.maxDepth,
+                  int(o.plan.shadows), o.frames ? o.frames->first : -1,
                   o.frames ? o.frames->second : -1, o.animate);
-    text += line;
-    std::ifstream part(o.common.part, std::ios::binary);
-    text.append(std::istreambuf_iterator<char>(part), std::istreambuf_iterator<char>());
-    std::snprintf(line, sizeof line, "%016llx", (unsigned long long)dist::fnv1a(text));
-    return line;
+    return jobKey("render", o.common, line);
 }
 
 // One Whitted image; returns the exit code (kExitInterrupted after Ctrl-C). With ranks, every
@@ -329,7 +322,7 @@ int renderStill(const RenderOptions& o, const dist::Ranks* ranks) {
     if (ranks) {
         if (o.resume && root) {
             resume.path = dist::journalPathFor(o.output);
-            resume.key = jobKey(o);
+            resume.key = renderKey(o);
         }
         const int code = renderTilesOnRanks(*ranks, part.scene, plan, rays, image,
                                             o.resume && root ? &resume : nullptr, &progress,
@@ -393,7 +386,7 @@ int renderAnimation(const RenderOptions& o, const dist::Ranks& ranks) {
     render::ProgressMeter progress(render::ProgressMeter::styleFor(o.quiet || !ranks.root()));
     ResumeJournal resume;
     resume.path = dist::journalPathFor(o.output);
-    resume.key = jobKey(o);
+    resume.key = renderKey(o);
     const int code =
         renderFramesOnRanks(ranks, frames, renderFrame, written,
                             o.resume && ranks.root() ? &resume : nullptr, &progress, report);

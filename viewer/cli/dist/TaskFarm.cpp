@@ -136,11 +136,16 @@ void runRoot(const Ranks& ranks, TaskSource& source, int threads, const TaskWork
 
 // The fault the tests inject (tests/cli_mpi_test.cpp): CSGRAY_TEST_KILL_AFTER_TASKS=K makes the
 // job's last rank kill itself with SIGKILL once it has finished K tasks (or, if it gets fewer,
-// when it is told there are no more), as a node that dies midway would. Never set outside the
-// tests; costs one getenv per farm.
+// when it is told there are no more), as a node that dies midway would; it does so in the
+// process's first farm, or in farm F (counted from 0) when CSGRAY_TEST_KILL_IN_FARM=F (an
+// export runs one farm per loop). Never set outside the tests; costs two getenv per farm.
 uint64_t tasksBeforeKill(const Ranks& ranks) {
+    static uint64_t farms = 0;  // farms this process has worked in (main thread only)
+    const uint64_t farm = farms++;
     const char* value = std::getenv("CSGRAY_TEST_KILL_AFTER_TASKS");
     if (!value || ranks.rank() != ranks.size() - 1) return UINT64_MAX;
+    const char* in = std::getenv("CSGRAY_TEST_KILL_IN_FARM");
+    if (farm != (in ? std::strtoull(in, nullptr, 10) : 0)) return UINT64_MAX;
     return std::strtoull(value, nullptr, 10);
 }
 
