@@ -143,19 +143,23 @@ private:
     }
 
     // An ear: a convex corner whose triangle holds no other corner of the ring (corners met by a
-    // bridge, being the triangle's own, excepted).
+    // bridge, being the triangle's own, excepted). A corner within minHeight outside the new
+    // edge c -> a blocks it too: a corner that lies on that diagonal but for rounding would be
+    // left touching the ring's new edge, a spike of no width that no ear can cut.
     bool isEar(uint32_t b, double minHeight) const {
         if (!convex(b, minHeight)) return false;
         const uint32_t a = prev(b), c = next(b);
         const uint32_t ia = nodes_[a].point, ib = nodes_[b].point, ic = nodes_[c].point;
         const Vec2 pa = at(a), pb = at(b), pc = at(c);
-        const Vec2 lo = glm::min(pa, glm::min(pb, pc)), hi = glm::max(pa, glm::max(pb, pc));
+        const Vec2 lo = glm::min(pa, glm::min(pb, pc)) - minHeight,
+                   hi = glm::max(pa, glm::max(pb, pc)) + minHeight;
+        const double graze = -minHeight * glm::length(pa - pc);
         for (uint32_t n = next(c); n != a; n = next(n)) {
             const uint32_t in = nodes_[n].point;
             if (in == ia || in == ib || in == ic) continue;
             const Vec2 q = points_[in];
             if (q.x < lo.x || q.x > hi.x || q.y < lo.y || q.y > hi.y) continue;
-            if (turn(pa, pb, q) >= 0.0 && turn(pb, pc, q) >= 0.0 && turn(pc, pa, q) >= 0.0)
+            if (turn(pa, pb, q) >= 0.0 && turn(pb, pc, q) >= 0.0 && turn(pc, pa, q) >= graze)
                 return false;
         }
         return true;
