@@ -108,6 +108,35 @@ size_t countLeaves(const Node* node) {
 constexpr uint32_t kAutoGridMinChildren = 4096;
 constexpr double kAutoGridFilled = 0.5;
 
+// A node holds its slab polyhedron (CompileOptions::slabs) when along some diagonal it is
+// narrower than the node's box by at least this fraction of the box's width there: a thinner
+// cut rarely culls a ray the box lets through, and the test costs about as much as a box's.
+constexpr double kSlabsGain = 0.1;
+
+// The slabs of nothing in particular: every plane pair at infinity.
+DiagonalSlabs unboundedSlabs() {
+    DiagonalSlabs s;
+    for (int i = 0; i < 4; ++i) s.lo[i] = -kInfinity, s.hi[i] = kInfinity;
+    return s;
+}
+
+// The slabs around the box `local` placed by worldFromLocal: its eight corners' extents.
+DiagonalSlabs slabsAround(const Bounds3& local, const Mat4& worldFromLocal) {
+    if (!local.finite()) return unboundedSlabs();
+    DiagonalSlabs s;
+    for (int i = 0; i < 4; ++i) s.lo[i] = kInfinity, s.hi[i] = -kInfinity;
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 p((corner & 1) ? local.hi.x : local.lo.x, (corner & 2) ? local.hi.y : local.lo.y,
+                     (corner & 4) ? local.hi.z : local.lo.z);
+        const Vec3 q = transformPoint(worldFromLocal, p);
+        for (int i = 0; i < 4; ++i) {
+            const double e = glm::dot(kSlabNormals[i], q);
+            s.lo[i] = std::min(s.lo[i], e), s.hi[i] = std::max(s.hi[i], e);
+        }
+    }
+    return s;
+}
+
 // The fraction of the grid's cells that list a child.
 double filledFraction(const UniformGrid& grid) {
     size_t filled = 0;
@@ -119,6 +148,9 @@ double filledFraction(const UniformGrid& grid) {
 struct Compiler {
     Scene& scene;
     CompileOptions options;
+    // Per node, the extents of its solid along kSlabNormals (a superset: a leaf's are its
+    // local box's), whether or not the node holds them (holdSlabs).
+    std::vector<DiagonalSlabs> extents{};
     // The innermost difference or intersection being built, if any: a sheet under it is an
     // error (it has no inside for the operation to use).
     const Node* boolean = nullptr;
@@ -170,6 +202,11 @@ struct Compiler {
                 markImpliedOperands(a, b);
                 const uint32_t added = addNode({Op::Intersection, false, box, a, b});
                 takeBall(added, ballRadius(b) < ballRadius(a) ? b : a);  // the smaller ball
+                DiagonalSlabs& both = extents[added];
+                for (int i = 0; i < 4; ++i)
+                    both.lo[i] = std::max(extents[a].lo[i], extents[b].lo[i]),
+                    both.hi[i] = std::min(extents[a].hi[i], extents[b].hi[i]);
+                holdSlabs(added, a);
                 return added;
             }
             case Op::Difference: {
@@ -182,6 +219,8 @@ struct Compiler {
                 markImpliedOperands(a, b);
                 const uint32_t added = addNode({Op::Difference, false, box, a, b});
                 takeBall(added, a);
+                extents[added] = extents[a];
+                holdSlabs(added, a);
                 return added;
             }
         }
@@ -217,6 +256,32 @@ struct Compiler {
         if (!isFinite(worldFromLocal) || !std::isfinite(radius)) return kNoNode;
         scene.balls_.push_back({center, radius, glm::length(center) + radius});
         return static_cast<uint32_t>(scene.balls_.size() - 1);
+    }
+
+    // Gives the node its slab polyhedron (extents[node]) when CompileOptions::slabs asks for
+    // them and they are tighter than its box (kSlabsGain); the left operand of an intersection
+    // or difference (`left`, or kNoNode) then gives up its own, which the parent's test implies.
+    void holdSlabs(uint32_t node, uint32_t left = kNoNode) {
+        const Bounds3& box = scene.nodes_[node].bounds;
+        if (!options.slabs || !box.finite()) return;
+        DiagonalSlabs& s = extents[node];
+        bool tighter = false;
+        double size = 0.0;
+        for (int i = 0; i < 4; ++i) {
+            const Vec3& n = kSlabNormals[i];
+            double lo = 0.0, hi = 0.0;  // the box's own extent along n
+            for (int a = 0; a < 3; ++a)
+                lo += std::min(n[a] * box.lo[a], n[a] * box.hi[a]),
+                    hi += std::max(n[a] * box.lo[a], n[a] * box.hi[a]);
+            if (!(s.lo[i] <= s.hi[i]) || !std::isfinite(s.lo[i]) || !std::isfinite(s.hi[i])) return;
+            tighter = tighter || (hi - lo) - (s.hi[i] - s.lo[i]) >= kSlabsGain * (hi - lo);
+            size = std::max({size, std::abs(s.lo[i]), std::abs(s.hi[i])});
+        }
+        if (!tighter) return;
+        s.margin = tol::kBallMarginRel * size;
+        scene.nodes_[node].slabs = static_cast<uint32_t>(scene.slabs_.size());
+        scene.slabs_.push_back(s);
+        if (left != kNoNode) scene.nodes_[left].slabs = kNoNode;
     }
 
     // The operands of an intersection or difference whose bounds test the parent's implies
@@ -278,6 +343,8 @@ struct Compiler {
         const uint32_t added = addNode({Op::Leaf, false, box, index});
         if (const std::optional<LocalBall> ball = boundingBall(node.primitive))
             scene.nodes_[added].ball = worldBall(*ball, worldFromLocal);
+        extents[added] = slabsAround(geometry.localBounds, worldFromLocal);
+        holdSlabs(added);
         return added;
     }
 
@@ -369,11 +436,21 @@ struct Compiler {
             }
         }
         scene.children_.insert(scene.children_.end(), children.begin(), children.end());
-        return addNode(u);
+        const uint32_t added = addNode(u);
+        DiagonalSlabs& all = extents[added];
+        for (int i = 0; i < 4; ++i) all.lo[i] = kInfinity, all.hi[i] = -kInfinity;
+        for (const uint32_t c : children)
+            for (int i = 0; i < 4; ++i)
+                all.lo[i] = std::min(all.lo[i], extents[c].lo[i]),
+                all.hi[i] = std::max(all.hi[i], extents[c].hi[i]);
+        holdSlabs(added);
+        return added;
     }
 
+    // Adds a node, its slab extents unbounded until its builder sets them.
     uint32_t addNode(const CompiledNode& n) {
         scene.nodes_.push_back(n);
+        extents.push_back(unboundedSlabs());
         return static_cast<uint32_t>(scene.nodes_.size() - 1);
     }
 };

@@ -3,6 +3,7 @@
 // pushed; intermediate lists live on that stack, so a query allocates nothing once the stack
 // has grown to the deepest ray seen.
 #include <algorithm>
+#include <cmath>
 
 #include "csg/Bvh.h"
 #include "csg/Compiled.h"
@@ -35,7 +36,17 @@ struct SpanWalk {
         originLength = glm::length(r.o);
         originScale = dLength > 0.0 ? originLength / dLength : 0.0;
         invDD = 1.0 / glm::dot(r.d, r.d);
+        if (!s.slabs_.empty()) {
+            for (int i = 0; i < 4; ++i)
+                slabAlpha[i] = glm::dot(kSlabNormals[i], r.o),
+                slabInvD[i] = 1.0 / glm::dot(kSlabNormals[i], r.d);
+            slabOriginMargin = tol::kBallMarginRel * std::sqrt(3.0) * originLength;
+        }
     }
+
+    // The ray against the slab polyhedra (DiagonalSlabs), formed once: n . o, 1 / (n . d), and
+    // the ray's share of the rounding allowance (n . o errs by a few ulps of |n| |o|).
+    double slabAlpha[4], slabInvD[4], slabOriginMargin = 0.0;
 
     // The span stack: ctx.stack_[0, top) is in use. The vector only grows (its size is the
     // high-water mark), so pushing never value-initializes spans in the steady state.
@@ -64,10 +75,30 @@ struct SpanWalk {
         return glm::dot(off, off) > reach * reach;
     }
 
-    // May the ray within [t0, t1] meet the node: its bounds (unless implied), then its ball?
+    // Does the ray within [t0, t1] pass outside the slab polyhedron, each plane pushed out by
+    // tol::kBallMarginRel of the ray's origin and the planes' size (the ball's rule)? Each pair
+    // of planes clips [t0, t1] as a box's slab does; a NaN (0 * inf: the ray in a plane) never
+    // replaces a bound, as in clipToBox.
+    bool missesSlabs(const DiagonalSlabs& s, double t0, double t1) const {
+        const double margin = slabOriginMargin + s.margin;
+        for (int i = 0; i < 4; ++i) {
+            double tNear = (s.lo[i] - margin - slabAlpha[i]) * slabInvD[i];
+            double tFar = (s.hi[i] + margin - slabAlpha[i]) * slabInvD[i];
+            if (tNear > tFar) std::swap(tNear, tFar);
+            t0 = tNear > t0 ? tNear : t0;
+            t1 = tFar < t1 ? tFar : t1;
+        }
+        return t0 > t1;
+    }
+
+    // May the ray within [t0, t1] meet the node: its bounds (unless implied), then its ball,
+    // then its slab polyhedron?
     bool mayMeet(const CompiledNode& node, double t0, double t1) {
         if (!node.boundsImplied && !touches(node.bounds, t0, t1)) return false;
-        return node.ball == kNoNode || !missesBall(scene.balls_[node.ball]);
+        if (node.ball != kNoNode && missesBall(scene.balls_[node.ball])) return false;
+        if (node.slabs == kNoNode || !missesSlabs(scene.slabs_[node.slabs], t0, t1)) return true;
+        ++ctx.stats.slabCulls;
+        return false;
     }
 
     size_t eval(uint32_t index, double t0, double t1) {

@@ -39,6 +39,7 @@ struct QueryStats {
     uint64_t nodeVisits = 0;      // CSG nodes and BVH slots whose boxes were tested, grid cells
                                   // entered
     uint64_t primitiveTests = 0;  // primitive solves after their bounds were hit
+    uint64_t slabCulls = 0;       // nodes whose box the ray met and slab polyhedron it missed
 };
 
 // The top-level object (a child of the scene's root union) that last blocked an occluded()
@@ -80,6 +81,7 @@ struct LeafFrame;
 struct CompiledNode;
 struct BvhNode;
 struct BoundingBall;
+struct DiagonalSlabs;
 struct UniformGrid;
 struct HalvingGrid;
 
@@ -90,6 +92,9 @@ struct CompileOptions {
     Accel accel = Accel::Sah;  // the structure over each union's objects (csg/Accel.h)
     // The crossing test of every polygon mesh (primitives/Polyhedron.h).
     PolygonMethod polygonMethod = PolygonMethod::Watertight;
+    // Kay and Kajiya's slab polyhedra (csg/Compiled.h DiagonalSlabs) on the nodes where they are
+    // tighter than the axis boxes, tested after the box and the bounding ball.
+    bool slabs = false;
 };
 
 class Scene {
@@ -145,6 +150,7 @@ private:
     std::vector<UniformGrid> grids_;         // CompiledNode::grid
     std::vector<HalvingGrid> halvingGrids_;  // CompiledNode::grid when halving
     std::vector<BoundingBall> balls_;        // CompiledNode::ball
+    std::vector<DiagonalSlabs> slabs_;       // CompiledNode::slabs
     uint32_t root_ = 0;
     bool hasSheets_ = false;  // a leaf is a sheet: unions must look for sheet crossings
 };

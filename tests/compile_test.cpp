@@ -117,6 +117,32 @@ TEST(Compile, CutOperandsWhoseTestIsImpliedAreNotTestedAgain) {
     EXPECT_TRUE(scene.spans(Ray{{0, 0, -5}, {0, 0, 1}}, ctx).empty());
 }
 
+// Kay and Kajiya's slabs (CompileOptions::slabs) around a unit cube turned 45 degrees about z:
+// its box is |x|, |y| <= sqrt(1/2), |z| <= 1/2; along n = (1, 1, 1) the cube reaches
+// sqrt(1/2) + 1/2 = 1.207, its box sqrt(2) + 1/2 = 1.914. A ray along (1, -1, 0) (in the planes
+// n . x = const) at x + y = 0.8, z = 0.45 crosses the box (|x|, |y| <= 0.707 for
+// |s| <= 0.307) at n . x = 1.25, outside the slab: the slabs cull it before the cube's frame is
+// entered, where without them the leaf's own local box rejects it. A ray through the middle
+// is not culled and meets the cube from u = (x - y) / sqrt 2 = -1/2 to 1/2.
+TEST(Compile, SlabPolyhedraCullWhatTheBoxLetsThrough) {
+    const Mat4 turn = glm::rotate(Mat4(1.0), 0.25 * 3.141592653589793, Vec3(0, 0, 1));
+    const NodePtr cube = transformed(turn, leaf(Box{Vec3(-0.5), Vec3(0.5)}));
+    const Scene boxes = Scene::compile(cube);
+    const Scene slabs = Scene::compile(cube, {.slabs = true});
+    const Ray past{{0.4 - 5.0, 0.4 + 5.0, 0.45}, {1, -1, 0}};
+    QueryContext withBoxes, withSlabs;
+    EXPECT_TRUE(boxes.spans(past, withBoxes).empty());
+    EXPECT_TRUE(slabs.spans(past, withSlabs).empty());
+    EXPECT_EQ(withBoxes.stats.slabCulls, 0u);
+    EXPECT_EQ(withSlabs.stats.slabCulls, 1u);
+    const Ray through{{-5.0, 5.0, 0.0}, {1, -1, 0}};
+    const auto spans = slabs.spans(through, withSlabs);
+    ASSERT_EQ(spans.size(), 1u);
+    EXPECT_NEAR(spans[0].in.t, 5.0 - 0.5 / std::sqrt(2.0), 1e-12);
+    EXPECT_NEAR(spans[0].out.t, 5.0 + 0.5 / std::sqrt(2.0), 1e-12);
+    EXPECT_EQ(withSlabs.stats.slabCulls, 1u);
+}
+
 // A union of n spheres on a grid: node visits per ray must grow like log n, not n.
 double visitsPerRay(int side) {
     std::vector<NodePtr> parts;

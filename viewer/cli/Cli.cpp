@@ -33,6 +33,11 @@ const char* const kCommonOptionsHelp =
     "                         along x, y, z, walked as an octree; auto: the uniform grid\n"
     "                         for a union of 4096 or more objects spread evenly, SAH\n"
     "                         otherwise (bench/README.md, spatial structures)\n"
+    "  --bounds=KIND          what bounds each node of the tree (every choice gives the\n"
+    "                         same answers): boxes (default): axis-aligned boxes, and balls\n"
+    "                         around spheres; slabs: also Kay and Kajiya's slab polyhedra\n"
+    "                         (planes along the four body diagonals) where they are\n"
+    "                         tighter than the box, as around turned parts\n"
     "  --polygon-method=M     how a ray is tested against the triangles of polygon meshes\n"
     "                         (polyhedron(), import(), OpenSCAD's sliced extrusions):\n"
     "                         watertight (default): Woop, Benthin and Wald's test, exact\n"
@@ -101,6 +106,12 @@ bool ArgCursor::common(CommonOptions& options) {
                 "nonuniform-grid or auto, got '" +
                 *name + "'");
         options.accel = *accel;
+        return true;
+    }
+    if (auto name = option("--bounds")) {
+        if (*name != "boxes" && *name != "slabs")
+            throw UsageError("--bounds expects boxes or slabs, got '" + *name + "'");
+        options.slabs = *name == "slabs";
         return true;
     }
     if (auto name = option("--polygon-method")) {

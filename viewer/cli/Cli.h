@@ -34,6 +34,7 @@ struct CommonOptions {
     io::CurveMode curves = io::CurveMode::Auto;                         // --curves
     csg::Accel accel = csg::Accel::Sah;                                 // --accel
     csg::PolygonMethod polygonMethod = csg::PolygonMethod::Watertight;  // --polygon-method
+    bool slabs = false;                                                 // --bounds=slabs
     bool help = false;                                                  // --help or -h
     double time = 0.0;  // $t (render --frames sets it per frame; no option of its own)
 };

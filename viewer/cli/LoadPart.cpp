@@ -32,8 +32,9 @@ int loadPart(const CommonOptions& options, Report& report, LoadedPart& part) {
 
     part.model = std::move(*result.model);
     try {
-        part.scene = csg::Scene::compile(
-            part.model.root, {.accel = options.accel, .polygonMethod = options.polygonMethod});
+        part.scene = csg::Scene::compile(part.model.root, {.accel = options.accel,
+                                                           .polygonMethod = options.polygonMethod,
+                                                           .slabs = options.slabs});
     } catch (const csg::CompileError& e) {
         report.add(io::diagnosticAt(part.model, e.source, io::Severity::Error, e.what()));
         return kExitBadModel;

@@ -161,6 +161,8 @@ std::string statsJson(const RenderOptions& o, int threads, const PhaseSeconds& s
         .value(result.queries.nodeVisits)
         .key("primitiveTests")
         .value(result.queries.primitiveTests)
+        .key("slabCulls")
+        .value(result.queries.slabCulls)
         .endObject();
     // "load" is evaluation and compilation together: loadPart does both in one call.
     json.key("seconds")

@@ -89,16 +89,17 @@ int renderTilesOnRanks(const dist::Ranks& ranks, const csg::Scene& scene,
 
     render::RenderResult counts;
     tiles.addCounts(counts);
-    unsigned long long sums[] = {counts.rays.primary,          counts.rays.shadow,
-                                 counts.rays.reflection,       counts.rays.refraction,
-                                 counts.queries.rays,          counts.queries.nodeVisits,
-                                 counts.queries.primitiveTests};
+    unsigned long long sums[] = {counts.rays.primary,           counts.rays.shadow,
+                                 counts.rays.reflection,        counts.rays.refraction,
+                                 counts.queries.rays,           counts.queries.nodeVisits,
+                                 counts.queries.primitiveTests, counts.queries.slabCulls};
     ranks.sumToRoot(sums, int(std::size(sums)));
     if (!ranks.root()) return kExitOk;
     result.rays = {sums[0], sums[1], sums[2], sums[3]};
     result.queries.rays = sums[4];
     result.queries.nodeVisits = sums[5];
     result.queries.primitiveTests = sums[6];
+    result.queries.slabCulls = sums[7];
 
     const uint64_t total = uint64_t(tiles.count());
     result.interrupted = source->done() < total;

@@ -123,6 +123,7 @@ void addTracerCounts(const Tracer& tracer, RenderResult& result) {
     result.queries.rays += tracer.context.stats.rays;
     result.queries.nodeVisits += tracer.context.stats.nodeVisits;
     result.queries.primitiveTests += tracer.context.stats.primitiveTests;
+    result.queries.slabCulls += tracer.context.stats.slabCulls;
 }
 
 }  // namespace
