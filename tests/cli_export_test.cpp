@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <map>
@@ -218,6 +219,40 @@ TEST(CliExport, OctreeAndSimplifyCoarsenWithinTheTolerance) {
 // whether it fails before writing (a syntax error) or while writing (a file size limit of
 // 1 KiB, with SIGXFSZ ignored so the write fails with EFBIG instead of killing csgray), and
 // leaves no temporary file beside it.
+// Export's progress, with stderr not a terminal (plain lines) and CSGRAY_PROGRESS_SECONDS=0 (a
+// line at every update): each loop that casts rays is named on its lines and reaches 100 %;
+// --quiet shows nothing; the mesh is the same bytes either way (the loops then run through the
+// farm, ExportFarm.h).
+TEST(CliExport, ProgressNamesEachLoopAndReachesTheEnd) {
+    ScratchDir dir;
+    const fs::path part = dir / "torus.scad";
+    writeFile(part, "rotate_extrude() translate([3, 0]) circle(1);\n");
+    fs::create_directories(dir / "shown");
+    fs::create_directories(dir / "quiet");
+    const auto args = [&](const std::string& out, const char* more) {
+        std::vector<std::string> a = {"export", part.string(), "-o",   (dir / out).string(),
+                                      "--grid", "--tolerance", "0.005"};
+        if (*more) a.push_back(more);
+        return a;
+    };
+    ::setenv("CSGRAY_PROGRESS_SECONDS", "0", 1);
+    const RunResult shown = runCsgray(args("shown/mesh.stl", ""), dir.path());
+    const RunResult quiet = runCsgray(args("quiet/mesh.stl", "--quiet"), dir.path());
+    ::unsetenv("CSGRAY_PROGRESS_SECONDS");
+    ASSERT_EQ(shown.exitCode, 0) << shown.err;
+    ASSERT_EQ(quiet.exitCode, 0) << quiet.err;
+    for (const std::string loop :
+         {"export: the grid's rows: ", "export: the mesh measured to the surface: ",
+          "export: the surface measured to the mesh: "}) {
+        EXPECT_NE(shown.err.find(loop), std::string::npos) << shown.err;
+        EXPECT_NE(shown.err.find(loop + "100%"), std::string::npos) << shown.err;
+    }
+    EXPECT_EQ(quiet.err, "");
+    const std::string mesh = readFile(dir / "shown" / "mesh.stl");
+    EXPECT_GT(mesh.size(), 1000u);
+    EXPECT_TRUE(mesh == readFile(dir / "quiet" / "mesh.stl"));
+}
+
 TEST(CliExport, AFailedExportLeavesAnExistingFileUntouched) {
     ScratchDir dir;
     writeFile(dir / "bad.scad", "cube(1);\nsphere(;\n");

@@ -1,7 +1,8 @@
 // Loops of the mesh pipeline whose items other processes may compute: `csgray export` under
 // mpirun hands them to the ranks of the job (viewer/cli/ExportFarm.h), so that every rank ends
 // up with the same results and makes the same mesh, and rank 0 writes it. csg/ knows nothing of
-// MPI: a loop gives run() its item count and two functions,
+// MPI: a loop gives run() its item count, what its items are (for progress: "the grid's rows"),
+// and two functions,
 //   work(worker, item, bytes)  computes item on worker thread `worker` (in [0, threads)) of
 //                              whichever process runs it, and writes its result to bytes;
 //   take(item, bytes)          is then called on every process, for every item, in ascending
@@ -26,7 +27,9 @@ using ItemTake = std::function<void(uint64_t item, std::string_view bytes)>;
 
 struct ItemDistributor {
     int threads = 1;  // worker indices of work() run in [0, threads)
-    std::function<void(uint64_t count, const ItemWork& work, const ItemTake& take)> run;
+    std::function<void(uint64_t count, std::string_view what, const ItemWork& work,
+                       const ItemTake& take)>
+        run;
 };
 
 // Results to bytes and back: trivially copyable values and vectors of them, in the order

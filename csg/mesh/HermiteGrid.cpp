@@ -151,7 +151,7 @@ HermiteGrid HermiteGrid::cast(const Scene& scene, const GridSpec& spec, int thre
             });
         } else {
             distribute->run(
-                uint64_t(nc),
+                uint64_t(nc), "the grid's rows",
                 [&](int worker, uint64_t rowIndex, std::string& bytes) {
                     RowResult row;
                     std::vector<uint64_t> inside;

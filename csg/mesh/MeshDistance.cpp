@@ -118,8 +118,8 @@ double bestOfDirections(const Vec3& first, double goodEnough, Measure&& measure)
 // process's workers, one accumulator each; or on the processes of a job (options.distribute),
 // one accumulator per item, merged in item order.
 template <class Measure>
-DistanceStats measureItems(uint64_t count, int workers, const DistanceOptions& options,
-                           Measure&& measure) {
+DistanceStats measureItems(uint64_t count, std::string_view what, int workers,
+                           const DistanceOptions& options, Measure&& measure) {
     if (!options.distribute) {
         std::vector<Accumulator> acc(static_cast<size_t>(workers));
         parallelFor(count, workers,
@@ -128,7 +128,7 @@ DistanceStats measureItems(uint64_t count, int workers, const DistanceOptions& o
     }
     std::vector<Accumulator> acc(static_cast<size_t>(count));
     options.distribute->run(
-        count,
+        count, what,
         [&](int w, uint64_t item, std::string& bytes) {
             Accumulator found;
             measure(w, item, found);
@@ -187,7 +187,8 @@ DistanceStats meshToSurface(const Scene& scene, const TriangleMesh& mesh,
             }
         }
     };
-    return measureItems((triangles + kChunk - 1) / kChunk, workers, options, chunkOf);
+    return measureItems((triangles + kChunk - 1) / kChunk, "the mesh measured to the surface",
+                        workers, options, chunkOf);
 }
 
 DistanceStats surfaceToMesh(const Scene& scene, const TriangleBvh& bvh, int raysPerAxis,
@@ -228,7 +229,8 @@ DistanceStats surfaceToMesh(const Scene& scene, const TriangleBvh& bvh, int rays
             }
         }
     };
-    return measureItems(uint64_t(3) * uint64_t(raysPerAxis), workers, options, rowOf);
+    return measureItems(uint64_t(3) * uint64_t(raysPerAxis), "the surface measured to the mesh",
+                        workers, options, rowOf);
 }
 
 }  // namespace csg

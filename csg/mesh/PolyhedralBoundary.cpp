@@ -686,7 +686,7 @@ std::optional<TriangleMesh> polyhedralBoundary(const Scene& scene, int threads,
                     [&](int worker, uint64_t i) { cut(worker, i, kept[i], made[i]); });
     } else {
         distribute->run(
-            faces.size(),
+            faces.size(), "the faces cut",
             [&](int worker, uint64_t i, std::string& bytes) {
                 std::vector<Piece> pieces;
                 uint64_t count = 0;

@@ -74,7 +74,10 @@ const char* const kExportHelp =
     "the root node). STL: binary unless --ascii, one facet per triangle. 3MF: one object in\n"
     "millimetres, the part's colours as base materials. Every format holds the same float\n"
     "vertices. The file is written atomically; an empty part gives an empty file and\n"
-    "a warning. A one-line summary goes to stderr.\n"
+    "a warning. A one-line summary goes to stderr. Each loop that casts rays (the grid's\n"
+    "rows, the measuring both ways, the exact boundary's faces) that runs longer than a\n"
+    "moment shows its progress: a bar on a terminal, else a line every 5 seconds\n"
+    "(CSGRAY_PROGRESS_SECONDS sets how many); --quiet hides it.\n"
     "Under mpirun the loops that cast rays (the grid's rows, the samples measuring each\n"
     "mesh, the exact boundary's faces) are spread over the ranks and rank 0 writes the\n"
     "file: the bytes one process writes (README.md, MPI).\n"
@@ -256,10 +259,16 @@ int exportCommand(std::span<const std::string> args) {
             report.finish();
             ranks.abort(kExitIo);
         }
+    // Progress (rank 0's): the loops then go through the farm, which counts their items, also
+    // when this process is alone (at no cost measured: bench/README.md, export --resume).
+    render::ProgressMeter progress(render::ProgressMeter::styleFor(quiet || !ranks.root()),
+                                   "export");
+    const bool showProgress = !quiet && ranks.root();
     csg::ItemDistributor onRanks;
-    if (resume || (ranks.mpi() && ranks.size() > 1)) {
+    if (resume || showProgress || (ranks.mpi() && ranks.size() > 1)) {
         onRanks = itemsOnRanks(ranks, csg::resolveThreads(options.threads), report,
-                               resume && ranks.root() ? &journal : nullptr);
+                               resume && ranks.root() ? &journal : nullptr,
+                               showProgress ? &progress : nullptr);
         options.distribute = &onRanks;
     }
     const auto start = std::chrono::steady_clock::now();

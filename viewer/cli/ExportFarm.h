@@ -17,6 +17,7 @@
 #include "viewer/cli/Report.h"
 #include "viewer/cli/dist/Journal.h"
 #include "viewer/cli/dist/Ranks.h"
+#include "viewer/render/Progress.h"
 
 namespace viewer {
 
@@ -49,9 +50,11 @@ private:
 
 // Loops on ranks (which must outlive the result), `threads` (>= 1) workers on each rank; with a
 // journal (rank 0's; null elsewhere), items it holds are not computed again and finished items
-// are appended to it. A journal that cannot be written ends the job (exit kExitIo) after an
-// error in report, leaving no output. journal and report must outlive the result.
+// are appended to it; with a meter (rank 0's), each loop shows its progress, labelled by what
+// its items are. A journal that cannot be written ends the job (exit kExitIo) after an error in
+// report, leaving no output. journal, progress and report must outlive the result.
 csg::ItemDistributor itemsOnRanks(const dist::Ranks& ranks, int threads, Report& report,
-                                  ExportJournal* journal = nullptr);
+                                  ExportJournal* journal = nullptr,
+                                  render::ProgressMeter* progress = nullptr);
 
 }  // namespace viewer
