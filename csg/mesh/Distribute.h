@@ -20,6 +20,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "primitives/base/ParallelFor.h"
+
 namespace csg {
 
 using ItemWork = std::function<void(int worker, uint64_t item, std::string& bytes)>;
@@ -31,6 +33,12 @@ struct ItemDistributor {
                        const ItemTake& take)>
         run;
 };
+
+// The worker indices a loop's work() may see: the distributor's threads, or this process's
+// (threads 0: all cores) when it runs alone.
+inline int workersFor(const ItemDistributor* distribute, int threads) {
+    return distribute ? distribute->threads : resolveThreads(threads);
+}
 
 // Results to bytes and back: trivially copyable values and vectors of them, in the order
 // written. The processes of one job run the same binary on the same architecture (as MPI

@@ -69,7 +69,7 @@ HermiteGrid HermiteGrid::cast(const Scene& scene, const GridSpec& spec, int thre
     HermiteGrid grid;
     grid.spec_ = spec;
     grid.inside_.assign(spec.nodeCount(), 0);
-    const int workers = distribute ? distribute->threads : resolveThreads(threads);
+    const int workers = workersFor(distribute, threads);
     std::vector<QueryContext> contexts(static_cast<size_t>(workers));
     uint64_t rays = 0;
 

@@ -140,15 +140,11 @@ DistanceStats measureItems(uint64_t count, std::string_view what, int workers,
     return merge(acc);
 }
 
-int workersOf(const DistanceOptions& options) {
-    return options.distribute ? options.distribute->threads : resolveThreads(options.threads);
-}
-
 }  // namespace
 
 DistanceStats meshToSurface(const Scene& scene, const TriangleMesh& mesh,
                             const DistanceOptions& options) {
-    const int workers = workersOf(options);
+    const int workers = workersFor(options.distribute, options.threads);
     std::vector<QueryContext> ctx(static_cast<size_t>(workers));
     // Each vertex is sampled from the first triangle that has it.
     std::vector<uint32_t> owner(mesh.positions.size(), UINT32_MAX);
@@ -195,7 +191,7 @@ DistanceStats surfaceToMesh(const Scene& scene, const TriangleBvh& bvh, int rays
                             const DistanceOptions& options) {
     const Bounds3 box = scene.bounds();
     if (box.empty() || !box.finite() || raysPerAxis <= 0) return {};
-    const int workers = workersOf(options);
+    const int workers = workersFor(options.distribute, options.threads);
     std::vector<QueryContext> ctx(static_cast<size_t>(workers));
     const Vec3 size = box.extent();
     // One work item per row of lines; rows of the three axes one after another.

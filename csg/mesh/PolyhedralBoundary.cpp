@@ -672,7 +672,7 @@ std::optional<TriangleMesh> polyhedralBoundary(const Scene& scene, int threads,
         box.lo -= Vec3(onPlane), box.hi += Vec3(onPlane);
         grid.insert(i, box);
     }
-    const int workers = distribute ? distribute->threads : resolveThreads(threads);
+    const int workers = workersFor(distribute, threads);
     std::vector<QueryContext> contexts(static_cast<size_t>(workers));
     std::vector<CutScratch> scratch(static_cast<size_t>(workers));
     std::vector<std::vector<Piece>> kept(faces.size());
