@@ -1,6 +1,7 @@
 #include "viewer/cli/JobKey.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 
@@ -16,6 +17,12 @@ std::string jobKey(std::string_view command, const CommonOptions& common,
         std::to_string(int(common.curves)) + " " + std::to_string(int(common.polygonMethod)) + "\n";
     text += settings;
     text += "\n";
+    std::error_code ignored;  // (no /proc: the build is simply not part of the key)
+    const std::filesystem::path self("/proc/self/exe");
+    text +=
+        std::to_string(std::filesystem::file_size(self, ignored)) + " " +
+        std::to_string(std::filesystem::last_write_time(self, ignored).time_since_epoch().count()) +
+        "\n";
     std::ifstream part(common.part, std::ios::binary);
     text.append(std::istreambuf_iterator<char>(part), std::istreambuf_iterator<char>());
     char digits[17];
