@@ -137,6 +137,20 @@ DiagonalSlabs slabsAround(const Bounds3& local, const Mat4& worldFromLocal) {
     return s;
 }
 
+// The slabs around both solids (their union), and around what they share (their intersection).
+DiagonalSlabs hullOf(const DiagonalSlabs& a, const DiagonalSlabs& b) {
+    DiagonalSlabs s;
+    for (int i = 0; i < 4; ++i)
+        s.lo[i] = std::min(a.lo[i], b.lo[i]), s.hi[i] = std::max(a.hi[i], b.hi[i]);
+    return s;
+}
+DiagonalSlabs overlapOf(const DiagonalSlabs& a, const DiagonalSlabs& b) {
+    DiagonalSlabs s;
+    for (int i = 0; i < 4; ++i)
+        s.lo[i] = std::max(a.lo[i], b.lo[i]), s.hi[i] = std::min(a.hi[i], b.hi[i]);
+    return s;
+}
+
 // The fraction of the grid's cells that list a child.
 double filledFraction(const UniformGrid& grid) {
     size_t filled = 0;
@@ -149,7 +163,8 @@ struct Compiler {
     Scene& scene;
     CompileOptions options;
     // Per node, the extents of its solid along kSlabNormals (a superset: a leaf's are its
-    // local box's), whether or not the node holds them (holdSlabs).
+    // local box's), whether or not the node holds them (holdSlabs). Empty unless
+    // CompileOptions::slabs asks for slabs: a leaf's cost eight corner transforms.
     std::vector<DiagonalSlabs> extents{};
     // The innermost difference or intersection being built, if any: a sheet under it is an
     // error (it has no inside for the operation to use).
@@ -202,11 +217,8 @@ struct Compiler {
                 markImpliedOperands(a, b);
                 const uint32_t added = addNode({Op::Intersection, false, box, a, b});
                 takeBall(added, ballRadius(b) < ballRadius(a) ? b : a);  // the smaller ball
-                DiagonalSlabs& both = extents[added];
-                for (int i = 0; i < 4; ++i)
-                    both.lo[i] = std::max(extents[a].lo[i], extents[b].lo[i]),
-                    both.hi[i] = std::min(extents[a].hi[i], extents[b].hi[i]);
-                holdSlabs(added, a);
+                setSlabs(
+                    added, [&] { return overlapOf(extents[a], extents[b]); }, a);
                 return added;
             }
             case Op::Difference: {
@@ -219,8 +231,8 @@ struct Compiler {
                 markImpliedOperands(a, b);
                 const uint32_t added = addNode({Op::Difference, false, box, a, b});
                 takeBall(added, a);
-                extents[added] = extents[a];
-                holdSlabs(added, a);
+                setSlabs(
+                    added, [&] { return extents[a]; }, a);
                 return added;
             }
         }
@@ -258,12 +270,21 @@ struct Compiler {
         return static_cast<uint32_t>(scene.balls_.size() - 1);
     }
 
-    // Gives the node its slab polyhedron (extents[node]) when CompileOptions::slabs asks for
-    // them and they are tighter than its box (kSlabsGain); the left operand of an intersection
-    // or difference (`left`, or kNoNode) then gives up its own, which the parent's test implies.
-    void holdSlabs(uint32_t node, uint32_t left = kNoNode) {
+    // With CompileOptions::slabs: sets the node's extents to make()'s and holds them where they
+    // pay (holdSlabs). `left`: the left operand of an intersection or difference, or kNoNode.
+    template <class Make>
+    void setSlabs(uint32_t node, Make&& make, uint32_t left = kNoNode) {
+        if (!options.slabs) return;
+        extents[node] = make();
+        holdSlabs(node, left);
+    }
+
+    // Gives the node its slab polyhedron (extents[node]) when it is tighter than its box
+    // (kSlabsGain); the left operand of an intersection or difference (`left`, or kNoNode) then
+    // gives up its own, which the parent's test implies.
+    void holdSlabs(uint32_t node, uint32_t left) {
         const Bounds3& box = scene.nodes_[node].bounds;
-        if (!options.slabs || !box.finite()) return;
+        if (!box.finite()) return;
         DiagonalSlabs& s = extents[node];
         bool tighter = false;
         double size = 0.0;
@@ -343,8 +364,7 @@ struct Compiler {
         const uint32_t added = addNode({Op::Leaf, false, box, index});
         if (const std::optional<LocalBall> ball = boundingBall(node.primitive))
             scene.nodes_[added].ball = worldBall(*ball, worldFromLocal);
-        extents[added] = slabsAround(geometry.localBounds, worldFromLocal);
-        holdSlabs(added);
+        setSlabs(added, [&] { return slabsAround(geometry.localBounds, worldFromLocal); });
         return added;
     }
 
@@ -437,20 +457,19 @@ struct Compiler {
         }
         scene.children_.insert(scene.children_.end(), children.begin(), children.end());
         const uint32_t added = addNode(u);
-        DiagonalSlabs& all = extents[added];
-        for (int i = 0; i < 4; ++i) all.lo[i] = kInfinity, all.hi[i] = -kInfinity;
-        for (const uint32_t c : children)
-            for (int i = 0; i < 4; ++i)
-                all.lo[i] = std::min(all.lo[i], extents[c].lo[i]),
-                all.hi[i] = std::max(all.hi[i], extents[c].hi[i]);
-        holdSlabs(added);
+        setSlabs(added, [&] {
+            DiagonalSlabs all = extents[children[0]];
+            for (const uint32_t c : children) all = hullOf(all, extents[c]);
+            return all;
+        });
         return added;
     }
 
-    // Adds a node, its slab extents unbounded until its builder sets them.
+    // Adds a node (with CompileOptions::slabs, its extents unbounded until its builder sets
+    // them).
     uint32_t addNode(const CompiledNode& n) {
         scene.nodes_.push_back(n);
-        extents.push_back(unboundedSlabs());
+        if (options.slabs) extents.push_back(unboundedSlabs());
         return static_cast<uint32_t>(scene.nodes_.size() - 1);
     }
 };

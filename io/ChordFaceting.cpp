@@ -158,8 +158,7 @@ csg::NodePtr facetToDeviation(const csg::NodePtr& root, double deviation, csg::F
     return curvedLeft ? nullptr : out;
 }
 
-std::function<std::optional<csg::Scene>(double deviation, csg::FacetFit fit)> curveFaceter(
-    csg::NodePtr root) {
+csg::CurveFaceter curveFaceter(csg::NodePtr root) {
     return
         [root = std::move(root)](double deviation, csg::FacetFit fit) -> std::optional<csg::Scene> {
             const csg::NodePtr faceted = facetToDeviation(root, deviation, fit);

@@ -28,7 +28,6 @@ namespace io {
 csg::NodePtr facetToDeviation(const csg::NodePtr& root, double deviation, csg::FacetFit fit);
 
 // TessellateOptions::facetCurves for the part whose tree is root: facetToDeviation, compiled.
-std::function<std::optional<csg::Scene>(double deviation, csg::FacetFit fit)> curveFaceter(
-    csg::NodePtr root);
+csg::CurveFaceter curveFaceter(csg::NodePtr root);
 
 }  // namespace io

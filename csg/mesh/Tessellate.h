@@ -57,6 +57,9 @@ inline constexpr int kSurfaceRaysPerAxis = 128;
 // solid, and a cut flush with one (a pocket from a sphere's pole down) keeps a skin over it.
 enum class FacetFit { Inscribed, Balanced };
 
+// A part's curves faceted to a deviation and fit (TessellateOptions::facetCurves).
+using CurveFaceter = std::function<std::optional<Scene>(double deviation, FacetFit fit)>;
+
 struct TessellateOptions {
     // Largest allowed mesh-to-surface distance (world units); <= 0 means 1/500 of the bounds'
     // diagonal.
@@ -88,7 +91,7 @@ struct TessellateOptions {
     // boundary when it measures within the tolerance of the exact part (balanced first; a miss
     // is tried finer, or inscribed where the balanced fit kept material the part lacks), before
     // it takes the grid. The CLI facets with io/ChordFaceting.h.
-    std::function<std::optional<Scene>(double deviation, FacetFit fit)> facetCurves = nullptr;
+    CurveFaceter facetCurves = nullptr;
     bool simplify = true;  // coarsen flat regions after the grid passes (Simplify.h)
     // Grid meshes larger than this are not simplified (0: no limit). Decimation (in slabs on
     // all workers, then once over the whole) and its re-measurement both ways cost more than

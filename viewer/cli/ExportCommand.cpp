@@ -261,9 +261,8 @@ int exportCommand(std::span<const std::string> args) {
         }
     // Progress (rank 0's): the loops then go through the farm, which counts their items, also
     // when this process is alone (at no cost measured: bench/README.md, export --resume).
-    render::ProgressMeter progress(render::ProgressMeter::styleFor(quiet || !ranks.root()),
-                                   "export");
     const bool showProgress = !quiet && ranks.root();
+    render::ProgressMeter progress(render::ProgressMeter::styleFor(!showProgress), "export");
     csg::ItemDistributor onRanks;
     if (resume || showProgress || (ranks.mpi() && ranks.size() > 1)) {
         onRanks = itemsOnRanks(ranks, csg::resolveThreads(options.threads), report,

@@ -57,7 +57,6 @@ private:
 }  // namespace
 
 std::string ExportJournal::open(const std::filesystem::path& path, std::string_view key) {
-    path_ = path;
     return journal_.open(
         path, key, [&](uint64_t id, std::string_view bytes) { held_[id] = std::string(bytes); });
 }

@@ -1,8 +1,8 @@
 // The mesh pipeline's loops (csg/mesh/Distribute.h) on the ranks of an MPI job: `csgray export`
-// under mpirun, or alone with --resume. Each loop's items go through the task farm
-// (dist/TaskFarm.h: handed out by rank 0, computed on every rank's threads), rank 0 joins their
-// results in item order and broadcasts them, and every rank takes them in that order: all ranks
-// then hold the same grid and the same figures, make the same mesh, and rank 0 writes it, the
+// under mpirun, or alone with --resume or progress shown. Each loop's items go through the task
+// farm (dist/TaskFarm.h: handed out by rank 0, computed on every rank's threads), rank 0 joins
+// their results in item order and broadcasts them, and every rank takes them in that order: all
+// ranks then hold the same grid and the same figures, make the same mesh, and rank 0 writes it, the
 // bytes a single process writes. What the loops do not cover (contouring, the exact boundary's
 // welding and merging, simplification) runs on every rank alike.
 #pragma once
@@ -37,12 +37,11 @@ public:
     std::string append(uint64_t loop, uint64_t item, std::string_view bytes);
     // Deletes the journal: the output is committed.
     void remove() { journal_.remove(); }
-    const std::filesystem::path& path() const { return path_; }
+    const std::filesystem::path& path() const { return journal_.path(); }
     // How many results were taken from the journal so far.
     uint64_t reused() const { return reused_; }
 
 private:
-    std::filesystem::path path_;
     dist::Journal journal_;
     std::unordered_map<uint64_t, std::string> held_;
     uint64_t reused_ = 0;

@@ -32,6 +32,8 @@ public:
                      const std::function<void(uint64_t id, std::string_view bytes)>& found,
                      bool* replaced = nullptr);
     bool isOpen() const { return file_ != nullptr; }
+    // The file opened (or last tried).
+    const std::filesystem::path& path() const { return path_; }
     // Appends one record and flushes it to the kernel (it then survives the process being
     // killed); returns "" or why it could not.
     std::string append(uint64_t id, std::string_view bytes);
