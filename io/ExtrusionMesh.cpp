@@ -22,15 +22,22 @@ using csg::Vec2;
 using csg::Vec3;
 
 // Clipper's integers hold the chords' corners on a grid of 2^-kGridBits of the outline's size (a
-// power of two, so the way there and back is exact but for the rounding to an integer), and
-// every contour it returns is cleaned of corners within 1.415 steps of their neighbours or of
-// the line through them (Clipper's CleanPolygon, as OpenSCAD cleans its polygons). Why 28:
-// a step of 3.7e-9 of the size is above the exact boundary's weld distance
-// (tol::kPolyBoundaryWeldRel, 1e-9), so no two corners it keeps apart are welded there, and
-// the corners a projection leaves a few ulps apart, whose side faces have no area to classify,
-// become one; it moves a corner by 2e-9 of the size, far below any tolerance an export asks.
-constexpr int kGridBits = 28;
-constexpr double kCleanDistance = 1.415;
+// power of two, so the way there and back is exact but for the rounding to an integer). Why 50:
+// a corner moves by at most 2^-51 of the size, about an ulp, so a prism whose outline was turned
+// in 2-D (a slot cut by rotate(120) square(...)) meets a solid turned in 3-D onto the same plane
+// (the tab that fills the slot) to rounding; at 28 bits a corner moved by up to 1.9e-9 of the
+// size, which tilted a 6-unit face by 4e-8 and set its plane 3.5e-7 off 12 units away, more than
+// the exact boundary's weld, and Debian's example017 fell back to the grid. Clipper takes up to
+// 62 bits (it switches to 128-bit products past 30 by itself).
+// Every contour Clipper returns is cleaned of corners within kCleanDistance (1.415 steps of the
+// grid of 2^-kCleanBits of the size) of their neighbours or of the line through them (Clipper's
+// CleanPolygon, as OpenSCAD cleans its polygons). Why 28: 3.7e-9 of the size is above the exact
+// boundary's weld distance (tol::kPolyBoundaryWeldRel, 1e-9), so no two corners it keeps apart
+// are welded there, and the corners a projection leaves a few ulps apart, whose side faces have
+// no area to classify, become one.
+constexpr int kGridBits = 50;
+constexpr int kCleanBits = 28;
+constexpr double kCleanDistance = 1.415 * double(int64_t(1) << (kGridBits - kCleanBits));
 
 using Polygon = RegionPolygon;
 

@@ -119,6 +119,51 @@ TEST(ExactMesh, CoincidentFacesOfFacetedLeavesCloseTheBoundary) {
     EXPECT_NEAR(csg::signedVolume(mesh), csg::volume(scene, 1024), 5e-3 * csg::volume(scene, 1024));
 }
 
+// Solids that touch without sharing volume: no mesh with one vertex per position is a
+// 2-manifold there (an edge of four triangles, a vertex at the apex of two cones), so the
+// sheets are told apart (csg/mesh/TouchingSheets.h): each cube keeps its own 8 corners, and
+// the contact is no self-intersection. Before, the boundary "did not close" and the part went
+// to the grid.
+TEST(ExactMesh, CubesTouchingAlongAnEdgeOrAtACornerAreTwoSheets) {
+    for (const char* offset : {"[1, 1, 0]", "[1, 1, 1]"}) {
+        const std::string part = std::string("cube(1); translate(") + offset + ") cube(1);";
+        const TriangleMesh mesh = exactMesh(compiled(part));
+        EXPECT_NEAR(csg::signedVolume(mesh), 2.0, 1e-12) << part;
+        EXPECT_EQ(mesh.positions.size(), 16u) << part;
+        EXPECT_EQ(mesh.triangles.size(), 24u) << part;
+
+        // STL repeats positions and says nothing of which corners are one vertex: read back,
+        // the welded sheets are told apart again, so compare finds a closed manifold.
+        csg::testing::TempDir dir("csgray_touching_sheets");
+        const auto stl = dir.path / "touching.stl";
+        ASSERT_FALSE(io::writeMesh(stl, mesh, {}).has_value());
+        const io::MeshReadResult back = io::readMesh(stl);
+        ASSERT_TRUE(back.mesh.has_value()) << back.error;
+        EXPECT_TRUE(csg::checkTopology(*back.mesh).closedManifold()) << part;
+        EXPECT_EQ(back.mesh->positions.size(), 16u) << part;
+    }
+}
+
+// Debian's example017 in small: a slot cut from a plate by a square turned in 2-D, inside
+// linear_extrude, and the tab that fills it, a cube turned in 3-D. The slot's walls and the
+// tab's sides are the same planes, so the union is the whole plate. The extrusion's outline
+// went through Clipper's integers at 2^-28 of its size: the slot's corners moved by up to 1e-8,
+// its walls tilted, and 3.5e-7 away the two planes' cuts no longer welded (io/ExtrusionMesh.cpp).
+TEST(ExactMesh, ASlotTurnedIn2DMeetsATabTurnedIn3D) {
+    const io::EvaluateResult r = csg::testing::evaluate(
+        "linear_extrude(6) difference() { square(60, center = true);\n"
+        "  for (a = [0, 120, 240]) rotate(a) translate([0, 20]) square([6, 10], center = true); }\n"
+        "for (a = [0, 120, 240]) rotate([0, 0, a]) translate([-3, 15, 0]) cube([6, 10, 6]);");
+    ASSERT_TRUE(r.ok()) << csg::testing::diagnosticsOf(r);
+    csg::TessellateOptions options;
+    options.tolerance = 0.01;
+    options.facetCurves = io::curveFaceter(r.model->root);
+    const csg::TessellateResult t = csg::tessellate(csg::Scene::compile(r.model->root), options);
+    EXPECT_TRUE(t.exact);
+    EXPECT_NEAR(std::abs(csg::signedVolume(t.mesh)), 60.0 * 60.0 * 6.0, 1e-9);
+    EXPECT_TRUE(csg::checkTopology(t.mesh).closedManifold());
+}
+
 TEST(ExactMesh, CurvedPartsFallBackToTheGrid) {
     const csg::Scene scene = compiled("difference() { cube(1, center=true); sphere(0.6); }");
     EXPECT_FALSE(csg::allLeavesPolyhedral(scene));

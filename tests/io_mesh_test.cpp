@@ -168,6 +168,24 @@ TEST_F(MeshFiles, NonManifoldFacesAreKeptForCompareToReport) {
     EXPECT_EQ(topo.degenerateTriangles, 1u);
 }
 
+// A face written a second time both ways round is a fin of no volume folded onto the
+// tetrahedron, not two solids touching: its edges keep four triangles each for compare to
+// report (the wedges between them are empty, tol::kTouchingSheetsMinWedge), where two cubes
+// that meet along an edge are told apart (exact_mesh_test).
+TEST_F(MeshFiles, AFaceFoldedOntoAnotherIsNotTakenForTouchingSheets) {
+    std::string obj = "v 1 1 1\nv 1 -1 -1\nv -1 1 -1\nv -1 -1 1\n";
+    for (const auto& f : kTetFaces)
+        obj += "f " + std::to_string(f[0] + 1) + " " + std::to_string(f[1] + 1) + " " +
+               std::to_string(f[2] + 1) + "\n";
+    obj += "f 1 2 3\nf 1 3 2\n";
+    const io::MeshReadResult r = io::readMesh(write("fin.obj", obj));
+    ASSERT_TRUE(r.mesh) << r.error;
+    EXPECT_EQ(r.mesh->positions.size(), 4u);
+    const csg::MeshTopology topo = csg::checkTopology(*r.mesh);
+    EXPECT_FALSE(topo.closedManifold());
+    EXPECT_EQ(topo.nonManifoldEdges, 3u);
+}
+
 // One vertex of valence 100,000 (a cone's apex, and its base's centre): OpenMesh's reader
 // searched the half-edges around a vertex for every face added there, ~20 s for this file.
 TEST_F(MeshFiles, HighValenceStlLoadsInLinearTime) {

@@ -13,6 +13,7 @@
 #include "csg/mesh/CoplanarMerge.h"
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/Simplify.h"
+#include "csg/mesh/TouchingSheets.h"
 #include "primitives/Box.h"
 #include "primitives/ConvexPolytope.h"
 #include "primitives/Polyhedron.h"
@@ -741,7 +742,9 @@ std::optional<TriangleMesh> polyhedralBoundary(const Scene& scene, int threads,
     // Step 4: the pieces of each face merged back and triangulated as one polygon with holes.
     if (std::optional<TriangleMesh> merged =
             mergeCoplanar(welder.positions, polygons, normals, materials, weld)) {
-        const bool closed = checkTopology(*merged).closedManifold();
+        bool closed = checkTopology(*merged).closedManifold();
+        if (!closed && separateTouchingSheets(*merged) > 0)
+            closed = checkTopology(*merged).closedManifold();
         s.mergeSeconds = lap();
         if (closed) {
             s.mergedBy = "faces";
@@ -754,7 +757,8 @@ std::optional<TriangleMesh> polyhedralBoundary(const Scene& scene, int threads,
     mesh.positions = welder.positions;
     for (size_t i = 0; i < polygons.size(); ++i)
         triangulateConvex(mesh.positions, polygons[i], normals[i], weld, materials[i], mesh);
-    if (!checkTopology(mesh).closedManifold()) {
+    if (!checkTopology(mesh).closedManifold() &&
+        !(separateTouchingSheets(mesh) > 0 && checkTopology(mesh).closedManifold())) {
         s.declined = "the pieces do not close into a manifold";
         return std::nullopt;
     }

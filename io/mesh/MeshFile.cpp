@@ -5,6 +5,7 @@
 #include <string>
 
 #include "csg/mesh/MeshCheck.h"
+#include "csg/mesh/TouchingSheets.h"
 #include "io/mesh/MeshFileDetail.h"
 #include "primitives/base/ReadFile.h"
 
@@ -132,7 +133,14 @@ MeshReadResult parseMesh(std::string_view bytes, MeshFormat format,
             result.error = kUnknownMeshFormat;
             return result;
     }
-    if (result.mesh) result.mesh = csg::weldExactDuplicates(*result.mesh);
+    if (result.mesh) {
+        result.mesh = csg::weldExactDuplicates(*result.mesh);
+        // Solids that touch along an edge or at a point (an exact boundary's contacts) are
+        // written as sheets that repeat positions there (STL cannot tell them apart at all), so
+        // welding joined them: separate them again (csg/mesh/TouchingSheets.h).
+        if (!csg::checkTopology(*result.mesh).closedManifold())
+            csg::separateTouchingSheets(*result.mesh);
+    }
     return result;
 }
 

@@ -232,6 +232,12 @@ inline constexpr double kPolyBoundaryWeldRel = 1e-9;
 // angle of 1.4e-6 rad; the line where faces that close to parallel meet is ill-conditioned,
 // while OpenSCAD's coplanar faces (a cube on a cube) have equal normals to a few ulps.
 inline constexpr double kPolyBoundaryParallelCos = 1e-12;
+// Sheets of solids that touch along an edge are told apart only where every wedge between
+// neighbouring triangles around the edge is wider than this (csg/mesh/TouchingSheets.h; unit:
+// radians). Why: the wedges of a contact are angles between faces of different solids, far
+// above the ~1e-15 rad that rounding gives; a narrower one is a face folded onto another (a
+// face written twice, a fin of no volume), a defect checkTopology must go on reporting.
+inline constexpr double kTouchingSheetsMinWedge = 1e-9;
 // A piece is classified on the stretch of its line within this many on-plane distances
 // (kPolyBoundaryOnPlaneRel) of the piece (unit: multiples of that distance). Why: the span end
 // on the piece's own face is at t = 0 to rounding (~1e-16 of the size), far inside 1e-7 of the
