@@ -154,6 +154,23 @@ TEST(EarClip, ADiagonalThroughACornerLeavesNoSpike) {
     expectTiling(points, out, 16.221493504129054);
 }
 
+// A hole whose rightmost corner sits 1e-14 below the level of a notch's floor (Debian's sign
+// lettered at full precision: a counter level with its letter's edge but for rounding). The
+// ray to the right meets the slanted side, and both ends of the floor are seen at nearly the
+// ray's angle, the far one at the smaller; the bridge to it passed the near one 5e-15 away and left
+// it on a diagonal, a spike no ear could cut, and the face went to the simplifier. The near corner
+// is the bridge's end now.
+TEST(EarClip, ABridgeGrazingACornerEndsThere) {
+    const double below = 5.0 - 1e-14;
+    const std::vector<Vec2> points{{0, 0},   {20, 0}, {21, 10}, {14, 10}, {14, 5},   {10, 5},
+                                   {10, 10}, {0, 10}, {2, 4},   {2, 6},   {6, below}};
+    Triangles out;
+    ASSERT_TRUE(earClip(points, {0, 1, 2, 3, 4, 5, 6, 7}, {{8, 9, 10}}, 1e-9, out));
+    EXPECT_EQ(out.size(), 11u);  // 11 corners + 2 * 1 hole - 2
+    // The trapezoid (205) less the 4 x 5 notch and the hole, a triangle of base 2 and height 4.
+    expectTiling(points, out, 205.0 - 20.0 - 4.0);
+}
+
 TEST(EarClip, CrossingLoopIsRefused) {
     // A bow tie: its corners cannot be cut into counter-clockwise ears covering it.
     const std::vector<Vec2> points{{0, 0}, {2, 2}, {2, 0}, {0, 2}};

@@ -34,7 +34,7 @@ public:
 
     // Joins the hole ring holding `hole` to the ring holding `start` by a bridge (see the header).
     // False when the hole sees no edge to its right (it is not inside).
-    bool bridge(uint32_t start, uint32_t hole) {
+    bool bridge(uint32_t start, uint32_t hole, double minHeight) {
         uint32_t m = hole;
         for (uint32_t n = next(hole); n != hole; n = next(n))
             if (at(n).x > at(m).x) m = n;
@@ -65,6 +65,25 @@ public:
                 const double distance = pr.x - pm.x;
                 if (tangent < bestTan || (tangent == bestTan && distance < bestDistance))
                     bestTan = tangent, bestDistance = distance, p = r;
+            });
+        }
+        // A corner within minHeight of the bridge lies on it but for rounding (a glyph's counter
+        // level with the bowl's edge, 7e-15 apart): a bridge past it would leave it on a
+        // diagonal, a spike no ear can cut. The nearest such corner is the end instead; the
+        // bridge then runs on into its edge, a straight corner a neighbour's ear takes.
+        {
+            const Vec2 pp = at(p);
+            const double length = glm::length(pp - pm);
+            double nearest = length;
+            const uint32_t seen = p;
+            forEach(start, [&](uint32_t r) {
+                if (r == seen || nodes_[r].point == nodes_[seen].point) return;
+                const Vec2 pr = at(r);
+                const double along = glm::dot(pr - pm, pp - pm) / length;
+                if (!(along > 0.0 && along < nearest) ||
+                    std::abs(turn(pm, pp, pr)) > minHeight * length)
+                    return;
+                nearest = along, p = r;
             });
         }
         // A corner already met by a bridge has two nodes: take the one whose corner opens
@@ -212,7 +231,7 @@ bool earClip(std::span<const Vec2> points, const std::vector<uint32_t>& outer,
     }
     std::sort(order.begin(), order.end(), std::greater<>());
     for (const auto& [right, index] : order)
-        if (!ring.bridge(start, firsts[index])) return false;
+        if (!ring.bridge(start, firsts[index], minHeight)) return false;
     const size_t before = out.size();
     if (ring.clip(start, minHeight, out)) return true;
     out.resize(before);
