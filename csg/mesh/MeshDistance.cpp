@@ -97,10 +97,11 @@ double bestOfDirections(const Vec3& first, double goodEnough, Measure&& measure)
     // A point on an edge where two solids only touch (a non-manifold part) sees every line
     // through it either miss both solids or cross both with fused spans, and a point on a
     // convex corner sees most lines only touch the solid there (a zero-length span, dropped):
-    // measure again from a point a hair away in a direction of no symmetry, and add the hair.
-    if (best > goodEnough) {
-        const Vec3 shift =
-            glm::normalize(Vec3(0.5377, 0.8117, 0.2283)) * goodEnough * tol::kDistanceShiftFraction;
+    // measure again from a point a hair away in a direction of no symmetry, and add the hair;
+    // where solids touch tangentially the gap opens only quadratically, so farther hairs follow.
+    for (double fraction = tol::kDistanceShiftFraction;
+         best > goodEnough && fraction <= tol::kDistanceShiftMaxFraction; fraction *= 10.0) {
+        const Vec3 shift = glm::normalize(Vec3(0.5377, 0.8117, 0.2283)) * goodEnough * fraction;
         for (const Vec3& d : kExtra)
             best = std::min(best, glm::length(shift) + measure(glm::normalize(d), shift));
     }

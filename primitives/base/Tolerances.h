@@ -331,6 +331,12 @@ inline constexpr double kDistanceSampleInset = 1e-3;
 // what it adds to the distance must be negligible against the margin of kMeshMeasureMargin
 // (0.2 T): 1e-3 T is both.
 inline constexpr double kDistanceShiftFraction = 1e-3;
+// ... and, while that finds nothing within T, from points shifted ten and a hundred times
+// farther, up to this fraction of T (unit: relative to T). Why: where solids touch tangentially
+// (Debian's example017: a disc's rim against a flat wall) the gap beside the contact opens as
+// s^2 / (2 r) at a shift s, 1e-10 at 1e-3 T there, which the span merge fuses; at 0.1 T it is
+// 1e-6, a gap every line sees, and the 0.1 T it adds stays well under the margin.
+inline constexpr double kDistanceShiftMaxFraction = 0.1;
 
 // How far apart dual contouring keeps vertices that must stay distinct points once written as
 // float to a GLB (unit: multiples of the cell size h; a cell thinner than 4x this, one through a
