@@ -30,13 +30,15 @@ using csg::Vec3;
 // the exact boundary's weld, and Debian's example017 fell back to the grid. Clipper takes up to
 // 62 bits (it switches to 128-bit products past 30 by itself).
 // Every contour Clipper returns is cleaned of corners within kCleanDistance (1.415 steps of the
-// grid of 2^-kCleanBits of the size) of their neighbours or of the line through them (Clipper's
-// CleanPolygon, as OpenSCAD cleans its polygons). Why 28: 3.7e-9 of the size is above the exact
-// boundary's weld distance (tol::kPolyBoundaryWeldRel, 1e-9), so no two corners it keeps apart
-// are welded there, and the corners a projection leaves a few ulps apart, whose side faces have
-// no area to classify, become one.
+// grid of 2^-kCleanBits of the size: 3.4e-7 to 6.7e-7 of it) of their neighbours or of the line
+// through them (Clipper's CleanPolygon, as OpenSCAD cleans its polygons). Why 22: a projection() of
+// an STL (Debian's projection.scad) leaves fans of corners 1e-7 to 3e-7 apart at size 16, whose
+// side faces are too small to cut and weld (the exact boundary welds at 1e-9 of the size) and
+// sent the part to the grid; at 3.4e-7 of the size they merge, and the outline moves by less
+// than that, far below any tolerance an export asks. The sign's glyphs and every other Debian
+// example keep their corners (the same triangle counts as at 28 bits).
 constexpr int kGridBits = 50;
-constexpr int kCleanBits = 28;
+constexpr int kCleanBits = 22;
 constexpr double kCleanDistance = 1.415 * double(int64_t(1) << (kGridBits - kCleanBits));
 
 using Polygon = RegionPolygon;
