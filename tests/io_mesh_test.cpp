@@ -63,6 +63,15 @@ std::string binaryStl(const std::vector<std::array<csg::Vec3, 3>>& triangles) {
 const csg::Vec3 kTet[4] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
 const int kTetFaces[4][3] = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
 
+// The tetrahedron as OBJ text, its faces outward.
+std::string tetObj() {
+    std::string obj = "v 1 1 1\nv 1 -1 -1\nv -1 1 -1\nv -1 -1 1\n";
+    for (const auto& f : kTetFaces)
+        obj += "f " + std::to_string(f[0] + 1) + " " + std::to_string(f[1] + 1) + " " +
+               std::to_string(f[2] + 1) + "\n";
+    return obj;
+}
+
 std::vector<std::array<csg::Vec3, 3>> tetTriangles() {
     std::vector<std::array<csg::Vec3, 3>> out;
     for (const auto& f : kTetFaces) out.push_back({kTet[f[0]], kTet[f[1]], kTet[f[2]]});
@@ -154,10 +163,7 @@ TEST_F(MeshFiles, ObjLineContinuationsJoinLines) {
 TEST_F(MeshFiles, NonManifoldFacesAreKeptForCompareToReport) {
     // The tetrahedron with one face written three times: OpenMesh's half-edge structure
     // refused the copies, so compare saw a closed mesh.
-    std::string obj = "v 1 1 1\nv 1 -1 -1\nv -1 1 -1\nv -1 -1 1\n";
-    for (const auto& f : kTetFaces)
-        obj += "f " + std::to_string(f[0] + 1) + " " + std::to_string(f[1] + 1) + " " +
-               std::to_string(f[2] + 1) + "\n";
+    std::string obj = tetObj();
     obj += "f 1 2 3\nf 1 3 2\nf 1 1 2\n";
     const io::MeshReadResult r = io::readMesh(write("doubled.obj", obj));
     ASSERT_TRUE(r.mesh) << r.error;
@@ -173,10 +179,7 @@ TEST_F(MeshFiles, NonManifoldFacesAreKeptForCompareToReport) {
 // report (the wedges between them are empty, tol::kTouchingSheetsMinWedge), where two cubes
 // that meet along an edge are told apart (exact_mesh_test).
 TEST_F(MeshFiles, AFaceFoldedOntoAnotherIsNotTakenForTouchingSheets) {
-    std::string obj = "v 1 1 1\nv 1 -1 -1\nv -1 1 -1\nv -1 -1 1\n";
-    for (const auto& f : kTetFaces)
-        obj += "f " + std::to_string(f[0] + 1) + " " + std::to_string(f[1] + 1) + " " +
-               std::to_string(f[2] + 1) + "\n";
+    std::string obj = tetObj();
     obj += "f 1 2 3\nf 1 3 2\n";
     const io::MeshReadResult r = io::readMesh(write("fin.obj", obj));
     ASSERT_TRUE(r.mesh) << r.error;
