@@ -41,8 +41,8 @@ uint32_t cornerOf(const TriangleMesh& mesh, uint32_t t, uint32_t v) {
 // which must run p -> q. False when they do not alternate so, when a triangle has no width
 // across the edge, or when two neighbours around it are closer than
 // tol::kTouchingSheetsMinWedge (a face folded onto another, not a contact).
-bool pairAroundEdge(const TriangleMesh& mesh, uint32_t p, uint32_t q, std::vector<uint32_t>& hs,
-                    std::vector<uint32_t>& partner) {
+bool pairAroundEdge(const TriangleMesh& mesh, uint32_t p, uint32_t q,
+                    const std::vector<uint32_t>& hs, std::vector<uint32_t>& partner) {
     const Vec3 origin = mesh.positions[p];
     const Vec3 axis = mesh.positions[q] - origin;
     const double length = glm::length(axis);
