@@ -286,16 +286,13 @@ struct Compiler {
         const Bounds3& box = scene.nodes_[node].bounds;
         if (!box.finite()) return;
         DiagonalSlabs& s = extents[node];
+        const DiagonalSlabs ofBox = slabsAround(box, Mat4(1.0));  // the box's own extents
         bool tighter = false;
         double size = 0.0;
         for (int i = 0; i < 4; ++i) {
-            const Vec3& n = kSlabNormals[i];
-            double lo = 0.0, hi = 0.0;  // the box's own extent along n
-            for (int a = 0; a < 3; ++a)
-                lo += std::min(n[a] * box.lo[a], n[a] * box.hi[a]),
-                    hi += std::max(n[a] * box.lo[a], n[a] * box.hi[a]);
             if (!(s.lo[i] <= s.hi[i]) || !std::isfinite(s.lo[i]) || !std::isfinite(s.hi[i])) return;
-            tighter = tighter || (hi - lo) - (s.hi[i] - s.lo[i]) >= kSlabsGain * (hi - lo);
+            const double width = ofBox.hi[i] - ofBox.lo[i];
+            tighter = tighter || width - (s.hi[i] - s.lo[i]) >= kSlabsGain * width;
             size = std::max({size, std::abs(s.lo[i]), std::abs(s.hi[i])});
         }
         if (!tighter) return;

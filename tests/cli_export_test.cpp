@@ -215,10 +215,6 @@ TEST(CliExport, OctreeAndSimplifyCoarsenWithinTheTolerance) {
     EXPECT_EQ(triangles["--no-octree--simplify"], triangles["--no-octree"]);
 }
 
-// "The file is written atomically": a failed export leaves a file already there untouched,
-// whether it fails before writing (a syntax error) or while writing (a file size limit of
-// 1 KiB, with SIGXFSZ ignored so the write fails with EFBIG instead of killing csgray), and
-// leaves no temporary file beside it.
 // Export's progress, with stderr not a terminal (plain lines) and CSGRAY_PROGRESS_SECONDS=0 (a
 // line at every update): each loop that casts rays is named on its lines and reaches 100 %;
 // --quiet shows nothing; the mesh is the same bytes either way (the loops then run through the
@@ -253,6 +249,10 @@ TEST(CliExport, ProgressNamesEachLoopAndReachesTheEnd) {
     EXPECT_TRUE(mesh == readFile(dir / "quiet" / "mesh.stl"));
 }
 
+// "The file is written atomically": a failed export leaves a file already there untouched,
+// whether it fails before writing (a syntax error) or while writing (a file size limit of
+// 1 KiB, with SIGXFSZ ignored so the write fails with EFBIG instead of killing csgray), and
+// leaves no temporary file beside it.
 TEST(CliExport, AFailedExportLeavesAnExistingFileUntouched) {
     ScratchDir dir;
     writeFile(dir / "bad.scad", "cube(1);\nsphere(;\n");

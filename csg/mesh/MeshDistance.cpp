@@ -99,9 +99,10 @@ double bestOfDirections(const Vec3& first, double goodEnough, Measure&& measure)
     // convex corner sees most lines only touch the solid there (a zero-length span, dropped):
     // measure again from a point a hair away in a direction of no symmetry, and add the hair;
     // where solids touch tangentially the gap opens only quadratically, so farther hairs follow.
+    const Vec3 away = glm::normalize(Vec3(0.5377, 0.8117, 0.2283));
     for (double fraction = tol::kDistanceShiftFraction;
          best > goodEnough && fraction <= tol::kDistanceShiftMaxFraction; fraction *= 10.0) {
-        const Vec3 shift = glm::normalize(Vec3(0.5377, 0.8117, 0.2283)) * goodEnough * fraction;
+        const Vec3 shift = away * goodEnough * fraction;
         for (const Vec3& d : kExtra)
             best = std::min(best, glm::length(shift) + measure(glm::normalize(d), shift));
     }

@@ -742,9 +742,7 @@ std::optional<TriangleMesh> polyhedralBoundary(const Scene& scene, int threads,
     // Step 4: the pieces of each face merged back and triangulated as one polygon with holes.
     if (std::optional<TriangleMesh> merged =
             mergeCoplanar(welder.positions, polygons, normals, materials, weld)) {
-        bool closed = checkTopology(*merged).closedManifold();
-        if (!closed && separateTouchingSheets(*merged) > 0)
-            closed = checkTopology(*merged).closedManifold();
+        const bool closed = closedOnceSheetsSeparated(*merged);
         s.mergeSeconds = lap();
         if (closed) {
             s.mergedBy = "faces";
@@ -757,8 +755,7 @@ std::optional<TriangleMesh> polyhedralBoundary(const Scene& scene, int threads,
     mesh.positions = welder.positions;
     for (size_t i = 0; i < polygons.size(); ++i)
         triangulateConvex(mesh.positions, polygons[i], normals[i], weld, materials[i], mesh);
-    if (!checkTopology(mesh).closedManifold() &&
-        !(separateTouchingSheets(mesh) > 0 && checkTopology(mesh).closedManifold())) {
+    if (!closedOnceSheetsSeparated(mesh)) {
         s.declined = "the pieces do not close into a manifold";
         return std::nullopt;
     }

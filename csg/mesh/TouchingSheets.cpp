@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "csg/mesh/MeshCheck.h"
 #include "primitives/base/Tolerances.h"
 
 namespace csg {
@@ -159,6 +160,11 @@ uint64_t separateTouchingSheets(TriangleMesh& mesh) {
         v = vertexOfFan[fan];
     }
     return added;
+}
+
+bool closedOnceSheetsSeparated(TriangleMesh& mesh) {
+    return checkTopology(mesh).closedManifold() ||
+           (separateTouchingSheets(mesh) > 0 && checkTopology(mesh).closedManifold());
 }
 
 }  // namespace csg

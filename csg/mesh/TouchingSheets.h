@@ -24,4 +24,8 @@ namespace csg {
 // checkTopology to report. Returns the number of vertices added.
 uint64_t separateTouchingSheets(TriangleMesh& mesh);
 
+// Whether the mesh is a closed, consistently oriented 2-manifold (checkTopology), its touching
+// sheets separated first where it is not.
+bool closedOnceSheetsSeparated(TriangleMesh& mesh);
+
 }  // namespace csg

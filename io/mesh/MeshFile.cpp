@@ -138,8 +138,7 @@ MeshReadResult parseMesh(std::string_view bytes, MeshFormat format,
         // Solids that touch along an edge or at a point (an exact boundary's contacts) are
         // written as sheets that repeat positions there (STL cannot tell them apart at all), so
         // welding joined them: separate them again (csg/mesh/TouchingSheets.h).
-        if (!csg::checkTopology(*result.mesh).closedManifold())
-            csg::separateTouchingSheets(*result.mesh);
+        csg::closedOnceSheetsSeparated(*result.mesh);
     }
     return result;
 }
