@@ -611,6 +611,31 @@ TEST(MeshDistance, APointBesideAThinWedgeIsFoundByTheFan) {
     EXPECT_LE(d.max, 1.5 * truth) << "truth " << truth;
 }
 
+// A mesh point 0.1 outside sphere(1), in the direction of a cube edge's midpoint, so that
+// every axis and body diagonal meets the sphere 35 degrees or more off its normal (the best
+// of them reads 0.1257), on a triangle tilted 40 degrees (its own normal line reads 0.1356).
+// Those bounds sit under the margin where the fan starts, yet they are what an export weighs
+// its faceting by: the sample must be tightened to its true distance.
+TEST(MeshDistance, ALooseBoundThatSetsTheMaximumIsTightened) {
+    const Scene scene = Scene::compile(leaf(Sphere{1.0}));
+    const Vec3 radial = glm::normalize(Vec3(1.0, 1.0, 0.0)), p = 1.1 * radial;
+    const Vec3 side = glm::normalize(Vec3(1.0, -1.0, 0.0)), up(0.0, 0.0, 1.0);
+    const double tilt = glm::radians(40.0);
+    const Vec3 n = std::cos(tilt) * radial + std::sin(tilt) * side;  // the triangle's normal
+    const Vec3 u = glm::normalize(glm::cross(n, up)) * 1e-5, v = up * 1e-5;
+    TriangleMesh mesh;
+    mesh.positions = {p + u, p - u + v, p - u - v};
+    mesh.normals = {n, n, n};
+    mesh.triangles = {{0, 1, 2}};
+    DistanceOptions options;
+    options.reach = options.goodEnough = 0.2;
+    const DistanceStats d = meshToSurface(scene, mesh, options);
+    double truth = 0.0;  // the largest distance of a sample: every one lies within 2e-5 of p
+    for (const Vec3& corner : mesh.positions) truth = std::max(truth, glm::length(corner) - 1.0);
+    EXPECT_GE(d.max, 0.1 - 2e-5);
+    EXPECT_LE(d.max, truth + 1e-5);  // two foot steps from the fan's best line
+}
+
 TEST(Tessellate, SphereWithinTolerance) {
     const Scene scene = Scene::compile(leaf(Sphere{1.0}));
     const double tol = 0.005;

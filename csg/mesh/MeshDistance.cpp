@@ -1,5 +1,6 @@
 #include "csg/mesh/MeshDistance.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -48,15 +49,29 @@ DistanceStats merge(const std::vector<Accumulator>& parts) {
     return out;
 }
 
-// Smallest |t| of a surface span end of the scene along p + t d, t in [-reach, reach].
-double alongLine(const Scene& scene, QueryContext& ctx, const Vec3& p, const Vec3& d,
-                 double reach) {
-    Ray ray{p, d, -reach, reach};
-    double best = kInfinity;
+// What a line through a sample found: the smallest |t| of a surface span end of the scene along
+// p + t d, t in [-reach, reach], and the part's outward normal there (zero when nothing).
+struct LineHit {
+    double distance = kInfinity;
+    Vec3 normal{0.0};
+};
+
+LineHit nearestAlongLine(const Scene& scene, QueryContext& ctx, const Vec3& p, const Vec3& d,
+                         double reach) {
+    const Ray ray{p, d, -reach, reach};
+    LineHit best;
+    Hit nearest;
+    const auto consider = [&](const Hit& h) {
+        if (h.isSurface() && std::fabs(h.t) < best.distance) {
+            best.distance = std::fabs(h.t);
+            nearest = h;
+        }
+    };
     for (const Span& s : scene.spans(ray, ctx)) {
-        if (s.in.isSurface()) best = std::min(best, std::fabs(s.in.t));
-        if (s.out.isSurface()) best = std::min(best, std::fabs(s.out.t));
+        consider(s.in);
+        consider(s.out);
     }
+    if (std::isfinite(best.distance)) best.normal = scene.surface(ray, nearest).normal;
     return best;
 }
 
@@ -78,6 +93,31 @@ const std::array<Vec3, kFanLines>& fanDirections() {
     return fan;
 }
 
+// A sample's bound so far: the best line's answer, and whether the fan has been tried.
+struct SampleBound {
+    LineHit best;
+    bool fanned = false;
+    void keep(const LineHit& h, double added = 0.0) {
+        if (h.distance + added < best.distance) best = {h.distance + added, h.normal};
+    }
+};
+
+// The fan of lines for a bound that may set the maximum, then lines along the surface normal
+// where the best line met the surface: the best of a few lines can meet a smooth surface well
+// off its normal, and read up to a fifth above the distance, while the line along the normal
+// where it met runs through the foot point of a surface that curves little between the two.
+template <class Measure>
+void tighten(SampleBound& bound, Measure&& measure) {
+    if (!bound.fanned)
+        for (const Vec3& d : fanDirections()) bound.keep(measure(d, Vec3(0.0)));
+    bound.fanned = true;
+    for (int step = 0; step < tol::kDistanceFootSteps && bound.best.normal != Vec3(0.0); ++step) {
+        const double before = bound.best.distance;
+        bound.keep(measure(bound.best.normal, Vec3(0.0)));
+        if (!(bound.best.distance < before)) break;
+    }
+}
+
 // The first direction, then the three axes and four body diagonals when the first answer is
 // not well within goodEnough (tol::kDistanceFirstLineFraction: near a crease the first line can
 // run almost along the surface and overestimate several times, and a loose bound just under
@@ -86,14 +126,14 @@ const std::array<Vec3, kFanLines>& fanDirections() {
 // faces (regularized spans then put the nearest surface end far away), while a diagonal line
 // crosses the boundary at the point.
 template <class Measure>
-double bestOfDirections(const Vec3& first, double goodEnough, Measure&& measure) {
+SampleBound boundAlongLines(const Vec3& first, double goodEnough, Measure&& measure) {
     static const Vec3 kExtra[7] = {{1, 0, 0},  {0, 1, 0},  {0, 0, 1}, {1, 1, 1},
                                    {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
-    double best = kInfinity;
+    SampleBound bound;
     const double len = glm::length(first);
-    if (len > 0.0) best = measure(first / len, Vec3(0.0));
-    if (best > tol::kDistanceFirstLineFraction * goodEnough)
-        for (const Vec3& d : kExtra) best = std::min(best, measure(glm::normalize(d), Vec3(0.0)));
+    if (len > 0.0) bound.keep(measure(first / len, Vec3(0.0)));
+    if (bound.best.distance > tol::kDistanceFirstLineFraction * goodEnough)
+        for (const Vec3& d : kExtra) bound.keep(measure(glm::normalize(d), Vec3(0.0)));
     // A point on an edge where two solids only touch (a non-manifold part) sees every line
     // through it either miss both solids or cross both with fused spans, and a point on a
     // convex corner sees most lines only touch the solid there (a zero-length span, dropped):
@@ -101,19 +141,18 @@ double bestOfDirections(const Vec3& first, double goodEnough, Measure&& measure)
     // where solids touch tangentially the gap opens only quadratically, so farther hairs follow.
     const Vec3 away = glm::normalize(Vec3(0.5377, 0.8117, 0.2283));
     for (double fraction = tol::kDistanceShiftFraction;
-         best > goodEnough && fraction <= tol::kDistanceShiftMaxFraction; fraction *= 10.0) {
+         bound.best.distance > goodEnough && fraction <= tol::kDistanceShiftMaxFraction;
+         fraction *= 10.0) {
         const Vec3 shift = away * goodEnough * fraction;
         for (const Vec3& d : kExtra)
-            best = std::min(best, glm::length(shift) + measure(glm::normalize(d), shift));
+            bound.keep(measure(glm::normalize(d), shift), glm::length(shift));
     }
     // A point just off an edge of the part, beside a thin wedge of its material (a faceted
     // sphere's rim standing above the exact rim of a hole through it), can have the nearest
     // surface within goodEnough while all of those lines pass beside the wedge or graze it:
-    // then a fan of lines (two-sided, so each is two directions) spread evenly over the sphere
-    // of directions, for any answer the meshing would reject (its margin of goodEnough).
-    if (best > tol::kMeshMeasureMargin * goodEnough)
-        for (const Vec3& d : fanDirections()) best = std::min(best, measure(d, Vec3(0.0)));
-    return best;
+    // then the fan, for any answer the meshing would reject (its margin of goodEnough).
+    if (bound.best.distance > tol::kMeshMeasureMargin * goodEnough) tighten(bound, measure);
+    return bound;
 }
 
 // Runs measure(worker, item, accumulator) over count items and merges what they found: on this
@@ -154,14 +193,31 @@ DistanceStats meshToSurface(const Scene& scene, const TriangleMesh& mesh,
         for (const uint32_t v : mesh.triangles[t]) owner[v] = t;
     const uint64_t triangles = mesh.triangles.size();
     constexpr uint64_t kChunk = 1024;
+    // A chunk's samples whose bounds are loose enough to matter, each tightened only while it
+    // could still be the maximum: in falling order, until one's bound is at most the largest
+    // figure already taken (and so is every bound after it).
+    struct Candidate {
+        Vec3 point;
+        SampleBound bound;
+    };
+    std::vector<std::vector<Candidate>> candidates(static_cast<size_t>(workers));
     const auto chunkOf = [&](int w, uint64_t chunk, Accumulator& acc) {
+        const auto measureFrom = [&](const Vec3& p) {
+            return
+                [&scene, &ctx = ctx[size_t(w)], p, &options](const Vec3& dir, const Vec3& shift) {
+                    return nearestAlongLine(scene, ctx, p + shift, dir, options.reach);
+                };
+        };
+        std::vector<Candidate>& loose = candidates[size_t(w)];
+        loose.clear();
         // The mesh point p, measured first along the normal n of its triangle.
         auto measureAt = [&](const Vec3& p, const Vec3& n) {
-            const double d =
-                bestOfDirections(n, options.goodEnough, [&](const Vec3& dir, const Vec3& shift) {
-                    return alongLine(scene, ctx[size_t(w)], p + shift, dir, options.reach);
-                });
-            acc.add(p, d);
+            const SampleBound bound = boundAlongLines(n, options.goodEnough, measureFrom(p));
+            if (bound.best.distance > tol::kDistanceFirstLineFraction * options.goodEnough &&
+                std::isfinite(bound.best.distance))
+                loose.push_back({p, bound});
+            else
+                acc.add(p, bound.best.distance);
         };
         for (uint64_t t = chunk * kChunk; t < std::min((chunk + 1) * kChunk, triangles); ++t) {
             const auto& tri = mesh.triangles[size_t(t)];
@@ -183,6 +239,14 @@ DistanceStats meshToSurface(const Scene& scene, const TriangleMesh& mesh,
                 // oriented mesh runs every edge once each way).
                 if (i < j) measureAt(inset(0.5 * (p + q)), n);
             }
+        }
+        std::sort(loose.begin(), loose.end(), [](const Candidate& x, const Candidate& y) {
+            return x.bound.best.distance > y.bound.best.distance;
+        });
+        for (Candidate& c : loose) {
+            if (acc.stats.samples == 0 || c.bound.best.distance > acc.stats.max)
+                tighten(c.bound, measureFrom(c.point));
+            acc.add(c.point, c.bound.best.distance);
         }
     };
     return measureItems((triangles + kChunk - 1) / kChunk, "the mesh measured to the surface",
