@@ -102,20 +102,28 @@ struct SampleBound {
     }
 };
 
-// The fan of lines for a bound that may set the maximum, then lines along the surface normal
-// where the best line met the surface: the best of a few lines can meet a smooth surface well
-// off its normal, and read up to a fifth above the distance, while the line along the normal
-// where it met runs through the foot point of a surface that curves little between the two.
+// Lines along the surface normal where the best line met the surface, each from the last
+// one's hit: the best of a few lines can meet a smooth surface well off its normal and read
+// up to a fifth above the distance, while the line along the normal where it met runs through
+// the foot point of a surface that curves little between the two points.
 template <class Measure>
-void tighten(SampleBound& bound, Measure&& measure) {
-    if (!bound.fanned)
-        for (const Vec3& d : fanDirections()) bound.keep(measure(d, Vec3(0.0)));
-    bound.fanned = true;
+void footSteps(SampleBound& bound, Measure&& measure) {
     for (int step = 0; step < tol::kDistanceFootSteps && bound.best.normal != Vec3(0.0); ++step) {
         const double before = bound.best.distance;
         bound.keep(measure(bound.best.normal, Vec3(0.0)));
         if (!(bound.best.distance < before)) break;
     }
+}
+
+// A bound tightened while it stays above `floor`: foot steps, then (where the nearest surface
+// point is on an edge, which no normal line reaches) the fan and foot steps from its best line.
+template <class Measure>
+void tighten(SampleBound& bound, double floor, Measure&& measure) {
+    footSteps(bound, measure);
+    if (bound.fanned || !(bound.best.distance > floor)) return;
+    for (const Vec3& d : fanDirections()) bound.keep(measure(d, Vec3(0.0)));
+    bound.fanned = true;
+    footSteps(bound, measure);
 }
 
 // The first direction, then the three axes and four body diagonals when the first answer is
@@ -151,7 +159,7 @@ SampleBound boundAlongLines(const Vec3& first, double goodEnough, Measure&& meas
     // sphere's rim standing above the exact rim of a hole through it), can have the nearest
     // surface within goodEnough while all of those lines pass beside the wedge or graze it:
     // then the fan, for any answer the meshing would reject (its margin of goodEnough).
-    if (bound.best.distance > tol::kMeshMeasureMargin * goodEnough) tighten(bound, measure);
+    if (bound.best.distance > tol::kMeshMeasureMargin * goodEnough) tighten(bound, 0.0, measure);
     return bound;
 }
 
@@ -244,8 +252,8 @@ DistanceStats meshToSurface(const Scene& scene, const TriangleMesh& mesh,
             return x.bound.best.distance > y.bound.best.distance;
         });
         for (Candidate& c : loose) {
-            if (acc.stats.samples == 0 || c.bound.best.distance > acc.stats.max)
-                tighten(c.bound, measureFrom(c.point));
+            const double floor = acc.stats.samples == 0 ? 0.0 : acc.stats.max;
+            if (c.bound.best.distance > floor) tighten(c.bound, floor, measureFrom(c.point));
             acc.add(c.point, c.bound.best.distance);
         }
     };

@@ -143,15 +143,23 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
     measure.goodEnough = tolerance;
     measure.distribute = options.distribute;
     // Measures a mesh of the exact boundary both ways into result (the figures are upper
-    // bounds, tight to rounding on an exact mesh: MeshDistance.h samples off its edges).
-    // reach: how far a sample looks for the surface (farther is +inf, unresolved).
-    const auto measureExactMesh = [&](const TriangleMesh& mesh, double reach) {
+    // bounds, tight to rounding on an exact mesh: MeshDistance.h samples off its edges): mesh
+    // to surface (reach: how far a sample looks for the surface; farther is +inf, unresolved),
+    // returning its maximum, then surface to mesh, returning the larger maximum.
+    const auto measureToSurface = [&](const TriangleMesh& mesh, double reach) {
         measure.reach = reach;
         const auto start = std::chrono::steady_clock::now();
         result.error = meshToSurface(scene, mesh, measure);
+        result.backError = {};
+        result.polyhedral.measureSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return result.error.max;
+    };
+    const auto measureToMesh = [&](const TriangleMesh& mesh) {
+        const auto start = std::chrono::steady_clock::now();
         const TriangleBvh bvh(mesh, options.threads);
         result.backError = surfaceToMesh(scene, bvh, kSurfaceRaysPerAxis, measure);
-        result.polyhedral.measureSeconds =
+        result.polyhedral.measureSeconds +=
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         return std::max(result.error.max, result.backError.max);
     };
@@ -166,7 +174,8 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
                 result.toleranceMet = true;
                 return result;
             }
-            result.toleranceMet = measureExactMesh(result.mesh, tolerance) <= tolerance;
+            measureToSurface(result.mesh, tolerance);
+            result.toleranceMet = measureToMesh(result.mesh) <= tolerance;
             return result;
         }
     }
@@ -190,13 +199,43 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
             return polyhedralBoundary(*faceted, options.threads, &result.polyhedral,
                                       options.distribute);
         };
+        // The measured distance of a faceting within the margin sits near its deviation, often
+        // well under the margin: one coarser faceting, the deviation scaled from `measured` up
+        // to the slack, kept with its figures when it has fewer than `triangles` triangles and
+        // measures within the margin both ways.
+        const auto coarserKept = [&](double measured, size_t triangles) {
+            const double coarser =
+                deviation * std::min(tol::kFacetSlackMaxGain,
+                                     tol::kFacetSlackTarget * margin / std::max(measured, 1e-300));
+            if (coarser < tol::kFacetSlackMinGain * deviation) return false;
+            // The figures the attempt overwrites, restored when it is not kept.
+            const DistanceStats error = result.error;
+            const PolyhedralBoundaryStats stats = result.polyhedral;
+            std::optional<TriangleMesh> mesh = facetedBoundary(coarser);
+            if (mesh && mesh->triangles.size() < triangles &&
+                measureToSurface(*mesh, tolerance) <= margin && measureToMesh(*mesh) <= margin) {
+                result.mesh = std::move(*mesh);
+                deviation = coarser;
+                return true;
+            }
+            result.error = error;
+            result.backError = {};
+            result.polyhedral = stats;
+            return false;
+        };
         for (int attempt = 0; attempt <= tol::kFacetAttempts; ++attempt) {
             std::optional<TriangleMesh> mesh = facetedBoundary(deviation);
             if (!mesh) break;
             // Far enough to tell a miss of the faceting (up to kFacetSkinFactor times the
             // deviation) from material the part lacks.
             const double reach = std::max(tolerance, tol::kFacetSkinFactor * deviation);
-            if (const double measured = measureExactMesh(*mesh, reach); measured > margin) {
+            double measured = measureToSurface(*mesh, reach);
+            // Within the margin one way, the slack first: when a coarser faceting is kept,
+            // this one need not be measured the other way (the costlier way on small meshes).
+            const bool coarser =
+                measured <= margin && coarserKept(measured, mesh->triangles.size());
+            if (!coarser && measured <= margin) measured = measureToMesh(*mesh);
+            if (measured > margin) {
                 result.polyhedral.declined =
                     "the faceted part did not measure within the tolerance";
                 if (fit == FacetFit::Balanced && !(measured <= tol::kFacetSkinFactor * deviation))
@@ -206,33 +245,11 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
                                             tol::kFacetFinerMin, tol::kFacetFinerMax);
                 continue;
             }
-            result.mesh = std::move(*mesh);
+            if (!coarser) result.mesh = std::move(*mesh);
             result.exact = true;
             result.facetDeviation = deviation;
             result.facetFit = fit;
             result.toleranceMet = true;
-            // The measured distance sits near the deviation, often well under the margin: one
-            // coarser attempt with the deviation scaled up to the slack, kept when it measures
-            // within the margin too.
-            const double measured = std::max(result.error.max, result.backError.max);
-            const double coarser =
-                deviation * std::min(tol::kFacetSlackMaxGain,
-                                     tol::kFacetSlackTarget * margin / std::max(measured, 1e-300));
-            if (coarser >= tol::kFacetSlackMinGain * deviation) {
-                // The figures the attempt overwrites, restored when it is not kept.
-                const DistanceStats error = result.error, backError = result.backError;
-                const PolyhedralBoundaryStats stats = result.polyhedral;
-                std::optional<TriangleMesh> coarserMesh = facetedBoundary(coarser);
-                if (coarserMesh && measureExactMesh(*coarserMesh, tolerance) <= margin &&
-                    coarserMesh->triangles.size() < result.mesh.triangles.size()) {
-                    result.mesh = std::move(*coarserMesh);
-                    result.facetDeviation = coarser;
-                } else {
-                    result.error = error;
-                    result.backError = backError;
-                    result.polyhedral = stats;
-                }
-            }
             result.gridTriangles = result.mesh.triangles.size();
             return result;
         }
