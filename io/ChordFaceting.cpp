@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 
 #include "csg/derived/Flatten2D.h"
@@ -16,14 +17,19 @@ namespace io {
 
 namespace {
 
-// The largest singular value of m's linear part, how far it can stretch a curve: the square
-// root of the largest eigenvalue of A^T A (csg/mesh/Qef.h's Jacobi decomposition).
-double largestScale(const csg::Mat4& m) {
+// The largest and smallest singular values of m's linear part, how far it can stretch and
+// shrink a curve: square roots of the extreme eigenvalues of A^T A (csg/mesh/Qef.h's Jacobi
+// decomposition).
+struct Stretch {
+    double largest, smallest;
+};
+Stretch stretchOf(const csg::Mat4& m) {
     const csg::Mat3 a(m);
     csg::Vec3 w;
     csg::Mat3 r;
     csg::symmetricEigen(glm::transpose(a) * a, w, r);
-    return std::sqrt(std::max({w.x, w.y, w.z, 0.0}));
+    return {std::sqrt(std::max({w.x, w.y, w.z, 0.0})),
+            std::sqrt(std::max(std::min({w.x, w.y, w.z}), 0.0))};
 }
 
 // Fragments for a circle of world radius r whose chords may stand `sagitta` off it: the least
@@ -90,30 +96,79 @@ double nearestSphereFace(int64_t n) {
     return c;
 }
 
+// A sphere and a straight cylinder of the same world radius (a rounded box's corner and edge, a
+// capsule) are most often tangent along a circle: faceted with one layout, their vertices meet
+// on it and the boundary there is a clean seam, where two layouts cut each other into slivers
+// (Debian's example022: 776 triangles with one layout of 14 fragments, 1 144 with 14 and 10).
+// The shared layout has the fragments that both need, rounded up to 2 modulo 4, where the
+// sphere has a ring on its equator (sphereRingCount odd), and the sphere's fit scale, which
+// keeps the cylinder within the deviation too (its faces stand nearer the curve than the
+// sphere's: cos(pi / n) >= the sphere's c).
+struct SharedLayout {
+    int64_t n = 0;
+    double scale = 0.0;
+};
+// Keyed by the world radius (similarity transforms only), rounded to 1e-9 of it.
+using RadiusKey = int64_t;
+RadiusKey radiusKey(double r) {
+    return std::llround(std::log(r) * 1e9);
+}
+
+struct RadiusUse {
+    bool sphere = false, cylinder = false;
+    int64_t n = 0;  // the most fragments any of them needs alone
+};
+
+// Radii in world units of a similarity transform's sphere or straight cylinder; 0 otherwise.
+double sharableRadius(const csg::Primitive& p, const csg::Mat4& world) {
+    const Stretch stretch = stretchOf(world);
+    if (!(stretch.largest - stretch.smallest <= 1e-12 * stretch.largest)) return 0.0;
+    if (const auto* sphere = std::get_if<csg::Sphere>(&p)) return sphere->radius * stretch.largest;
+    if (const auto* cylinder = std::get_if<csg::Cylinder>(&p))
+        if (cylinder->r1 == cylinder->r2) return cylinder->r1 * stretch.largest;
+    return 0.0;
+}
+
 // The faceted sphere, cylinder or extrusion (without the node's transform), or nullptr
 // for any other leaf. Spheres and cylinders get the fewest fragments whose fit stands within the
 // deviation, checked with their faces' exact planes.
+constexpr int64_t kMostFragments = 1 << 15;
+
+std::optional<Fragments> sphereFragments(double r, double deviation, csg::FacetFit fit) {
+    return fewestFragments(fit, r, deviation, kMostFragments, facetedSphereFaceCount,
+                           nearestSphereFace);
+}
+
+std::optional<Fragments> cylinderFragments(const csg::Cylinder& cylinder, double scale,
+                                           double deviation, csg::FacetFit fit) {
+    // The sides of an n-gon's prism or frustum stand r (1 - cos(pi / n)) inside the curve at
+    // each height (less across a cone's slant): c = cos(pi / n).
+    return fewestFragments(
+        fit, std::max(cylinder.r1, cylinder.r2) * scale, deviation, kMostFragments,
+        [&](int64_t n) { return facetedCylinderFaceCount(n, cylinder.r1, cylinder.r2); },
+        [](int64_t n) { return std::cos(std::numbers::pi / double(n)); });
+}
+
+// shared: the layouts of radii that a sphere and a cylinder share (see SharedLayout).
 csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double deviation,
-                       csg::FacetFit fit) {
+                       csg::FacetFit fit, const std::map<RadiusKey, SharedLayout>& shared) {
     const csg::Primitive& p = node.primitive;
-    const double scale = largestScale(world);
-    constexpr int64_t kMost = 1 << 15;
+    const double scale = stretchOf(world).largest;
+    std::optional<Fragments> layout;
+    if (const double r = sharableRadius(p, world); r > 0.0)
+        if (const auto it = shared.find(radiusKey(r)); it != shared.end())
+            layout = Fragments{it->second.n, it->second.scale};
     if (const auto* sphere = std::get_if<csg::Sphere>(&p)) {
         const std::optional<Fragments> k =
-            fewestFragments(fit, sphere->radius * scale, deviation, kMost, facetedSphereFaceCount,
-                            nearestSphereFace);
+            layout ? layout : sphereFragments(sphere->radius * scale, deviation, fit);
         if (!k) return nullptr;
         return csg::leaf(polytopeOf(facetedSphere(k->scale * sphere->radius, k->n),
                                     {"sphere", uint32_t(k->n), uint32_t(sphereRingCount(k->n))}),
                          node.tags);
     }
     if (const auto* cylinder = std::get_if<csg::Cylinder>(&p)) {
-        // The sides of an n-gon's prism or frustum stand r (1 - cos(pi / n)) inside the curve
-        // at each height (less across a cone's slant): c = cos(pi / n).
-        const std::optional<Fragments> k = fewestFragments(
-            fit, std::max(cylinder->r1, cylinder->r2) * scale, deviation, kMost,
-            [&](int64_t n) { return facetedCylinderFaceCount(n, cylinder->r1, cylinder->r2); },
-            [](int64_t n) { return std::cos(std::numbers::pi / double(n)); });
+        const std::optional<Fragments> k =
+            layout ? layout : cylinderFragments(*cylinder, scale, deviation, fit);
         if (!k) return nullptr;
         return csg::leaf(
             polytopeOf(facetedCylinder(k->scale * cylinder->r1, k->scale * cylinder->r2, 0.0,
@@ -129,13 +184,56 @@ csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double dev
     return nullptr;
 }
 
+// Which radii a sphere and a cylinder share, and the most fragments any of them needs alone.
+void collectRadii(const csg::NodePtr& node, const csg::Mat4& parent, double deviation,
+                  csg::FacetFit fit, std::map<RadiusKey, RadiusUse>& uses) {
+    if (!node) return;
+    const csg::Mat4 world = parent * node->parentFromNode;
+    if (node->op != csg::Op::Leaf) {
+        collectRadii(node->left, world, deviation, fit, uses);
+        collectRadii(node->right, world, deviation, fit, uses);
+        return;
+    }
+    const double r = sharableRadius(node->primitive, world);
+    if (!(r > 0.0)) return;
+    RadiusUse& use = uses[radiusKey(r)];
+    const bool sphere = std::holds_alternative<csg::Sphere>(node->primitive);
+    const std::optional<Fragments> alone =
+        sphere ? sphereFragments(r, deviation, fit)
+               : cylinderFragments(csg::Cylinder{1.0, r, r}, 1.0, deviation, fit);
+    (sphere ? use.sphere : use.cylinder) = true;
+    use.n = std::max(use.n, alone ? alone->n : kMostFragments + 1);
+}
+
+std::map<RadiusKey, SharedLayout> sharedLayouts(const csg::NodePtr& root, double deviation,
+                                                csg::FacetFit fit) {
+    std::map<RadiusKey, RadiusUse> uses;
+    collectRadii(root, csg::Mat4(1.0), deviation, fit, uses);
+    std::map<RadiusKey, SharedLayout> shared;
+    for (const auto& [key, use] : uses) {
+        if (!use.sphere || !use.cylinder) continue;
+        const double r = std::exp(double(key) * 1e-9);
+        // The fewest n = 2 (mod 4) from use.n whose sphere fits (its nearest face need not
+        // move monotonically with n).
+        for (int64_t n = use.n + (6 - use.n % 4) % 4; n <= kMostFragments; n += 4) {
+            if (facetedSphereFaceCount(n) >= csg::ConvexPolytope::kMaxPlanes) break;
+            if (const double f = fitScale(fit, nearestSphereFace(n), r, deviation); f > 0.0) {
+                shared[key] = {n, f};
+                break;
+            }
+        }
+    }
+    return shared;
+}
+
 csg::NodePtr facet(const csg::NodePtr& node, const csg::Mat4& parent, double deviation,
-                   csg::FacetFit fit, bool& curvedLeft) {
+                   csg::FacetFit fit, const std::map<RadiusKey, SharedLayout>& shared,
+                   bool& curvedLeft) {
     if (!node || curvedLeft) return node;
     const csg::Mat4 world = parent * node->parentFromNode;
     if (node->op == csg::Op::Leaf) {
         if (csg::polyhedralLeaf(node->primitive)) return node;
-        csg::NodePtr leaf = facetLeaf(*node, world, deviation, fit);
+        csg::NodePtr leaf = facetLeaf(*node, world, deviation, fit, shared);
         if (!leaf) {
             curvedLeft = true;
             return nullptr;
@@ -145,8 +243,8 @@ csg::NodePtr facet(const csg::NodePtr& node, const csg::Mat4& parent, double dev
         return placed;
     }
     auto copy = std::make_shared<csg::Node>(*node);
-    copy->left = facet(node->left, world, deviation, fit, curvedLeft);
-    copy->right = facet(node->right, world, deviation, fit, curvedLeft);
+    copy->left = facet(node->left, world, deviation, fit, shared, curvedLeft);
+    copy->right = facet(node->right, world, deviation, fit, shared, curvedLeft);
     return copy;
 }
 
@@ -154,7 +252,8 @@ csg::NodePtr facet(const csg::NodePtr& node, const csg::Mat4& parent, double dev
 
 csg::NodePtr facetToDeviation(const csg::NodePtr& root, double deviation, csg::FacetFit fit) {
     bool curvedLeft = false;
-    csg::NodePtr out = facet(root, csg::Mat4(1.0), deviation, fit, curvedLeft);
+    csg::NodePtr out = facet(root, csg::Mat4(1.0), deviation, fit,
+                             sharedLayouts(root, deviation, fit), curvedLeft);
     return curvedLeft ? nullptr : out;
 }
 

@@ -96,6 +96,43 @@ TEST(ChordFaceting, FacesAndCornersStandWithinTheDeviationBothWays) {
     }
 }
 
+// A capsule's end and body (a rounded box's corner and edge): sphere(1) alone takes 23
+// fragments at 0.01 and cylinder(r = 1) 16 (above); together they take one layout, the 23 both
+// need rounded up to 26 (2 modulo 4: the sphere's 13 rings put one on its equator, where the
+// cylinder's end ring meets it), with the sphere's scale, which keeps the cylinder's corners
+// and faces within the deviation. A cylinder of another radius keeps its own layout.
+TEST(ChordFaceting, ASphereAndACylinderOfOneRadiusShareALayout) {
+    const double deviation = 0.01;
+    const NodePtr capsule = io::facetToDeviation(
+        unite(leaf(Sphere{1.0}), leaf(Cylinder{2.0, 1.0, 1.0})), deviation, FacetFit::Balanced);
+    ASSERT_TRUE(capsule);
+    const ConvexPolytopeData& sphere = *polytopeOf(capsule->left).data;
+    const ConvexPolytopeData& rod = *polytopeOf(capsule->right).data;
+    EXPECT_EQ(sphere.origin.fragments, 26u);
+    EXPECT_EQ(rod.origin.fragments, 26u);
+    // The rod's end ring lies on the sphere's equator ring: the same points.
+    int shared = 0;
+    for (const Vec3& v : rod.vertices)
+        for (const Vec3& w : sphere.vertices) shared += glm::length(v - w) <= 1e-12;
+    EXPECT_EQ(shared, 26);
+    for (const Vec3& v : rod.vertices) {
+        EXPECT_GT(std::hypot(v.x, v.y), 1.0);
+        EXPECT_LE(std::hypot(v.x, v.y), 1.0 + deviation);
+    }
+    for (const PolytopePlane& plane : rod.planes)
+        if (plane.normal.z == 0.0)
+            EXPECT_GE(plane.offset / glm::length(plane.normal), 1.0 - deviation);
+
+    const NodePtr apart = io::facetToDeviation(
+        unite(leaf(Sphere{1.0}), leaf(Cylinder{2.0, 0.5, 0.5})), deviation, FacetFit::Balanced);
+    const NodePtr alone =
+        io::facetToDeviation(leaf(Cylinder{2.0, 0.5, 0.5}), deviation, FacetFit::Balanced);
+    ASSERT_TRUE(apart && alone);
+    EXPECT_EQ(polytopeOf(apart->left).data->origin.fragments, 23u);
+    EXPECT_EQ(polytopeOf(apart->right).data->origin.fragments,
+              polytopeOf(alone).data->origin.fragments);
+}
+
 TEST(ChordFaceting, LeavesThatStayCurvedGiveNothing) {
     const FacetFit fit = FacetFit::Balanced;
     EXPECT_FALSE(io::facetToDeviation(leaf(Torus{2.0, 0.5}), 0.01, fit));
