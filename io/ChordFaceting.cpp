@@ -4,6 +4,8 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <set>
+#include <vector>
 
 #include "csg/derived/Flatten2D.h"
 #include "csg/mesh/PolyhedralBoundary.h"
@@ -96,38 +98,78 @@ double nearestSphereFace(int64_t n) {
     return c;
 }
 
-// A sphere and a straight cylinder of the same world radius (a rounded box's corner and edge, a
-// capsule) are most often tangent along a circle: faceted with one layout, their vertices meet
-// on it and the boundary there is a clean seam, where two layouts cut each other into slivers
-// (Debian's example022: 776 triangles with one layout of 14 fragments, 1 144 with 14 and 10).
-// The shared layout has the fragments that both need, rounded up to 2 modulo 4, where the
-// sphere has a ring on its equator (sphereRingCount odd), and the sphere's fit scale, which
-// keeps the cylinder within the deviation too (its faces stand nearer the curve than the
-// sphere's: cos(pi / n) >= the sphere's c).
+// A sphere whose centre is an end centre of a straight cylinder's axis, of the same world
+// radius (a rounded box's corner and edge, a capsule), is tangent to it along the end circle:
+// faceted with one layout, their vertices meet there and the boundary is a clean seam, where
+// two layouts cut each other into slivers (Debian's example022 at T = 0.19: 840 triangles
+// with shared layouts, 1 272 with its spheres' 14 fragments and cylinders' 10). The shared
+// layout has the fragments that all the leaves of that radius meeting so need, rounded up to 2
+// modulo 4, where the sphere has a ring on its equator (sphereRingCount odd), and the sphere's
+// fit scale, which keeps a cylinder within the deviation too (its faces stand nearer the curve
+// than the sphere's: cos(pi / n) >= the sphere's c).
 struct SharedLayout {
     int64_t n = 0;
     double scale = 0.0;
 };
-// Keyed by the world radius (similarity transforms only), rounded to 1e-9 of it.
-using RadiusKey = int64_t;
-RadiusKey radiusKey(double r) {
-    return std::llround(std::log(r) * 1e9);
-}
 
-struct RadiusUse {
-    bool sphere = false, cylinder = false;
-    int64_t n = 0;  // the most fragments any of them needs alone
+// A point where such leaves meet, keyed by the world radius and position, rounded to 1e-9 of
+// the radius.
+struct SeamKey {
+    int64_t radius, x, y, z;
+    auto operator<=>(const SeamKey&) const = default;
 };
 
-// Radii in world units of a similarity transform's sphere or straight cylinder; 0 otherwise.
-double sharableRadius(const csg::Primitive& p, const csg::Mat4& world) {
+// A sphere's or straight cylinder's world radius and the points where a partner meets it (the
+// sphere's centre; the cylinder's two end centres), under a similarity transform; no points
+// for any other leaf.
+struct SeamPoints {
+    double radius = 0.0;
+    bool sphere = false;
+    int count = 0;
+    SeamKey keys[2]{};
+};
+SeamPoints seamPointsOf(const csg::Primitive& p, const csg::Mat4& world) {
+    SeamPoints out;
     const Stretch stretch = stretchOf(world);
-    if (!(stretch.largest - stretch.smallest <= 1e-12 * stretch.largest)) return 0.0;
-    if (const auto* sphere = std::get_if<csg::Sphere>(&p)) return sphere->radius * stretch.largest;
-    if (const auto* cylinder = std::get_if<csg::Cylinder>(&p))
-        if (cylinder->r1 == cylinder->r2) return cylinder->r1 * stretch.largest;
-    return 0.0;
+    if (!(stretch.largest - stretch.smallest <= 1e-12 * stretch.largest)) return out;
+    csg::Vec3 ends[2];
+    int count = 0;
+    if (const auto* sphere = std::get_if<csg::Sphere>(&p)) {
+        out.radius = sphere->radius * stretch.largest;
+        out.sphere = true;
+        ends[count++] = csg::Vec3(world[3]);
+    } else if (const auto* cylinder = std::get_if<csg::Cylinder>(&p);
+               cylinder && cylinder->r1 == cylinder->r2) {
+        out.radius = cylinder->r1 * stretch.largest;
+        ends[count++] = csg::Vec3(world[3]);
+        ends[count++] = csg::Vec3(world * csg::Vec4(0.0, 0.0, cylinder->height, 1.0));
+    }
+    if (!(out.radius > 0.0) || !std::isfinite(out.radius)) return out;
+    const double step = 1e-9 * out.radius;
+    for (int i = 0; i < count; ++i) {
+        const csg::Vec3 q = ends[i] / step;
+        // Farther out than int64 holds (or not finite): no partner is looked for.
+        if (!(std::max({std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)}) < 1e17)) return {};
+        out.keys[i] = {std::llround(std::log(out.radius) * 1e9), std::llround(q.x),
+                       std::llround(q.y), std::llround(q.z)};
+    }
+    out.count = count;
+    return out;
 }
+
+struct Seams {
+    std::set<SeamKey> points;                 // where a sphere and a cylinder meet
+    std::map<int64_t, SharedLayout> layouts;  // by SeamKey::radius
+    // The layout of a leaf that meets a partner at one of its points.
+    std::optional<SharedLayout> layoutOf(const SeamPoints& leaf) const {
+        for (int i = 0; i < leaf.count; ++i)
+            if (points.count(leaf.keys[i])) {
+                const auto it = layouts.find(leaf.keys[i].radius);
+                if (it != layouts.end()) return it->second;
+            }
+        return std::nullopt;
+    }
+};
 
 // The faceted sphere, cylinder or extrusion (without the node's transform), or nullptr
 // for any other leaf. Spheres and cylinders get the fewest fragments whose fit stands within the
@@ -149,15 +191,14 @@ std::optional<Fragments> cylinderFragments(const csg::Cylinder& cylinder, double
         [](int64_t n) { return std::cos(std::numbers::pi / double(n)); });
 }
 
-// shared: the layouts of radii that a sphere and a cylinder share (see SharedLayout).
+// seams: the layouts that spheres and cylinders meeting at a seam share (see SharedLayout).
 csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double deviation,
-                       csg::FacetFit fit, const std::map<RadiusKey, SharedLayout>& shared) {
+                       csg::FacetFit fit, const Seams& seams) {
     const csg::Primitive& p = node.primitive;
     const double scale = stretchOf(world).largest;
     std::optional<Fragments> layout;
-    if (const double r = sharableRadius(p, world); r > 0.0)
-        if (const auto it = shared.find(radiusKey(r)); it != shared.end())
-            layout = Fragments{it->second.n, it->second.scale};
+    if (const std::optional<SharedLayout> shared = seams.layoutOf(seamPointsOf(p, world)))
+        layout = Fragments{shared->n, shared->scale};
     if (const auto* sphere = std::get_if<csg::Sphere>(&p)) {
         const std::optional<Fragments> k =
             layout ? layout : sphereFragments(sphere->radius * scale, deviation, fit);
@@ -184,56 +225,71 @@ csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double dev
     return nullptr;
 }
 
-// Which radii a sphere and a cylinder share, and the most fragments any of them needs alone.
-void collectRadii(const csg::NodePtr& node, const csg::Mat4& parent, double deviation,
-                  csg::FacetFit fit, std::map<RadiusKey, RadiusUse>& uses) {
+// Every sphere's and straight cylinder's seam points, with the fragments it needs alone.
+struct SeamLeaf {
+    SeamPoints points;
+    int64_t alone;
+};
+void collectSeamLeaves(const csg::NodePtr& node, const csg::Mat4& parent, double deviation,
+                       csg::FacetFit fit, std::vector<SeamLeaf>& leaves) {
     if (!node) return;
     const csg::Mat4 world = parent * node->parentFromNode;
     if (node->op != csg::Op::Leaf) {
-        collectRadii(node->left, world, deviation, fit, uses);
-        collectRadii(node->right, world, deviation, fit, uses);
+        collectSeamLeaves(node->left, world, deviation, fit, leaves);
+        collectSeamLeaves(node->right, world, deviation, fit, leaves);
         return;
     }
-    const double r = sharableRadius(node->primitive, world);
-    if (!(r > 0.0)) return;
-    RadiusUse& use = uses[radiusKey(r)];
-    const bool sphere = std::holds_alternative<csg::Sphere>(node->primitive);
+    const SeamPoints points = seamPointsOf(node->primitive, world);
+    if (points.count == 0) return;
+    const double r = points.radius;
     const std::optional<Fragments> alone =
-        sphere ? sphereFragments(r, deviation, fit)
-               : cylinderFragments(csg::Cylinder{1.0, r, r}, 1.0, deviation, fit);
-    (sphere ? use.sphere : use.cylinder) = true;
-    use.n = std::max(use.n, alone ? alone->n : kMostFragments + 1);
+        points.sphere ? sphereFragments(r, deviation, fit)
+                      : cylinderFragments(csg::Cylinder{1.0, r, r}, 1.0, deviation, fit);
+    leaves.push_back({points, alone ? alone->n : kMostFragments + 1});
 }
 
-std::map<RadiusKey, SharedLayout> sharedLayouts(const csg::NodePtr& root, double deviation,
-                                                csg::FacetFit fit) {
-    std::map<RadiusKey, RadiusUse> uses;
-    collectRadii(root, csg::Mat4(1.0), deviation, fit, uses);
-    std::map<RadiusKey, SharedLayout> shared;
-    for (const auto& [key, use] : uses) {
-        if (!use.sphere || !use.cylinder) continue;
-        const double r = std::exp(double(key) * 1e-9);
-        // The fewest n = 2 (mod 4) from use.n whose sphere fits (its nearest face need not
+Seams findSeams(const csg::NodePtr& root, double deviation, csg::FacetFit fit) {
+    std::vector<SeamLeaf> leaves;
+    collectSeamLeaves(root, csg::Mat4(1.0), deviation, fit, leaves);
+    // Points with a sphere (bit 1) and a cylinder (bit 2).
+    std::map<SeamKey, int> kinds;
+    for (const SeamLeaf& leaf : leaves)
+        for (int i = 0; i < leaf.points.count; ++i)
+            kinds[leaf.points.keys[i]] |= leaf.points.sphere ? 1 : 2;
+    Seams seams;
+    for (const auto& [key, kind] : kinds)
+        if (kind == 3) seams.points.insert(key);
+    // The most fragments a leaf meeting a partner needs alone, by radius.
+    std::map<int64_t, std::pair<int64_t, double>> need;  // radius key -> (n, radius)
+    for (const SeamLeaf& leaf : leaves)
+        for (int i = 0; i < leaf.points.count; ++i)
+            if (seams.points.count(leaf.points.keys[i])) {
+                auto& [n, r] = need[leaf.points.keys[i].radius];
+                n = std::max(n, leaf.alone);
+                r = leaf.points.radius;
+            }
+    for (const auto& [key, needed] : need) {
+        const auto [least, r] = needed;
+        // The fewest n = 2 (mod 4) from least whose sphere fits (its nearest face need not
         // move monotonically with n).
-        for (int64_t n = use.n + (6 - use.n % 4) % 4; n <= kMostFragments; n += 4) {
+        for (int64_t n = least + (6 - least % 4) % 4; n <= kMostFragments; n += 4) {
             if (facetedSphereFaceCount(n) >= csg::ConvexPolytope::kMaxPlanes) break;
             if (const double f = fitScale(fit, nearestSphereFace(n), r, deviation); f > 0.0) {
-                shared[key] = {n, f};
+                seams.layouts[key] = {n, f};
                 break;
             }
         }
     }
-    return shared;
+    return seams;
 }
 
 csg::NodePtr facet(const csg::NodePtr& node, const csg::Mat4& parent, double deviation,
-                   csg::FacetFit fit, const std::map<RadiusKey, SharedLayout>& shared,
-                   bool& curvedLeft) {
+                   csg::FacetFit fit, const Seams& seams, bool& curvedLeft) {
     if (!node || curvedLeft) return node;
     const csg::Mat4 world = parent * node->parentFromNode;
     if (node->op == csg::Op::Leaf) {
         if (csg::polyhedralLeaf(node->primitive)) return node;
-        csg::NodePtr leaf = facetLeaf(*node, world, deviation, fit, shared);
+        csg::NodePtr leaf = facetLeaf(*node, world, deviation, fit, seams);
         if (!leaf) {
             curvedLeft = true;
             return nullptr;
@@ -243,8 +299,8 @@ csg::NodePtr facet(const csg::NodePtr& node, const csg::Mat4& parent, double dev
         return placed;
     }
     auto copy = std::make_shared<csg::Node>(*node);
-    copy->left = facet(node->left, world, deviation, fit, shared, curvedLeft);
-    copy->right = facet(node->right, world, deviation, fit, shared, curvedLeft);
+    copy->left = facet(node->left, world, deviation, fit, seams, curvedLeft);
+    copy->right = facet(node->right, world, deviation, fit, seams, curvedLeft);
     return copy;
 }
 
@@ -252,8 +308,8 @@ csg::NodePtr facet(const csg::NodePtr& node, const csg::Mat4& parent, double dev
 
 csg::NodePtr facetToDeviation(const csg::NodePtr& root, double deviation, csg::FacetFit fit) {
     bool curvedLeft = false;
-    csg::NodePtr out = facet(root, csg::Mat4(1.0), deviation, fit,
-                             sharedLayouts(root, deviation, fit), curvedLeft);
+    csg::NodePtr out =
+        facet(root, csg::Mat4(1.0), deviation, fit, findSeams(root, deviation, fit), curvedLeft);
     return curvedLeft ? nullptr : out;
 }
 

@@ -97,10 +97,11 @@ TEST(ChordFaceting, FacesAndCornersStandWithinTheDeviationBothWays) {
 }
 
 // A capsule's end and body (a rounded box's corner and edge): sphere(1) alone takes 23
-// fragments at 0.01 and cylinder(r = 1) 16 (above); together they take one layout, the 23 both
-// need rounded up to 26 (2 modulo 4: the sphere's 13 rings put one on its equator, where the
-// cylinder's end ring meets it), with the sphere's scale, which keeps the cylinder's corners
-// and faces within the deviation. A cylinder of another radius keeps its own layout.
+// fragments at 0.01 and cylinder(r = 1) 16 (above); with the sphere's centre on the end of the
+// cylinder's axis they take one layout, the 23 both need rounded up to 26 (2 modulo 4: the
+// sphere's 13 rings put one on its equator, where the cylinder's end ring meets it), with the
+// sphere's scale, which keeps the cylinder's corners and faces within the deviation. A
+// cylinder of another radius, or of the same radius elsewhere, keeps its own layout.
 TEST(ChordFaceting, ASphereAndACylinderOfOneRadiusShareALayout) {
     const double deviation = 0.01;
     const NodePtr capsule = io::facetToDeviation(
@@ -123,14 +124,21 @@ TEST(ChordFaceting, ASphereAndACylinderOfOneRadiusShareALayout) {
         if (plane.normal.z == 0.0)
             EXPECT_GE(plane.offset / glm::length(plane.normal), 1.0 - deviation);
 
-    const NodePtr apart = io::facetToDeviation(
+    const NodePtr thinner = io::facetToDeviation(
         unite(leaf(Sphere{1.0}), leaf(Cylinder{2.0, 0.5, 0.5})), deviation, FacetFit::Balanced);
     const NodePtr alone =
         io::facetToDeviation(leaf(Cylinder{2.0, 0.5, 0.5}), deviation, FacetFit::Balanced);
-    ASSERT_TRUE(apart && alone);
-    EXPECT_EQ(polytopeOf(apart->left).data->origin.fragments, 23u);
-    EXPECT_EQ(polytopeOf(apart->right).data->origin.fragments,
+    ASSERT_TRUE(thinner && alone);
+    EXPECT_EQ(polytopeOf(thinner->left).data->origin.fragments, 23u);
+    EXPECT_EQ(polytopeOf(thinner->right).data->origin.fragments,
               polytopeOf(alone).data->origin.fragments);
+    const Mat4 aside = glm::translate(Mat4(1.0), Vec3(3.0, 0.0, 0.0));
+    const NodePtr apart = io::facetToDeviation(
+        unite(leaf(Sphere{1.0}), transformed(aside, leaf(Cylinder{2.0, 1.0, 1.0}))), deviation,
+        FacetFit::Balanced);
+    ASSERT_TRUE(apart);
+    EXPECT_EQ(polytopeOf(apart->left).data->origin.fragments, 23u);
+    EXPECT_EQ(polytopeOf(apart->right).data->origin.fragments, 16u);
 }
 
 TEST(ChordFaceting, LeavesThatStayCurvedGiveNothing) {
