@@ -101,7 +101,7 @@ double nearestSphereFace(int64_t n) {
 // A sphere whose centre is an end centre of a straight cylinder's axis, of the same world
 // radius (a rounded box's corner and edge, a capsule), is tangent to it along the end circle:
 // faceted with one layout, their vertices meet there and the boundary is a clean seam, where
-// two layouts cut each other into slivers (Debian's example022 at T = 0.19: 840 triangles
+// two layouts cut each other into slivers (Debian's example022 at T = 0.19: 824 triangles
 // with shared layouts, 1 272 with its spheres' 14 fragments and cylinders' 10). The shared
 // layout has the fragments that all the leaves of that radius meeting so need, rounded up to 2
 // modulo 4, where the sphere has a ring on its equator (sphereRingCount odd), and the sphere's
@@ -171,9 +171,6 @@ struct Seams {
     }
 };
 
-// The faceted sphere, cylinder or extrusion (without the node's transform), or nullptr
-// for any other leaf. Spheres and cylinders get the fewest fragments whose fit stands within the
-// deviation, checked with their faces' exact planes.
 constexpr int64_t kMostFragments = 1 << 15;
 
 std::optional<Fragments> sphereFragments(double r, double deviation, csg::FacetFit fit) {
@@ -191,7 +188,10 @@ std::optional<Fragments> cylinderFragments(const csg::Cylinder& cylinder, double
         [](int64_t n) { return std::cos(std::numbers::pi / double(n)); });
 }
 
-// seams: the layouts that spheres and cylinders meeting at a seam share (see SharedLayout).
+// The faceted sphere, cylinder or extrusion (without the node's transform), or nullptr for any
+// other leaf. Spheres and cylinders get the fewest fragments whose fit stands within the
+// deviation, checked with their faces' exact planes, or the layout they share with a leaf they
+// meet at a seam (see SharedLayout).
 csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double deviation,
                        csg::FacetFit fit, const Seams& seams) {
     const csg::Primitive& p = node.primitive;
