@@ -146,12 +146,12 @@ SeamPoints seamPointsOf(const csg::Primitive& p, const csg::Mat4& world) {
     }
     if (!(out.radius > 0.0) || !std::isfinite(out.radius)) return out;
     const double step = 1e-9 * out.radius;
+    const int64_t radius = std::llround(std::log(out.radius) * 1e9);
     for (int i = 0; i < count; ++i) {
         const csg::Vec3 q = ends[i] / step;
         // Farther out than int64 holds (or not finite): no partner is looked for.
         if (!(std::max({std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)}) < 1e17)) return {};
-        out.keys[i] = {std::llround(std::log(out.radius) * 1e9), std::llround(q.x),
-                       std::llround(q.y), std::llround(q.z)};
+        out.keys[i] = {radius, std::llround(q.x), std::llround(q.y), std::llround(q.z)};
     }
     out.count = count;
     return out;
@@ -225,56 +225,55 @@ csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double dev
     return nullptr;
 }
 
-// Every sphere's and straight cylinder's seam points, with the fragments it needs alone.
-struct SeamLeaf {
-    SeamPoints points;
-    int64_t alone;
-};
-void collectSeamLeaves(const csg::NodePtr& node, const csg::Mat4& parent, double deviation,
-                       csg::FacetFit fit, std::vector<SeamLeaf>& leaves) {
+// Every sphere's and straight cylinder's seam points.
+void collectSeamPoints(const csg::NodePtr& node, const csg::Mat4& parent,
+                       std::vector<SeamPoints>& leaves) {
     if (!node) return;
     const csg::Mat4 world = parent * node->parentFromNode;
     if (node->op != csg::Op::Leaf) {
-        collectSeamLeaves(node->left, world, deviation, fit, leaves);
-        collectSeamLeaves(node->right, world, deviation, fit, leaves);
+        collectSeamPoints(node->left, world, leaves);
+        collectSeamPoints(node->right, world, leaves);
         return;
     }
-    const SeamPoints points = seamPointsOf(node->primitive, world);
-    if (points.count == 0) return;
-    const double r = points.radius;
-    const std::optional<Fragments> alone =
-        points.sphere ? sphereFragments(r, deviation, fit)
-                      : cylinderFragments(csg::Cylinder{1.0, r, r}, 1.0, deviation, fit);
-    leaves.push_back({points, alone ? alone->n : kMostFragments + 1});
+    if (const SeamPoints points = seamPointsOf(node->primitive, world); points.count > 0)
+        leaves.push_back(points);
 }
 
 Seams findSeams(const csg::NodePtr& root, double deviation, csg::FacetFit fit) {
-    std::vector<SeamLeaf> leaves;
-    collectSeamLeaves(root, csg::Mat4(1.0), deviation, fit, leaves);
+    std::vector<SeamPoints> leaves;
+    collectSeamPoints(root, csg::Mat4(1.0), leaves);
     // Points with a sphere (bit 1) and a cylinder (bit 2).
     std::map<SeamKey, int> kinds;
-    for (const SeamLeaf& leaf : leaves)
-        for (int i = 0; i < leaf.points.count; ++i)
-            kinds[leaf.points.keys[i]] |= leaf.points.sphere ? 1 : 2;
+    for (const SeamPoints& leaf : leaves)
+        for (int i = 0; i < leaf.count; ++i) kinds[leaf.keys[i]] |= leaf.sphere ? 1 : 2;
     Seams seams;
     for (const auto& [key, kind] : kinds)
         if (kind == 3) seams.points.insert(key);
     // The most fragments a leaf meeting a partner needs alone, by radius.
-    std::map<int64_t, std::pair<int64_t, double>> need;  // radius key -> (n, radius)
-    for (const SeamLeaf& leaf : leaves)
-        for (int i = 0; i < leaf.points.count; ++i)
-            if (seams.points.count(leaf.points.keys[i])) {
-                auto& [n, r] = need[leaf.points.keys[i].radius];
-                n = std::max(n, leaf.alone);
-                r = leaf.points.radius;
-            }
+    struct Need {
+        int64_t n = 0;
+        double radius = 0.0;
+    };
+    std::map<int64_t, Need> need;  // by SeamKey::radius
+    for (const SeamPoints& leaf : leaves) {
+        if (!std::any_of(leaf.keys, leaf.keys + leaf.count,
+                         [&](const SeamKey& k) { return seams.points.count(k) > 0; }))
+            continue;
+        const double r = leaf.radius;
+        const std::optional<Fragments> alone =
+            leaf.sphere ? sphereFragments(r, deviation, fit)
+                        : cylinderFragments(csg::Cylinder{1.0, r, r}, 1.0, deviation, fit);
+        Need& n = need[leaf.keys[0].radius];
+        n.n = std::max(n.n, alone ? alone->n : kMostFragments + 1);
+        n.radius = r;
+    }
     for (const auto& [key, needed] : need) {
-        const auto [least, r] = needed;
-        // The fewest n = 2 (mod 4) from least whose sphere fits (its nearest face need not
+        // The fewest n = 2 (mod 4) from needed.n whose sphere fits (its nearest face need not
         // move monotonically with n).
-        for (int64_t n = least + (6 - least % 4) % 4; n <= kMostFragments; n += 4) {
+        for (int64_t n = needed.n + (6 - needed.n % 4) % 4; n <= kMostFragments; n += 4) {
             if (facetedSphereFaceCount(n) >= csg::ConvexPolytope::kMaxPlanes) break;
-            if (const double f = fitScale(fit, nearestSphereFace(n), r, deviation); f > 0.0) {
+            if (const double f = fitScale(fit, nearestSphereFace(n), needed.radius, deviation);
+                f > 0.0) {
                 seams.layouts[key] = {n, f};
                 break;
             }

@@ -103,9 +103,9 @@ struct SampleBound {
 };
 
 // Lines along the surface normal where the best line met the surface, each from the last
-// one's hit: the best of a few lines can meet a smooth surface well off its normal and read
-// up to a fifth above the distance, while the line along the normal where it met runs through
-// the foot point of a surface that curves little between the two points.
+// one's hit: the best of a few lines can meet a smooth surface well off its normal and read a
+// quarter above the distance (mesh_test: 0.1257 for 0.1), while the line along the normal where
+// it met runs through the foot point of a surface that curves little between the two points.
 template <class Measure>
 void footSteps(SampleBound& bound, Measure&& measure) {
     for (int step = 0; step < tol::kDistanceFootSteps && bound.best.normal != Vec3(0.0); ++step) {

@@ -232,9 +232,11 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
             double measured = measureToSurface(*mesh, reach);
             // Within the margin one way, the slack first: when a coarser faceting is kept,
             // this one need not be measured the other way (the costlier way on small meshes).
-            const bool coarser =
-                measured <= margin && coarserKept(measured, mesh->triangles.size());
-            if (!coarser && measured <= margin) measured = measureToMesh(*mesh);
+            bool keptCoarser = false;
+            if (measured <= margin) {
+                keptCoarser = coarserKept(measured, mesh->triangles.size());
+                if (!keptCoarser) measured = measureToMesh(*mesh);
+            }
             if (measured > margin) {
                 result.polyhedral.declined =
                     "the faceted part did not measure within the tolerance";
@@ -245,7 +247,7 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
                                             tol::kFacetFinerMin, tol::kFacetFinerMax);
                 continue;
             }
-            if (!coarser) result.mesh = std::move(*mesh);
+            if (!keptCoarser) result.mesh = std::move(*mesh);
             result.exact = true;
             result.facetDeviation = deviation;
             result.facetFit = fit;

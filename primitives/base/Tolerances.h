@@ -340,9 +340,9 @@ inline constexpr double kDistanceShiftMaxFraction = 0.1;
 // A distance sample whose bound may be the maximum is tightened by lines along the surface
 // normal where its best line met the surface, up to this many, each from the last one's hit
 // (unit: lines; MeshDistance.cpp). Why: on a smooth surface the first such line runs through
-// the foot point to within the surface's turn over the gap, and the second takes up most of
-// what is left (mesh_test: a point 0.1 off sphere(1) read 0.1257 by the fixed lines, within
-// 1e-5 of the truth after the fan and these).
+// the foot point to within the surface's turn over the gap, and a second from its hit corrects
+// that turn once more (mesh_test: a point 0.1 off sphere(1) read 0.1257 by the fixed lines,
+// within 1e-5 of the truth after the fan and these); one or three were not measured.
 inline constexpr int kDistanceFootSteps = 2;
 
 // How far apart dual contouring keeps vertices that must stay distinct points once written as
