@@ -654,10 +654,6 @@ void sortCrossings(std::vector<Polyhedron::Crossing>& c) {
 thread_local std::vector<Polyhedron::Crossing> lineCrossings;
 thread_local std::vector<LocalSpans::Entry> lineSpans;
 
-uint16_t faceOf(uint32_t triangle) {
-    return static_cast<uint16_t>(triangle % Polyhedron::kFaceIds);
-}
-
 }  // namespace
 
 void Polyhedron::crossings(const Vec3& o, const Vec3& d, std::vector<Crossing>& out) const {
@@ -688,8 +684,8 @@ void Polyhedron::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     std::vector<LocalSpans::Entry>& spans = lineSpans;
     spans.clear();
     for (size_t i = 0; i < pairs; ++i)
-        spans.push_back(
-            {c[2 * i].t, c[2 * i + 1].t, faceOf(c[2 * i].triangle), faceOf(c[2 * i + 1].triangle)});
+        spans.push_back({c[2 * i].t, c[2 * i + 1].t, Polyhedron::faceOf(c[2 * i].triangle),
+                         Polyhedron::faceOf(c[2 * i + 1].triangle)});
     addWithinCapacity(spans, out);
 }
 

@@ -121,6 +121,7 @@ struct Polyhedron {
     static constexpr const char* kName = "polyhedron";
     // Face ids in a span end: the triangle index modulo this (see the head of this file).
     static constexpr uint32_t kFaceIds = 65535;
+    static uint16_t faceOf(uint32_t triangle) { return uint16_t(triangle % kFaceIds); }
     // Most triangles a mesh may have: the BVH's depth bound (primitives/base/WideBvh.h).
     static constexpr uint64_t kMaxTriangles = uint64_t(1) << 24;
     // invalidReason() of a mesh with no face of positive area (the empty solid to a caller).

@@ -72,6 +72,54 @@ TEST(ExactMesh, CubeBoredByOpenScadsPolygonByHand) {
     EXPECT_LE(mesh.triangles.size(), 80u);
 }
 
+// A polyhedron() of 2 * 6 * 120^2 triangles: the cube of side 2 about the origin, each face a
+// grid of 120 x 120 squares. Span ends name a triangle's index modulo Polyhedron::kFaceIds, so
+// each face id stands for three triangles here.
+std::string finelyDividedCube() {
+    constexpr int kSquares = 120;
+    std::string points, faces;
+    int next = 0;
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < 2; ++side) {
+            const int first = next;
+            for (int i = 0; i <= kSquares; ++i)
+                for (int j = 0; j <= kSquares; ++j, ++next) {
+                    double p[3];
+                    p[axis] = side ? 1.0 : -1.0;
+                    p[(axis + 1) % 3] = -1.0 + 2.0 * i / kSquares;
+                    p[(axis + 2) % 3] = -1.0 + 2.0 * j / kSquares;
+                    points += (next ? ",[" : "[") + std::to_string(p[0]) + "," +
+                              std::to_string(p[1]) + "," + std::to_string(p[2]) + "]";
+                }
+            const auto at = [&](int i, int j) {
+                return std::to_string(first + i * (kSquares + 1) + j);
+            };
+            for (int i = 0; i < kSquares; ++i)
+                for (int j = 0; j < kSquares; ++j) {
+                    // Outward on the high side; the low side runs the other way round.
+                    const std::string a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1),
+                                      d = at(i, j + 1);
+                    faces += std::string(faces.empty() ? "" : ",") +
+                             (side ? "[" + a + "," + b + "," + c + "],[" + a + "," + c + "," + d
+                                   : "[" + a + "," + c + "," + b + "],[" + a + "," + d + "," + c) +
+                             "]";
+                }
+        }
+    return "polyhedron(points=[" + points + "], faces=[" + faces + "])";
+}
+
+TEST(ExactMesh, AMeshOfMoreTrianglesThanFaceIdsByHand) {
+    // A unit cube over its corner (no face of one in a plane of the other: a plane of thousands
+    // of coplanar triangles cuts each other face there along every edge, which is slow).
+    const csg::Scene scene = compiled("difference() { " + finelyDividedCube() +
+                                      "; translate([0.5, 0.5, 0.5]) cube(1); }");
+    ASSERT_EQ(scene.leafCount(), 2u);
+    const auto& cube = std::get<csg::Polyhedron>(scene.leafPrimitive(0));
+    ASSERT_GT(cube.data->triangles.size(), 2 * size_t(csg::Polyhedron::kFaceIds));
+    const TriangleMesh mesh = exactMesh(scene);
+    EXPECT_NEAR(csg::signedVolume(mesh), 8.0 - 0.125, 1e-12);
+}
+
 TEST(ExactMesh, VolumeStaysUnderATurn) {
     const std::string part =
         "module part() { difference() { intersection() { cube(1, center=true); "
@@ -217,6 +265,28 @@ TEST(ExactMesh, TessellateUsesItAndMeasuresIt) {
     EXPECT_NEAR(csg::signedVolume(r.mesh), 7.0, 1e-12);
     // Exact surface points lie on the mesh to rounding.
     EXPECT_LE(r.backError.max, 1e-12);
+}
+
+// A torus of revolution faceted within 0.8 mm of a 2.5 mm tolerance needs more triangles than
+// span ends can name one by one (Polyhedron::kFaceIds): it is still its exact boundary, not the
+// grid's mesh (277 228 triangles before, at 5.4 s), and within the tolerance. Its volume is
+// Pappus's 2 pi R * pi r^2, which the mesh misses by at most its area 4 pi^2 R r times T.
+TEST(ExactMesh, AFineTorusIsItsExactBoundary) {
+    const io::EvaluateResult r =
+        csg::testing::evaluate("rotate_extrude() translate([10, 0]) circle(3);");
+    ASSERT_TRUE(r.ok()) << csg::testing::diagnosticsOf(r);
+    csg::TessellateOptions options;
+    options.tolerance = 0.0025;
+    options.facetCurves = io::curveFaceter(r.model->root);
+    const csg::TessellateResult t = csg::tessellate(csg::Scene::compile(r.model->root), options);
+    EXPECT_TRUE(t.exact);
+    EXPECT_TRUE(t.toleranceMet);
+    EXPECT_GT(t.mesh.triangles.size(), size_t(csg::Polyhedron::kFaceIds));
+    EXPECT_LT(t.mesh.triangles.size(), 100000u);
+    EXPECT_TRUE(csg::checkTopology(t.mesh).closedManifold());
+    const double pi = std::numbers::pi;
+    EXPECT_NEAR(csg::signedVolume(t.mesh), 2.0 * pi * pi * 10.0 * 9.0,
+                4.0 * pi * pi * 10.0 * 3.0 * options.tolerance);
 }
 
 // The peer part of bench/README.md's export tables (../shared/peers/part1.scad: a cube cut by

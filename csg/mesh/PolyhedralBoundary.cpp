@@ -33,7 +33,7 @@ struct Face {
     double c = 0.0;
     Bounds3 box;
     uint32_t leaf = 0;
-    uint16_t id = 0;
+    uint16_t id = 0;  // the face its leaf's span ends name (a mesh's: Polyhedron::faceOf)
 };
 
 Vec3 newellNormal(const Polygon& p) {
@@ -108,7 +108,7 @@ bool leafFaces(const Scene& scene, uint32_t leaf, std::vector<Face>& out) {
         for (size_t t = 0; t < d.triangles.size(); ++t) {
             const auto& tri = d.triangles[t];
             addFace(m, {d.vertices[tri[0]], d.vertices[tri[1]], d.vertices[tri[2]]}, leaf,
-                    uint16_t(t), out);
+                    Polyhedron::faceOf(uint32_t(t)), out);
         }
         return true;
     }
@@ -430,6 +430,11 @@ void boundaryPieces(const Scene& scene, const std::vector<Face>& faces, const Bo
         const std::span<const Span> spans = scene.spans(Ray{middle, f.n, -reach, reach}, ctx);
         // The crossing of the face's own plane is at t = 0; a span end there on this very face
         // is the boundary. Entering along n means the part lies ahead: the outside is behind.
+        // A mesh of more than Polyhedron::kFaceIds triangles names a residue, shared by a
+        // triangle in every kFaceIds: one of those others met within eps of this face's
+        // middle is the leaf's surface there too (a neighbour at an edge the middle is near:
+        // the same facing), unless the mesh passes within eps of itself, where a piece kept
+        // or dropped wrongly leaves the pieces open or doubled, which is declined below.
         const auto onFace = [&](const Hit& h) {
             if (std::abs(h.t) > eps) return false;
             if (h.leaf == f.leaf && h.face == f.id) return true;
@@ -594,7 +599,7 @@ bool polyhedralLeaf(const Primitive& p) {
     if (std::holds_alternative<Box>(p)) return true;
     if (const auto* poly = std::get_if<ConvexPolytope>(&p)) return poly->data != nullptr;
     const auto* mesh = std::get_if<Polyhedron>(&p);
-    return mesh && mesh->data && mesh->data->triangles.size() <= Polyhedron::kFaceIds;
+    return mesh && mesh->data;
 }
 
 bool allLeavesPolyhedral(const Scene& scene) {

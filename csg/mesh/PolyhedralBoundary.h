@@ -58,8 +58,7 @@ struct PolyhedralBoundaryStats {
     const char* declined = nullptr;
 };
 
-// Whether this method takes the leaf: a box, a polytope or a polygon mesh whose span ends name
-// each triangle (Polyhedron::kFaceIds).
+// Whether this method takes the leaf: a box, a polytope or a polygon mesh.
 bool polyhedralLeaf(const Primitive& p);
 // Whether every leaf of the scene is a polyhedron this method takes.
 bool allLeavesPolyhedral(const Scene& scene);
