@@ -72,30 +72,28 @@ TEST(ExactMesh, CubeBoredByOpenScadsPolygonByHand) {
     EXPECT_LE(mesh.triangles.size(), 80u);
 }
 
-// A polyhedron() of 2 * 6 * 120^2 triangles: the cube of side 2 about the origin, each face a
-// grid of 120 x 120 squares. Span ends name a triangle's index modulo Polyhedron::kFaceIds, so
-// each face id stands for three triangles here.
-std::string finelyDividedCube() {
-    constexpr int kSquares = 120;
+// A polyhedron() of 2 * 6 * squares^2 triangles: the cube of side 2 about the origin, each face
+// a grid of squares x squares.
+std::string finelyDividedCube(int squares) {
     std::string points, faces;
     int next = 0;
     for (int axis = 0; axis < 3; ++axis)
         for (int side = 0; side < 2; ++side) {
             const int first = next;
-            for (int i = 0; i <= kSquares; ++i)
-                for (int j = 0; j <= kSquares; ++j, ++next) {
+            for (int i = 0; i <= squares; ++i)
+                for (int j = 0; j <= squares; ++j, ++next) {
                     double p[3];
                     p[axis] = side ? 1.0 : -1.0;
-                    p[(axis + 1) % 3] = -1.0 + 2.0 * i / kSquares;
-                    p[(axis + 2) % 3] = -1.0 + 2.0 * j / kSquares;
+                    p[(axis + 1) % 3] = -1.0 + 2.0 * i / squares;
+                    p[(axis + 2) % 3] = -1.0 + 2.0 * j / squares;
                     points += (next ? ",[" : "[") + std::to_string(p[0]) + "," +
                               std::to_string(p[1]) + "," + std::to_string(p[2]) + "]";
                 }
             const auto at = [&](int i, int j) {
-                return std::to_string(first + i * (kSquares + 1) + j);
+                return std::to_string(first + i * (squares + 1) + j);
             };
-            for (int i = 0; i < kSquares; ++i)
-                for (int j = 0; j < kSquares; ++j) {
+            for (int i = 0; i < squares; ++i)
+                for (int j = 0; j < squares; ++j) {
                     // Outward on the high side; the low side runs the other way round.
                     const std::string a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1),
                                       d = at(i, j + 1);
@@ -108,16 +106,29 @@ std::string finelyDividedCube() {
     return "polyhedron(points=[" + points + "], faces=[" + faces + "])";
 }
 
+// Span ends name a triangle's index modulo Polyhedron::kFaceIds: in a mesh of 172 800
+// triangles each face id stands for three.
 TEST(ExactMesh, AMeshOfMoreTrianglesThanFaceIdsByHand) {
-    // A unit cube over its corner (no face of one in a plane of the other: a plane of thousands
-    // of coplanar triangles cuts each other face there along every edge, which is slow).
-    const csg::Scene scene = compiled("difference() { " + finelyDividedCube() +
+    // A unit cube over its corner, no face of one in a plane of the other.
+    const csg::Scene scene = compiled("difference() { " + finelyDividedCube(120) +
                                       "; translate([0.5, 0.5, 0.5]) cube(1); }");
     ASSERT_EQ(scene.leafCount(), 2u);
     const auto& cube = std::get<csg::Polyhedron>(scene.leafPrimitive(0));
     ASSERT_GT(cube.data->triangles.size(), 2 * size_t(csg::Polyhedron::kFaceIds));
     const TriangleMesh mesh = exactMesh(scene);
     EXPECT_NEAR(csg::signedVolume(mesh), 8.0 - 0.125, 1e-12);
+}
+
+// The divided cube moved by half its side across a corner of a box: the box's faces are cut
+// along every edge of the divided cube's triangles that crosses them, and a piece left uncut
+// where the divided cube's boundary crosses it (a cut its box was wrongly said to miss) would be
+// kept or dropped whole. 8 - 1.5^3 by hand.
+TEST(ExactMesh, FacesCutByManyTrianglesByHand) {
+    const TriangleMesh mesh =
+        exactMesh(compiled("difference() { cube(2, center = true); "
+                           "translate([0.5, 0.5, 0.5]) " +
+                           finelyDividedCube(40) + "; }"));
+    EXPECT_NEAR(csg::signedVolume(mesh), 8.0 - 1.5 * 1.5 * 1.5, 1e-12);
 }
 
 TEST(ExactMesh, VolumeStaysUnderATurn) {
