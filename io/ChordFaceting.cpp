@@ -218,7 +218,7 @@ csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double dev
             node.tags);
     }
     if (const auto* extrusion = std::get_if<csg::Extrusion>(&p)) {
-        std::optional<csg::Polyhedron> mesh = extrusionMesh(*extrusion, deviation / scale);
+        std::optional<csg::Polyhedron> mesh = extrusionMesh(*extrusion, deviation / scale, fit);
         if (!mesh) return nullptr;
         return csg::leaf(std::move(*mesh), node.tags);
     }

@@ -195,23 +195,18 @@ std::optional<csg::Polyhedron> prismOf(const std::vector<Polygon>& region, doubl
     return closedMesh(std::move(points), faces);
 }
 
-// The region (in the r, z half-plane) revolved about z through `degrees` in `steps` equal
-// steps: each contour edge sweeps a band of quads, isosceles trapezoids, so planar (a corner on
-// the axis makes them triangles: Polyhedron::make welds its copies); a wedge has the region
-// as its two end faces. With the region on the left of every edge (going up at r > 0 means
-// the region is nearer the axis), the quad P_k, P_k+1, Q_k+1, Q_k of the edge P -> Q faces
-// away from it; the start face, the region counter-clockwise in (r, z) laid on y = 0, faces
-// -y, out of a wedge that turns towards +y.
-std::optional<csg::Polyhedron> revolutionOf(const std::vector<Polygon>& region, double degrees,
-                                            int64_t steps) {
-    const bool whole = degrees >= 360.0;
-    const int64_t meridians = whole ? steps : steps + 1;
-    // The cosine and sine of each meridian's azimuth.
-    std::vector<Vec2> turn(static_cast<size_t>(meridians));
-    for (int64_t k = 0; k < meridians; ++k) {
-        const double a = std::numbers::pi / 180.0 * degrees * double(k) / double(steps);
-        turn[size_t(k)] = Vec2(std::cos(a), std::sin(a));
-    }
+// The region (in the r, z half-plane) revolved about z through the meridians `turn` (the
+// cosine and sine of each one's azimuth, turning counter-clockwise; `whole`: a full turn, the
+// last meridian followed by the first): each contour edge sweeps a band of quads, isosceles
+// trapezoids, so planar (a corner on the axis makes them triangles: Polyhedron::make welds its
+// copies); a wedge has the region as its two end faces. With the region on the left of every
+// edge (going up at r > 0 means the region is nearer the axis), the quad P_k, P_k+1, Q_k+1, Q_k
+// of the edge P -> Q faces away from it; the start face, the region counter-clockwise in (r, z)
+// laid on the first meridian's half-plane, faces back, out of a wedge that turns onwards.
+std::optional<csg::Polyhedron> revolutionOf(const std::vector<Polygon>& region,
+                                            const std::vector<Vec2>& turn, bool whole) {
+    const int64_t meridians = int64_t(turn.size());
+    const int64_t steps = whole ? meridians : meridians - 1;
     std::vector<Vec3> points;
     csg::PolygonFaces faces;
     for (const Polygon& polygon : region) {
@@ -336,7 +331,23 @@ std::optional<csg::Polyhedron> slicedExtrusionMesh(const std::vector<RegionPolyg
     return closedMesh(std::move(points), faces, /*manifold=*/false);
 }
 
-std::optional<csg::Polyhedron> extrusionMesh(const csg::Extrusion& e, double deviation) {
+std::optional<csg::Polyhedron> facetedRevolutionMesh(const std::vector<RegionPolygon>& region,
+                                                     double start, double degrees,
+                                                     int64_t sections) {
+    if (region.empty() || sections < 1 || size_t(sections) > kMaxRevolutionPoints ||
+        !(degrees > 0.0) || degrees > 360.0)
+        return std::nullopt;
+    const bool whole = degrees == 360.0;
+    std::vector<Vec2> turn(size_t(whole ? sections : sections + 1));
+    for (size_t k = 0; k < turn.size(); ++k) {
+        const double a = start + degrees * double(k) / double(sections);
+        turn[k] = Vec2(cosDegrees(a), sinDegrees(a));
+    }
+    return revolutionOf(region, turn, whole);
+}
+
+std::optional<csg::Polyhedron> extrusionMesh(const csg::Extrusion& e, double deviation,
+                                             csg::FacetFit fit) {
     using Kind = csg::Extrusion::Kind;
     if (!e.outline || !(deviation > 0.0) || e.box.empty()) return std::nullopt;
     std::vector<Polygon> region;
@@ -354,12 +365,43 @@ std::optional<csg::Polyhedron> extrusionMesh(const csg::Extrusion& e, double dev
         // A leaf reaching into x < 0 revolves only its part in x >= 0: the grid meshes it.
         if (e.box.lo.x < 0.0) return std::nullopt;
         // Half the deviation for the profile's chords, half for the meridians' (the sagitta of
-        // a step at the largest radius).
-        if (!regionOf(*e.outline, e.box, 0.5 * deviation, region)) return std::nullopt;
+        // a step at the largest radius); all of it for the meridians' when the profile has no
+        // curve (about 1 / sqrt(2) of the steps).
+        const bool curved =
+            std::any_of(e.outline->segments.begin(), e.outline->segments.end(),
+                        [](const csg::Segment2& s) { return s.kind != csg::Segment2::Kind::Line; });
+        const double profileShare = curved ? 0.5 : 0.0;
+        if (!regionOf(*e.outline, e.box, curved ? profileShare * deviation : deviation, region))
+            return std::nullopt;
         const double reach = std::max(std::abs(e.box.lo.x), std::abs(e.box.hi.x));
-        const int64_t steps =
-            csg::chordSteps(reach, std::numbers::pi / 180.0 * e.angle, 0.5 * deviation);
-        return revolutionOf(region, e.angle, std::max<int64_t>(steps, e.angle >= 360.0 ? 3 : 1));
+        const double angle = std::numbers::pi / 180.0 * e.angle;
+        const double meridians = (1.0 - profileShare) * deviation;
+        const bool whole = e.angle >= 360.0;
+        const int64_t least = whole ? 3 : 1;
+        int64_t steps = std::max(csg::chordSteps(reach, angle, meridians), least);
+        // Balanced: every ring scaled out by 2 / (1 + c) about the axis, c the cosine of half a
+        // step, so a ring's corners stand r (1 - c) / (1 + c) outside its circle and its chords'
+        // middles as far inside (csg::FacetFit). The fewest steps whose largest ring stands so
+        // within the share, counting up from the chord rule at twice it (c < 1 makes that one
+        // short by a hair at most).
+        double scale = 1.0;
+        if (fit == csg::FacetFit::Balanced) {
+            steps = std::max(csg::chordSteps(reach, angle, 2.0 * meridians), least);
+            for (;; ++steps) {
+                const double c = std::cos(0.5 * angle / double(steps));
+                if (reach * (1.0 - c) / (1.0 + c) <= meridians ||
+                    size_t(steps) > kMaxRevolutionPoints) {
+                    scale = 2.0 / (1.0 + c);
+                    break;
+                }
+            }
+        }
+        std::vector<Vec2> turn(size_t(whole ? steps : steps + 1));
+        for (size_t k = 0; k < turn.size(); ++k) {
+            const double a = angle * double(k) / double(steps);
+            turn[k] = scale * Vec2(std::cos(a), std::sin(a));
+        }
+        return revolutionOf(region, turn, whole);
     }
     return std::nullopt;
 }

@@ -7,7 +7,8 @@
 // With straight lines only, a linear_extrude's polyhedron is the extrusion itself. With curves,
 // every chord's ends lie on the curve and no point of the curve is farther than the deviation
 // from its chord, at the top as at the bottom; a revolution gives half the deviation to the
-// profile's chords and half to the steps at its largest radius.
+// profile's chords and half to the steps at its largest radius, or all of it to the steps when
+// the profile has no curve.
 //
 // The region is the outline's by its fill rule, whatever the segments' order and however its
 // contours overlap or touch (glyphs, projections, imported drawings): Clipper's union of the
@@ -26,6 +27,7 @@
 #include <optional>
 #include <vector>
 
+#include "csg/mesh/Tessellate.h"
 #include "primitives/Extrusion.h"
 #include "primitives/Polyhedron.h"
 
@@ -66,8 +68,19 @@ std::optional<csg::Polyhedron> slicedExtrusionMesh(const std::vector<RegionPolyg
                                                    double z0, double z1, double twist,
                                                    csg::Vec2 scale, int64_t slices);
 
+// OpenSCAD 2021's faceted rotate_extrude of a region in x >= 0 (OPENSCAD.md section 4): the
+// ring of each profile corner has `sections` equal steps through `degrees` (in (0, 360]) from
+// azimuth `start`, its corners at start + degrees k / sections by OpenSCAD's degree
+// trigonometry (io/Degrees.h cosDegrees, sinDegrees). nullopt as for extrusionMesh.
+std::optional<csg::Polyhedron> facetedRevolutionMesh(const std::vector<RegionPolygon>& region,
+                                                     double start, double degrees,
+                                                     int64_t sections);
+
 // The extrusion as a closed polyhedron in its own frame, its curves within `deviation` (local
-// units, > 0) of their chords, or nullopt (see above).
-std::optional<csg::Polyhedron> extrusionMesh(const csg::Extrusion& extrusion, double deviation);
+// units, > 0) of their chords, or nullopt (see above). A balanced fit (csg::FacetFit) scales a
+// revolution's rings out about the axis, so its steps stand as far outside their circles as
+// inside: about 1 / sqrt(2) of the steps; chords of a profile stay inscribed.
+std::optional<csg::Polyhedron> extrusionMesh(const csg::Extrusion& extrusion, double deviation,
+                                             csg::FacetFit fit = csg::FacetFit::Inscribed);
 
 }  // namespace io

@@ -288,6 +288,15 @@ Instance linearExtrudeModule(Evaluator& e, const InstantiationStmt& s, const Con
 
 namespace {
 
+// The colour of a profile's revolution: its first leaf's (a part colours a profile as a whole).
+// The sectors' boxes and half-spaces take it too: a profile's flat top or bottom lies in its
+// sector box's face, and the merge names the box there (the first operand).
+uint32_t profileMaterial(const csg::NodePtr& profile) {
+    const csg::Node* leaf = profile.get();
+    while (leaf->op != csg::Op::Leaf) leaf = leaf->left.get();
+    return leaf->tags.material;
+}
+
 // OpenSCAD's faceted revolution (OPENSCAD.md section 4): `sections` sectors of equal angle
 // from azimuth `start`. Between two rings every profile vertex (r, z) becomes a chord at
 // distance r cos(delta/2) from the axis along the sector's bisector m, so the sector is
@@ -298,6 +307,7 @@ csg::NodePtr facetedRevolution(const csg::NodePtr& profile, double start, double
                                uint32_t tag) {
     const double delta = angle / double(sections);
     const double reach = 2.0 * rmax + 1.0;  // past the wedge's width at any radius
+    const csg::Tags tags{tag, profileMaterial(profile)};
     const csg::NodePtr prism = liftLeaves(
         profile, [&](const Extrusion& leaf) { return leaf.linear(-reach, reach, Vec2(1.0)); });
     std::vector<csg::NodePtr> sectors;
@@ -312,21 +322,44 @@ csg::NodePtr facetedRevolution(const csg::NodePtr& profile, double start, double
         worldFromLocal[0] = csg::Vec4(c * m, 0.0);
         worldFromLocal[1] = csg::Vec4(0.0, 0.0, 1.0, 0.0);
         worldFromLocal[2] = csg::Vec4(w, 0.0);
-        const csg::NodePtr after = csg::leaf(
-            csg::HalfSpace{csg::Vec3(sinDegrees(a0), -cosDegrees(a0), 0.0), 0.0}, {tag, 0});
-        const csg::NodePtr before = csg::leaf(
-            csg::HalfSpace{csg::Vec3(-sinDegrees(a1), cosDegrees(a1), 0.0), 0.0}, {tag, 0});
+        const csg::NodePtr after =
+            csg::leaf(csg::HalfSpace{csg::Vec3(sinDegrees(a0), -cosDegrees(a0), 0.0), 0.0}, tags);
+        const csg::NodePtr before =
+            csg::leaf(csg::HalfSpace{csg::Vec3(-sinDegrees(a1), cosDegrees(a1), 0.0), 0.0}, tags);
         // The sector's box (the triangle from the axis to its outer chord, times the
         // profile's height) keeps its bounds tight for the BVH.
         const csg::Vec2 e0(cosDegrees(a0), sinDegrees(a0)), e1(cosDegrees(a1), sinDegrees(a1));
         const csg::Vec2 lo = glm::min(csg::Vec2(0.0), rmax * glm::min(e0, e1));
         const csg::Vec2 hi = glm::max(csg::Vec2(0.0), rmax * glm::max(e0, e1));
-        const csg::NodePtr box =
-            csg::leaf(csg::Box{csg::Vec3(lo, zlo), csg::Vec3(hi, zhi)}, {tag, 0});
-        sectors.push_back(csg::intersectAll(
-            {box, after, before, csg::transformed(worldFromLocal, prism)}, {tag, 0}));
+        const csg::NodePtr box = csg::leaf(csg::Box{csg::Vec3(lo, zlo), csg::Vec3(hi, zhi)}, tags);
+        sectors.push_back(
+            csg::intersectAll({box, after, before, csg::transformed(worldFromLocal, prism)}, tags));
     }
-    return csg::uniteAll(sectors, {tag, 0});
+    return csg::uniteAll(sectors, tags);
+}
+
+// The faceted revolution as one polyhedron, OpenSCAD's own mesh of it, when the profile's
+// boundary is straight lines in x >= 0; nullptr otherwise (an exact circle() in a revolution
+// with $fn keeps the sector wedges, which take any profile). One leaf instead of a union of
+// sectors: rays walk one mesh's BVH, and the export takes its exact boundary.
+csg::NodePtr revolutionPolyhedron(const csg::NodePtr& profile, double start, double angle,
+                                  int64_t sections, uint32_t tag) {
+    const std::optional<BoundaryOutline> united = boundaryOutline(*profile);
+    if (!united || united->approximated) return nullptr;
+    csg::Bounds2 box;
+    for (const csg::Segment2& s : united->outline->segments) {
+        if (s.kind != csg::Segment2::Kind::Line) return nullptr;
+        box.add(s.p[0]);
+        box.add(s.p[1]);
+    }
+    if (box.empty() || box.lo.x < 0.0) return nullptr;
+    // Lines only: the chords' deviation is never used.
+    const std::optional<std::vector<RegionPolygon>> region =
+        chordRegion(*united->outline, box, 1.0);
+    if (!region) return nullptr;
+    std::optional<csg::Polyhedron> mesh = facetedRevolutionMesh(*region, start, angle, sections);
+    if (!mesh) return nullptr;
+    return csg::leaf(std::move(*mesh), {tag, profileMaterial(profile)});
 }
 
 }  // namespace
@@ -400,8 +433,9 @@ Instance rotateExtrudeModule(Evaluator& e, const InstantiationStmt& s, const Con
         const int64_t sections =
             std::max<int64_t>(int64_t(double(fragments(rmax, settings)) * sweep / 360.0), 1);
         const double start = sweep == 360.0 ? 180.0 : 0.0;
-        solid = facetedRevolution(profile, start, sweep, sections, rmax, zlo, zhi,
-                                  e.sourceTag(s.loc, e.childPath(state, s.name)));
+        const uint32_t tag = e.sourceTag(s.loc, e.childPath(state, s.name));
+        solid = revolutionPolyhedron(profile, start, sweep, sections, tag);
+        if (!solid) solid = facetedRevolution(profile, start, sweep, sections, rmax, zlo, zhi, tag);
     } else {
         solid = liftLeaves(profile,
                            [&](const Extrusion& leaf) { return leaf.rotated(std::abs(angle)); });

@@ -130,32 +130,63 @@ TEST(ExtrusionMesh, ChordsOfACircleLieOnItWithinTheDeviation) {
 }
 
 TEST(ExtrusionMesh, RevolutionsAreRingsOfTrapezoids) {
-    // The square [2, 3] x [0, 1] revolved: half the deviation 0.01 for the steps at the largest
-    // radius 3, ceil(pi / acos(1 - 0.005 / 3)) = 55 of them. Each step is a sector of the
-    // annulus between the circles through the corners: the solid is the prism of the annulus
-    // between two regular 55-gons, 55 / 2 sin(2 pi / 55) (3^2 - 2^2) x 1.
+    // The square [2, 3] x [0, 1] revolved: a profile without curves leaves the whole deviation
+    // 0.01 to the steps at the largest radius 3, ceil(pi / acos(1 - 0.01 / 3)) = 39 of them.
+    // Each step is a sector of the annulus between the circles through the corners: the solid
+    // is the prism of the annulus between two regular 39-gons, 39 / 2 sin(2 pi / 39)
+    // (3^2 - 2^2) x 1.
     const double deviation = 0.01;
     const std::optional<Polyhedron> ring =
         io::extrusionMesh(extrusionOf("rotate_extrude() translate([2, 0]) square(1);"), deviation);
     ASSERT_TRUE(ring);
-    EXPECT_EQ(ring->data->vertices.size(), 4u * 55u);
-    EXPECT_NEAR(volumeOf(*ring), 27.5 * std::sin(2.0 * kPi / 55.0) * 5.0, 1e-9);
+    EXPECT_EQ(ring->data->vertices.size(), 4u * 39u);
+    EXPECT_NEAR(volumeOf(*ring), 19.5 * std::sin(2.0 * kPi / 39.0) * 5.0, 1e-9);
     EXPECT_TRUE(checkTopology(meshOf(*ring)).closedManifold());
-    // A quarter of it: ceil(pi / 2 / (2 acos(1 - 0.005 / 3))) = 14 steps, each a sector of
-    // 1/2 sin(pi / 28) (3^2 - 2^2), and the two end squares close it.
+    // A quarter of it: ceil(pi / 2 / (2 acos(1 - 0.01 / 3))) = 10 steps, each a sector of
+    // 1/2 sin(pi / 20) (3^2 - 2^2), and the two end squares close it.
     const std::optional<Polyhedron> wedge = io::extrusionMesh(
         extrusionOf("rotate_extrude(angle = 90) translate([2, 0]) square(1);"), deviation);
     ASSERT_TRUE(wedge);
-    EXPECT_EQ(wedge->data->vertices.size(), 4u * 15u);
-    EXPECT_NEAR(volumeOf(*wedge), 14 * 0.5 * std::sin(kPi / 28.0) * 5.0, 1e-9);
+    EXPECT_EQ(wedge->data->vertices.size(), 4u * 11u);
+    EXPECT_NEAR(volumeOf(*wedge), 10 * 0.5 * std::sin(kPi / 20.0) * 5.0, 1e-9);
     EXPECT_TRUE(checkTopology(meshOf(*wedge)).closedManifold());
-    // A profile on the axis: the square [0, 2] x [0, 1] revolved is a 45-gon prism
-    // (ceil(pi / acos(1 - 0.005 / 2)) = 45), its caps fans around the axis.
+    // A profile on the axis: the square [0, 2] x [0, 1] revolved is a 32-gon prism
+    // (ceil(pi / acos(1 - 0.01 / 2)) = 32), its caps fans around the axis.
     const std::optional<Polyhedron> disc =
         io::extrusionMesh(extrusionOf("rotate_extrude() square([2, 1]);"), deviation);
     ASSERT_TRUE(disc);
-    EXPECT_NEAR(volumeOf(*disc), 22.5 * std::sin(2.0 * kPi / 45.0) * 4.0, 1e-9);
+    EXPECT_NEAR(volumeOf(*disc), 16.0 * std::sin(2.0 * kPi / 32.0) * 4.0, 1e-9);
     EXPECT_TRUE(checkTopology(meshOf(*disc)).closedManifold());
+    // A curved profile shares the deviation: half for its chords, half for the steps. The
+    // circle of radius 1 about (4, 0) has ceil(pi / acos(1 - 0.005)) = 32 chords, the steps at
+    // radius 5 ceil(pi / acos(1 - 0.005 / 5)) = 71: 32 * 71 corners.
+    const std::optional<Polyhedron> torus =
+        io::extrusionMesh(extrusionOf("rotate_extrude() translate([4, 0]) circle(1);"), deviation);
+    ASSERT_TRUE(torus);
+    EXPECT_EQ(torus->data->vertices.size(), 32u * 71u);
+}
+
+TEST(ExtrusionMesh, BalancedRevolutionsStandAsFarOutsideAsInside) {
+    // The ring above, balanced: the fewest steps n with 3 (1 - c) / (1 + c) <= 0.01, c =
+    // cos(pi / n), i.e. tan(pi / 2n)^2 <= 0.01 / 3: n = 28, every ring scaled by 2 / (1 + c).
+    const double deviation = 0.01;
+    const std::optional<Polyhedron> ring =
+        io::extrusionMesh(extrusionOf("rotate_extrude() translate([2, 0]) square(1);"), deviation,
+                          csg::FacetFit::Balanced);
+    ASSERT_TRUE(ring);
+    ASSERT_EQ(ring->data->vertices.size(), 4u * 28u);
+    const double c = std::cos(kPi / 28.0), s = 2.0 / (1.0 + c);
+    ASSERT_GT(3.0 * (1.0 - std::cos(kPi / 27.0)) / (1.0 + std::cos(kPi / 27.0)), deviation);
+    for (const Vec3& v : ring->data->vertices) {
+        const double radius = std::hypot(v.x, v.y);
+        EXPECT_NEAR(radius, s * (radius < 2.5 ? 2.0 : 3.0), 1e-12);
+    }
+    // The outer ring's corners stand 3 (s - 1) outside, its chords' middles 3 (1 - s c)
+    // inside: both the deviation's worth or less, and equal.
+    EXPECT_LE(3.0 * (s - 1.0), deviation);
+    EXPECT_NEAR(3.0 * (s - 1.0), 3.0 * (1.0 - s * c), 1e-15);
+    EXPECT_NEAR(volumeOf(*ring), 14.0 * std::sin(2.0 * kPi / 28.0) * s * s * 5.0, 1e-9);
+    EXPECT_TRUE(checkTopology(meshOf(*ring)).closedManifold());
 }
 
 TEST(ExtrusionMesh, DeclinesCurvedSidesAndApexes) {

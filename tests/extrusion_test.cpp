@@ -347,6 +347,38 @@ TEST(Extrusion, FacetedRevolutionLiesOnOpenScadsMesh) {
     }
 }
 
+// A faceted revolution is one polyhedron when its profile is straight lines, and sector wedges
+// (box, half-spaces and the profile's prism) when it keeps an exact arc; either way the colour
+// of the profile is the solid's, on its flat top too, which lies in the wedges' boxes' faces
+// (the merge named the box there, and the top took the default colour).
+TEST(Extrusion, AFacetedRevolutionIsTheProfilesColourAllOver) {
+    const char* const parts[] = {
+        "color(\"red\") rotate_extrude($fn = 12) translate([3, 0]) square(2);",
+        "color(\"red\") rotate_extrude($fn = 12) translate([3, 0]) "
+        "difference() { square(2); translate([1, 1]) circle(0.5, $fn = 0); }",
+    };
+    const char* const leaves[] = {"polyhedron", "halfspace"};
+    for (int i = 0; i < 2; ++i) {
+        const io::EvaluateResult r = evaluate(parts[i]);
+        ASSERT_TRUE(r.ok()) << diagnosticsOf(r);
+        const csg::Scene scene = csg::Scene::compile(r.model->root);
+        bool found = false;
+        for (uint32_t leaf = 0; leaf < scene.leafCount(); ++leaf)
+            found = found || std::string(std::visit([](const auto& p) { return p.kName; },
+                                                    scene.leafPrimitive(leaf))) == leaves[i];
+        EXPECT_TRUE(found) << parts[i] << " has no " << leaves[i];
+        csg::QueryContext ctx;
+        // Down onto the top at radius 4, across the side at height 1.
+        for (const csg::Ray& ray : {csg::Ray{{0.3, 4.0, 10.0}, {0, 0, -1}, 0.0, 100.0},
+                                    csg::Ray{{0.3, -10.0, 0.5}, {0, 1, 0}, 0.0, 100.0}}) {
+            const std::optional<csg::Hit> hit = scene.closest(ray, ctx);
+            ASSERT_TRUE(hit) << parts[i];
+            const auto& m = r.model->materials.at(scene.leafTags(hit->leaf).material);
+            EXPECT_EQ(m.color, csg::Vec4(1, 0, 0, 1)) << parts[i] << " at t = " << hit->t;
+        }
+    }
+}
+
 // A 2-D part on the command line: info says so, render shows it, export and compare refuse it
 // with OpenSCAD's message and write nothing.
 TEST(Extrusion, TwoDimensionalPartOnTheCommandLine) {
