@@ -107,7 +107,7 @@ std::string finelyDividedCube(int squares) {
 }
 
 // Span ends name a triangle's index modulo Polyhedron::kFaceIds: in a mesh of 172 800
-// triangles each face id stands for three.
+// triangles each face id stands for two or three.
 TEST(ExactMesh, AMeshOfMoreTrianglesThanFaceIdsByHand) {
     // A unit cube over its corner, no face of one in a plane of the other.
     const csg::Scene scene = compiled("difference() { " + finelyDividedCube(120) +

@@ -368,7 +368,7 @@ TEST(Extrusion, AFacetedRevolutionIsTheProfilesColourAllOver) {
                                                     scene.leafPrimitive(leaf))) == leaves[i];
         EXPECT_TRUE(found) << parts[i] << " has no " << leaves[i];
         csg::QueryContext ctx;
-        // Down onto the top at radius 4, across the side at height 1.
+        // Down onto the top at radius 4, across the side at height 0.5.
         for (const csg::Ray& ray : {csg::Ray{{0.3, 4.0, 10.0}, {0, 0, -1}, 0.0, 100.0},
                                     csg::Ray{{0.3, -10.0, 0.5}, {0, 1, 0}, 0.0, 100.0}}) {
             const std::optional<csg::Hit> hit = scene.closest(ray, ctx);
