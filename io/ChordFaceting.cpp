@@ -188,8 +188,8 @@ std::optional<Fragments> cylinderFragments(const csg::Cylinder& cylinder, double
         [](int64_t n) { return std::cos(std::numbers::pi / double(n)); });
 }
 
-// The faceted sphere, cylinder or extrusion (without the node's transform), or nullptr for any
-// other leaf. Spheres and cylinders get the fewest fragments whose fit stands within the
+// The faceted sphere, cylinder, extrusion or torus (without the node's transform), or nullptr
+// for any other leaf. Spheres and cylinders get the fewest fragments whose fit stands within the
 // deviation, checked with their faces' exact planes, or the layout they share with a leaf they
 // meet at a seam (see SharedLayout).
 csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double deviation,
@@ -219,6 +219,20 @@ csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double dev
     }
     if (const auto* extrusion = std::get_if<csg::Extrusion>(&p)) {
         std::optional<csg::Polyhedron> mesh = extrusionMesh(*extrusion, deviation / scale, fit);
+        if (!mesh) return nullptr;
+        return csg::leaf(std::move(*mesh), node.tags);
+    }
+    if (const auto* torus = std::get_if<csg::Torus>(&p)) {
+        // The revolution of its tube's circle about z, faceted as that extrusion is.
+        csg::Outline tube;
+        tube.segments.push_back(csg::Segment2::arc({torus->majorRadius, 0.0},
+                                                   {torus->minorRadius, 0.0},
+                                                   {0.0, torus->minorRadius}, 0.0, 2.0 * csg::kPi));
+        tube.buildIndex();
+        const csg::Extrusion revolution =
+            csg::Extrusion::plane(std::make_shared<const csg::Outline>(std::move(tube)), "circle")
+                .rotated(360.0);
+        std::optional<csg::Polyhedron> mesh = extrusionMesh(revolution, deviation / scale, fit);
         if (!mesh) return nullptr;
         return csg::leaf(std::move(*mesh), node.tags);
     }

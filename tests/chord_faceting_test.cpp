@@ -21,6 +21,7 @@
 #include "csg/mesh/Tessellate.h"
 #include "io/ChordFaceting.h"
 #include "primitives/ConvexPolytope.h"
+#include "tests/PartHelpers.h"
 
 namespace csg {
 namespace {
@@ -143,11 +144,28 @@ TEST(ChordFaceting, ASphereAndACylinderOfOneRadiusShareALayout) {
 
 TEST(ChordFaceting, LeavesThatStayCurvedGiveNothing) {
     const FacetFit fit = FacetFit::Balanced;
-    EXPECT_FALSE(io::facetToDeviation(leaf(Torus{2.0, 0.5}), 0.01, fit));
-    EXPECT_FALSE(io::facetToDeviation(unite(leaf(Box{Vec3(0.0), Vec3(1.0)}), leaf(Torus{2.0, 0.5})),
+    // A twisted extrusion's sides are helicoids.
+    const io::EvaluateResult twisted =
+        csg::testing::evaluate("linear_extrude(3, twist = 90) square(2);");
+    ASSERT_TRUE(twisted.ok());
+    EXPECT_FALSE(io::facetToDeviation(twisted.model->root, 0.01, fit));
+    EXPECT_FALSE(io::facetToDeviation(unite(leaf(Box{Vec3(0.0), Vec3(1.0)}), twisted.model->root),
                                       0.01, fit));
     EXPECT_TRUE(
         io::facetToDeviation(unite(leaf(Box{Vec3(0.0), Vec3(1.0)}), leaf(Sphere{1.0})), 0.01, fit));
+}
+
+// A torus is the revolution of its tube's circle: half the deviation for the circle's chords
+// (r = 0.5: ceil(pi / acos(1 - 0.005 / 0.5)) = 23), half for the balanced steps at R + r =
+// 2.5 (the fewest n with 2.5 (1 - c) / (1 + c) <= 0.005, c = cos(pi / n): 50).
+TEST(ChordFaceting, ATorusIsTheRevolutionOfItsTube) {
+    const NodePtr faceted = io::facetToDeviation(leaf(Torus{2.0, 0.5}), 0.01, FacetFit::Balanced);
+    ASSERT_TRUE(faceted);
+    const auto* mesh = std::get_if<Polyhedron>(&faceted->primitive);
+    ASSERT_TRUE(mesh);
+    EXPECT_EQ(mesh->data->vertices.size(), 23u * 36u);
+    ASSERT_GT(2.5 * (1.0 - std::cos(kPi / 35.0)) / (1.0 + std::cos(kPi / 35.0)), 0.005);
+    ASSERT_LE(2.5 * (1.0 - std::cos(kPi / 36.0)) / (1.0 + std::cos(kPi / 36.0)), 0.005);
 }
 
 TEST(ChordFaceting, ACurvedPartExportsAsTheBoundaryOfItsFacetedLeaves) {
