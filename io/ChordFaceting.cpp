@@ -43,17 +43,6 @@ int64_t fragmentsFor(double r, double sagitta, int64_t most) {
     return std::max<int64_t>(3, n);
 }
 
-// A polytope inscribed in a curve of radius r has its vertices on the curve and its faces up to
-// r (1 - c) inside it (c r: the distance of its nearest face plane from the centre or axis).
-// Balanced, it is scaled by 2 / (1 + c) about that centre or axis: its vertices stand
-// r (1 - c) / (1 + c) outside and its nearest faces as far inside, and every point between (the
-// polytope is convex and star-shaped about the centre). Returns the scale for the fit, or 0
-// when the faces would stand more than `deviation` off a curve of world radius r.
-double fitScale(csg::FacetFit fit, double c, double r, double deviation) {
-    if (fit == csg::FacetFit::Inscribed) return r * (1.0 - c) <= deviation ? 1.0 : 0.0;
-    return r * (1.0 - c) / (1.0 + c) <= deviation ? 2.0 / (1.0 + c) : 0.0;
-}
-
 // Where a search for the fewest fragments that fit may start: below the chord rule at the
 // deviation (inscribed) or twice it (balanced), an equator face alone stands too far off, since
 // c <= cos(pi / n) and 1 + c <= 2.
@@ -73,7 +62,7 @@ std::optional<Fragments> fewestFragments(csg::FacetFit fit, double r, double dev
                                          int64_t most, FaceCount faces, Nearest nearest) {
     for (int64_t n = leastFragmentsToTry(fit, r, deviation, most); n != 0 && n <= most; ++n) {
         if (faces(n) >= csg::ConvexPolytope::kMaxPlanes) return std::nullopt;
-        if (const double f = fitScale(fit, nearest(n), r, deviation); f > 0.0)
+        if (const double f = csg::facetFitScale(fit, nearest(n), r, deviation); f > 0.0)
             return Fragments{n, f};
     }
     return std::nullopt;
@@ -128,9 +117,8 @@ struct SeamPoints {
     int count = 0;
     SeamKey keys[2]{};
 };
-SeamPoints seamPointsOf(const csg::Primitive& p, const csg::Mat4& world) {
+SeamPoints seamPointsOf(const csg::Primitive& p, const csg::Mat4& world, const Stretch& stretch) {
     SeamPoints out;
-    const Stretch stretch = stretchOf(world);
     if (!(stretch.largest - stretch.smallest <= 1e-12 * stretch.largest)) return out;
     csg::Vec3 ends[2];
     int count = 0;
@@ -195,9 +183,10 @@ std::optional<Fragments> cylinderFragments(const csg::Cylinder& cylinder, double
 csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double deviation,
                        csg::FacetFit fit, const Seams& seams) {
     const csg::Primitive& p = node.primitive;
-    const double scale = stretchOf(world).largest;
+    const Stretch stretch = stretchOf(world);
+    const double scale = stretch.largest;
     std::optional<Fragments> layout;
-    if (const std::optional<SharedLayout> shared = seams.layoutOf(seamPointsOf(p, world)))
+    if (const std::optional<SharedLayout> shared = seams.layoutOf(seamPointsOf(p, world, stretch)))
         layout = Fragments{shared->n, shared->scale};
     if (const auto* sphere = std::get_if<csg::Sphere>(&p)) {
         const std::optional<Fragments> k =
@@ -249,7 +238,8 @@ void collectSeamPoints(const csg::NodePtr& node, const csg::Mat4& parent,
         collectSeamPoints(node->right, world, leaves);
         return;
     }
-    if (const SeamPoints points = seamPointsOf(node->primitive, world); points.count > 0)
+    if (const SeamPoints points = seamPointsOf(node->primitive, world, stretchOf(world));
+        points.count > 0)
         leaves.push_back(points);
 }
 
@@ -286,7 +276,8 @@ Seams findSeams(const csg::NodePtr& root, double deviation, csg::FacetFit fit) {
         // move monotonically with n).
         for (int64_t n = needed.n + (6 - needed.n % 4) % 4; n <= kMostFragments; n += 4) {
             if (facetedSphereFaceCount(n) >= csg::ConvexPolytope::kMaxPlanes) break;
-            if (const double f = fitScale(fit, nearestSphereFace(n), needed.radius, deviation);
+            if (const double f =
+                    csg::facetFitScale(fit, nearestSphereFace(n), needed.radius, deviation);
                 f > 0.0) {
                 seams.layouts[key] = {n, f};
                 break;

@@ -7,8 +7,8 @@
 // rotate_extrudes become prisms and revolutions of their outlines' chords within the same distance
 // (io/ExtrusionMesh.h; the chords inscribed, a revolution's steps balanced with the fit), and a
 // torus the revolution of its tube's circle. The result is all polyhedra when nothing else is
-// curved, so it
-// has an exact boundary (csg/mesh/PolyhedralBoundary.h) that is the part to within that distance.
+// curved, so it has an exact boundary (csg/mesh/PolyhedralBoundary.h) that is the part to within
+// that distance.
 #pragma once
 
 #include <functional>

@@ -371,30 +371,27 @@ std::optional<csg::Polyhedron> extrusionMesh(const csg::Extrusion& e, double dev
             std::any_of(e.outline->segments.begin(), e.outline->segments.end(),
                         [](const csg::Segment2& s) { return s.kind != csg::Segment2::Kind::Line; });
         const double profileShare = curved ? 0.5 : 0.0;
-        if (!regionOf(*e.outline, e.box, curved ? profileShare * deviation : deviation, region))
-            return std::nullopt;
+        if (!regionOf(*e.outline, e.box, 0.5 * deviation, region)) return std::nullopt;
         const double reach = std::max(std::abs(e.box.lo.x), std::abs(e.box.hi.x));
         const double angle = std::numbers::pi / 180.0 * e.angle;
         const double meridians = (1.0 - profileShare) * deviation;
         const bool whole = e.angle >= 360.0;
         const int64_t least = whole ? 3 : 1;
         int64_t steps = std::max(csg::chordSteps(reach, angle, meridians), least);
-        // Balanced: every ring scaled out by 2 / (1 + c) about the axis, c the cosine of half a
-        // step, so a ring's corners stand r (1 - c) / (1 + c) outside its circle and its chords'
-        // middles as far inside (csg::FacetFit). The fewest steps whose largest ring stands so
-        // within the share, counting up from the chord rule at twice it (c < 1 makes that one
-        // short by a hair at most).
+        // Balanced: every ring scaled out about the axis (csg::facetFitScale, c the cosine of
+        // half a step). The fewest steps whose largest ring stands within the share so,
+        // counting up from the chord rule at twice it (c < 1 makes that one short by a hair at
+        // most); none beyond what a revolution may have.
         double scale = 1.0;
         if (fit == csg::FacetFit::Balanced) {
-            steps = std::max(csg::chordSteps(reach, angle, 2.0 * meridians), least);
-            for (;; ++steps) {
-                const double c = std::cos(0.5 * angle / double(steps));
-                if (reach * (1.0 - c) / (1.0 + c) <= meridians ||
-                    size_t(steps) > kMaxRevolutionPoints) {
-                    scale = 2.0 / (1.0 + c);
-                    break;
-                }
+            scale = 0.0;
+            for (steps = std::max(csg::chordSteps(reach, angle, 2.0 * meridians), least);
+                 size_t(steps) <= kMaxRevolutionPoints; ++steps) {
+                scale = csg::facetFitScale(fit, std::cos(0.5 * angle / double(steps)), reach,
+                                           meridians);
+                if (scale > 0.0) break;
             }
+            if (!(scale > 0.0)) return std::nullopt;
         }
         std::vector<Vec2> turn(size_t(whole ? steps : steps + 1));
         for (size_t k = 0; k < turn.size(); ++k) {

@@ -93,12 +93,15 @@ const std::array<Vec3, kFanLines>& fanDirections() {
     return fan;
 }
 
-// A sample's bound so far: the best line's answer, and whether the fan has been tried.
+// A sample's bound so far: the best line's answer, whether the fan has been tried, and whether
+// foot steps from that answer have stopped gaining (another would measure the same line again).
 struct SampleBound {
     LineHit best;
     bool fanned = false;
+    bool settled = false;
     void keep(const LineHit& h, double added = 0.0) {
-        if (h.distance + added < best.distance) best = {h.distance + added, h.normal};
+        if (h.distance + added < best.distance)
+            best = {h.distance + added, h.normal}, settled = false;
     }
 };
 
@@ -108,10 +111,14 @@ struct SampleBound {
 // it met runs through the foot point of a surface that curves little between the two points.
 template <class Measure>
 void footSteps(SampleBound& bound, Measure&& measure) {
+    if (bound.settled) return;
     for (int step = 0; step < tol::kDistanceFootSteps && bound.best.normal != Vec3(0.0); ++step) {
         const double before = bound.best.distance;
         bound.keep(measure(bound.best.normal, Vec3(0.0)));
-        if (!(bound.best.distance < before)) break;
+        if (!(bound.best.distance < before)) {
+            bound.settled = true;
+            return;
+        }
     }
 }
 

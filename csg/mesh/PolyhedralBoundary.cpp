@@ -425,10 +425,10 @@ bool inPlaneOf(const Face& f, const Face& g, double eps) {
 }
 
 // Whether p (in g's plane) lies inside g's convex polygon, by more than eps: on one side of
-// every edge (whichever way the corners run around g.n).
-// A piece is tested against every coincident face near it, and most lie wholly off it: the
-// corners' box decides those (p's foot on g's plane lies in it, and p is as far from its foot
-// as from the plane), and the first edge that disagrees most others.
+// every edge (whichever way the corners run around g.n). A piece is tested against every
+// coincident face near it, and most lie wholly off it: the corners' box decides those (p's foot on
+// g's plane lies in it, and p is as far from its foot as from the plane), and the first edge that
+// disagrees most others.
 bool insideFace(const Face& g, const Vec3& p, double eps) {
     const double reach = std::abs(glm::dot(g.n, p) - g.c) + eps;
     if (glm::any(glm::lessThan(p, g.cornerBox.lo - reach)) ||

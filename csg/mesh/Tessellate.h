@@ -57,6 +57,17 @@ inline constexpr int kSurfaceRaysPerAxis = 128;
 // solid, and a cut flush with one (a pocket from a sphere's pole down) keeps a skin over it.
 enum class FacetFit { Inscribed, Balanced };
 
+// A polytope inscribed in a curve of radius r has its vertices on the curve and its faces up to
+// r (1 - c) inside it (c r: the distance of its nearest face plane from the centre or axis).
+// Balanced, it is scaled by 2 / (1 + c) about that centre or axis: its vertices stand
+// r (1 - c) / (1 + c) outside and its nearest faces as far inside, and every point between (the
+// polytope is convex and star-shaped about the centre). Returns the scale for the fit, or 0
+// when the faces would stand more than `deviation` off a curve of radius r.
+inline double facetFitScale(FacetFit fit, double c, double r, double deviation) {
+    if (fit == FacetFit::Inscribed) return r * (1.0 - c) <= deviation ? 1.0 : 0.0;
+    return r * (1.0 - c) / (1.0 + c) <= deviation ? 2.0 / (1.0 + c) : 0.0;
+}
+
 // A part's curves faceted to a deviation and fit (TessellateOptions::facetCurves).
 using CurveFaceter = std::function<std::optional<Scene>(double deviation, FacetFit fit)>;
 
