@@ -3,10 +3,11 @@
 // exporters mesh the same polyhedron.
 //   csg_to_manifold PART.scad [--curves auto|exact|openscad] [-D name=value ...] > tree.json
 // Nodes: {"op": "union" | "intersection" | "difference", "a": node, "b": node};
-// {"extrude": {"contours": [[x, y, ...], ...], "rule": "EvenOdd" | "NonZero", "height": h,
-// "scale": [sx, sy]}, "m": [16 numbers, column-major]} for an untwisted linear_extrude of a
-// straight-edged outline; {"hull": [x, y, z, ...]} for a convex leaf (a box, OpenSCAD's faceted
-// cylinder or sphere: the convex hull of its world vertices is the leaf);
+// {"extrude": {"contours": [[x, y, ...], ...], "rule": "NonZero", "height": h, "scale": [sx,
+// sy]}, "m": [16 numbers, column-major]} for an untwisted linear_extrude of a straight-edged
+// outline (its region's outer contours counter-clockwise, their holes clockwise); {"hull": [x, y,
+// z, ...]} for a convex leaf (a box, OpenSCAD's faceted cylinder or sphere: the convex hull of its
+// world vertices is the leaf);
 // {"mesh": {"v": [x, y, z, ...], "t": [i, j, k, ...]}} for a polyhedron or an imported mesh;
 // {"empty": true} for the empty solid. A leaf with
 // curved faces (an exact sphere, torus, ...) is refused: Manifold has only polyhedra, so such a
@@ -16,12 +17,14 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <map>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "csg/Tree.h"
 #include "io/Diagnostic.h"
 #include "io/Evaluate.h"
+#include "io/ExtrusionMesh.h"
 #include "io/Faceting.h"
 #include "primitives/Box.h"
 #include "primitives/ConvexPolytope.h"
@@ -49,55 +52,42 @@ void points(std::string& out, const csg::Mat4& m, const std::vector<csg::Vec3>& 
     out += ']';
 }
 
-// An untwisted linear_extrude of a straight-edged outline as Manifold's extrude: its closed
-// contours (the outline's directed segments chained end to start; they share their end points'
-// very doubles), fill rule, height and top scale, and the matrix (column-major) that puts its
-// bottom at z0. False with a reason for an outline with curved segments or one that does not
-// chain into closed contours.
+// An untwisted linear_extrude of a straight-edged outline as Manifold's extrude: the
+// outline's region as io::chordRegion chains and unites it (outer contours counter-clockwise,
+// holes clockwise, the region by either fill rule), height and top scale, and the matrix
+// (column-major) that puts its bottom at z0. False with a reason for an outline with curved
+// segments or one that does not chain into closed contours.
 bool extrusion(const csg::Extrusion& e, const csg::Mat4& m, std::string& out, std::string& why) {
-    const auto& segments = e.outline->segments;
-    std::map<std::pair<double, double>, std::vector<size_t>> from;
-    for (size_t i = 0; i < segments.size(); ++i) {
-        if (segments[i].kind != csg::Segment2::Kind::Line) {
+    for (const csg::Segment2& s : e.outline->segments)
+        if (s.kind != csg::Segment2::Kind::Line) {
             why = "leaf 'extrusion' has curved faces (an outline with arcs or Beziers)";
             return false;
         }
-        from[{segments[i].p[0].x, segments[i].p[0].y}].push_back(i);
+    // Lines take no chords: any deviation gives the outline's own corners.
+    const std::optional<std::vector<io::RegionPolygon>> region =
+        io::chordRegion(*e.outline, e.box, 1.0);
+    if (!region) {
+        why = "leaf 'extrusion': its outline does not chain into closed contours";
+        return false;
     }
-    std::vector<bool> used(segments.size(), false);
     out += "{\"extrude\":{\"contours\":[";
     bool firstContour = true;
-    for (size_t start = 0; start < segments.size(); ++start) {
-        if (used[start]) continue;
+    const auto contour = [&](const std::vector<csg::Vec2>& points) {
         out += firstContour ? "[" : ",[";
         firstContour = false;
-        size_t i = start;
-        for (bool firstPoint = true;; firstPoint = false) {
-            used[i] = true;
-            if (!firstPoint) out += ',';
-            number(out, segments[i].p[0].x);
+        for (size_t k = 0; k < points.size(); ++k) {
+            if (k) out += ',';
+            number(out, points[k].x);
             out += ',';
-            number(out, segments[i].p[0].y);
-            const csg::Vec2 end = segments[i].p[1];
-            if (end == segments[start].p[0]) break;
-            const auto next = from.find({end.x, end.y});
-            size_t j = segments.size();
-            if (next != from.end())
-                for (size_t k : next->second)
-                    if (!used[k]) {
-                        j = k;
-                        break;
-                    }
-            if (j == segments.size()) {
-                why = "leaf 'extrusion': its outline does not chain into closed contours";
-                return false;
-            }
-            i = j;
+            number(out, points[k].y);
         }
         out += ']';
+    };
+    for (const io::RegionPolygon& polygon : *region) {
+        contour(polygon.outer);
+        for (const std::vector<csg::Vec2>& hole : polygon.holes) contour(hole);
     }
-    out += std::string("],\"rule\":\"") +
-           (e.outline->rule == csg::FillRule::EvenOdd ? "EvenOdd" : "NonZero") + "\",\"height\":";
+    out += "],\"rule\":\"NonZero\",\"height\":";
     number(out, e.z1 - e.z0);
     out += ",\"scale\":[";
     number(out, e.scale.x);

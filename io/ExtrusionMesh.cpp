@@ -56,40 +56,58 @@ bool regionOf(const csg::Outline& outline, const csg::Bounds2& box, double chord
     // segments share the very same doubles; its segments may come in any order), one Clipper
     // path each. Where walks touch, which segment comes next does not matter: every
     // decomposition of the directed segments into closed walks has the same winding numbers.
-    // A walk that does not close (a dangling end) declines.
+    // Under the even-odd rule a segment may also be walked backwards: its direction does not
+    // change the parity, and a drawing's paths (DXF) run their edges either way. A walk that
+    // does not close (a dangling end) declines.
     const std::vector<csg::Segment2>& segments = outline.segments;
+    const bool eitherWay = outline.rule == csg::FillRule::EvenOdd;
     const auto before = [](Vec2 a, Vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); };
-    std::vector<uint32_t> byStart(segments.size());
-    for (uint32_t i = 0; i < byStart.size(); ++i) byStart[i] = i;
-    std::sort(byStart.begin(), byStart.end(), [&](uint32_t a, uint32_t b) {
-        return before(segments[a].start(), segments[b].start());
-    });
-    std::vector<bool> used(segments.size(), false);
+    // Segment k's ends, k < n its start, k >= n its finish (walked backwards from there).
+    const size_t n = segments.size();
+    const auto endOf = [&](size_t k) {
+        return k < n ? segments[k].start() : segments[k - n].finish();
+    };
+    std::vector<uint32_t> byEnd(eitherWay ? 2 * n : n);
+    for (uint32_t i = 0; i < byEnd.size(); ++i) byEnd[i] = i;
+    std::sort(byEnd.begin(), byEnd.end(),
+              [&](uint32_t a, uint32_t b) { return before(endOf(a), endOf(b)); });
+    std::vector<bool> used(n, false);
+    // An unused segment that a walk at p can go on with: k (forwards) or n + k (backwards).
     const auto nextFrom = [&](Vec2 p) -> int64_t {
-        auto it = std::lower_bound(byStart.begin(), byStart.end(), p, [&](uint32_t k, Vec2 q) {
-            return before(segments[k].start(), q);
-        });
-        for (; it != byStart.end() && segments[*it].start() == p; ++it)
-            if (!used[*it]) return *it;
+        auto it = std::lower_bound(byEnd.begin(), byEnd.end(), p,
+                                   [&](uint32_t k, Vec2 q) { return before(endOf(k), q); });
+        for (; it != byEnd.end() && endOf(*it) == p; ++it)
+            if (!used[*it % n]) return *it;
         return -1;
     };
     ClipperLib::Paths paths;
     std::vector<Vec2> points;
     size_t corners = 0;
-    for (uint32_t first = 0; first < segments.size(); ++first) {
+    for (uint32_t first = 0; first < n; ++first) {
         if (used[first]) continue;
         ClipperLib::Path& path = paths.emplace_back();
+        const Vec2 start = segments[first].start();
         bool closed = false;
-        for (int64_t k = first; k >= 0 && !closed; k = nextFrom(segments[size_t(k)].finish())) {
-            used[size_t(k)] = true;
+        for (int64_t step = first; step >= 0 && !closed;) {
+            const csg::Segment2& segment = segments[size_t(step) % n];
+            const bool backwards = size_t(step) >= n;
+            used[size_t(step) % n] = true;
             points.clear();
-            csg::appendChordPoints(segments[size_t(k)], chordDeviation, points);
+            csg::appendChordPoints(segment, chordDeviation, points);
+            if (backwards) {
+                // The same chords from the finish: its points reversed, without the start.
+                points.push_back(segment.finish());
+                std::reverse(points.begin(), points.end());
+                points.pop_back();
+            }
             corners += points.size();
             if (corners > kMaxExtrusionMeshCorners) return false;
             for (const Vec2& p : points)
                 path.push_back({ClipperLib::cInt(std::llround(p.x * toGrid)),
                                 ClipperLib::cInt(std::llround(p.y * toGrid))});
-            closed = segments[size_t(k)].finish() == segments[first].start();
+            const Vec2 at = backwards ? segment.start() : segment.finish();
+            closed = at == start;
+            step = closed ? -1 : nextFrom(at);
         }
         if (!closed) return false;
     }

@@ -12,9 +12,11 @@
 //
 // The region is the outline's by its fill rule, whatever the segments' order and however its
 // contours overlap or touch (glyphs, projections, imported drawings): Clipper's union of the
-// chords with that rule gives outer contours with their holes. It works on integers, on a grid
-// of 2^-28 of the outline's size, and cleans what it returns of corners closer than that
-// (ExtrusionMesh.cpp says why): the corners move by 2e-9 of the size at most.
+// chords with that rule gives outer contours with their holes (under the even-odd rule a
+// segment may be walked either way). It works on integers, on a grid of 2^-50 of the
+// outline's size, and cleans what it returns of corners within about 2^-22 of the size of
+// their neighbours or of the line through them (ExtrusionMesh.cpp says why): the outline moves
+// by less than that.
 //
 // Declined (nullopt, the caller keeps the exact leaf): a twist or two scales (curved sides), a
 // scale of 0 (the apex would join the contours' sides in one vertex), an unbounded height, a

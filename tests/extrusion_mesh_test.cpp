@@ -1,7 +1,7 @@
 // Extrusions as polyhedra (io/ExtrusionMesh.h) and their export as the exact boundary
 // (io/ChordFaceting.h): volumes, corner counts and triangle counts by hand, the fill rules,
-// segments in any order, chords on the curve within the deviation, a frustum's top,
-// revolutions whole, in a wedge and on the axis, and the extrusions it declines.
+// segments in any order or either way round, chords on the curve within the deviation, a frustum's
+// top, revolutions whole, in a wedge and on the axis, and the extrusions it declines.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -102,6 +102,31 @@ TEST(ExtrusionMesh, SegmentsInAnyOrderMakeTheSameRegion) {
     const std::optional<Polyhedron> p = io::extrusionMesh(e, 0.01);
     ASSERT_TRUE(p);
     EXPECT_NEAR(volumeOf(*p), (100.0 - 16.0) * 3.0, 1e-9);
+}
+
+// Under the even-odd rule a drawing may run its edges either way round a contour (a DXF's
+// paths do): a lens of a line (0, 0) -> (4, 0) and a quadratic (0, 0) -> (4, 0) through the
+// control point (2, 3), the walk taking the quadratic backwards. Its area is 2/3 of 4 x 1.5 = 4;
+// the chords are inscribed, within 4.6 (the curve's length, less than 2 + 2 x 2.5) times the
+// deviation. Under the nonzero rule the direction counts and the walk does not close.
+TEST(ExtrusionMesh, EvenOddContoursMayRunEitherWay) {
+    auto lens = std::make_shared<Outline>();
+    lens->rule = FillRule::EvenOdd;
+    lens->segments = {Segment2::line({0.0, 0.0}, {4.0, 0.0}),
+                      Segment2::quadratic({0.0, 0.0}, {2.0, 3.0}, {4.0, 0.0})};
+    lens->buildIndex();
+    const double deviation = 0.001;
+    const Extrusion e = Extrusion::plane(lens, "lens").linear(0.0, 2.0, Vec2(1.0));
+    const std::optional<Polyhedron> p = io::extrusionMesh(e, deviation);
+    ASSERT_TRUE(p);
+    EXPECT_LT(volumeOf(*p), 4.0 * 2.0);
+    EXPECT_GT(volumeOf(*p), (4.0 - 4.6 * deviation) * 2.0);
+    EXPECT_TRUE(checkTopology(meshOf(*p)).closedManifold());
+
+    auto nonzero = std::make_shared<Outline>(*lens);
+    nonzero->rule = FillRule::NonZero;
+    EXPECT_FALSE(io::extrusionMesh(Extrusion::plane(nonzero, "lens").linear(0.0, 2.0, Vec2(1.0)),
+                                   deviation));
 }
 
 TEST(ExtrusionMesh, ChordsOfACircleLieOnItWithinTheDeviation) {
