@@ -3,10 +3,11 @@
 // tolerance needs, sized by each curve's own radius, not by OpenSCAD's $fa and $fs. A sphere or
 // cylinder gets OpenSCAD's vertex layout, inscribed or balanced (csg::FacetFit: scaled out so
 // that its vertices stand as far outside the curve as its faces stand inside, half the
-// inscribed polytope's distance for the same fragments). Straight linear_extrudes and
-// rotate_extrudes become prisms and revolutions of their outlines' chords within the same distance
-// (io/ExtrusionMesh.h; the chords inscribed, a revolution's steps balanced with the fit), and a
-// torus the revolution of its tube's circle. The result is all polyhedra when nothing else is
+// inscribed polytope's distance for the same fragments). linear_extrudes and rotate_extrudes
+// become prisms, slices and revolutions of their outlines' chords within the same distance
+// (io/ExtrusionMesh.h; the chords inscribed, a twisted or unevenly scaled extrusion's slices
+// too, a revolution's steps balanced with the fit), and a torus the revolution of its tube's
+// circle. The result is all polyhedra when nothing else is
 // curved, so it has an exact boundary (csg/mesh/PolyhedralBoundary.h) that is the part to within
 // that distance.
 #pragma once
@@ -20,10 +21,10 @@
 
 namespace io {
 
-// The tree with every sphere, cylinder, torus, straight linear_extrude and rotate_extrude leaf
-// faceted so that no face stands more than `deviation` (world units, > 0) off the exact surface,
-// or nullptr when a leaf stays curved (a surface, Bezier patches, a twisted extrusion, an outline
-// extrusionMesh declines) or a curve would need more faces than a polytope may have. Spheres and
+// The tree with every sphere, cylinder, torus, linear_extrude and rotate_extrude leaf faceted so
+// that no face stands more than `deviation` (world units, > 0) off the exact surface, or nullptr
+// when a leaf stays curved (a surface, Bezier patches, an extrusion extrusionMesh declines) or a
+// curve would need more faces than a polytope may have. Spheres and
 // cylinders get OpenSCAD's vertices (io/Faceting.h), inscribed, or balanced: scaled out by 2 / (1 +
 // c), c the nearest face's distance over the radius. Each gets the fewest fragments whose faces
 // stand within the deviation at the leaf's largest world scale.

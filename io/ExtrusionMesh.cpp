@@ -13,6 +13,7 @@
 #include "csg/derived/Flatten2D.h"
 #include "csg/mesh/EarClip.h"
 #include "io/Degrees.h"
+#include "primitives/base/Tolerances.h"
 
 namespace io {
 
@@ -157,7 +158,9 @@ struct Cap {
     std::vector<std::vector<uint32_t>> loops;
     std::vector<std::array<uint32_t, 3>> triangles;
 
-    bool fill(const Polygon& polygon) {
+    // straight: the ear clipper's minHeight (corners that close to the line through their
+    // neighbours stay corners, see csg/mesh/EarClip.h).
+    bool fill(const Polygon& polygon, double straight = 0.0) {
         const auto add = [&](const std::vector<Vec2>& contour) {
             std::vector<uint32_t>& loop = loops.emplace_back();
             for (const Vec2& p : contour) {
@@ -168,7 +171,7 @@ struct Cap {
         add(polygon.outer);
         for (const std::vector<Vec2>& hole : polygon.holes) add(hole);
         const std::vector<std::vector<uint32_t>> holes(loops.begin() + 1, loops.end());
-        return csg::earClip(corners, loops[0], holes, 0.0, triangles);
+        return csg::earClip(corners, loops[0], holes, straight, triangles);
     }
 };
 
@@ -275,7 +278,7 @@ std::optional<std::vector<RegionPolygon>> chordRegion(const csg::Outline& outlin
 // Corner k of a cap on layer j is point base + j corners + k.
 std::optional<csg::Polyhedron> slicedExtrusionMesh(const std::vector<RegionPolygon>& region,
                                                    double z0, double z1, double twist, Vec2 scale,
-                                                   int64_t slices) {
+                                                   int64_t slices, double capStraight) {
     if (region.empty() || slices < 1 || !(z1 > z0)) return std::nullopt;
     // Layer j's map, as extrudePolygon and add_slice compute it: the turn by -twist j / slices
     // (OpenSCAD's rotate_degrees, exact at multiples of 30 and 45 degrees), then the scale.
@@ -301,7 +304,7 @@ std::optional<csg::Polyhedron> slicedExtrusionMesh(const std::vector<RegionPolyg
     csg::PolygonFaces faces;
     for (const Polygon& polygon : region) {
         Cap cap;
-        if (!cap.fill(polygon)) return std::nullopt;
+        if (!cap.fill(polygon, capStraight)) return std::nullopt;
         const size_t corners = cap.corners.size();
         if (points.size() + corners * layers.size() > csg::Polyhedron::kMaxTriangles)
             return std::nullopt;
@@ -364,15 +367,90 @@ std::optional<csg::Polyhedron> facetedRevolutionMesh(const std::vector<RegionPol
     return revolutionOf(region, turn, whole);
 }
 
+namespace {
+
+// The contour with each edge a -> b cut into the fewest equal pieces no longer than
+// longest(b - a) (> 0; +inf leaves it whole).
+template <class Longest>
+std::vector<Vec2> cutEdges(const std::vector<Vec2>& contour, const Longest& longest) {
+    std::vector<Vec2> out;
+    for (size_t i = 0, m = contour.size(); i < m; ++i) {
+        const Vec2 a = contour[i], b = contour[(i + 1) % m];
+        const double pieces = std::ceil(glm::length(b - a) / longest(b - a));
+        out.push_back(a);
+        for (double k = 1.0; k < pieces; ++k) out.push_back(a + (b - a) * (k / pieces));
+    }
+    return out;
+}
+
+// A twisted or unevenly scaled extrusion's mesh. Its side through the outline edge a -> b is
+// S(l, p) = M(l) (a + p e) at height z0 + l (z1 - z0), e the edge's unit direction, p the length
+// along it, M(l) = D(l) R(-w l), D(l) = diag(1 + (sx - 1) l, 1 + (sy - 1) l), w the twist in
+// radians: linear in p. A slice of dl and a piece of length q of the edge make two triangles
+// through four points of S; linear interpolation on them misses S's second-order terms by at
+// most |S_ll| dl^2 / 8 (as a chord misses an arc) plus |S_lp| dl q / 4 (the quad's twist: x y
+// on the unit square's two triangles misses by 1/4), S_pp being 0. With u = max |s_i - 1|, v =
+// max(1, sx, sy) and rho the outline's largest radius, |S_ll| = |(2 D' R' + D R'') q| <= J = (2 u
+// w + v w^2) rho, and |S_lp| = |(D' R + D R') e| <= K = |D' e| + v w without a twist, u + v w
+// with one. A quarter of the sides' share goes to the first term and fixes dl, the rest to the
+// second and fixes each edge's q: the product dl q, which the triangle count goes as the
+// inverse of, is within 3/4 of its largest. The chords take half the deviation when the outline
+// has curves, divided by v (a section is at most v times the outline).
+std::optional<csg::Polyhedron> slicedToDeviation(const csg::Extrusion& e, double deviation) {
+    const Vec2 grow = e.scale - Vec2(1.0);  // D'
+    const double u = std::max(std::abs(grow.x), std::abs(grow.y));
+    const double v = std::max({1.0, e.scale.x, e.scale.y});
+    const double w = std::abs(e.twist) * std::numbers::pi / 180.0;
+    const bool curved =
+        std::any_of(e.outline->segments.begin(), e.outline->segments.end(),
+                    [](const csg::Segment2& s) { return s.kind != csg::Segment2::Kind::Line; });
+    const double sides = curved ? 0.5 * deviation : deviation;
+    std::vector<Polygon> region;
+    if (!regionOf(*e.outline, e.box, 0.5 * deviation / v, region)) return std::nullopt;
+    double rho = 0.0, size = 0.0;
+    for (const Polygon& polygon : region)
+        for (size_t k = 0; k <= polygon.holes.size(); ++k)
+            for (const Vec2& p : k == 0 ? polygon.outer : polygon.holes[k - 1]) {
+                rho = std::max(rho, glm::length(p));
+                size = std::max({size, std::abs(p.x), std::abs(p.y)});
+            }
+    const double J = (2.0 * u * w + v * w * w) * rho;
+    const double slices =
+        J > 0.0 ? std::ceil(std::sqrt(J / (2.0 * sides))) : 1.0;  // J/8 dl^2 <= sides/4
+    if (!(slices <= double(csg::Polyhedron::kMaxTriangles))) return std::nullopt;
+    const double dl = 1.0 / slices;
+    const double rest = sides - J * dl * dl / 8.0;
+    const auto longest = [&](Vec2 edge) {
+        const Vec2 unit = edge / glm::length(edge);
+        const double K = (w == 0.0 ? glm::length(grow * unit) : u) + v * w;
+        return K > 0.0 ? 4.0 * rest / (K * dl) : csg::kInfinity;
+    };
+    size_t corners = 0;
+    for (Polygon& polygon : region) {
+        polygon.outer = cutEdges(polygon.outer, longest);
+        corners += polygon.outer.size();
+        for (std::vector<Vec2>& hole : polygon.holes) {
+            hole = cutEdges(hole, longest);
+            corners += hole.size();
+        }
+        if (corners > kMaxExtrusionMeshCorners) return std::nullopt;
+    }
+    return slicedExtrusionMesh(region, e.z0, e.z1, e.twist, e.scale, int64_t(slices),
+                               csg::tol::kCutPointStraightRel * size);
+}
+
+}  // namespace
+
 std::optional<csg::Polyhedron> extrusionMesh(const csg::Extrusion& e, double deviation,
                                              csg::FacetFit fit) {
     using Kind = csg::Extrusion::Kind;
     if (!e.outline || !(deviation > 0.0) || e.box.empty()) return std::nullopt;
     std::vector<Polygon> region;
     if (e.kind == Kind::Linear) {
-        if (e.twisted || e.twist != 0.0 || e.scale.x != e.scale.y || !(e.scale.x > 0.0) ||
-            !std::isfinite(e.z0) || !std::isfinite(e.z1))
-            return std::nullopt;
+        if (!std::isfinite(e.z0) || !std::isfinite(e.z1)) return std::nullopt;
+        if (e.twisted || e.twist != 0.0 || e.scale.x != e.scale.y)
+            return slicedToDeviation(e, deviation);
+        if (!(e.scale.x > 0.0)) return std::nullopt;
         // The chords stand `scale` times as far off the curve at the top as at the bottom.
         const double scale = e.scale.x;
         if (!regionOf(*e.outline, e.box, deviation / std::max(1.0, scale), region))

@@ -3,7 +3,11 @@
 //     frustum, of a polygon with holes: the chords' side quads (planar: a scale about the axis
 //     keeps each side's top edge parallel to its bottom edge) and the two caps, ear-clipped;
 //   - a rotate_extrude is the profile revolved in equal steps: each chord sweeps a band of
-//     quads (isosceles trapezoids, so planar), and a wedge has the profile as its two ends.
+//     quads (isosceles trapezoids, so planar), and a wedge has the profile as its two ends;
+//   - a twisted or unevenly scaled linear_extrude, whose sides are curved, is sliced as
+//     OpenSCAD slices it (slicedExtrusionMesh), its contours' edges cut into equal pieces, with
+//     as many slices and pieces as keep every side triangle within its share of the deviation
+//     (ExtrusionMesh.cpp derives the bound).
 // With straight lines only, a linear_extrude's polyhedron is the extrusion itself. With curves,
 // every chord's ends lie on the curve and no point of the curve is farther than the deviation
 // from its chord, at the top as at the bottom; a revolution gives half the deviation to the
@@ -18,8 +22,8 @@
 // their neighbours or of the line through them (ExtrusionMesh.cpp says why): the outline moves
 // by less than that.
 //
-// Declined (nullopt, the caller keeps the exact leaf): a twist or two scales (curved sides), a
-// scale of 0 (the apex would join the contours' sides in one vertex), an unbounded height, a
+// Declined (nullopt, the caller keeps the exact leaf): a scale of 0 on either axis (the apex
+// would join the contours' sides in one vertex), an unbounded height, a
 // 2-D shape; an outline whose segments do not chain into closed walks; more than
 // kMaxExtrusionMeshCorners chord corners or kMaxRevolutionPoints points; a cap that ear
 // clipping cannot cut; a mesh that is not a closed manifold (contours that touch at a corner).
@@ -65,10 +69,13 @@ std::optional<std::vector<RegionPolygon>> chordRegion(const csg::Outline& outlin
 // triangle that would have no area. The caps are the region (ear-clipped) at the bottom and its
 // last layer at the top when both top scales are above 0. The solid is the mesh's by crossing
 // parity; nullopt when it is not closed (a top scale of 0 on one axis can fold it), larger than
-// a polyhedron may be, or a cap cannot be ear-clipped.
+// a polyhedron may be, or a cap cannot be ear-clipped. capStraight: a cap corner within that
+// distance of the line through its neighbours is not cut as an ear (csg/mesh/EarClip.h); 0, as
+// OpenSCAD, cuts at any corner that is not exactly on that line.
 std::optional<csg::Polyhedron> slicedExtrusionMesh(const std::vector<RegionPolygon>& region,
                                                    double z0, double z1, double twist,
-                                                   csg::Vec2 scale, int64_t slices);
+                                                   csg::Vec2 scale, int64_t slices,
+                                                   double capStraight = 0.0);
 
 // OpenSCAD 2021's faceted rotate_extrude of a region in x >= 0 (OPENSCAD.md section 4): the
 // ring of each profile corner has `sections` equal steps through `degrees` (in (0, 360]) from

@@ -144,12 +144,12 @@ TEST(ChordFaceting, ASphereAndACylinderOfOneRadiusShareALayout) {
 
 TEST(ChordFaceting, LeavesThatStayCurvedGiveNothing) {
     const FacetFit fit = FacetFit::Balanced;
-    // A twisted extrusion's sides are helicoids.
-    const io::EvaluateResult twisted =
-        csg::testing::evaluate("linear_extrude(3, twist = 90) square(2);");
-    ASSERT_TRUE(twisted.ok());
-    EXPECT_FALSE(io::facetToDeviation(twisted.model->root, 0.01, fit));
-    EXPECT_FALSE(io::facetToDeviation(unite(leaf(Box{Vec3(0.0), Vec3(1.0)}), twisted.model->root),
+    // An algebraic surface has no faceting of its own.
+    const io::EvaluateResult curved = csg::testing::evaluate(
+        "surface(f = \"x^4 + y^4 + z^4 - 1\", bbox = [[-2, -2, -2], [2, 2, 2]]);");
+    ASSERT_TRUE(curved.ok());
+    EXPECT_FALSE(io::facetToDeviation(curved.model->root, 0.01, fit));
+    EXPECT_FALSE(io::facetToDeviation(unite(leaf(Box{Vec3(0.0), Vec3(1.0)}), curved.model->root),
                                       0.01, fit));
     EXPECT_TRUE(
         io::facetToDeviation(unite(leaf(Box{Vec3(0.0), Vec3(1.0)}), leaf(Sphere{1.0})), 0.01, fit));

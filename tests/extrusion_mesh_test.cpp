@@ -1,7 +1,8 @@
 // Extrusions as polyhedra (io/ExtrusionMesh.h) and their export as the exact boundary
 // (io/ChordFaceting.h): volumes, corner counts and triangle counts by hand, the fill rules,
-// segments in any order or either way round, chords on the curve within the deviation, a frustum's
-// top, revolutions whole, in a wedge and on the axis, and the extrusions it declines.
+// segments in any order or either way round, chords on the curve within the deviation, a
+// frustum's top, revolutions whole, in a wedge and on the axis, twisted and unevenly scaled
+// extrusions within the deviation, and the extrusion it declines.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,7 +12,9 @@
 
 #include "PartHelpers.h"
 #include "csg/mesh/MeshCheck.h"
+#include "csg/mesh/MeshDistance.h"
 #include "csg/mesh/Tessellate.h"
+#include "csg/mesh/TriangleBvh.h"
 #include "io/ChordFaceting.h"
 #include "io/ExtrusionMesh.h"
 
@@ -214,13 +217,73 @@ TEST(ExtrusionMesh, BalancedRevolutionsStandAsFarOutsideAsInside) {
     EXPECT_TRUE(checkTopology(meshOf(*ring)).closedManifold());
 }
 
-TEST(ExtrusionMesh, DeclinesCurvedSidesAndApexes) {
-    const char* const parts[] = {
-        "linear_extrude(3, twist = 90) square(2);",      // helicoid sides
-        "linear_extrude(3, scale = [1, 2]) square(2);",  // two scales: a ruled surface
-        "linear_extrude(3, scale = 0) square(2);",       // an apex
-    };
-    for (const char* part : parts) EXPECT_FALSE(io::extrusionMesh(extrusionOf(part), 0.01)) << part;
+TEST(ExtrusionMesh, DeclinesAStraightApex) {
+    // The apex would join the contours' sides in one vertex.
+    EXPECT_FALSE(io::extrusionMesh(extrusionOf("linear_extrude(3, scale = 0) square(2);"), 0.01));
+}
+
+// The largest distance between the mesh and the exact extrusion, both ways (MeshDistance.h,
+// which samples a triangle's centroid, corners and edge middles, and the exact surface by rays).
+double distanceBothWays(const Extrusion& exact, const Polyhedron& p, double reach) {
+    const Scene scene = Scene::compile(leaf(exact));
+    const TriangleMesh mesh = meshOf(p);
+    DistanceOptions options;
+    options.reach = options.goodEnough = reach;
+    const double toSurface = meshToSurface(scene, mesh, options).max;
+    return std::max(toSurface, surfaceToMesh(scene, TriangleBvh(mesh), 128, options).max);
+}
+
+// linear_extrude(10, twist = 90) of a 5 x 5 square at deviation d = 0.02 (ExtrusionMesh.cpp,
+// slicedToDeviation): rho = 2.5 sqrt 2, w = pi / 2, u = 0, v = 1, so J = w^2 rho = 8.7235;
+// slices = ceil(sqrt(J / (2 d))) = ceil(14.77) = 15; each edge's pieces at most 4 (d - J / (8 *
+// 15^2)) / (w / 15) = 0.5789 long, ceil(5 / 0.5789) = 9 per edge: 36 corners on 16 layers, 2 x 15
+// x 36 side triangles and two caps of 36 - 2.
+TEST(ExtrusionMesh, ATwistedSquareIsSlicedAndItsEdgesCut) {
+    const Extrusion e =
+        extrusionOf("linear_extrude(height = 10, twist = 90) square(5, center = true);");
+    const std::optional<Polyhedron> p = io::extrusionMesh(e, 0.02);
+    ASSERT_TRUE(p);
+    EXPECT_EQ(p->data->vertices.size(), 16u * 36u);
+    EXPECT_EQ(p->triangleCount(), 2u * 15u * 36u + 2u * 34u);
+    // Layer j at z = 10 j / 15 is the square turned by -90 j / 15 degrees: turned back, every
+    // corner lies on the square's edge.
+    for (const Vec3& v : p->data->vertices) {
+        const double j = std::round(v.z * 1.5);
+        EXPECT_NEAR(v.z, 10.0 * j / 15.0, 1e-12);
+        const double a = kPi / 2.0 * j / 15.0;
+        const Vec2 back(std::cos(a) * v.x - std::sin(a) * v.y,
+                        std::sin(a) * v.x + std::cos(a) * v.y);
+        EXPECT_NEAR(std::max(std::abs(back.x), std::abs(back.y)), 2.5, 1e-12);
+    }
+    EXPECT_TRUE(checkTopology(meshOf(*p)).closedManifold());
+    // The twist preserves each section's area: 25 x 10, within the sides' area times d.
+    EXPECT_NEAR(volumeOf(*p), 250.0, 20.0 * 10.0 * 0.02);
+    EXPECT_LE(distanceBothWays(e, *p, 0.1), 0.02);
+}
+
+// Two scales make each side a hyperbolic paraboloid. A diamond (|x| + |y| <= 1.5) scaled by
+// [1, 3] over 4, at d = 0.04: no twist, so J = 0 and one slice; every edge runs along (+-1, +-1)
+// / sqrt 2, so K = |(0, 2) e| = sqrt 2 and pieces are at most 4 d / K = 0.1131 long: ceil(1.5
+// sqrt 2 / 0.1131) = ceil(18.75) = 19 per edge, 76 corners, 2 x 76 side triangles and two caps
+// of 74.
+TEST(ExtrusionMesh, UnevenScalesCutTheEdgesOfOneSlice) {
+    const Extrusion e = extrusionOf(
+        "linear_extrude(height = 4, scale = [1, 3]) polygon([[1.5, 0], [0, 1.5], [-1.5, 0], [0, "
+        "-1.5]]);");
+    const std::optional<Polyhedron> p = io::extrusionMesh(e, 0.04);
+    ASSERT_TRUE(p);
+    EXPECT_EQ(p->data->vertices.size(), 2u * 76u);
+    EXPECT_EQ(p->triangleCount(), 2u * 76u + 2u * 74u);
+    for (const Vec3& v : p->data->vertices) {
+        const double sy = v.z == 0.0 ? 1.0 : 3.0;  // the top is scaled by 3 in y
+        EXPECT_TRUE(v.z == 0.0 || v.z == 4.0);
+        EXPECT_NEAR(std::abs(v.x) + std::abs(v.y / sy), 1.5, 1e-12);
+    }
+    EXPECT_TRUE(checkTopology(meshOf(*p)).closedManifold());
+    // Each section of the frustum is the diamond scaled by 1 + 2 z / 4 in y: area 4.5 (1 + z / 2),
+    // 4.5 x (4 + 4) = 36 over the height.
+    EXPECT_NEAR(volumeOf(*p), 36.0, 1e-9 * 36.0 + 0.04 * 4.0 * 4.0 * 3.0);
+    EXPECT_LE(distanceBothWays(e, *p, 0.2), 0.04);
 }
 
 // End to end: a part made of straight extrusions exports as its exact boundary, the fewest

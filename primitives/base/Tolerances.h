@@ -625,6 +625,14 @@ inline constexpr double kLeafMeshToleranceRel = 5e-4;
 // is ~10^9 below any feature a part resolves.
 inline constexpr double kOnFacePlaneRel = 1e-12;
 
+// A twisted or unevenly scaled extrusion's mesh (io/ExtrusionMesh.cpp) cuts its outline's edges
+// into pieces whose cut points stand a few rounding errors (~1e-16 relative) off the line
+// through the edge's ends; its caps' ear clipping takes a corner this close to that line as on
+// it, so no ear is cut at a cut point (it would be a sliver of no area) (unit: length, relative
+// to the outline's largest coordinate). 1e-12 (~4500 ulps) covers the rounding and is ~10^9
+// below any deviation an export asks.
+inline constexpr double kCutPointStraightRel = 1e-12;
+
 // glibc's cos and sin are within this of the exact value at any double argument (unit:
 // absolute, the values lying in [-1, 1]). Why: glibc documents a maximum error of 1 ulp for
 // both on x86-64 (its manual's "Errors in Math Functions"), and an ulp of a value in [-1, 1] is
