@@ -76,7 +76,7 @@ for part in "${parts[@]}"; do
     kind=polyhedral
     if ! dump "$part"; then
         case "$why" in
-        *"has curved faces"*)
+        *"has curved faces"* | *"is a twisted linear_extrude"*)
             kind=curved
             dump "$part" --curves openscad || { na "$name" "under --curves openscad, $why"; continue; } ;;
         *) na "$name" "$why"; continue ;;
