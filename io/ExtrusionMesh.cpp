@@ -370,17 +370,25 @@ std::optional<csg::Polyhedron> facetedRevolutionMesh(const std::vector<RegionPol
 namespace {
 
 // The contour with each edge a -> b cut into the fewest equal pieces no longer than
-// longest(b - a) (> 0; +inf leaves it whole).
+// longest(b - a) (> 0; +inf leaves it whole), its corners added to `corners`; false, before
+// making them, when that would pass kMaxExtrusionMeshCorners.
 template <class Longest>
-std::vector<Vec2> cutEdges(const std::vector<Vec2>& contour, const Longest& longest) {
-    std::vector<Vec2> out;
+bool cutEdges(std::vector<Vec2>& contour, const Longest& longest, size_t& corners) {
+    std::vector<double> pieces(contour.size());
+    for (size_t i = 0, m = contour.size(); i < m; ++i) {
+        const Vec2 edge = contour[(i + 1) % m] - contour[i];
+        pieces[i] = std::max(1.0, std::ceil(glm::length(edge) / longest(edge)));
+        if (!(double(corners) + pieces[i] <= double(kMaxExtrusionMeshCorners))) return false;
+        corners += size_t(pieces[i]);
+    }
+    std::vector<Vec2> cut;
     for (size_t i = 0, m = contour.size(); i < m; ++i) {
         const Vec2 a = contour[i], b = contour[(i + 1) % m];
-        const double pieces = std::ceil(glm::length(b - a) / longest(b - a));
-        out.push_back(a);
-        for (double k = 1.0; k < pieces; ++k) out.push_back(a + (b - a) * (k / pieces));
+        cut.push_back(a);
+        for (double k = 1.0; k < pieces[i]; ++k) cut.push_back(a + (b - a) * (k / pieces[i]));
     }
-    return out;
+    contour = std::move(cut);
+    return true;
 }
 
 // A twisted or unevenly scaled extrusion's mesh. Its side through the outline edge a -> b is
@@ -417,7 +425,6 @@ std::optional<csg::Polyhedron> slicedToDeviation(const csg::Extrusion& e, double
     const double J = (2.0 * u * w + v * w * w) * rho;
     const double slices =
         J > 0.0 ? std::ceil(std::sqrt(J / (2.0 * sides))) : 1.0;  // J/8 dl^2 <= sides/4
-    if (!(slices <= double(csg::Polyhedron::kMaxTriangles))) return std::nullopt;
     const double dl = 1.0 / slices;
     const double rest = sides - J * dl * dl / 8.0;
     const auto longest = [&](Vec2 edge) {
@@ -427,14 +434,13 @@ std::optional<csg::Polyhedron> slicedToDeviation(const csg::Extrusion& e, double
     };
     size_t corners = 0;
     for (Polygon& polygon : region) {
-        polygon.outer = cutEdges(polygon.outer, longest);
-        corners += polygon.outer.size();
-        for (std::vector<Vec2>& hole : polygon.holes) {
-            hole = cutEdges(hole, longest);
-            corners += hole.size();
-        }
-        if (corners > kMaxExtrusionMeshCorners) return std::nullopt;
+        if (!cutEdges(polygon.outer, longest, corners)) return std::nullopt;
+        for (std::vector<Vec2>& hole : polygon.holes)
+            if (!cutEdges(hole, longest, corners)) return std::nullopt;
     }
+    // Each corner makes a point per layer; the mesh may have no more than a polyhedron.
+    if (!((slices + 1.0) * double(corners) <= double(csg::Polyhedron::kMaxTriangles)))
+        return std::nullopt;
     return slicedExtrusionMesh(region, e.z0, e.z1, e.twist, e.scale, int64_t(slices),
                                csg::tol::kCutPointStraightRel * size);
 }

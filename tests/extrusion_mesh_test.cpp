@@ -217,9 +217,15 @@ TEST(ExtrusionMesh, BalancedRevolutionsStandAsFarOutsideAsInside) {
     EXPECT_TRUE(checkTopology(meshOf(*ring)).closedManifold());
 }
 
-TEST(ExtrusionMesh, DeclinesAStraightApex) {
+TEST(ExtrusionMesh, DeclinesAStraightApexAndMeshesTooLargeToMake) {
     // The apex would join the contours' sides in one vertex.
     EXPECT_FALSE(io::extrusionMesh(extrusionOf("linear_extrude(3, scale = 0) square(2);"), 0.01));
+    // 3e8 slices of a billion turns; edges cut into 1e9 pieces by a millionfold scale: declined
+    // before anything of that size is made.
+    EXPECT_FALSE(
+        io::extrusionMesh(extrusionOf("linear_extrude(10, twist = 1e9) square(5);"), 0.01));
+    EXPECT_FALSE(
+        io::extrusionMesh(extrusionOf("linear_extrude(10, scale = [1, 1e6]) square(5);"), 0.001));
 }
 
 // The largest distance between the mesh and the exact extrusion, both ways (MeshDistance.h,
