@@ -22,11 +22,13 @@
 // their neighbours or of the line through them (ExtrusionMesh.cpp says why): the outline moves
 // by less than that.
 //
-// Declined (nullopt, the caller keeps the exact leaf): a scale of 0 on either axis (the apex
-// would join the contours' sides in one vertex), an unbounded height, a
+// Declined (nullopt, the caller keeps the exact leaf): a straight linear_extrude with a top
+// scale of 0 (the apex would join the contours' sides in one vertex), an unbounded height, a
 // 2-D shape; an outline whose segments do not chain into closed walks; more than
-// kMaxExtrusionMeshCorners chord corners or kMaxRevolutionPoints points; a cap that ear
-// clipping cannot cut; a mesh that is not a closed manifold (contours that touch at a corner).
+// kMaxExtrusionMeshCorners chord (or cut) corners, kMaxRevolutionPoints points, or a sliced
+// mesh of more points than a polyhedron may have; a cap that ear clipping cannot cut; a mesh
+// that is not closed, or for a prism or a revolution not a manifold (contours that touch at a
+// corner).
 #pragma once
 
 #include <cstddef>
