@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "csg/Tree.h"
+#include "csg/derived/Flatten2D.h"
 #include "io/Diagnostic.h"
 #include "io/Evaluate.h"
 #include "io/ExtrusionMesh.h"
@@ -58,11 +59,10 @@ void points(std::string& out, const csg::Mat4& m, const std::vector<csg::Vec3>& 
 // (column-major) that puts its bottom at z0. False with a reason for an outline with curved
 // segments or one that does not chain into closed contours.
 bool extrusion(const csg::Extrusion& e, const csg::Mat4& m, std::string& out, std::string& why) {
-    for (const csg::Segment2& s : e.outline->segments)
-        if (s.kind != csg::Segment2::Kind::Line) {
-            why = "leaf 'extrusion' has curved faces (an outline with arcs or Beziers)";
-            return false;
-        }
+    if (!csg::straightEdged(*e.outline)) {
+        why = "leaf 'extrusion' has curved faces (an outline with arcs or Beziers)";
+        return false;
+    }
     // Lines take no chords: any deviation gives the outline's own corners.
     const std::optional<std::vector<io::RegionPolygon>> region =
         io::chordRegion(*e.outline, e.box, 1.0);

@@ -409,10 +409,7 @@ std::optional<csg::Polyhedron> slicedToDeviation(const csg::Extrusion& e, double
     const double u = std::max(std::abs(grow.x), std::abs(grow.y));
     const double v = std::max({1.0, e.scale.x, e.scale.y});
     const double w = std::abs(e.twist) * std::numbers::pi / 180.0;
-    const bool curved =
-        std::any_of(e.outline->segments.begin(), e.outline->segments.end(),
-                    [](const csg::Segment2& s) { return s.kind != csg::Segment2::Kind::Line; });
-    const double sides = curved ? 0.5 * deviation : deviation;
+    const double sides = csg::straightEdged(*e.outline) ? deviation : 0.5 * deviation;
     std::vector<Polygon> region;
     if (!regionOf(*e.outline, e.box, 0.5 * deviation / v, region)) return std::nullopt;
     double rho = 0.0, size = 0.0;
@@ -469,10 +466,7 @@ std::optional<csg::Polyhedron> extrusionMesh(const csg::Extrusion& e, double dev
         // Half the deviation for the profile's chords, half for the meridians' (the sagitta of
         // a step at the largest radius); all of it for the meridians' when the profile has no
         // curve (about 1 / sqrt(2) of the steps).
-        const bool curved =
-            std::any_of(e.outline->segments.begin(), e.outline->segments.end(),
-                        [](const csg::Segment2& s) { return s.kind != csg::Segment2::Kind::Line; });
-        const double profileShare = curved ? 0.5 : 0.0;
+        const double profileShare = csg::straightEdged(*e.outline) ? 0.0 : 0.5;
         if (!regionOf(*e.outline, e.box, 0.5 * deviation, region)) return std::nullopt;
         const double reach = std::max(std::abs(e.box.lo.x), std::abs(e.box.hi.x));
         const double angle = std::numbers::pi / 180.0 * e.angle;

@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "csg/derived/Boundary2D.h"
+#include "csg/derived/Flatten2D.h"
 #include "io/BoundArgs.h"
 #include "io/Degrees.h"
 #include "io/DxfModules.h"
@@ -345,13 +346,8 @@ csg::NodePtr facetedRevolution(const csg::NodePtr& profile, double start, double
 csg::NodePtr revolutionPolyhedron(const csg::NodePtr& profile, double start, double angle,
                                   int64_t sections, uint32_t tag) {
     const std::optional<BoundaryOutline> united = boundaryOutline(*profile);
-    if (!united || united->approximated) return nullptr;
-    csg::Bounds2 box;
-    for (const csg::Segment2& s : united->outline->segments) {
-        if (s.kind != csg::Segment2::Kind::Line) return nullptr;
-        box.add(s.p[0]);
-        box.add(s.p[1]);
-    }
+    if (!united || united->approximated || !csg::straightEdged(*united->outline)) return nullptr;
+    const csg::Bounds2 box = united->outline->bounds();
     if (box.empty() || box.lo.x < 0.0) return nullptr;
     // Lines only: the chords' deviation is never used.
     const std::optional<std::vector<RegionPolygon>> region =

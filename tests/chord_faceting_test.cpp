@@ -121,9 +121,11 @@ TEST(ChordFaceting, ASphereAndACylinderOfOneRadiusShareALayout) {
         EXPECT_GT(std::hypot(v.x, v.y), 1.0);
         EXPECT_LE(std::hypot(v.x, v.y), 1.0 + deviation);
     }
-    for (const PolytopePlane& plane : rod.planes)
-        if (plane.normal.z == 0.0)
+    for (const PolytopePlane& plane : rod.planes) {
+        if (plane.normal.z == 0.0) {
             EXPECT_GE(plane.offset / glm::length(plane.normal), 1.0 - deviation);
+        }
+    }
 
     const NodePtr thinner = io::facetToDeviation(
         unite(leaf(Sphere{1.0}), leaf(Cylinder{2.0, 0.5, 0.5})), deviation, FacetFit::Balanced);

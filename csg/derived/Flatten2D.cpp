@@ -65,6 +65,11 @@ void appendChordPoints(const Segment2& s, double tolerance, std::vector<Vec2>& o
     for (int64_t k = 1; k < n; ++k) out.push_back(s.at(double(k) / double(n)));
 }
 
+bool straightEdged(const Outline& outline) {
+    return std::all_of(outline.segments.begin(), outline.segments.end(),
+                       [](const Segment2& s) { return s.kind == Segment2::Kind::Line; });
+}
+
 bool appendLinesAndCircles(const Segment2& s, double tolerance, std::vector<Segment2>& out) {
     if (s.kind == Segment2::Kind::Line || isCircular(s)) {
         out.push_back(s);

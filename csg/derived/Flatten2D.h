@@ -13,6 +13,9 @@ namespace csg {
 // Whether s is an arc of a circle (its two axes orthogonal and of one length, to 1e-12).
 bool isCircular(const Segment2& s);
 
+// Whether every segment of the outline is a straight line (it needs no chords).
+bool straightEdged(const Outline& outline);
+
 // Appends s to out as it is when it is a line or a circular arc, else as chords (the first
 // starts at s.start(), the last ends at s.finish(), the very doubles). Returns whether chords
 // were made.

@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <numeric>
 
+#include "csg/derived/Flatten2D.h"
+
 namespace csg {
 
 namespace {
@@ -405,9 +407,9 @@ bool polyhedralLeafPoints(const Primitive& primitive, std::vector<Vec3>& out) {
     if (const auto* e = std::get_if<Extrusion>(&primitive)) {
         // A twisted side bulges past its corners' hull; a side scaled per axis is a bilinear
         // patch, which lies within the hull of its four corners.
-        if (e->kind != Extrusion::Kind::Linear || !e->outline || e->twist != 0.0) return false;
-        for (const Segment2& s : e->outline->segments)
-            if (s.kind != Segment2::Kind::Line) return false;
+        if (e->kind != Extrusion::Kind::Linear || !e->outline || e->twist != 0.0 ||
+            !straightEdged(*e->outline))
+            return false;
         for (const Segment2& s : e->outline->segments) {
             out.push_back({s.p[0], e->z0});
             out.push_back({s.p[0] * e->scale, e->z1});

@@ -68,10 +68,7 @@ bool isUprightPrism(const Extrusion& e) {
 // ... and a polyhedron: every segment straight, so each wall is a planar trapezoid (or a
 // triangle to an apex).
 bool isStraightPrism(const Extrusion& e) {
-    if (!isUprightPrism(e)) return false;
-    for (const Segment2& s : e.outline->segments)
-        if (s.kind != Segment2::Kind::Line) return false;
-    return true;
+    return isUprightPrism(e) && straightEdged(*e.outline);
 }
 
 // The prism (or frustum, or pyramid at scale 0) over an outline of straight segments (the
