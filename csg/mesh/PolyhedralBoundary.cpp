@@ -492,14 +492,22 @@ void boundaryPieces(const Scene& scene, const std::vector<Face>& faces, const Bo
     for (Polygon& piece : pieces) {
         if (glm::length(newellNormal(piece)) <= eps * eps) continue;
         const Vec3 middle = centroidOf(piece);
+        // Outside its leaf's reach a face bounds nothing, even where a coincident face of a
+        // leaf that reaches there does: the piece is that face's to keep. (The piece was cut
+        // only by the faces near f's reach, so its edges need not follow the part there: in
+        // Debian's example007 the floor of the first slot's second prism ran on under the
+        // second slot's floor and across the post's wall, which its reach does not come near.)
+        if (!f.box.contains(middle)) continue;
         // Coincident faces of several leaves cover this piece alike: the merge names one of
         // them at the span end, the lower leaf when their t are equal, else the one it meets
         // first by a rounding that changes from line to line. So a span end on any of them
-        // counts, and the piece is kept by the lowest leaf among those facing its way only.
+        // counts, and the piece is kept by the lowest leaf among those facing its way that
+        // reach it.
         work.covering.clear();
         bool lowest = true;
         for (const uint32_t g : work.coincident)
-            if (glm::dot(faces[g].n, f.n) > 0.0 && insideFace(faces[g], middle, eps)) {
+            if (glm::dot(faces[g].n, f.n) > 0.0 && faces[g].box.contains(middle) &&
+                insideFace(faces[g], middle, eps)) {
                 work.covering.push_back(g);
                 lowest = lowest && faces[g].leaf > f.leaf;
             }

@@ -18,7 +18,9 @@
 //      part and which way it faces (a span's entry faces back along the line, its exit forward),
 //      and where faces of two leaves coincide it keeps exactly one of them: a span end on any
 //      coincident face facing the same way counts (the merge names one of them, by a rounding
-//      that may change from line to line), and the lowest of those leaves keeps the piece.
+//      that may change from line to line), and the lowest of those leaves keeps the piece. A
+//      face keeps nothing outside its leaf's reach (Scene::leafReach), and a coincident face
+//      counts only within its own: outside it, the face was not cut by what lies there.
 //   3. Vertices closer than tol::kPolyBoundaryWeldRel of the part's size are welded, and a vertex
 //      that lies on another piece's edge is inserted into that edge (no T-junctions).
 //   4. The pieces of each face are merged back into one polygon with holes, vertices on straight
