@@ -182,12 +182,16 @@ struct SpanWalk {
         // The leaf's spans along the whole line depend on the ray only, not on [t0, t1]: a
         // leaf met again in this query takes them from its slot instead of being solved again.
         // The spans are clipped at t0 (`from`, LocalSpans): a slot solved from no later than
-        // that serves. closest() on a leaf that is a whole object reads only its first span
-        // past t0 (firstOnly); such a list is not whole, so it is not kept for another visit.
-        // Margin: a thousand sliver slacks of the span ends the leaf's box allows.
-        const double from = t0 - shift;
+        // that serves. They are clipped at t1 too (`to`), and a primitive that left out what
+        // lies past it (cutAtTo: a twisted extrusion, whose solve grows with the chord) serves
+        // only up to its own `to`. closest() on a leaf that is a whole object reads only its
+        // first span past t0 (firstOnly); such a list is not whole, so it is not kept for
+        // another visit. Margin: a thousand sliver slacks of the span ends the leaf's box
+        // allows.
+        const double from = t0 - shift, to = t1 - shift;
         Solved& slot = solved[leafIndex % kSolvedSlots];
-        if (slot.leaf != leafIndex || slot.spans.from > from) {
+        if (slot.leaf != leafIndex || slot.spans.from > from ||
+            (slot.spans.cutAtTo && slot.spans.to < to)) {
             ++ctx.stats.primitiveTests;
             const bool bounded = std::isfinite(b0) && std::isfinite(b1);
             const bool firstOnly = firstSpanOnly && bounded;
@@ -196,6 +200,8 @@ struct SpanWalk {
             slot.spans.sheet = false;
             slot.spans.firstOnly = firstOnly;
             slot.spans.from = bounded ? from : -kInfinity;
+            slot.spans.to = bounded ? to : kInfinity;
+            slot.spans.cutAtTo = false;
             slot.spans.margin =
                 bounded
                     ? kFirstSpanSlacks *

@@ -229,7 +229,8 @@ void Extrusion::prismSpans(const Vec3& o, const Vec3& d, LocalSpans& out) const 
 void Extrusion::twistSpans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     const TwistMap map = twistMap();
     if (d.z != 0.0) {
-        twistedSpans(*outline, *twisted, map, o, d, tlSpans);
+        out.cutAtTo = twistedSpans(*outline, *twisted, map, o, d, out.from - out.margin,
+                                   out.to + out.margin, tlSpans);
         addWithinCapacity(tlSpans, out);
         return;
     }

@@ -41,6 +41,11 @@ struct LocalSpans {
     double from = -std::numeric_limits<double>::infinity();
     double margin = 0.0;
     bool firstOnly = false;
+    // The caller clips the spans at `to` too: an end that lies past to + margin may be given as
+    // any value past that. A primitive that leaves out what lies past it sets cutAtTo, so that
+    // the caller does not serve a farther `to` from the same list.
+    double to = std::numeric_limits<double>::infinity();
+    bool cutAtTo = false;
 
     void add(double tIn, uint16_t faceIn, double tOut, uint16_t faceOut) {
         assert(count < kCapacity && "a primitive produced more spans than LocalSpans holds");

@@ -539,18 +539,21 @@ std::shared_ptr<const TwistedOutline> TwistedOutline::of(const Outline& outline)
     return prepared;
 }
 
-void twistedSpans(const Outline& outline, const TwistedOutline& prepared, const TwistMap& map,
-                  const Vec3& o, const Vec3& d, std::vector<Entry>& out) {
+bool twistedSpans(const Outline& outline, const TwistedOutline& prepared, const TwistMap& map,
+                  const Vec3& o, const Vec3& d, double lo, double hi, std::vector<Entry>& out) {
     out.clear();
-    if (d.z == 0.0) return;
+    if (d.z == 0.0) return false;
     const double h = map.z1 - map.z0;
 
-    // Step 1: the chord, the slab cut by the annulus of the sections' radii (from o, which the
-    // caller has put near the solid, so that a nearly level line's far-off slab ends cost no
-    // precision), and tau from its middle.
+    // Step 1: the chord, the slab cut by the annulus of the sections' radii and by the stretch
+    // read (from o, which the caller has put near the solid, so that a nearly level line's
+    // far-off slab ends cost no precision), and tau from its middle.
     double ta = (map.z0 - o.z) / d.z, tb = (map.z1 - o.z) / d.z;
     uint16_t fa = Extrusion::kBottomFace, fb = Extrusion::kTopFace;
     if (d.z < 0.0) std::swap(ta, tb), std::swap(fa, fb);
+    if (lo > ta) ta = lo, fa = kClipFace;
+    const bool cutAtHi = hi < tb;
+    if (cutAtHi) tb = hi, fb = kClipFace;
     const double outer = prepared.outerRadius * std::max({1.0, map.scale.x, map.scale.y}) *
                          (1.0 + tol::kSweepBoundsMarginRel);
     const double inner = prepared.innerRadius * std::min({1.0, map.scale.x, map.scale.y}) *
@@ -559,16 +562,16 @@ void twistedSpans(const Outline& outline, const TwistedOutline& prepared, const 
                  C = o.x * o.x + o.y * o.y;
     double hole0 = kInfinity, hole1 = -kInfinity;  // the line inside the inner cylinder
     if (A == 0.0) {
-        if (C > outer * outer || C < inner * inner) return;
+        if (C > outer * outer || C < inner * inner) return cutAtHi;
     } else {
         double c0, c1;
-        if (solveQuadratic(A, B, C - outer * outer, c0, c1) < 2) return;
+        if (solveQuadratic(A, B, C - outer * outer, c0, c1) < 2) return cutAtHi;
         if (c0 > ta) ta = c0, fa = kClipFace;
         if (c1 < tb) tb = c1, fb = kClipFace;
         if (inner > 0.0 && solveQuadratic(A, B, C - inner * inner, c0, c1) == 2)
             hole0 = std::max(c0, ta), hole1 = std::min(c1, tb);
     }
-    if (!(ta < tb)) return;
+    if (!(ta < tb)) return cutAtHi;
     const double tm = ta + 0.5 * (tb - ta);
     const Vec3 om = o + tm * d;
     ta -= tm, tb -= tm;
@@ -649,6 +652,7 @@ void twistedSpans(const Outline& outline, const TwistedOutline& prepared, const 
         else
             out.push_back({tIn, tOut, cand[j].face, cand[j + 1].face});
     }
+    return cutAtHi;
 }
 
 }  // namespace csg

@@ -112,8 +112,12 @@ struct TwistedOutline {
 };
 
 // The spans, ascending in t, of the line o + t d (d.z != 0) through the solid of outline under
-// map. Replaces out's contents.
-void twistedSpans(const Outline& outline, const TwistedOutline& prepared, const TwistMap& map,
-                  const Vec3& o, const Vec3& d, std::vector<LocalSpans::Entry>& out);
+// map, read only within [lo, hi]: a span that reaches past either end is cut there (kClipFace).
+// The solve's cost grows with the chord it covers (a line across 1 500 degrees of twist in
+// Debian's example020), and a measuring line reads a short stretch of it. Replaces out's
+// contents; returns whether anything past hi was left out.
+bool twistedSpans(const Outline& outline, const TwistedOutline& prepared, const TwistMap& map,
+                  const Vec3& o, const Vec3& d, double lo, double hi,
+                  std::vector<LocalSpans::Entry>& out);
 
 }  // namespace csg

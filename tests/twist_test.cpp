@@ -406,6 +406,126 @@ TEST(TwistedSpans, AgreeWithInsideOnRandomLines) {
     }
 }
 
+// The spans of a list, clipped to [a, b]; what is left shorter than `sliver` is dropped (the
+// clipping of two lists solved from different middles may leave one a rounding-sized piece).
+std::vector<Interval1> clippedTo(const std::vector<Interval1>& spans, double a, double b,
+                                 double sliver) {
+    std::vector<Interval1> out;
+    for (const Interval1& s : spans) {
+        const Interval1 c{std::max(s.in, a), std::min(s.out, b)};
+        if (c.out - c.in > sliver) out.push_back(c);
+    }
+    return out;
+}
+
+// A line read only over a stretch (LocalSpans::from and to, as a measuring line reads a short
+// one) is solved over that stretch alone: there its spans are the whole line's, and its points
+// away from the span ends are inside exactly when they lie in one. Where the primitive says it
+// left nothing out past the stretch (cutAtTo false), the list holds every span from the
+// stretch's start on, as the caller may then serve a farther stretch from it.
+TEST(TwistedSpans, AStretchOfALineIsSolvedOverItAlone) {
+    csg::testing::Rng rng(2026);
+    int stopped = 0, through = 0;
+    for (const RandomCase& c : randomCases()) {
+        const Extrusion e = extrude(c.outline, -1.0, 4.0, c.scale, c.twist);
+        const csg::Bounds3 box = e.bounds();
+        const double size = glm::length(box.hi - box.lo);
+        for (int i = 0; i < 200; ++i) {
+            const Vec3 target = rng.inBox(box.lo, box.hi);
+            const Vec3 dir = i % 10 == 0 ? Vec3(0, 0, 1) : rng.unit();
+            const Vec3 o = target - size * dir;
+            const Vec3 d = dir * std::pow(10.0, rng.uniform(-1.0, 1.0));
+            const double tSize = size / glm::length(d);
+            const std::vector<Interval1> wholeLine = spansOf(e, o, d);
+            csg::LocalSpans s;
+            s.from = rng.uniform(0.5, 1.5) * tSize;
+            s.to = s.from + rng.uniform(0.01, 0.5) * tSize;
+            s.margin = 1e-6 * tSize;
+            e.spans(o, d, s);
+            std::vector<Interval1> stretch;
+            for (int k = 0; k < s.count; ++k)
+                stretch.push_back({s.entries[k].tIn, s.entries[k].tOut});
+            const double sliver = 1e-9 * tSize;
+            (s.cutAtTo ? stopped : through) += 1;
+            const double end = s.cutAtTo ? s.to : csg::kInfinity;
+            const auto expected = clippedTo(wholeLine, s.from, end, sliver);
+            const auto got = clippedTo(stretch, s.from, end, sliver);
+            ASSERT_EQ(got.size(), expected.size()) << c.name << ": line " << i;
+            for (size_t k = 0; k < got.size(); ++k) {
+                EXPECT_NEAR(got[k].in, expected[k].in, sliver) << c.name << ": line " << i;
+                EXPECT_NEAR(got[k].out, expected[k].out, sliver) << c.name << ": line " << i;
+            }
+            for (int k = 0; k <= 50; ++k) {
+                const double t = s.from + (s.to - s.from) * k / 50.0;
+                bool near = false, in = false;
+                for (const Interval1& span : got) {
+                    near = near || std::abs(t - span.in) < 1e-9 * tSize ||
+                           std::abs(t - span.out) < 1e-9 * tSize;
+                    in = in || (t >= span.in && t <= span.out);
+                }
+                if (!near) {
+                    EXPECT_EQ(e.inside(o + t * d), in) << c.name << ": line " << i << " t " << t;
+                }
+            }
+        }
+    }
+    // Both kinds of stretch were tried: one the solve stopped at, one past the solid.
+    EXPECT_GT(stopped, 200);
+    EXPECT_GT(through, 200);
+}
+
+// The same through the scene: a ray's spans over [tmin, tmax] are those of the whole line
+// clipped there, and closest() from a point inside finds the whole line's first exit. Its walk
+// may meet the twisted leaf twice: over a stretch that a hit on the ball has shortened, and
+// then over the whole line (csg/Query.cpp's fallback for a ray that starts inside), where the
+// list solved for the stretch must not serve.
+TEST(TwistedSpans, TheSceneReadsAStretchAsItsPartOfTheLine) {
+    // The ball comes first, so that the union's scan meets it before the difference.
+    const csg::Scene scene = csg::testing::compiled(
+        "translate([0, 0, 5]) sphere(1.9);\n"
+        "difference() { linear_extrude(height = 10, twist = 720) square(4, center = true);\n"
+        "  translate([0, 0, 5]) cube([1, 1, 20], center = true); }\n"
+        "translate([5, 0, 0]) cube(1);");
+    csg::QueryContext ctx;
+    csg::testing::Rng rng(7);
+    int checked = 0, exits = 0;
+    for (int i = 0; i < 500; ++i) {
+        const Vec3 a = rng.inBox(Vec3(-2, -2, 0), Vec3(2, 2, 10));
+        const Vec3 d = rng.unit();
+        const csg::Ray line{a - 30.0 * d, d, 0.0, csg::kInfinity};
+        std::vector<csg::Span> full;
+        for (const csg::Span& span : scene.spans(line, ctx)) full.push_back(span);
+        const double t0 = 30.0 + rng.uniform(-3.0, 3.0), t1 = t0 + rng.uniform(0.1, 4.0);
+        const auto part = scene.spans(csg::Ray{line.o, d, t0, t1}, ctx);
+        std::vector<Interval1> expected, got;
+        for (const csg::Span& span : full) expected.push_back({span.in.t, span.out.t});
+        for (const csg::Span& span : part) got.push_back({span.in.t, span.out.t});
+        expected = clippedTo(expected, t0, t1, 1e-9);
+        got = clippedTo(got, t0, t1, 1e-9);
+        ASSERT_EQ(got.size(), expected.size()) << "ray " << i;
+        for (size_t k = 0; k < got.size(); ++k) {
+            EXPECT_NEAR(got[k].in, expected[k].in, 1e-9) << "ray " << i;
+            EXPECT_NEAR(got[k].out, expected[k].out, 1e-9) << "ray " << i;
+        }
+        checked += !got.empty();
+
+        // From a point inside the twisted prism, if a is one: the first surface end past it.
+        if (!scene.inside(a)) continue;
+        const std::optional<csg::Hit> hit = scene.closest(csg::Ray{a, d, 0.0, csg::kInfinity}, ctx);
+        double firstExit = csg::kInfinity;
+        for (const csg::Span& span : full)
+            if (span.out.t > 30.0 + 1e-9) {
+                firstExit = span.in.t > 30.0 + 1e-9 ? span.in.t : span.out.t;
+                break;
+            }
+        ASSERT_TRUE(hit.has_value()) << "ray " << i;
+        EXPECT_NEAR(hit->t, firstExit - 30.0, 1e-9) << "ray " << i;
+        ++exits;
+    }
+    EXPECT_GT(checked, 100);
+    EXPECT_GT(exits, 50);
+}
+
 // The normal at a span end is the exact surface's: for the twisted square's edge x' = 1 the
 // surface is p(u, z) = (R(-9z deg) (1, u), z), whose tangents are d/du = (R (0, 1), 0) and
 // d/dz = (R' (1, u) 9 deg, 1). The normal is orthogonal to both and points out (against d
