@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <numeric>
 #include <vector>
 
 #include "csg/derived/Flatten2D.h"
@@ -369,18 +370,8 @@ std::optional<csg::Polyhedron> facetedRevolutionMesh(const std::vector<RegionPol
 
 namespace {
 
-// The contour with each edge a -> b cut into the fewest equal pieces no longer than
-// longest(b - a) (> 0; +inf leaves it whole), its corners added to `corners`; false, before
-// making them, when that would pass kMaxExtrusionMeshCorners.
-template <class Longest>
-bool cutEdges(std::vector<Vec2>& contour, const Longest& longest, size_t& corners) {
-    std::vector<double> pieces(contour.size());
-    for (size_t i = 0, m = contour.size(); i < m; ++i) {
-        const Vec2 edge = contour[(i + 1) % m] - contour[i];
-        pieces[i] = std::max(1.0, std::ceil(glm::length(edge) / longest(edge)));
-        if (!(double(corners) + pieces[i] <= double(kMaxExtrusionMeshCorners))) return false;
-        corners += size_t(pieces[i]);
-    }
+// The contour with each edge a -> b cut into `pieces` equal pieces (1 leaves it whole).
+void cutEdges(std::vector<Vec2>& contour, const double* pieces) {
     std::vector<Vec2> cut;
     for (size_t i = 0, m = contour.size(); i < m; ++i) {
         const Vec2 a = contour[i], b = contour[(i + 1) % m];
@@ -388,53 +379,121 @@ bool cutEdges(std::vector<Vec2>& contour, const Longest& longest, size_t& corner
         for (double k = 1.0; k < pieces[i]; ++k) cut.push_back(a + (b - a) * (k / pieces[i]));
     }
     contour = std::move(cut);
-    return true;
 }
 
+// One outline edge's share of a sliced side: its length L and bounds J >= |S_ll . N| and K >=
+// |S_lp . N| over it (N the side's unit normal; below).
+struct EdgeBounds {
+    double length, J, K;
+};
+
 // A twisted or unevenly scaled extrusion's mesh. Its side through the outline edge a -> b is
-// S(l, p) = M(l) (a + p e) at height z0 + l (z1 - z0), e the edge's unit direction, p the length
-// along it, M(l) = D(l) R(-w l), D(l) = diag(1 + (sx - 1) l, 1 + (sy - 1) l), w the twist in
-// radians: linear in p. A slice of dl and a piece of length q of the edge make two triangles
-// through four points of S; linear interpolation on them misses S's second-order terms by at
-// most |S_ll| dl^2 / 8 (as a chord misses an arc) plus |S_lp| dl q / 4 (the quad's twist: x y
-// on the unit square's two triangles misses by 1/4), S_pp being 0. With u = max |s_i - 1|, v =
-// max(1, sx, sy) and rho the outline's largest radius, |S_ll| = |(2 D' R' + D R'') q| <= J = (2 u
-// w + v w^2) rho, and |S_lp| = |(D' R + D R') e| <= K = |D' e| + v w without a twist, u + v w
-// with one. A quarter of the sides' share goes to the first term and fixes dl, the rest to the
-// second and fixes each edge's q: the product dl q, which the triangle count goes as the
-// inverse of, is within 3/4 of its largest. The chords take half the deviation when the outline
-// has curves, divided by v (a section is at most v times the outline).
+// S(l, p) = M(l) (a + p e) at height z0 + l h, e the edge's unit direction, p the length along
+// it, M(l) = D(l) R(-w l), D(l) = diag(1 + (sx - 1) l, 1 + (sy - 1) l), w the twist in radians:
+// linear in p. A slice of dl and a piece of length q of the edge make two triangles through four
+// points of S; to second order they stand off S by at most |S_ll . N| dl^2 / 8 (as a chord
+// misses an arc) plus |S_lp . N| dl q / 4 (the quad's twist: x y on the unit square's two
+// triangles misses by 1/4), S_pp being 0. Only the parts along the normal N count: what S - I
+// has along the side moves a point within it, which changes its distance to S only at the next
+// order (and the export measures the mesh it keeps).
+//   - Twist alone (D = 1): with q(p) = a + p e, S_ll = (-w^2 R q, 0), S_lp = (-w R J e, 0) (J the
+//     quarter turn) and N = (h R J^T e, -w e . q) / n, n = sqrt(h^2 + w^2 (e . q)^2), so
+//     |S_ll . N| = w^2 h |a x e| / n and |S_lp . N| = w h / n, n taken at the smallest |e . q|
+//     on the edge. An edge along a radius far from the axis sweeps a steep helicoid whose normal
+//     is nearly vertical: Debian's example020 spring, whose radial edges stand 90 from the axis
+//     under 1 500 degrees, needs ~24 times fewer pieces on them than the whole second derivative
+//     says.
+//   - With a scale: with u = max |s_i - 1|, v = max(1, sx, sy) and rho the outline's largest
+//     radius, |S_ll| = |(2 D' R' + D R'') q| <= (2 u w + v w^2) rho, and |S_lp| = |(D' R + D R')
+//     e| <= |D' e| + v w without a twist, u + v w with one: the whole derivatives, as bounds of
+//     their normal parts.
+// Slices are shared by all edges, pieces are per edge: n slices (dl = 1 / n) leave each edge
+// pieces no longer than 4 (s - J dl^2 / 8) / (K dl), for its share s of the deviation. More
+// slices leave more of s to the pieces, so the count of triangles, 2 n per corner on the sides
+// and the caps', is least at some n past the fewest that keep s - J dl^2 / 8 > 0 on every edge:
+// n is tried upward from there until every edge is whole (more slices then only add triangles),
+// at most kSliceSearch times. The chords take half the deviation when the outline has curves,
+// divided by v (a section is at most v times the outline).
 std::optional<csg::Polyhedron> slicedToDeviation(const csg::Extrusion& e, double deviation) {
+    constexpr double kSliceSearch = 256.0;
     const Vec2 grow = e.scale - Vec2(1.0);  // D'
     const double u = std::max(std::abs(grow.x), std::abs(grow.y));
     const double v = std::max({1.0, e.scale.x, e.scale.y});
     const double w = std::abs(e.twist) * std::numbers::pi / 180.0;
-    const double sides = csg::straightEdged(*e.outline) ? deviation : 0.5 * deviation;
+    const double h = e.z1 - e.z0;
+    const double share = csg::straightEdged(*e.outline) ? deviation : 0.5 * deviation;
     std::vector<Polygon> region;
     if (!regionOf(*e.outline, e.box, 0.5 * deviation / v, region)) return std::nullopt;
     double rho = 0.0, size = 0.0;
+    size_t contours = 0;
     for (const Polygon& polygon : region)
-        for (size_t k = 0; k <= polygon.holes.size(); ++k)
+        for (size_t k = 0; k <= polygon.holes.size(); ++k, ++contours)
             for (const Vec2& p : k == 0 ? polygon.outer : polygon.holes[k - 1]) {
                 rho = std::max(rho, glm::length(p));
                 size = std::max({size, std::abs(p.x), std::abs(p.y)});
             }
-    const double J = (2.0 * u * w + v * w * w) * rho;
-    const double slices =
-        J > 0.0 ? std::ceil(std::sqrt(J / (2.0 * sides))) : 1.0;  // J/8 dl^2 <= sides/4
-    const double dl = 1.0 / slices;
-    const double rest = sides - J * dl * dl / 8.0;
-    const auto longest = [&](Vec2 edge) {
-        const Vec2 unit = edge / glm::length(edge);
-        const double K = (w == 0.0 ? glm::length(grow * unit) : u) + v * w;
-        return K > 0.0 ? 4.0 * rest / (K * dl) : csg::kInfinity;
+    std::vector<EdgeBounds> edges;
+    double jMost = 0.0;
+    for (const Polygon& polygon : region)
+        for (size_t k = 0; k <= polygon.holes.size(); ++k) {
+            const std::vector<Vec2>& contour = k == 0 ? polygon.outer : polygon.holes[k - 1];
+            for (size_t i = 0, m = contour.size(); i < m; ++i) {
+                const Vec2 a = contour[i], b = contour[(i + 1) % m];
+                const double length = glm::length(b - a);
+                const Vec2 unit = (b - a) / length;
+                EdgeBounds bounds{length, 0.0, 0.0};
+                if (grow == Vec2(0.0)) {
+                    const double along = glm::dot(unit, a), far = along + length;
+                    const double nearest =
+                        along > 0.0 || far < 0.0 ? std::min(std::abs(along), std::abs(far)) : 0.0;
+                    const double n = std::sqrt(h * h + w * w * nearest * nearest);
+                    bounds.J = w * w * h * std::abs(a.x * unit.y - a.y * unit.x) / n;
+                    bounds.K = w * h / n;
+                } else {
+                    bounds.J = (2.0 * u * w + v * w * w) * rho;
+                    bounds.K = (w == 0.0 ? glm::length(grow * unit) : u) + v * w;
+                }
+                jMost = std::max(jMost, bounds.J);
+                edges.push_back(bounds);
+            }
+        }
+    // The pieces of every edge under n slices, and the triangles they make; +inf past
+    // kMaxExtrusionMeshCorners corners.
+    std::vector<double> pieces(edges.size());
+    const auto trianglesAt = [&](double n) {
+        double corners = 0.0;
+        for (size_t i = 0; i < edges.size(); ++i) {
+            const EdgeBounds& b = edges[i];
+            const double rest = share - b.J / (8.0 * n * n);
+            const double longest = b.K > 0.0 ? 4.0 * rest * n / b.K : csg::kInfinity;
+            pieces[i] = std::max(1.0, std::ceil(b.length / longest));
+            corners += pieces[i];
+            if (!(corners <= double(kMaxExtrusionMeshCorners))) return csg::kInfinity;
+        }
+        return 2.0 * n * corners + 2.0 * (corners - 2.0 * double(contours));
     };
-    size_t corners = 0;
-    for (Polygon& polygon : region) {
-        if (!cutEdges(polygon.outer, longest, corners)) return std::nullopt;
-        for (std::vector<Vec2>& hole : polygon.holes)
-            if (!cutEdges(hole, longest, corners)) return std::nullopt;
+    const double fewest = std::floor(std::sqrt(jMost / (8.0 * share))) + 1.0;
+    // Declined before any search when the fewest slices already make too large a mesh (a
+    // billion-degree twist).
+    if (!(fewest * double(edges.size()) <= double(csg::Polyhedron::kMaxTriangles)))
+        return std::nullopt;
+    double slices = fewest, best = trianglesAt(fewest);
+    for (double n = fewest + 1.0; n < fewest + kSliceSearch; ++n) {
+        // `pieces` holds the last n tried: every edge whole there, more slices only add.
+        if (double(edges.size()) == std::accumulate(pieces.begin(), pieces.end(), 0.0)) break;
+        const double triangles = trianglesAt(n);
+        if (triangles < best) best = triangles, slices = n;
     }
+    if (!std::isfinite(best)) return std::nullopt;
+    trianglesAt(slices);
+    size_t corners = 0, first = 0;
+    for (Polygon& polygon : region)
+        for (size_t k = 0; k <= polygon.holes.size(); ++k) {
+            std::vector<Vec2>& contour = k == 0 ? polygon.outer : polygon.holes[k - 1];
+            const size_t m = contour.size();
+            cutEdges(contour, pieces.data() + first);
+            first += m, corners += contour.size();
+        }
     // Each corner makes a point per layer; the mesh may have no more than a polyhedron.
     if (!((slices + 1.0) * double(corners) <= double(csg::Polyhedron::kMaxTriangles)))
         return std::nullopt;

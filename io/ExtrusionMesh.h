@@ -5,9 +5,9 @@
 //   - a rotate_extrude is the profile revolved in equal steps: each chord sweeps a band of
 //     quads (isosceles trapezoids, so planar), and a wedge has the profile as its two ends;
 //   - a twisted or unevenly scaled linear_extrude, whose sides are curved, is sliced as
-//     OpenSCAD slices it (slicedExtrusionMesh), its contours' edges cut into equal pieces, with
-//     as many slices and pieces as keep every side triangle within its share of the deviation
-//     (ExtrusionMesh.cpp derives the bound).
+//     OpenSCAD slices it (slicedExtrusionMesh), its contours' edges cut into equal pieces: of
+//     the slices and pieces that keep every side triangle within its share of the deviation,
+//     those that make the fewest triangles (ExtrusionMesh.cpp derives the bound).
 // With straight lines only, a linear_extrude's polyhedron is the extrusion itself. With curves,
 // every chord's ends lie on the curve and no point of the curve is farther than the deviation
 // from its chord, at the top as at the bottom; a revolution gives half the deviation to the

@@ -229,34 +229,43 @@ TEST(ExtrusionMesh, DeclinesAStraightApexAndMeshesTooLargeToMake) {
 }
 
 // The largest distance between the mesh and the exact extrusion, both ways (MeshDistance.h,
-// which samples a triangle's centroid, corners and edge middles, and the exact surface by rays).
-double distanceBothWays(const Extrusion& exact, const Polyhedron& p, double reach) {
+// which samples a triangle's centroid, corners and edge middles, and the exact surface by rays),
+// lines reaching `reach`, judged against `deviation`: samples above a share of it are measured
+// again along the exact surface's normal (DistanceOptions::goodEnough), since a line along a
+// triangle's normal meets a side that turns under it (a twisted side's helicoid tilts by 21
+// degrees along the square's edge below) farther off than the surface lies.
+double distanceBothWays(const Extrusion& exact, const Polyhedron& p, double reach,
+                        double deviation) {
     const Scene scene = Scene::compile(leaf(exact));
     const TriangleMesh mesh = meshOf(p);
     DistanceOptions options;
-    options.reach = options.goodEnough = reach;
+    options.reach = reach;
+    options.goodEnough = deviation;
     const double toSurface = meshToSurface(scene, mesh, options).max;
     return std::max(toSurface, surfaceToMesh(scene, TriangleBvh(mesh), 128, options).max);
 }
 
 // linear_extrude(10, twist = 90) of a 5 x 5 square at deviation d = 0.02 (ExtrusionMesh.cpp,
-// slicedToDeviation): rho = 2.5 sqrt 2, w = pi / 2, u = 0, v = 1, so J = w^2 rho = 8.7235;
-// slices = ceil(sqrt(J / (2 d))) = ceil(14.77) = 15; each edge's pieces at most 4 (d - J / (8 *
-// 15^2)) / (w / 15) = 0.5789 long, ceil(5 / 0.5789) = 9 per edge: 36 corners on 16 layers, 2 x 15
-// x 36 side triangles and two caps of 36 - 2.
-TEST(ExtrusionMesh, ATwistedSquareIsSlicedAndItsEdgesCut) {
+// slicedToDeviation): a twist alone, w = pi / 2, h = 10. Each side's line passes 2.5 from the
+// axis and its points' e . q run over [-2.5, 2.5], so the smallest is 0, n = h, and the bounds
+// are J = w^2 2.5 = 6.1685 and K = w. With n slices an edge's pieces may be 4 (d - J / (8 n^2)) n
+// / w long: whole edges (5 long) first at n = 99 (q = 5.04; at 98, 4.99), 2 x 99 x 4 side
+// triangles and two caps of 2: 796. Two pieces first at n = 50 would make 2 x 50 x 8 + 2 x 6 =
+// 812, three at 34 836, and the old bound (the whole S_ll, J = w^2 rho = 8.72, a quarter of d to
+// the slices) took 15 slices of 9 pieces per edge, 1 148.
+TEST(ExtrusionMesh, ATwistedSquareTakesTheSlicesThatMakeTheFewestTriangles) {
     const Extrusion e =
         extrusionOf("linear_extrude(height = 10, twist = 90) square(5, center = true);");
     const std::optional<Polyhedron> p = io::extrusionMesh(e, 0.02);
     ASSERT_TRUE(p);
-    EXPECT_EQ(p->data->vertices.size(), 16u * 36u);
-    EXPECT_EQ(p->triangleCount(), 2u * 15u * 36u + 2u * 34u);
-    // Layer j at z = 10 j / 15 is the square turned by -90 j / 15 degrees: turned back, every
+    EXPECT_EQ(p->data->vertices.size(), 100u * 4u);
+    EXPECT_EQ(p->triangleCount(), 2u * 99u * 4u + 2u * 2u);
+    // Layer j at z = 10 j / 99 is the square turned by -90 j / 99 degrees: turned back, every
     // corner lies on the square's edge.
     for (const Vec3& v : p->data->vertices) {
-        const double j = std::round(v.z * 1.5);
-        EXPECT_NEAR(v.z, 10.0 * j / 15.0, 1e-12);
-        const double a = kPi / 2.0 * j / 15.0;
+        const double j = std::round(v.z * 9.9);
+        EXPECT_NEAR(v.z, 10.0 * j / 99.0, 1e-12);
+        const double a = kPi / 2.0 * j / 99.0;
         const Vec2 back(std::cos(a) * v.x - std::sin(a) * v.y,
                         std::sin(a) * v.x + std::cos(a) * v.y);
         EXPECT_NEAR(std::max(std::abs(back.x), std::abs(back.y)), 2.5, 1e-12);
@@ -264,32 +273,34 @@ TEST(ExtrusionMesh, ATwistedSquareIsSlicedAndItsEdgesCut) {
     EXPECT_TRUE(checkTopology(meshOf(*p)).closedManifold());
     // The twist preserves each section's area: 25 x 10, within the sides' area times d.
     EXPECT_NEAR(volumeOf(*p), 250.0, 20.0 * 10.0 * 0.02);
-    EXPECT_LE(distanceBothWays(e, *p, 0.1), 0.02);
+    EXPECT_LE(distanceBothWays(e, *p, 0.1, 0.02), 0.02);
 }
 
 // Two scales make each side a hyperbolic paraboloid. A diamond (|x| + |y| <= 1.5) scaled by
-// [1, 3] over 4, at d = 0.04: no twist, so J = 0 and one slice; every edge runs along (+-1, +-1)
-// / sqrt 2, so K = |(0, 2) e| = sqrt 2 and pieces are at most 4 d / K = 0.1131 long: ceil(1.5
-// sqrt 2 / 0.1131) = ceil(18.75) = 19 per edge, 76 corners, 2 x 76 side triangles and two caps
-// of 74.
-TEST(ExtrusionMesh, UnevenScalesCutTheEdgesOfOneSlice) {
+// [1, 3] over 4, at d = 0.04: no twist, so J = 0; every edge runs along (+-1, +-1) / sqrt 2, so
+// K = |(0, 2) e| = sqrt 2, and with n slices pieces may be 4 d n / K = 0.1131 n long. An edge
+// is 1.5 sqrt 2 = 2.121 long: ceil(18.75 / n) pieces, 2 n x 4 p side triangles and two caps of
+// 4 p - 2. One slice of 19 pieces would make 300, 2 of 10 236, 4 of 5 196, 10 of 2 172, and 19
+// slices of whole edges 2 x 19 x 4 + 2 x 2 = 156, the fewest.
+TEST(ExtrusionMesh, UnevenScalesTakeTheSlicesThatMakeTheFewestTriangles) {
     const Extrusion e = extrusionOf(
         "linear_extrude(height = 4, scale = [1, 3]) polygon([[1.5, 0], [0, 1.5], [-1.5, 0], [0, "
         "-1.5]]);");
     const std::optional<Polyhedron> p = io::extrusionMesh(e, 0.04);
     ASSERT_TRUE(p);
-    EXPECT_EQ(p->data->vertices.size(), 2u * 76u);
-    EXPECT_EQ(p->triangleCount(), 2u * 76u + 2u * 74u);
+    EXPECT_EQ(p->data->vertices.size(), 20u * 4u);
+    EXPECT_EQ(p->triangleCount(), 2u * 19u * 4u + 2u * 2u);
+    // Layer j at z = 4 j / 19 is the diamond scaled by 1 + z / 2 in y.
     for (const Vec3& v : p->data->vertices) {
-        const double sy = v.z == 0.0 ? 1.0 : 3.0;  // the top is scaled by 3 in y
-        EXPECT_TRUE(v.z == 0.0 || v.z == 4.0);
-        EXPECT_NEAR(std::abs(v.x) + std::abs(v.y / sy), 1.5, 1e-12);
+        const double j = std::round(v.z * 19.0 / 4.0);
+        EXPECT_NEAR(v.z, 4.0 * j / 19.0, 1e-12);
+        EXPECT_NEAR(std::abs(v.x) + std::abs(v.y / (1.0 + v.z / 2.0)), 1.5, 1e-12);
     }
     EXPECT_TRUE(checkTopology(meshOf(*p)).closedManifold());
     // Each section of the frustum is the diamond scaled by 1 + 2 z / 4 in y: area 4.5 (1 + z / 2),
     // 4.5 x (4 + 4) = 36 over the height.
     EXPECT_NEAR(volumeOf(*p), 36.0, 1e-9 * 36.0 + 0.04 * 4.0 * 4.0 * 3.0);
-    EXPECT_LE(distanceBothWays(e, *p, 0.2), 0.04);
+    EXPECT_LE(distanceBothWays(e, *p, 0.2, 0.04), 0.04);
 }
 
 // End to end: a part made of straight extrusions exports as its exact boundary, the fewest

@@ -200,26 +200,31 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
                                       options.distribute);
         };
         // The measured distance of a faceting within the margin sits near its deviation, often
-        // well under the margin: one coarser faceting, the deviation scaled from `measured` up
+        // well under the margin: a coarser faceting, the deviation scaled from `measured` up
         // to the slack, kept with its figures when it has fewer than `triangles` triangles and
-        // measures within the margin both ways.
-        const auto coarserKept = [&](double measured, size_t triangles) {
+        // measures within the margin both ways (then `measured` and `triangles` are its own).
+        const auto coarserKept = [&](double& measured, size_t& triangles) {
             const double coarser =
                 deviation * std::min(tol::kFacetSlackMaxGain,
                                      tol::kFacetSlackTarget * margin / std::max(measured, 1e-300));
             if (coarser < tol::kFacetSlackMinGain * deviation) return false;
             // The figures the attempt overwrites, restored when it is not kept.
-            const DistanceStats error = result.error;
+            const DistanceStats error = result.error, backError = result.backError;
             const PolyhedralBoundaryStats stats = result.polyhedral;
             std::optional<TriangleMesh> mesh = facetedBoundary(coarser);
-            if (mesh && mesh->triangles.size() < triangles &&
-                measureToSurface(*mesh, tolerance) <= margin && measureToMesh(*mesh) <= margin) {
-                result.mesh = std::move(*mesh);
-                deviation = coarser;
-                return true;
+            if (mesh && mesh->triangles.size() < triangles) {
+                const double toSurface = measureToSurface(*mesh, tolerance);
+                const double toMesh = toSurface <= margin ? measureToMesh(*mesh) : kInfinity;
+                if (toMesh <= margin) {
+                    measured = std::max(toSurface, toMesh);
+                    triangles = mesh->triangles.size();
+                    result.mesh = std::move(*mesh);
+                    deviation = coarser;
+                    return true;
+                }
             }
             result.error = error;
-            result.backError = {};
+            result.backError = backError;
             result.polyhedral = stats;
             return false;
         };
@@ -234,7 +239,10 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
             // this one need not be measured the other way (the costlier way on small meshes).
             bool keptCoarser = false;
             if (measured <= margin) {
-                keptCoarser = coarserKept(measured, mesh->triangles.size());
+                size_t triangles = mesh->triangles.size();
+                for (int k = 0; k < tol::kFacetSlackAttempts && coarserKept(measured, triangles);
+                     ++k)
+                    keptCoarser = true;
                 if (!keptCoarser) measured = measureToMesh(*mesh);
             }
             if (measured > margin) {

@@ -303,13 +303,18 @@ inline constexpr double kFacetSlackTarget = 0.8;
 // wild sample does not spend all the faces.
 inline constexpr double kFacetFinerMin = 0.25;
 inline constexpr double kFacetFinerMax = 0.8;
-// A faceting that measures within the margin is tried once coarser by that rule, at most
+// A faceting that measures within the margin is tried coarser by that rule, at most
 // kFacetSlackMaxGain times the deviation, and only for a gain of kFacetSlackMinGain or more
 // (unit: relative). Why: the measured distance sits near the deviation (T/2), so about 0.3 T of
 // the margin (0.8 T) is unspent, and faces grow with 1 / sqrt(deviation) per curved direction;
 // below a 1.25-fold gain the attempt costs more time than it saves triangles.
 inline constexpr double kFacetSlackMaxGain = 2.0;
 inline constexpr double kFacetSlackMinGain = 1.25;
+// ... again from each coarser faceting kept, up to this many in all (unit: attempts). Why: a
+// faceting whose bound is far from what it measures (a twisted side, whose quads' bound counts
+// the worst of a whole edge) still measures well under the margin at twice its deviation; a
+// chord rule's faceting measures near its deviation and stops after one.
+inline constexpr int kFacetSlackAttempts = 3;
 
 // A mesh's corners and edge midpoints are distance-sampled at the point this fraction of the way
 // towards their triangle's centroid (unit: relative to the distance to the centroid;
