@@ -36,6 +36,14 @@ TEST(Volume, RotatedPartHasTheSameVolume) {
     EXPECT_LT(relativeError(transformed(r, leaf(Cylinder{2, 1, 1})), 2 * kPi), 1e-3);
 }
 
+// Rows run on any number of threads and are added in row order: the same double for each.
+TEST(Volume, TheSameForAnyThreadCount) {
+    const Scene scene = Scene::compile(subtract(leaf(Box{Vec3(-1), Vec3(1)}), leaf(Sphere{0.8})));
+    const double one = volume(scene, 256, 1);
+    EXPECT_GT(one, 0.0);
+    for (const int threads : {2, 3, 7}) EXPECT_EQ(volume(scene, 256, threads), one) << threads;
+}
+
 TEST(Volume, EmptySceneHasZeroVolume) {
     EXPECT_EQ(volume(Scene::compile(nullptr), 16), 0.0);
     EXPECT_EQ(volume(Scene::compile(subtract(leaf(Sphere{1}), leaf(Sphere{2}))), 16), 0.0);

@@ -109,7 +109,7 @@ int compareCommand(std::span<const std::string> args) {
     // Step 1: topology and volumes.
     const csg::MeshTopology topo = csg::checkTopology(mesh);
     const double meshVolume = csg::signedVolume(mesh);
-    const double partVolume = csg::volume(part.scene, 1024);
+    const double partVolume = csg::volume(part.scene, 1024, threads);
     const bool outward = meshVolume >= 0.0;
     const csg::TriangleBvh bvh(mesh, threads);
     const csg::SelfIntersections crossings =
