@@ -214,9 +214,8 @@ csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double dev
     if (const auto* torus = std::get_if<csg::Torus>(&p)) {
         // The revolution of its tube's circle about z, faceted as that extrusion is.
         csg::Outline tube;
-        tube.segments.push_back(csg::Segment2::arc({torus->majorRadius, 0.0},
-                                                   {torus->minorRadius, 0.0},
-                                                   {0.0, torus->minorRadius}, 0.0, 2.0 * csg::kPi));
+        tube.segments.push_back(
+            csg::Segment2::circle({torus->majorRadius, 0.0}, torus->minorRadius));
         tube.buildIndex();
         const csg::Extrusion revolution =
             csg::Extrusion::plane(std::make_shared<const csg::Outline>(std::move(tube)), "circle")

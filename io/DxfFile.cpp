@@ -353,7 +353,7 @@ void Reader::emitCircle(const Place& at, Vec2 center, double r) {
     if (!options_.faceted) {
         if (r == 0.0) return;
         const Vec2 start(openscadCosDegrees(0.0) * r + center.x, center.y);
-        const Segment2 circle = Segment2::arc(center, {r, 0.0}, {0.0, r}, 0.0, 2.0 * csg::kPi);
+        const Segment2 circle = Segment2::circle(center, r);
         return emit(at, start, start, &circle);
     }
     const int64_t n = fragments(r, options_.fragments);

@@ -100,9 +100,7 @@ NodePtr sum2D(Evaluator& e, const InstantiationStmt& s, const NodePtr& a, const 
     if (discA && discB) {
         csg::Outline circle;
         const double r = discA->radius + discB->radius;
-        circle.segments.push_back(csg::Segment2::arc(discA->center + discB->center,
-                                                     csg::Vec2(r, 0.0), csg::Vec2(0.0, r), 0.0,
-                                                     2.0 * csg::kPi));
+        circle.segments.push_back(csg::Segment2::circle(discA->center + discB->center, r));
         return csg::leaf(
             csg::Extrusion::plane(std::make_shared<csg::Outline>(std::move(circle)), "minkowski"),
             tags);

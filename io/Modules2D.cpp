@@ -93,8 +93,7 @@ Instance circleModule(Evaluator& e, const InstantiationStmt& s, const ContextPtr
     if (isFaceted(e.curveMode(), settings)) {
         addLoop(outline, circleVertices(r, fragments(r, settings)));
     } else {
-        outline.segments.push_back(
-            Segment2::arc(Vec2(0.0), Vec2(r, 0.0), Vec2(0.0, r), 0.0, 2.0 * csg::kPi));
+        outline.segments.push_back(Segment2::circle(Vec2(0.0), r));
     }
     return shapeLeaf(e, s, state, std::move(outline), "circle");
 }

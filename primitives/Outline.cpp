@@ -126,6 +126,10 @@ Segment2 Segment2::arc(Vec2 center, Vec2 axisA, Vec2 axisB, double th0, double t
     return s;
 }
 
+Segment2 Segment2::circle(Vec2 center, double radius) {
+    return arc(center, {radius, 0.0}, {0.0, radius}, 0.0, 2.0 * kPi);
+}
+
 Vec2 Segment2::finish() const {
     switch (kind) {
         case Kind::Line: return p[1];

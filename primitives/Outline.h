@@ -51,6 +51,8 @@ struct Segment2 {
     static Segment2 cubic(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
     // A circular or elliptic arc; a full turn (th1 = th0 + 2 pi) closes on itself.
     static Segment2 arc(Vec2 center, Vec2 axisA, Vec2 axisB, double th0, double th1);
+    // The whole circle about `center`, counter-clockwise from angle 0: arc's full turn.
+    static Segment2 circle(Vec2 center, double radius);
 
     Vec2 start() const { return p[0]; }
     Vec2 finish() const;

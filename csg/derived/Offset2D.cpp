@@ -49,7 +49,7 @@ public:
 
     void disc(Vec2 c, double r) {
         nextCurve();
-        out_.segments.push_back(Segment2::arc(c, {r, 0.0}, {0.0, r}, 0.0, kTurn));
+        out_.segments.push_back(Segment2::circle(c, r));
     }
 
     // {c + s e(theta): theta in [from, from + width], s in [inner, outer]}, inner >= 0.
