@@ -8,7 +8,6 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
-#include <numeric>
 #include <vector>
 
 #include "csg/derived/Flatten2D.h"
@@ -370,6 +369,15 @@ std::optional<csg::Polyhedron> facetedRevolutionMesh(const std::vector<RegionPol
 
 namespace {
 
+// Calls visit(contour) for each outer contour and hole of the region, in order.
+template <class Region, class Visit>
+void forEachContour(Region& region, Visit&& visit) {
+    for (auto& polygon : region) {
+        visit(polygon.outer);
+        for (auto& hole : polygon.holes) visit(hole);
+    }
+}
+
 // The contour with each edge a -> b cut into `pieces` equal pieces (1 leaves it whole).
 void cutEdges(std::vector<Vec2>& contour, const double* pieces) {
     std::vector<Vec2> cut;
@@ -426,42 +434,42 @@ std::optional<csg::Polyhedron> slicedToDeviation(const csg::Extrusion& e, double
     if (!regionOf(*e.outline, e.box, 0.5 * deviation / v, region)) return std::nullopt;
     double rho = 0.0, size = 0.0;
     size_t contours = 0;
-    for (const Polygon& polygon : region)
-        for (size_t k = 0; k <= polygon.holes.size(); ++k, ++contours)
-            for (const Vec2& p : k == 0 ? polygon.outer : polygon.holes[k - 1]) {
-                rho = std::max(rho, glm::length(p));
-                size = std::max({size, std::abs(p.x), std::abs(p.y)});
-            }
+    forEachContour(region, [&](const std::vector<Vec2>& contour) {
+        ++contours;
+        for (const Vec2& p : contour) {
+            rho = std::max(rho, glm::length(p));
+            size = std::max({size, std::abs(p.x), std::abs(p.y)});
+        }
+    });
     std::vector<EdgeBounds> edges;
     double jMost = 0.0;
-    for (const Polygon& polygon : region)
-        for (size_t k = 0; k <= polygon.holes.size(); ++k) {
-            const std::vector<Vec2>& contour = k == 0 ? polygon.outer : polygon.holes[k - 1];
-            for (size_t i = 0, m = contour.size(); i < m; ++i) {
-                const Vec2 a = contour[i], b = contour[(i + 1) % m];
-                const double length = glm::length(b - a);
-                const Vec2 unit = (b - a) / length;
-                EdgeBounds bounds{length, 0.0, 0.0};
-                if (grow == Vec2(0.0)) {
-                    const double along = glm::dot(unit, a), far = along + length;
-                    const double nearest =
-                        along > 0.0 || far < 0.0 ? std::min(std::abs(along), std::abs(far)) : 0.0;
-                    const double n = std::sqrt(h * h + w * w * nearest * nearest);
-                    bounds.J = w * w * h * std::abs(a.x * unit.y - a.y * unit.x) / n;
-                    bounds.K = w * h / n;
-                } else {
-                    bounds.J = (2.0 * u * w + v * w * w) * rho;
-                    bounds.K = (w == 0.0 ? glm::length(grow * unit) : u) + v * w;
-                }
-                jMost = std::max(jMost, bounds.J);
-                edges.push_back(bounds);
+    forEachContour(region, [&](const std::vector<Vec2>& contour) {
+        for (size_t i = 0, m = contour.size(); i < m; ++i) {
+            const Vec2 a = contour[i], b = contour[(i + 1) % m];
+            const double length = glm::length(b - a);
+            const Vec2 unit = (b - a) / length;
+            EdgeBounds bounds{length, 0.0, 0.0};
+            if (grow == Vec2(0.0)) {
+                const double along = glm::dot(unit, a), far = along + length;
+                const double nearest =
+                    along > 0.0 || far < 0.0 ? std::min(std::abs(along), std::abs(far)) : 0.0;
+                const double n = std::sqrt(h * h + w * w * nearest * nearest);
+                bounds.J = w * w * h * std::abs(a.x * unit.y - a.y * unit.x) / n;
+                bounds.K = w * h / n;
+            } else {
+                bounds.J = (2.0 * u * w + v * w * w) * rho;
+                bounds.K = (w == 0.0 ? glm::length(grow * unit) : u) + v * w;
             }
+            jMost = std::max(jMost, bounds.J);
+            edges.push_back(bounds);
         }
-    // The pieces of every edge under n slices, and the triangles they make; +inf past
-    // kMaxExtrusionMeshCorners corners.
+    });
+    // The pieces of every edge under n slices (in `pieces`, their sum in `corners`) and the
+    // triangles they make; +inf past kMaxExtrusionMeshCorners corners.
     std::vector<double> pieces(edges.size());
+    double corners = 0.0;
     const auto trianglesAt = [&](double n) {
-        double corners = 0.0;
+        corners = 0.0;
         for (size_t i = 0; i < edges.size(); ++i) {
             const EdgeBounds& b = edges[i];
             const double rest = share - b.J / (8.0 * n * n);
@@ -479,24 +487,21 @@ std::optional<csg::Polyhedron> slicedToDeviation(const csg::Extrusion& e, double
         return std::nullopt;
     double slices = fewest, best = trianglesAt(fewest);
     for (double n = fewest + 1.0; n < fewest + kSliceSearch; ++n) {
-        // `pieces` holds the last n tried: every edge whole there, more slices only add.
-        if (double(edges.size()) == std::accumulate(pieces.begin(), pieces.end(), 0.0)) break;
+        // Every edge whole at the last n tried: more slices only add triangles.
+        if (corners == double(edges.size())) break;
         const double triangles = trianglesAt(n);
         if (triangles < best) best = triangles, slices = n;
     }
     if (!std::isfinite(best)) return std::nullopt;
-    trianglesAt(slices);
-    size_t corners = 0, first = 0;
-    for (Polygon& polygon : region)
-        for (size_t k = 0; k <= polygon.holes.size(); ++k) {
-            std::vector<Vec2>& contour = k == 0 ? polygon.outer : polygon.holes[k - 1];
-            const size_t m = contour.size();
-            cutEdges(contour, pieces.data() + first);
-            first += m, corners += contour.size();
-        }
+    trianglesAt(slices);  // the pieces of the count chosen
     // Each corner makes a point per layer; the mesh may have no more than a polyhedron.
-    if (!((slices + 1.0) * double(corners) <= double(csg::Polyhedron::kMaxTriangles)))
-        return std::nullopt;
+    if (!((slices + 1.0) * corners <= double(csg::Polyhedron::kMaxTriangles))) return std::nullopt;
+    size_t first = 0;
+    forEachContour(region, [&](std::vector<Vec2>& contour) {
+        const size_t m = contour.size();
+        cutEdges(contour, pieces.data() + first);
+        first += m;
+    });
     return slicedExtrusionMesh(region, e.z0, e.z1, e.twist, e.scale, int64_t(slices),
                                csg::tol::kCutPointStraightRel * size);
 }

@@ -48,14 +48,13 @@ int curvedRoots(const Segment2& s, Vec2 o, Vec2 d, double* u) {
     int n = 0;
     switch (s.kind) {
         case Segment2::Kind::Quadratic: {
-            const double s0 = side(o, d, s.p[0]), s1 = side(o, d, s.p[1]),
-                         s2 = side(o, d, s.p[2]);
+            const double s0 = side(o, d, s.p[0]), s1 = side(o, d, s.p[1]), s2 = side(o, d, s.p[2]);
             n = solveQuadratic(s0 - 2.0 * s1 + s2, 2.0 * (s1 - s0), s0, roots[0], roots[1]);
             break;
         }
         case Segment2::Kind::Cubic: {
-            const double s0 = side(o, d, s.p[0]), s1 = side(o, d, s.p[1]),
-                         s2 = side(o, d, s.p[2]), s3 = side(o, d, s.p[3]);
+            const double s0 = side(o, d, s.p[0]), s1 = side(o, d, s.p[1]), s2 = side(o, d, s.p[2]),
+                         s3 = side(o, d, s.p[3]);
             n = solveCubicAll(s3 - 3.0 * s2 + 3.0 * s1 - s0, 3.0 * (s0 - 2.0 * s1 + s2),
                               3.0 * (s1 - s0), s0, roots);
             break;
@@ -132,10 +131,14 @@ Segment2 Segment2::circle(Vec2 center, double radius) {
 
 Vec2 Segment2::finish() const {
     switch (kind) {
-        case Kind::Line: return p[1];
-        case Kind::Quadratic: return p[2];
-        case Kind::Cubic: return p[3];
-        case Kind::Arc: return end;
+        case Kind::Line:
+            return p[1];
+        case Kind::Quadratic:
+            return p[2];
+        case Kind::Cubic:
+            return p[3];
+        case Kind::Arc:
+            return end;
     }
     return p[0];
 }
@@ -143,8 +146,10 @@ Vec2 Segment2::finish() const {
 Vec2 Segment2::at(double u) const {
     const double v = 1.0 - u;
     switch (kind) {
-        case Kind::Line: return p[0] + (p[1] - p[0]) * u;
-        case Kind::Quadratic: return p[0] * (v * v) + p[1] * (2.0 * u * v) + p[2] * (u * u);
+        case Kind::Line:
+            return p[0] + (p[1] - p[0]) * u;
+        case Kind::Quadratic:
+            return p[0] * (v * v) + p[1] * (2.0 * u * v) + p[2] * (u * u);
         case Kind::Cubic:
             return p[0] * (v * v * v) + p[1] * (3.0 * u * v * v) + p[2] * (3.0 * u * u * v) +
                    p[3] * (u * u * u);
@@ -159,8 +164,10 @@ Vec2 Segment2::at(double u) const {
 Vec2 Segment2::tangent(double u) const {
     const double v = 1.0 - u;
     switch (kind) {
-        case Kind::Line: return p[1] - p[0];
-        case Kind::Quadratic: return ((p[1] - p[0]) * v + (p[2] - p[1]) * u) * 2.0;
+        case Kind::Line:
+            return p[1] - p[0];
+        case Kind::Quadratic:
+            return ((p[1] - p[0]) * v + (p[2] - p[1]) * u) * 2.0;
         case Kind::Cubic:
             return ((p[1] - p[0]) * (v * v) + (p[2] - p[1]) * (2.0 * u * v) +
                     (p[3] - p[2]) * (u * u)) *
@@ -248,13 +255,12 @@ void Outline::crossSegment(uint32_t i, Vec2 o, Vec2 d, std::vector<Crossing2>& o
         const double hi = u[k];
         const bool neg = side(o, d, s.at(0.5 * (lo + hi))) < 0.0;
         if (neg != negBefore)
-            out.push_back({glm::dot((k == 0 ? a : s.at(lo)) - o, d) / dd, i,
-                           int8_t(negBefore ? 1 : -1)});
+            out.push_back(
+                {glm::dot((k == 0 ? a : s.at(lo)) - o, d) / dd, i, int8_t(negBefore ? 1 : -1)});
         negBefore = neg;
         lo = hi;
     }
-    if (negBefore != negB)
-        out.push_back({glm::dot(b - o, d) / dd, i, int8_t(negBefore ? 1 : -1)});
+    if (negBefore != negB) out.push_back({glm::dot(b - o, d) / dd, i, int8_t(negBefore ? 1 : -1)});
 }
 
 void Outline::crossings(Vec2 o, Vec2 d, std::vector<Crossing2>& out) const {
@@ -271,12 +277,13 @@ void Outline::crossings(Vec2 o, Vec2 d, std::vector<Crossing2>& out) const {
         // The line meets the box when the box's extent across the line reaches its centre's
         // side value; boxes are widened (buildIndex), so rounding never culls a crossing.
         const Vec2 c = 0.5 * (node.box.lo + node.box.hi), h = 0.5 * (node.box.hi - node.box.lo);
-        if (std::abs(side(o, d, c)) > std::abs(d.y) * h.x + std::abs(d.x) * h.y +
-                                          kLineBoxSlack * scale *
-                                              (std::abs(c.x - o.x) + std::abs(c.y - o.y)))
+        if (std::abs(side(o, d, c)) >
+            std::abs(d.y) * h.x + std::abs(d.x) * h.y +
+                kLineBoxSlack * scale * (std::abs(c.x - o.x) + std::abs(c.y - o.y)))
             continue;
         if (node.count > 0) {
-            for (uint32_t k = 0; k < node.count; ++k) crossSegment(order[node.first + k], o, d, out);
+            for (uint32_t k = 0; k < node.count; ++k)
+                crossSegment(order[node.first + k], o, d, out);
             continue;
         }
         stack[top++] = node.right;
