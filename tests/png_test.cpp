@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tests/SeededRng.h"
@@ -44,10 +45,14 @@ Rgb8Image gradientImage(int width, int height) {
     return image;
 }
 
+std::string fileBytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 // The number of chunks of the given type, walking the file by the chunks' lengths.
 int countChunks(const fs::path& path, const std::string& type) {
-    std::ifstream in(path, std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string bytes = fileBytes(path);
     int count = 0;
     for (size_t at = 8; at + 8 <= bytes.size();) {
         uint32_t length = 0;
@@ -58,6 +63,8 @@ int countChunks(const fs::path& path, const std::string& type) {
     return count;
 }
 
+// Written from a const image, and again from a copy that writePng filters in place (with the
+// spare bytes a render reserves, and without): the same file, which decodes to the pixels.
 void expectRoundTrip(const Rgb8Image& written, const fs::path& path) {
     ASSERT_EQ(writePng(path, written), "");
     Rgb8Image read;
@@ -66,6 +73,16 @@ void expectRoundTrip(const Rgb8Image& written, const fs::path& path) {
     ASSERT_EQ(read.height, written.height);
     EXPECT_TRUE(read.pixels == written.pixels)
         << written.width << "x" << written.height << " decodes to other bytes";
+    for (const bool reserve : {true, false}) {
+        Rgb8Image spent(written.width, written.height);
+        if (reserve) spent.reserveFilterBytes();
+        spent.pixels = written.pixels;
+        const fs::path again = fs::path(path).replace_extension(".inplace.png");
+        ASSERT_EQ(writePng(again, std::move(spent)), "");
+        EXPECT_TRUE(spent.pixels.empty());
+        EXPECT_EQ(fileBytes(again), fileBytes(path)) << written.width << "x" << written.height;
+        fs::remove(again);
+    }
 }
 
 TEST(PngWriter, RandomImagesOfManyShapesDecodeToTheSameBytes) {

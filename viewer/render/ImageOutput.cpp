@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <utility>
 
 #include "primitives/base/AtomicFile.h"
 #include "viewer/render/Color.h"
@@ -97,9 +98,9 @@ PixelStore pixelStoreFor(ImageFormat format) {
 }
 
 std::string writeImage(const std::filesystem::path& path, ImageFormat format,
-                       const RenderResult& render) {
+                       RenderResult& render) {
     if (!render.srgb.pixels.empty() && format == ImageFormat::Png)
-        return writePng(path, render.srgb);
+        return writePng(path, std::move(render.srgb));
     return writeImage(path, format, render.image);
 }
 

@@ -25,8 +25,8 @@ std::string writeImage(const std::filesystem::path& path, ImageFormat format,
 
 // What a render written in `format` needs kept of each pixel: PNG only its 8-bit encoding.
 PixelStore pixelStoreFor(ImageFormat format);
-// Writes a render made with pixelStoreFor(format): from its 8-bit pixels when it kept those.
-std::string writeImage(const std::filesystem::path& path, ImageFormat format,
-                       const RenderResult& render);
+// Writes a render made with pixelStoreFor(format): from its 8-bit pixels when it kept those,
+// which are then spent (writePng filters in them); the counts are left as they were.
+std::string writeImage(const std::filesystem::path& path, ImageFormat format, RenderResult& render);
 
 }  // namespace viewer::render

@@ -109,6 +109,7 @@ RenderResult blankImage(const ImageSettings& settings) {
     if (settings.store == PixelStore::Srgb8) {
         result.srgb.width = settings.width;
         result.srgb.height = settings.height;
+        result.srgb.reserveFilterBytes();
         result.srgb.pixels.resize(channels);
     } else {
         result.image.width = settings.width;
