@@ -411,10 +411,18 @@ struct EdgeBounds {
 //     is nearly vertical: Debian's example020 spring, whose radial edges stand 90 from the axis
 //     under 1 500 degrees, needs ~24 times fewer pieces on them than the whole second derivative
 //     says.
-//   - With a scale: with u = max |s_i - 1|, v = max(1, sx, sy) and rho the outline's largest
-//     radius, |S_ll| = |(2 D' R' + D R'') q| <= (2 u w + v w^2) rho, and |S_lp| = |(D' R + D R')
-//     e| <= |D' e| + v w without a twist, u + v w with one: the whole derivatives, as bounds of
-//     their normal parts.
+//   - A twist and one scale s (D = sigma(l) = 1 + k l, k = s - 1): with g = R q and f = R e,
+//     S_ll = (-2 k w J g - sigma w^2 g, 0), S_lp = (k f - sigma w J f, 0) and S_l x S_p =
+//     (h sigma J f, sigma (k q x e + w sigma q . e)), whose length n is at least h sigma, so
+//     |S_ll . N| = h sigma |2 k w q . e + sigma w^2 q x e| / n <= 2 |k| w max |q . e| +
+//     v w^2 |a x e| and |S_lp . N| = h sigma^2 w / n <= v w, with v = max(1, s): the scale's
+//     own rate drops out of K, and J counts the edge's reach along itself and its distance from
+//     the axis instead of the outline's largest radius twice (a twisted pyramid's sides).
+//   - Two scales, or one without a twist: with u = max |s_i - 1|, v = max(1, sx, sy) and rho the
+//     outline's largest radius, |S_ll| = |(2 D' R' + D R'') q| <= (2 u w + v w^2) rho, and
+//     |S_lp| = |(D' R + D R') e| <= |D' e| + v w without a twist, u + v w with one: the whole
+//     derivatives, as bounds of their normal parts (with sx != sy the normal's length can
+//     vanish faster than S_lp . (J D f) where a scale reaches 0).
 // Slices are shared by all edges, pieces are per edge: n slices (dl = 1 / n) leave each edge
 // pieces no longer than 4 (s - J dl^2 / 8) / (K dl), for its share s of the deviation. More
 // slices leave more of s to the pieces, so the count of triangles, 2 n per corner on the sides
@@ -449,13 +457,18 @@ std::optional<csg::Polyhedron> slicedToDeviation(const csg::Extrusion& e, double
             const double length = glm::length(b - a);
             const Vec2 unit = (b - a) / length;
             EdgeBounds bounds{length, 0.0, 0.0};
+            const double along = glm::dot(unit, a), far = along + length;
+            const double cross = std::abs(a.x * unit.y - a.y * unit.x);
             if (grow == Vec2(0.0)) {
-                const double along = glm::dot(unit, a), far = along + length;
                 const double nearest =
                     along > 0.0 || far < 0.0 ? std::min(std::abs(along), std::abs(far)) : 0.0;
                 const double n = std::sqrt(h * h + w * w * nearest * nearest);
-                bounds.J = w * w * h * std::abs(a.x * unit.y - a.y * unit.x) / n;
+                bounds.J = w * w * h * cross / n;
                 bounds.K = w * h / n;
+            } else if (grow.x == grow.y && w > 0.0) {
+                const double reach = std::max(std::abs(along), std::abs(far));
+                bounds.J = 2.0 * w * u * reach + v * w * w * cross;
+                bounds.K = v * w;
             } else {
                 bounds.J = (2.0 * u * w + v * w * w) * rho;
                 bounds.K = (w == 0.0 ? glm::length(grow * unit) : u) + v * w;

@@ -276,6 +276,36 @@ TEST(ExtrusionMesh, ATwistedSquareTakesTheSlicesThatMakeTheFewestTriangles) {
     EXPECT_LE(distanceBothWays(e, *p, 0.1, 0.02), 0.02);
 }
 
+// The same square twisted and scaled by 0.5 at d = 0.02: k = -0.5, v = 1, w = pi / 2, h = 10.
+// Each edge passes 2.5 from the axis and reaches 2.5 along itself, so the normal parts give
+// J = 2 w |k| 2.5 + w^2 2.5 = 10.0955 and K = v w = 1.5708: pieces may be 4 (d - J / (8 n^2)) n
+// / K long, whole edges first at n = 99 (5.009; at 98, 4.959), 796 triangles as without the
+// scale; two pieces first at n = 51 would make 828, three at 35 860. The whole derivatives
+// (J = (2 |k| w + w^2) 2.5 sqrt 2 = 14.277, K = |k| + w = 2.0708) took 131 slices of whole
+// edges, 1 052.
+TEST(ExtrusionMesh, ATwistedFrustumCountsOnlyTheNormalParts) {
+    const Extrusion e = extrusionOf(
+        "linear_extrude(height = 10, twist = 90, scale = 0.5) square(5, center = true);");
+    const std::optional<Polyhedron> p = io::extrusionMesh(e, 0.02);
+    ASSERT_TRUE(p);
+    EXPECT_EQ(p->data->vertices.size(), 100u * 4u);
+    EXPECT_EQ(p->triangleCount(), 2u * 99u * 4u + 2u * 2u);
+    // Layer j at z = 10 j / 99 is the square turned by -90 j / 99 degrees and scaled by
+    // 1 - 0.5 j / 99: turned back and scaled up, every corner lies on the square's edge.
+    for (const Vec3& v : p->data->vertices) {
+        const double j = std::round(v.z * 9.9);
+        EXPECT_NEAR(v.z, 10.0 * j / 99.0, 1e-12);
+        const double a = kPi / 2.0 * j / 99.0, sigma = 1.0 - 0.5 * j / 99.0;
+        const Vec2 back(std::cos(a) * v.x - std::sin(a) * v.y,
+                        std::sin(a) * v.x + std::cos(a) * v.y);
+        EXPECT_NEAR(std::max(std::abs(back.x), std::abs(back.y)) / sigma, 2.5, 1e-12);
+    }
+    EXPECT_TRUE(checkTopology(meshOf(*p)).closedManifold());
+    // Sections 25 sigma^2: 250 (1 + k + k^2 / 3) = 145.83 over the height.
+    EXPECT_NEAR(volumeOf(*p), 250.0 * (1.0 - 0.5 + 0.25 / 3.0), 20.0 * 10.0 * 0.02);
+    EXPECT_LE(distanceBothWays(e, *p, 0.1, 0.02), 0.02);
+}
+
 // Two scales make each side a hyperbolic paraboloid. A diamond (|x| + |y| <= 1.5) scaled by
 // [1, 3] over 4, at d = 0.04: no twist, so J = 0; every edge runs along (+-1, +-1) / sqrt 2, so
 // K = |(0, 2) e| = sqrt 2, and with n slices pieces may be 4 d n / K = 0.1131 n long. An edge
