@@ -134,6 +134,11 @@ Bounds3 ConvexPolytope::boundsUnder(const Mat4& m) const {
 void ConvexPolytope::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     double tIn = -kInfinity, tOut = kInfinity;
     uint16_t faceIn = kClipFace, faceOut = kClipFace;
+    // The caller reads the span only within [from, to] (LocalSpans): once its entry lies past
+    // to + margin, or its exit before from - margin, it shows nothing there, and the planes left
+    // need not be tested (a line met far beyond the best hit so far, or a classifying line a
+    // few eps long that passes the polytope by). Past `to` is a span left out (cutAtTo).
+    const double enterBy = out.to + out.margin, leaveFrom = out.from - out.margin;
     const PlaneLanes dx = PlaneLanes{} + d.x, dy = PlaneLanes{} + d.y, dz = PlaneLanes{} + d.z;
     const PlaneLanes ox = PlaneLanes{} + o.x, oy = PlaneLanes{} + o.y, oz = PlaneLanes{} + o.z;
     const std::vector<PlaneBlock>& blocks = data->planeBlocks;
@@ -166,6 +171,11 @@ void ConvexPolytope::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const 
             }
         }
         if (tIn > tOut) return;  // the ends have crossed: no later plane brings them back
+        if (tOut < leaveFrom) return;
+        if (tIn > enterBy) {
+            out.cutAtTo = true;
+            return;
+        }
     }
     // Misses, or a direction too small to leave the solid in a finite t (d = 0).
     if (!(tIn <= tOut) || !std::isfinite(tIn) || !std::isfinite(tOut)) return;

@@ -404,6 +404,53 @@ TEST(FacetedSpans, AgreeWithInsideOnRandomLines) {
     }
 }
 
+// A polytope read within a window [from, to] (LocalSpans) gives the whole line's span, bit for
+// bit, whenever that span reaches into the window widened by the margin; otherwise nothing,
+// and when it lies past `to`, it says so (cutAtTo), so that a farther window solves again.
+TEST(FacetedSpans, AWindowGivesTheWholeSpanWhereItShows) {
+    const io::EvaluateResult r = evaluate("sphere(r = 2, $fn = 64);", CurveMode::Auto);
+    ASSERT_TRUE(r.ok()) << diagnosticsOf(r);
+    const ConvexPolytope& p = *onlyPolytope(*r.model);
+    const csg::Bounds3 box = p.bounds();
+    csg::testing::Rng rng(8);
+    int shown = 0, past = 0, before = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const Vec3 o = rng.inBox(box.lo * 3.0, box.hi * 3.0);
+        const Vec3 d = rng.inBox(box.lo, box.hi) - o;
+        csg::LocalSpans whole;
+        p.spans(o, d, whole);
+        csg::LocalSpans window;
+        window.from = rng.uniform(-1.0, 2.0);
+        window.to = window.from + rng.uniform(0.0, 0.5);
+        window.margin = rng.chance(0.5) ? 0.0 : 1e-3;
+        p.spans(o, d, window);
+        if (whole.count == 0) {
+            EXPECT_EQ(window.count, 0);
+            continue;
+        }
+        const auto& e = whole.entries[0];
+        if (e.tIn <= window.to + window.margin && e.tOut >= window.from - window.margin) {
+            ++shown;
+            ASSERT_EQ(window.count, 1);
+            const auto& w = window.entries[0];
+            EXPECT_TRUE(w.tIn == e.tIn && w.tOut == e.tOut && w.faceIn == e.faceIn &&
+                        w.faceOut == e.faceOut);
+            EXPECT_FALSE(window.cutAtTo);
+        } else {
+            EXPECT_EQ(window.count, 0);
+            if (e.tIn > window.to + window.margin) {
+                ++past;
+                EXPECT_TRUE(window.cutAtTo);
+            } else {
+                ++before;
+            }
+        }
+    }
+    EXPECT_GT(shown, 1000);
+    EXPECT_GT(past, 1000);
+    EXPECT_GT(before, 1000);
+}
+
 // Trees that mix faceted solids with exact ones, turned and sheared: the scene's spans agree
 // with the tree's point membership (tests/TreeOracle.h), as csg/'s own random trees do.
 TEST(FacetedSpans, RandomTreesWithPolytopesAgreeWithTheOracle) {
