@@ -245,6 +245,29 @@ double distanceBothWays(const Extrusion& exact, const Polyhedron& p, double reac
     return std::max(toSurface, surfaceToMesh(scene, TriangleBvh(mesh), 128, options).max);
 }
 
+// extrusionMesh(e, 0.02) of the 5 x 5 square twisted by 90 degrees over a height of 10 and
+// scaled by `scale` to the top, in the 99 slices of whole edges the tests below work out by hand:
+// layer j is the square turned by -90 j / 99 degrees and scaled by 1 + (scale - 1) j / 99 (turned
+// back and scaled up, every corner lies on the square's edge); closed; the volume within the
+// sides' area times d; within d of the solid both ways.
+void expectNinetyNineSlicesOfWholeEdges(const Extrusion& e, double scale, double volume) {
+    const std::optional<Polyhedron> p = io::extrusionMesh(e, 0.02);
+    ASSERT_TRUE(p);
+    EXPECT_EQ(p->data->vertices.size(), 100u * 4u);
+    EXPECT_EQ(p->triangleCount(), 2u * 99u * 4u + 2u * 2u);
+    for (const Vec3& v : p->data->vertices) {
+        const double j = std::round(v.z * 9.9);
+        EXPECT_NEAR(v.z, 10.0 * j / 99.0, 1e-12);
+        const double a = kPi / 2.0 * j / 99.0, sigma = 1.0 + (scale - 1.0) * j / 99.0;
+        const Vec2 back(std::cos(a) * v.x - std::sin(a) * v.y,
+                        std::sin(a) * v.x + std::cos(a) * v.y);
+        EXPECT_NEAR(std::max(std::abs(back.x), std::abs(back.y)) / sigma, 2.5, 1e-12);
+    }
+    EXPECT_TRUE(checkTopology(meshOf(*p)).closedManifold());
+    EXPECT_NEAR(volumeOf(*p), volume, 20.0 * 10.0 * 0.02);
+    EXPECT_LE(distanceBothWays(e, *p, 0.1, 0.02), 0.02);
+}
+
 // linear_extrude(10, twist = 90) of a 5 x 5 square at deviation d = 0.02 (ExtrusionMesh.cpp,
 // slicedToDeviation): a twist alone, w = pi / 2, h = 10. Each side's line passes 2.5 from the
 // axis and its points' e . q run over [-2.5, 2.5], so the smallest is 0, n = h, and the bounds
@@ -254,26 +277,10 @@ double distanceBothWays(const Extrusion& exact, const Polyhedron& p, double reac
 // 812, three at 34 836, and the old bound (the whole S_ll, J = w^2 rho = 8.72, a quarter of d to
 // the slices) took 15 slices of 9 pieces per edge, 1 148.
 TEST(ExtrusionMesh, ATwistedSquareTakesTheSlicesThatMakeTheFewestTriangles) {
-    const Extrusion e =
-        extrusionOf("linear_extrude(height = 10, twist = 90) square(5, center = true);");
-    const std::optional<Polyhedron> p = io::extrusionMesh(e, 0.02);
-    ASSERT_TRUE(p);
-    EXPECT_EQ(p->data->vertices.size(), 100u * 4u);
-    EXPECT_EQ(p->triangleCount(), 2u * 99u * 4u + 2u * 2u);
-    // Layer j at z = 10 j / 99 is the square turned by -90 j / 99 degrees: turned back, every
-    // corner lies on the square's edge.
-    for (const Vec3& v : p->data->vertices) {
-        const double j = std::round(v.z * 9.9);
-        EXPECT_NEAR(v.z, 10.0 * j / 99.0, 1e-12);
-        const double a = kPi / 2.0 * j / 99.0;
-        const Vec2 back(std::cos(a) * v.x - std::sin(a) * v.y,
-                        std::sin(a) * v.x + std::cos(a) * v.y);
-        EXPECT_NEAR(std::max(std::abs(back.x), std::abs(back.y)), 2.5, 1e-12);
-    }
-    EXPECT_TRUE(checkTopology(meshOf(*p)).closedManifold());
-    // The twist preserves each section's area: 25 x 10, within the sides' area times d.
-    EXPECT_NEAR(volumeOf(*p), 250.0, 20.0 * 10.0 * 0.02);
-    EXPECT_LE(distanceBothWays(e, *p, 0.1, 0.02), 0.02);
+    // The twist preserves each section's area: 25 x 10.
+    expectNinetyNineSlicesOfWholeEdges(
+        extrusionOf("linear_extrude(height = 10, twist = 90) square(5, center = true);"), 1.0,
+        250.0);
 }
 
 // The same square twisted and scaled by 0.5 at d = 0.02: k = -0.5, v = 1, w = pi / 2, h = 10.
@@ -284,26 +291,11 @@ TEST(ExtrusionMesh, ATwistedSquareTakesTheSlicesThatMakeTheFewestTriangles) {
 // (J = (2 |k| w + w^2) 2.5 sqrt 2 = 14.277, K = |k| + w = 2.0708) took 131 slices of whole
 // edges, 1 052.
 TEST(ExtrusionMesh, ATwistedFrustumCountsOnlyTheNormalParts) {
-    const Extrusion e = extrusionOf(
-        "linear_extrude(height = 10, twist = 90, scale = 0.5) square(5, center = true);");
-    const std::optional<Polyhedron> p = io::extrusionMesh(e, 0.02);
-    ASSERT_TRUE(p);
-    EXPECT_EQ(p->data->vertices.size(), 100u * 4u);
-    EXPECT_EQ(p->triangleCount(), 2u * 99u * 4u + 2u * 2u);
-    // Layer j at z = 10 j / 99 is the square turned by -90 j / 99 degrees and scaled by
-    // 1 - 0.5 j / 99: turned back and scaled up, every corner lies on the square's edge.
-    for (const Vec3& v : p->data->vertices) {
-        const double j = std::round(v.z * 9.9);
-        EXPECT_NEAR(v.z, 10.0 * j / 99.0, 1e-12);
-        const double a = kPi / 2.0 * j / 99.0, sigma = 1.0 - 0.5 * j / 99.0;
-        const Vec2 back(std::cos(a) * v.x - std::sin(a) * v.y,
-                        std::sin(a) * v.x + std::cos(a) * v.y);
-        EXPECT_NEAR(std::max(std::abs(back.x), std::abs(back.y)) / sigma, 2.5, 1e-12);
-    }
-    EXPECT_TRUE(checkTopology(meshOf(*p)).closedManifold());
     // Sections 25 sigma^2: 250 (1 + k + k^2 / 3) = 145.83 over the height.
-    EXPECT_NEAR(volumeOf(*p), 250.0 * (1.0 - 0.5 + 0.25 / 3.0), 20.0 * 10.0 * 0.02);
-    EXPECT_LE(distanceBothWays(e, *p, 0.1, 0.02), 0.02);
+    expectNinetyNineSlicesOfWholeEdges(
+        extrusionOf(
+            "linear_extrude(height = 10, twist = 90, scale = 0.5) square(5, center = true);"),
+        0.5, 250.0 * (1.0 - 0.5 + 0.25 / 3.0));
 }
 
 // Two scales make each side a hyperbolic paraboloid. A diamond (|x| + |y| <= 1.5) scaled by
