@@ -298,6 +298,32 @@ TEST(ExtrusionMesh, ATwistedFrustumCountsOnlyTheNormalParts) {
         0.5, 250.0 * (1.0 - 0.5 + 0.25 / 3.0));
 }
 
+// The bounds hold across twists, scales (to an apex, and growing) and outlines far from the axis
+// or around it, straight and curved: every mesh lies within its deviation of the exact solid,
+// both ways.
+TEST(ExtrusionMesh, TwistedAndScaledSidesStayWithinTheDeviation) {
+    const struct {
+        const char* scad;
+        double deviation;
+    } cases[] = {
+        {"linear_extrude(height = 6, twist = -360, scale = 0) square([4, 2], center = true);",
+         0.05},
+        {"linear_extrude(height = 4, twist = 120, scale = 2.5) square([3, 1], center = true);",
+         0.05},
+        {"linear_extrude(height = 5, twist = 200, scale = 0.3) translate([3, 0]) square(1);", 0.03},
+        {"linear_extrude(height = 3, twist = 45, scale = 1.5) translate([2, 1]) circle(1);", 0.02},
+        {"linear_extrude(height = 8, twist = -90, scale = [0.5, 2]) square(2, center = true);",
+         0.05},
+    };
+    for (const auto& c : cases) {
+        const Extrusion e = extrusionOf(c.scad);
+        const std::optional<Polyhedron> p = io::extrusionMesh(e, c.deviation);
+        ASSERT_TRUE(p) << c.scad;
+        EXPECT_TRUE(checkTopology(meshOf(*p)).closedManifold()) << c.scad;
+        EXPECT_LE(distanceBothWays(e, *p, 5.0 * c.deviation, c.deviation), c.deviation) << c.scad;
+    }
+}
+
 // Two scales make each side a hyperbolic paraboloid. A diamond (|x| + |y| <= 1.5) scaled by
 // [1, 3] over 4, at d = 0.04: no twist, so J = 0; every edge runs along (+-1, +-1) / sqrt 2, so
 // K = |(0, 2) e| = sqrt 2, and with n slices pieces may be 4 d n / K = 0.1131 n long. An edge
