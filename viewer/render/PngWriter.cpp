@@ -120,7 +120,8 @@ std::string writePng(const std::filesystem::path& path, Rgb8Image&& image) {
     if (!compressor) return prefix + "out of memory";
     const size_t bound = libdeflate_zlib_compress_bound(compressor.get(), filtered.size());
     // Not value-initialized: deflate writes only what it needs of its bound, and only those
-    // pages are touched (fresh pages cost ~4 ns a byte here, bench/README.md).
+    // pages are touched (first touches of fresh memory ran at ~0.2 GB/s on the benchmark
+    // machine, bench/README.md).
     const std::unique_ptr<uint8_t[]> compressed(new uint8_t[bound]);
     const size_t compressedSize = libdeflate_zlib_compress(
         compressor.get(), filtered.data(), filtered.size(), compressed.get(), bound);
