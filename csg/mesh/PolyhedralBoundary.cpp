@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "csg/mesh/BoxGrid.h"
+#include "csg/mesh/BoxIndex.h"
 #include "csg/mesh/CoplanarMerge.h"
 #include "csg/mesh/MeshCheck.h"
 #include "csg/mesh/Simplify.h"
@@ -403,11 +404,8 @@ struct Piece {
     uint32_t material = 0;
 };
 
-// One worker's scratch for boundaryPieces, kept from face to face: the faces near the one being
-// cut are found once each by a stamp per face (the grid lists a face once per cell).
+// One worker's scratch for boundaryPieces, kept from face to face.
 struct CutScratch {
-    std::vector<uint32_t> stamp;
-    uint32_t current = 0;
     std::vector<uint32_t> near, convexLeaves, coincident, covering;
     std::vector<Cut> cuts;
     std::vector<HalfPlane> section;
@@ -450,22 +448,18 @@ bool insideFace(const Face& g, const Vec3& p, double eps) {
 
 // Step 1 and 2 for one face.
 // convexPlanes: per leaf, its face planes when it is convex (a box or a polytope), else none.
-void boundaryPieces(const Scene& scene, const std::vector<Face>& faces, const BoxGrid& grid,
-                    const std::vector<std::vector<HalfPlane>>& convexPlanes, uint32_t index,
+void boundaryPieces(const Scene& scene, const std::vector<Face>& faces, const BoxIndex& index,
+                    const std::vector<std::vector<HalfPlane>>& convexPlanes, uint32_t face,
                     double eps, QueryContext& ctx, CutScratch& work, std::vector<Piece>& out,
                     uint64_t& piecesMade) {
-    const Face& f = faces[index];
-    if (work.stamp.size() != faces.size()) work.stamp.assign(faces.size(), 0), work.current = 0;
-    ++work.current;
+    const Face& f = faces[face];
     work.near.clear();
     Bounds3 box = f.box;
     box.lo -= Vec3(eps), box.hi += Vec3(eps);
-    grid.forEachNear(box, [&](const BoxGrid::Entry& e) {
-        if (work.stamp[e.id] == work.current) return;
-        work.stamp[e.id] = work.current;
-        if (e.id != index && faces[e.id].leaf != f.leaf) work.near.push_back(e.id);
+    index.forEachOverlapping(box, [&](uint32_t g) {
+        if (g != face && faces[g].leaf != f.leaf) work.near.push_back(g);
     });
-    // In face order, so the cuts (and so the pieces) do not depend on the grid's cell order.
+    // In face order, so the cuts (and so the pieces) do not depend on the index's order.
     std::sort(work.near.begin(), work.near.end());
     std::vector<Cut>& cuts = work.cuts;
     cuts.clear();
@@ -758,21 +752,19 @@ std::optional<TriangleMesh> polyhedralBoundary(const Scene& scene, int threads,
     all.clear();
 
     // Step 1 and 2, face by face on every worker.
-    const double cell =
-        std::max(glm::length(bounds.extent()) / std::cbrt(double(faces.size()) + 1.0), weld);
-    BoxGrid grid(bounds.lo, cell);
-    for (uint32_t i = 0; i < faces.size(); ++i) {
-        Bounds3 box = faces[i].box;
-        box.lo -= Vec3(onPlane), box.hi += Vec3(onPlane);
-        grid.insert(i, box);
+    std::vector<Bounds3> nearBoxes(faces.size());
+    for (size_t i = 0; i < faces.size(); ++i) {
+        nearBoxes[i] = faces[i].box;
+        nearBoxes[i].lo -= Vec3(onPlane), nearBoxes[i].hi += Vec3(onPlane);
     }
+    const BoxIndex index(nearBoxes);
     const int workers = workersFor(distribute, threads);
     std::vector<QueryContext> contexts(static_cast<size_t>(workers));
     std::vector<CutScratch> scratch(static_cast<size_t>(workers));
     std::vector<std::vector<Piece>> kept(faces.size());
     std::vector<uint64_t> made(faces.size(), 0);
     const auto cut = [&](int worker, uint64_t i, std::vector<Piece>& pieces, uint64_t& count) {
-        boundaryPieces(scene, faces, grid, convexPlanes, uint32_t(i), onPlane,
+        boundaryPieces(scene, faces, index, convexPlanes, uint32_t(i), onPlane,
                        contexts[size_t(worker)], scratch[size_t(worker)], pieces, count);
     };
     if (!distribute) {
