@@ -1,5 +1,6 @@
 // Boxes and slab tests: clipToBoxes (four boxes at once, the wide BVH's test) gives clipToBox's
-// answer and entry bit for bit, on ordinary and on degenerate rays and boxes.
+// answer and entry bit for bit, on ordinary and on degenerate rays and boxes; overlapBoxes gives
+// overlap()'s answer for each of four boxes.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -69,6 +70,38 @@ TEST(Bounds, FourBoxesAtOnceMatchOneAtATime) {
     // Both answers occur often enough for the comparison to mean something.
     EXPECT_GT(hits, 50000);
     EXPECT_GT(misses, 50000);
+}
+
+// Boxes with integer corners touch, nest and miss often; empty and infinite ones too.
+TEST(Bounds, FourOverlapsAtOnceMatchOneAtATime) {
+    testing::Rng rng(45);
+    int overlapping = 0, apart = 0;
+    for (int trial = 0; trial < 100000; ++trial) {
+        Bounds3 query;
+        for (int a = 0; a < 3; ++a) {
+            query.lo[a] = awkward(rng);
+            query.hi[a] = awkward(rng);
+            if (rng.chance(0.9) && query.lo[a] > query.hi[a]) std::swap(query.lo[a], query.hi[a]);
+        }
+        Bounds3 boxes[4];
+        Bounds4 wide;
+        for (int k = 0; k < 4; ++k) {
+            for (int a = 0; a < 3; ++a) {
+                double lo = awkward(rng), hi = awkward(rng);
+                if (rng.chance(0.9) && lo > hi) std::swap(lo, hi);
+                boxes[k].lo[a] = wide.lo[a][k] = lo;
+                boxes[k].hi[a] = wide.hi[a][k] = hi;
+            }
+        }
+        const unsigned got = overlapBoxes(wide, query);
+        for (int k = 0; k < 4; ++k) {
+            const bool want = !overlap(boxes[k], query).empty();
+            ASSERT_EQ((got >> k & 1u) != 0, want) << "trial " << trial << " box " << k;
+            (want ? overlapping : apart)++;
+        }
+    }
+    EXPECT_GT(overlapping, 50000);
+    EXPECT_GT(apart, 50000);
 }
 
 }  // namespace

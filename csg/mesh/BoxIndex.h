@@ -28,8 +28,9 @@ public:
         todo[pending++] = root_;
         while (pending > 0) {
             const BvhNode& node = nodes_[todo[--pending]];
+            const unsigned hits = overlapBoxes(node.boxes, box) & node.usedMask();
             for (int k = 0; k < node.slots; ++k) {
-                if (!slotOverlaps(node, k, box)) continue;
+                if (!(hits >> k & 1u)) continue;
                 if (node.leafCount[k] == 0) {
                     todo[pending++] = node.slot[k];
                     continue;
@@ -41,13 +42,6 @@ public:
     }
 
 private:
-    // !overlap(slot k's box, b).empty(), read from the node's lanes.
-    static bool slotOverlaps(const BvhNode& node, int k, const Bounds3& b) {
-        const Bounds4& s = node.boxes;
-        return s.lo[0][k] <= b.hi.x && s.hi[0][k] >= b.lo.x && s.lo[1][k] <= b.hi.y &&
-               s.hi[1][k] >= b.lo.y && s.lo[2][k] <= b.hi.z && s.hi[2][k] >= b.lo.z;
-    }
-
     std::vector<Bounds3> boxes_;
     std::vector<uint32_t> order_;
     std::vector<BvhNode> nodes_;

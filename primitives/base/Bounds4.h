@@ -41,6 +41,22 @@ inline void max4(Double4& out, const Double4& a, const Double4& b) {
 #endif
 }
 
+// Which of the four boxes share a point with box (closed boxes: touching counts; an empty box
+// shares none): bit k is set exactly when !overlap(box k, box).empty() (Bounds.h), for boxes
+// without NaN.
+inline unsigned overlapBoxes(const Bounds4& b, const Bounds3& box) {
+    if (box.empty()) return 0u;
+    const auto lanes = [](double v) { return Double4{v, v, v, v}; };
+    auto in = (b.lo[0] <= lanes(box.hi.x)) & (b.hi[0] >= lanes(box.lo.x)) & (b.lo[0] <= b.hi[0]);
+    in &= (b.lo[1] <= lanes(box.hi.y)) & (b.hi[1] >= lanes(box.lo.y)) & (b.lo[1] <= b.hi[1]);
+    in &= (b.lo[2] <= lanes(box.hi.z)) & (b.hi[2] >= lanes(box.lo.z)) & (b.lo[2] <= b.hi[2]);
+#if defined(__AVX__)
+    return unsigned(_mm256_movemask_pd(__m256d(in)));
+#else
+    return unsigned(in[0] & 1) | unsigned(in[1] & 2) | unsigned(in[2] & 4) | unsigned(in[3] & 8);
+#endif
+}
+
 // clipToBox (Bounds.h) on four boxes at once: the same operations in the same order on every
 // lane (NaN rules, widening), so bit k of the result is set exactly when clipToBox(r, box k,
 // t0, t1) would return true, and tNear[k] is the t0 it would leave (the widened entry).
