@@ -298,8 +298,7 @@ TEST(TwistedSpans, LevelLineGrazingACorner) {
 
 std::shared_ptr<const Outline> offsetCircle() {
     auto o = std::make_shared<Outline>();
-    o->segments.push_back(
-        Segment2::arc(Vec2(1.5, 0.0), Vec2(1.0, 0.0), Vec2(0.0, 1.0), 0.0, 2 * kPi));
+    o->segments.push_back(Segment2::circle(Vec2(1.5, 0.0), 1.0));
     return o;
 }
 
@@ -626,24 +625,24 @@ TEST(TwistedSpans, NormalsPointOutOfScaledAndCurvedSolids) {
 
 // ---- (e) volumes ----
 
-double scadVolume(const std::string& text, int resolution, bool onItsSide) {
+// The part a .scad text evaluates to, turned by `turn`, compiled.
+csg::Scene scadScene(const std::string& text, const csg::Mat4& turn) {
     const io::EvaluateResult r = evaluate(text);
     EXPECT_TRUE(r.ok()) << diagnosticsOf(r);
-    csg::NodePtr root = r.model->root;
-    if (onItsSide)  // level rays through the twisted solid, not only vertical ones
-        root = csg::transformed(glm::rotate(csg::Mat4(1.0), 0.5 * kPi, Vec3(1, 0, 0)), root);
+    return csg::Scene::compile(csg::transformed(turn, r.model->root));
+}
+
+double scadVolume(const std::string& text, int resolution, bool onItsSide) {
+    // On its side: level rays through the twisted solid, not only vertical ones.
+    const csg::Mat4 turn =
+        onItsSide ? glm::rotate(csg::Mat4(1.0), 0.5 * kPi, Vec3(1, 0, 0)) : csg::Mat4(1.0);
     // Lines along z: through the upright solid along its axis, through the one on its side level.
-    return csg::volume(csg::Scene::compile(root), resolution, 0, csg::VolumeAxis::Z);
+    return csg::volume(scadScene(text, turn), resolution, 0, csg::VolumeAxis::Z);
 }
 
 // volume()'s lines run across a twisted extrusion's axis, where each meets one section (a
 // line along the axis sweeps the whole twist), and every axis gives the same volume.
 TEST(TwistedVolume, LinesRunAcrossTheTwistedAxis) {
-    const auto scene = [](const std::string& text, const csg::Mat4& turn) {
-        const io::EvaluateResult r = evaluate(text);
-        EXPECT_TRUE(r.ok()) << diagnosticsOf(r);
-        return csg::Scene::compile(csg::transformed(turn, r.model->root));
-    };
     const std::string twisted =
         "linear_extrude(height = 10, twist = 720) square(2, center = true);";
     // Upright, on its side along y, along x, and tilted: the lines' axis is one the twisted
@@ -651,14 +650,14 @@ TEST(TwistedVolume, LinesRunAcrossTheTwistedAxis) {
     for (const Vec3& about : {Vec3(0, 0, 1), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)}) {
         const csg::Mat4 turn = glm::rotate(csg::Mat4(1.0), 0.5 * kPi, glm::normalize(about));
         const Vec3 axis = csg::Mat3(turn) * Vec3(0, 0, 1);
-        const int k = int(csg::volumeLineAxis(scene(twisted, turn)));
+        const int k = int(csg::volumeLineAxis(scadScene(twisted, turn)));
         ASSERT_TRUE(k >= 0 && k < 3);
         EXPECT_LT(std::abs(axis[k]), 1e-9) << about.x << " " << about.y << " " << about.z;
     }
     // Without twist, z as ever.
-    EXPECT_EQ(csg::volumeLineAxis(scene("linear_extrude(10) square(2);", csg::Mat4(1.0))),
+    EXPECT_EQ(csg::volumeLineAxis(scadScene("linear_extrude(10) square(2);", csg::Mat4(1.0))),
               csg::VolumeAxis::Z);
-    const csg::Scene part = scene(twisted, csg::Mat4(1.0));
+    const csg::Scene part = scadScene(twisted, csg::Mat4(1.0));
     for (const csg::VolumeAxis axis :
          {csg::VolumeAxis::X, csg::VolumeAxis::Y, csg::VolumeAxis::Z, csg::VolumeAxis::Auto})
         EXPECT_NEAR(csg::volume(part, 256, 0, axis), 40.0, 40.0 * 1e-3) << int(axis);
