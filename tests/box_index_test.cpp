@@ -49,7 +49,9 @@ TEST(BoxIndex, ReportsExactlyTheOverlappingBoxesOnce) {
         }
         // Queries met boxes: their own at least, and in the crowded set many more.
         EXPECT_GE(found, 100u) << count;
-        if (count == 5000) EXPECT_GT(found, 1000u);
+        if (count == 5000) {
+            EXPECT_GT(found, 1000u);
+        }
     }
 }
 

@@ -3,8 +3,10 @@
 // four boxes with AVX2 and a generic build with SSE2 pairs, from the same source.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 #include "primitives/base/Bounds.h"
 
@@ -15,12 +17,50 @@
 namespace csg {
 
 using Double4 = double __attribute__((vector_size(32)));
+using Float4 = float __attribute__((vector_size(16)));
 
-// Four boxes by axis and lane: box k is [lo[a][k], hi[a][k]] on axis a.
+// The largest float no greater than x, and the smallest no less (x beyond float's range goes
+// to FLT_MAX or infinity on its side; NaN stays NaN).
+inline float floatBelow(double x) {
+    const float f = static_cast<float>(x);
+    return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity())
+                                      : f;
+}
+inline float floatAbove(double x) {
+    const float f = static_cast<float>(x);
+    return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity())
+                                      : f;
+}
+
+// Four boxes by axis and lane: box k is [lo[a][k], hi[a][k]] on axis a. Stored as floats,
+// each box rounded outward to the floats around it (set), so that a wide BVH node is two cache
+// lines, not four: a walk through a tree larger than the cache misses on every node it opens
+// (bench/README.md, sphere layers), and a looser box only ever costs a test. The tests below
+// widen the lanes to doubles and answer for the boxes as stored (box(k)).
 struct Bounds4 {
-    Double4 lo[3];
-    Double4 hi[3];
+    Float4 lo[3];
+    Float4 hi[3];
+
+    void set(int k, const Bounds3& box) {
+        for (int a = 0; a < 3; ++a) {
+            lo[a][k] = floatBelow(box.lo[a]);
+            hi[a][k] = floatAbove(box.hi[a]);
+        }
+    }
+    Bounds3 box(int k) const {
+        return {{lo[0][k], lo[1][k], lo[2][k]}, {hi[0][k], hi[1][k], hi[2][k]}};
+    }
 };
+
+// Four floats as four doubles, exactly: one vcvtps2pd under AVX (GCC 12 splits the generic
+// conversion into halves).
+inline Double4 widen4(const Float4& v) {
+#if defined(__AVX__)
+    return Double4(_mm256_cvtps_pd(__m128(v)));
+#else
+    return __builtin_convertvector(v, Double4);
+#endif
+}
 
 // Lane by lane out = a < b ? a : b and out = a > b ? a : b, so b when either is NaN: x86's
 // minpd and maxpd, one instruction each (from a ternary, GCC shares one comparison between a
@@ -42,14 +82,16 @@ inline void max4(Double4& out, const Double4& a, const Double4& b) {
 }
 
 // Which of the four boxes share a point with box (closed boxes: touching counts; an empty box
-// shares none): bit k is set exactly when !overlap(box k, box).empty() (Bounds.h), for boxes
+// shares none): bit k is set exactly when !overlap(b.box(k), box).empty() (Bounds.h), for boxes
 // without NaN.
 inline unsigned overlapBoxes(const Bounds4& b, const Bounds3& box) {
     if (box.empty()) return 0u;
     const auto lanes = [](double v) { return Double4{v, v, v, v}; };
-    auto in = (b.lo[0] <= lanes(box.hi.x)) & (b.hi[0] >= lanes(box.lo.x)) & (b.lo[0] <= b.hi[0]);
-    in &= (b.lo[1] <= lanes(box.hi.y)) & (b.hi[1] >= lanes(box.lo.y)) & (b.lo[1] <= b.hi[1]);
-    in &= (b.lo[2] <= lanes(box.hi.z)) & (b.hi[2] >= lanes(box.lo.z)) & (b.lo[2] <= b.hi[2]);
+    auto in = Double4{} == Double4{};  // all lanes true
+    for (int a = 0; a < 3; ++a) {
+        const Double4 lo = widen4(b.lo[a]), hi = widen4(b.hi[a]);
+        in &= (lo <= lanes(box.hi[a])) & (hi >= lanes(box.lo[a])) & (lo <= hi);
+    }
 #if defined(__AVX__)
     return unsigned(_mm256_movemask_pd(__m256d(in)));
 #else
@@ -58,15 +100,16 @@ inline unsigned overlapBoxes(const Bounds4& b, const Bounds3& box) {
 }
 
 // clipToBox (Bounds.h) on four boxes at once: the same operations in the same order on every
-// lane (NaN rules, widening), so bit k of the result is set exactly when clipToBox(r, box k,
-// t0, t1) would return true, and tNear[k] is the t0 it would leave (the widened entry).
+// lane (NaN rules, widening), so bit k of the result is set exactly when clipToBox(r,
+// b.box(k), t0, t1) would return true, and tNear[k] is the t0 it would leave (the widened
+// entry).
 inline unsigned clipToBoxes(const SlabRay& r, const Bounds4& b, double t0, double t1,
                             double (&tNear)[4]) {
     Double4 near0 = {t0, t0, t0, t0}, far1 = {t1, t1, t1, t1};
     for (int a = 0; a < 3; ++a) {
         const double o = r.o[a], invD = r.invD[a];
-        const Double4 n = (b.lo[a] - Double4{o, o, o, o}) * Double4{invD, invD, invD, invD};
-        const Double4 f = (b.hi[a] - Double4{o, o, o, o}) * Double4{invD, invD, invD, invD};
+        const Double4 n = (widen4(b.lo[a]) - Double4{o, o, o, o}) * Double4{invD, invD, invD, invD};
+        const Double4 f = (widen4(b.hi[a]) - Double4{o, o, o, o}) * Double4{invD, invD, invD, invD};
         // clipToBox's swap when n > f, and its updates that keep the running bound unless the
         // candidate beats it (a NaN candidate never does).
         Double4 tNearA, tFarA;

@@ -116,10 +116,7 @@ struct Builder {
 
 // Slot k of a wide node: its box, and the node or the leaf's first child it leads to.
 void setSlot(BvhNode& node, int k, const Bounds3& box, uint32_t target, uint32_t leafCount) {
-    for (int a = 0; a < 3; ++a) {
-        node.boxes.lo[a][k] = box.lo[a];
-        node.boxes.hi[a][k] = box.hi[a];
-    }
+    node.boxes.set(k, box);
     node.slot[k] = target;
     node.leafCount[k] = static_cast<uint8_t>(leafCount);
 }

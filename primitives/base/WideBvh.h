@@ -21,10 +21,11 @@ inline constexpr int kBvhMedianLevels = 24;
 
 // A node of a 4-wide BVH: up to four slots, each a child node or a leaf, a run of the items.
 // The slots' boxes are stored by axis and slot, so that one clipToBoxes (Bounds4.h) tests all
-// four. A node is 256 bytes (221 of fields), four cache lines, aligned so that it never
-// straddles a fifth.
+// four. A node is 128 bytes (125 of fields), two cache lines, aligned so that it never
+// straddles a third.
 struct alignas(64) BvhNode {
-    Bounds4 boxes;              // slot k's box is lane k; unused lanes are masked out
+    Bounds4 boxes;              // slot k's box (rounded out to floats) is lane k; unused
+                                // lanes are masked out
     uint32_t slot[4] = {};      // leaf: itemsOffset + the index of its first item in the order
                                 // the build leaves; else the child node's index
     uint8_t leafCount[4] = {};  // items in a leaf slot (1 .. 4 * maxLeafItems); 0: a node
@@ -35,6 +36,7 @@ struct alignas(64) BvhNode {
 
     unsigned usedMask() const { return (1u << slots) - 1u; }
 };
+static_assert(sizeof(BvhNode) == 128);
 
 // How the binary tree is built before it is collapsed into 4-wide nodes: the lecture's three
 // hierarchies. The walk and the node layout are the same for all three.
