@@ -176,13 +176,37 @@ std::optional<Fragments> cylinderFragments(const csg::Cylinder& cylinder, double
         [](int64_t n) { return std::cos(std::numbers::pi / double(n)); });
 }
 
+// How a leaf's surface is curved: not at all, one way only (a cylinder's sides are straight
+// along its axis), or both ways.
+enum class Curving { None, OneWay, BothWays };
+Curving curvingOf(const csg::Primitive& p) {
+    if (std::holds_alternative<csg::Sphere>(p) || std::holds_alternative<csg::Torus>(p))
+        return Curving::BothWays;
+    if (std::holds_alternative<csg::Cylinder>(p)) return Curving::OneWay;
+    const auto* extrusion = std::get_if<csg::Extrusion>(&p);
+    if (!extrusion) return Curving::None;
+    if (extrusion->twisted) return Curving::BothWays;
+    const bool curvedOutline =
+        std::any_of(extrusion->outline->segments.begin(), extrusion->outline->segments.end(),
+                    [](const csg::Segment2& s) { return s.kind != csg::Segment2::Kind::Line; });
+    if (extrusion->kind == csg::Extrusion::Kind::Rotate)
+        return curvedOutline ? Curving::BothWays : Curving::OneWay;
+    return curvedOutline ? Curving::OneWay : Curving::None;
+}
+// The curvings of the tree's leaves, a bit (1 << Curving) each.
+unsigned curvingsOf(const csg::NodePtr& node) {
+    if (!node) return 0;
+    if (node->op == csg::Op::Leaf) return 1u << unsigned(curvingOf(node->primitive));
+    return curvingsOf(node->left) | curvingsOf(node->right);
+}
 // The faceted sphere, cylinder, extrusion or torus (without the node's transform), or nullptr
 // for any other leaf. Spheres and cylinders get the fewest fragments whose fit stands within the
 // deviation, checked with their faces' exact planes, or the layout they share with a leaf they
 // meet at a seam (see SharedLayout).
 csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double deviation,
-                       csg::FacetFit fit, const Seams& seams) {
+                       csg::FacetFit fit, double oneWayShare, const Seams& seams) {
     const csg::Primitive& p = node.primitive;
+    if (curvingOf(p) == Curving::OneWay) deviation *= oneWayShare;
     const Stretch stretch = stretchOf(world);
     const double scale = stretch.largest;
     std::optional<Fragments> layout;
@@ -287,12 +311,12 @@ Seams findSeams(const csg::NodePtr& root, double deviation, csg::FacetFit fit) {
 }
 
 csg::NodePtr facet(const csg::NodePtr& node, const csg::Mat4& parent, double deviation,
-                   csg::FacetFit fit, const Seams& seams, bool& curvedLeft) {
+                   csg::FacetFit fit, double oneWayShare, const Seams& seams, bool& curvedLeft) {
     if (!node || curvedLeft) return node;
     const csg::Mat4 world = parent * node->parentFromNode;
     if (node->op == csg::Op::Leaf) {
         if (csg::polyhedralLeaf(node->primitive)) return node;
-        csg::NodePtr leaf = facetLeaf(*node, world, deviation, fit, seams);
+        csg::NodePtr leaf = facetLeaf(*node, world, deviation, fit, oneWayShare, seams);
         if (!leaf) {
             curvedLeft = true;
             return nullptr;
@@ -302,27 +326,35 @@ csg::NodePtr facet(const csg::NodePtr& node, const csg::Mat4& parent, double dev
         return placed;
     }
     auto copy = std::make_shared<csg::Node>(*node);
-    copy->left = facet(node->left, world, deviation, fit, seams, curvedLeft);
-    copy->right = facet(node->right, world, deviation, fit, seams, curvedLeft);
+    copy->left = facet(node->left, world, deviation, fit, oneWayShare, seams, curvedLeft);
+    copy->right = facet(node->right, world, deviation, fit, oneWayShare, seams, curvedLeft);
     return copy;
 }
 
 }  // namespace
 
-csg::NodePtr facetToDeviation(const csg::NodePtr& root, double deviation, csg::FacetFit fit) {
+csg::NodePtr facetToDeviation(const csg::NodePtr& root, double deviation, csg::FacetFit fit,
+                              double oneWayShare) {
+    if (oneWayShare != 1.0 && !mixedCurvature(root)) oneWayShare = 1.0;
     bool curvedLeft = false;
-    csg::NodePtr out =
-        facet(root, csg::Mat4(1.0), deviation, fit, findSeams(root, deviation, fit), curvedLeft);
+    csg::NodePtr out = facet(root, csg::Mat4(1.0), deviation, fit, oneWayShare,
+                             findSeams(root, deviation, fit), curvedLeft);
     return curvedLeft ? nullptr : out;
 }
 
+bool mixedCurvature(const csg::NodePtr& root) {
+    const unsigned curvings = curvingsOf(root);
+    return (curvings >> unsigned(Curving::OneWay) & 1u) &&
+           (curvings >> unsigned(Curving::BothWays) & 1u);
+}
+
 csg::CurveFaceter curveFaceter(csg::NodePtr root) {
-    return
-        [root = std::move(root)](double deviation, csg::FacetFit fit) -> std::optional<csg::Scene> {
-            const csg::NodePtr faceted = facetToDeviation(root, deviation, fit);
-            if (!faceted) return std::nullopt;
-            return csg::Scene::compile(faceted);
-        };
+    return [root = std::move(root)](double deviation, csg::FacetFit fit,
+                                    double oneWayShare) -> std::optional<csg::Scene> {
+        const csg::NodePtr faceted = facetToDeviation(root, deviation, fit, oneWayShare);
+        if (!faceted) return std::nullopt;
+        return csg::Scene::compile(faceted);
+    };
 }
 
 }  // namespace io

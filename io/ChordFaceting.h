@@ -26,8 +26,16 @@ namespace io {
 // curve would need more faces than a polytope may have. Spheres and cylinders get OpenSCAD's
 // vertices (io/Faceting.h), inscribed, or balanced: scaled out by 2 / (1 + c), c the nearest face's
 // distance over the radius. Each gets the fewest fragments whose faces stand within the deviation
-// at the leaf's largest world scale.
-csg::NodePtr facetToDeviation(const csg::NodePtr& root, double deviation, csg::FacetFit fit);
+// at the leaf's largest world scale. When the tree is mixedCurvature, the leaves curved one way
+// only are faceted to oneWayShare times the deviation.
+csg::NodePtr facetToDeviation(const csg::NodePtr& root, double deviation, csg::FacetFit fit,
+                              double oneWayShare = 1.0);
+
+// Whether the tree has leaves curved both ways (spheres, tori, twisted extrusions, revolutions of
+// outlines with curves) and leaves curved one way only (cylinders and cones, untwisted
+// extrusions of outlines with curves, revolutions of straight-edged ones):
+// TessellateOptions::mixedCurvature.
+bool mixedCurvature(const csg::NodePtr& root);
 
 // TessellateOptions::facetCurves for the part whose tree is root: facetToDeviation, compiled.
 csg::CurveFaceter curveFaceter(csg::NodePtr root);

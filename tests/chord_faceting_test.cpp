@@ -35,6 +35,7 @@ TessellateResult exportFaceted(const NodePtr& part, double tolerance) {
     TessellateOptions options;
     options.tolerance = tolerance;
     options.facetCurves = io::curveFaceter(part);
+    options.mixedCurvature = io::mixedCurvature(part);
     return tessellate(Scene::compile(part), options);
 }
 
@@ -240,9 +241,9 @@ TEST(ChordFaceting, AMissIsTriedFinerInProportionToIt) {
     std::vector<std::pair<double, FacetFit>> asked;
     TessellateOptions options;
     options.tolerance = 0.05;
-    options.facetCurves = [&](double deviation, FacetFit fit) {
+    options.facetCurves = [&](double deviation, FacetFit fit, double oneWayShare) {
         asked.push_back({deviation, fit});
-        return faceter(1.8 * deviation, fit);
+        return faceter(1.8 * deviation, fit, oneWayShare);
     };
     const TessellateResult result = tessellate(scene, options);
     ASSERT_TRUE(result.exact);
@@ -270,6 +271,81 @@ TEST(ChordFaceting, TheSlackUnderTheMarginBuysACoarserFaceting) {
         Scene::compile(io::facetToDeviation(ball, 0.5 * tolerance, FacetFit::Balanced)), 0);
     ASSERT_TRUE(first);
     EXPECT_LT(result.mesh.triangles.size(), first->triangles.size());
+}
+
+// Debian's example001: sphere(25) less three bores of radius 12.5 along x, y and z, whose rims
+// meet the sphere at 60 degrees.
+NodePtr sphereWithThreeBores() {
+    const NodePtr bore = transformed(glm::translate(Mat4(1.0), Vec3(0.0, 0.0, -31.25)),
+                                     leaf(Cylinder{62.5, 12.5, 12.5}));
+    const auto turned = [&](Vec3 axis) {
+        return transformed(glm::rotate(Mat4(1.0), 0.5 * kPi, axis), bore);
+    };
+    return subtract(subtract(subtract(leaf(Sphere{25.0}), bore), turned(Vec3(1.0, 0.0, 0.0))),
+                    turned(Vec3(0.0, 1.0, 0.0)));
+}
+
+// Leaves curved one way only (cylinders) and both ways (spheres, tori) together make a mixed
+// part; only there does the one-way share change a faceting.
+TEST(ChordFaceting, TheOneWayShareFacetsCylindersFinerBesideSpheres) {
+    const NodePtr cylinder = leaf(Cylinder{5.0, 3.0, 3.0});
+    EXPECT_TRUE(io::mixedCurvature(subtract(leaf(Sphere{4.0}), cylinder)));
+    EXPECT_TRUE(io::mixedCurvature(unite(leaf(Torus{2.0, 0.5}), cylinder)));
+    EXPECT_FALSE(io::mixedCurvature(unite(cylinder, leaf(Cylinder{2.0, 1.0, 0.5}))));
+    EXPECT_FALSE(io::mixedCurvature(subtract(leaf(Sphere{4.0}), leaf(Box{Vec3(0.0), Vec3(1.0)}))));
+    EXPECT_FALSE(io::mixedCurvature(leaf(Sphere{4.0})));
+
+    // The cylinder's vertices of a faceted tree's second leaf.
+    const auto cylinderVertices = [](const NodePtr& faceted) {
+        return polytopeOf(faceted->right).data->vertices.size();
+    };
+    const double d = 0.01;
+    const NodePtr mixed = subtract(leaf(Sphere{4.0}), cylinder);
+    const size_t whole = cylinderVertices(io::facetToDeviation(mixed, d, FacetFit::Balanced));
+    const size_t half = cylinderVertices(io::facetToDeviation(mixed, d, FacetFit::Balanced, 0.5));
+    // Balanced, r = 3: the fewest n with 3 (1 - c) / (1 + c) <= d, c = cos(pi / n), is 28 at
+    // d = 0.01 and 39 at 0.005; each fragment is two vertices.
+    EXPECT_EQ(whole, 2u * 28u);
+    EXPECT_EQ(half, 2u * 39u);
+    // Beside another cylinder, nothing changes.
+    const NodePtr twoCylinders = unite(leaf(Cylinder{2.0, 1.0, 1.0}), cylinder);
+    EXPECT_EQ(cylinderVertices(io::facetToDeviation(twoCylinders, d, FacetFit::Balanced, 0.5)),
+              2u * 28u);
+}
+
+// example001 at T = 0.273 (Manifold's distance on it): balanced at T/2 its rims miss the margin
+// (0.8 T). The next attempt keeps the deviation and facets the bores at half of it, which
+// measures within the margin with fewer triangles than shrinking every leaf's deviation does.
+TEST(ChordFaceting, ARimMissIsTriedWithTheOneWayLeavesFinerFirst) {
+    const NodePtr part = sphereWithThreeBores();
+    const Scene scene = Scene::compile(part);
+    const auto faceter = io::curveFaceter(part);
+    const double tolerance = 0.273;
+    const auto exportWith = [&](bool honourShare, std::vector<double>* shares) {
+        TessellateOptions options;
+        options.tolerance = tolerance;
+        options.mixedCurvature = io::mixedCurvature(part);
+        options.facetCurves = [&](double deviation, FacetFit fit, double oneWayShare) {
+            if (shares) shares->push_back(oneWayShare);
+            return faceter(deviation, fit, honourShare ? oneWayShare : 1.0);
+        };
+        return tessellate(scene, options);
+    };
+    std::vector<double> shares;
+    const TessellateResult result = exportWith(true, &shares);
+    ASSERT_TRUE(result.exact);
+    ASSERT_GE(shares.size(), 2u);
+    EXPECT_EQ(shares[0], 1.0);
+    EXPECT_EQ(shares[1], tol::kFacetOneWayShare);
+    EXPECT_EQ(result.facetDeviation, 0.5 * tolerance);
+    EXPECT_EQ(result.facetOneWayShare, tol::kFacetOneWayShare);
+    EXPECT_LE(std::max(result.error.max, result.backError.max), 0.8 * tolerance);
+    EXPECT_TRUE(checkTopology(result.mesh).closedManifold());
+
+    const TessellateResult allFiner = exportWith(false, nullptr);
+    ASSERT_TRUE(allFiner.exact);
+    EXPECT_LT(allFiner.facetDeviation, 0.5 * tolerance);
+    EXPECT_LT(double(result.mesh.triangles.size()), 0.8 * double(allFiner.mesh.triangles.size()));
 }
 
 }  // namespace

@@ -186,15 +186,17 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
     // far beyond the deviation is material the exact part lacks (a balanced pole's skin over a
     // flush cut), which no finer balanced fit removes: then the inscribed fit at the same
     // deviation. Any other miss (curves meeting at a rim move it by up to about twice the
-    // deviation) is tried again finer, in proportion to how far it missed.
+    // deviation) is tried again finer: first the leaves curved one way only, where they meet
+    // leaves curved both ways (mixedCurvature), then all, in proportion to how far it missed.
     if (options.exactPolyhedra && options.facetCurves) {
         const double margin = tol::kMeshMeasureMargin * tolerance;
         double deviation = tol::kFacetDeviationFraction * tolerance;
         FacetFit fit = FacetFit::Balanced;
+        double oneWayShare = 1.0;
         // The exact boundary of the part faceted so; nothing when a leaf stays curved or the
         // boundary does not close.
         const auto facetedBoundary = [&](double d) -> std::optional<TriangleMesh> {
-            const std::optional<Scene> faceted = options.facetCurves(d, fit);
+            const std::optional<Scene> faceted = options.facetCurves(d, fit, oneWayShare);
             if (!faceted) return std::nullopt;
             return polyhedralBoundary(*faceted, options.threads, &result.polyhedral,
                                       options.distribute);
@@ -228,7 +230,9 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
             result.polyhedral = stats;
             return false;
         };
-        for (int attempt = 0; attempt <= tol::kFacetAttempts; ++attempt) {
+        // The one-way leaves' finer try is an attempt beside kFacetAttempts.
+        const int attempts = tol::kFacetAttempts + (options.mixedCurvature ? 1 : 0);
+        for (int attempt = 0; attempt <= attempts; ++attempt) {
             std::optional<TriangleMesh> mesh = facetedBoundary(deviation);
             if (!mesh) break;
             // Far enough to tell a miss of the faceting (up to kFacetSkinFactor times the
@@ -250,6 +254,8 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
                     "the faceted part did not measure within the tolerance";
                 if (fit == FacetFit::Balanced && !(measured <= tol::kFacetSkinFactor * deviation))
                     fit = FacetFit::Inscribed;
+                else if (options.mixedCurvature && oneWayShare == 1.0)
+                    oneWayShare = tol::kFacetOneWayShare;
                 else
                     deviation *= std::clamp(tol::kFacetSlackTarget * margin / measured,
                                             tol::kFacetFinerMin, tol::kFacetFinerMax);
@@ -259,6 +265,7 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
             result.exact = true;
             result.facetDeviation = deviation;
             result.facetFit = fit;
+            result.facetOneWayShare = oneWayShare;
             result.toleranceMet = true;
             result.gridTriangles = result.mesh.triangles.size();
             return result;

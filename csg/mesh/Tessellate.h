@@ -68,8 +68,11 @@ inline double facetFitScale(FacetFit fit, double c, double r, double deviation) 
     return r * (1.0 - c) / (1.0 + c) <= deviation ? 2.0 / (1.0 + c) : 0.0;
 }
 
-// A part's curves faceted to a deviation and fit (TessellateOptions::facetCurves).
-using CurveFaceter = std::function<std::optional<Scene>(double deviation, FacetFit fit)>;
+// A part's curves faceted to a deviation and fit (TessellateOptions::facetCurves); the leaves
+// curved one way only take oneWayShare (in (0, 1]) of the deviation in a part that also has
+// leaves curved both ways (TessellateOptions::mixedCurvature), the whole of it otherwise.
+using CurveFaceter =
+    std::function<std::optional<Scene>(double deviation, FacetFit fit, double oneWayShare)>;
 
 struct TessellateOptions {
     // Largest allowed mesh-to-surface distance (world units); <= 0 means 1/500 of the bounds'
@@ -103,6 +106,11 @@ struct TessellateOptions {
     // is tried finer, or inscribed where the balanced fit kept material the part lacks), before
     // it takes the grid. The CLI facets with io/ChordFaceting.h.
     CurveFaceter facetCurves = nullptr;
+    // The part has leaves curved both ways (spheres, tori, revolved arcs) and leaves curved one
+    // way only (cylinders, cones, extruded arcs): a faceting that misses is tried once more at
+    // the same deviation with the one-way leaves finer (tol::kFacetOneWayShare) before the
+    // deviation shrinks for all.
+    bool mixedCurvature = false;
     bool simplify = true;  // coarsen flat regions after the grid passes (Simplify.h)
     // Grid meshes larger than this are not simplified (0: no limit). Decimation (in slabs on
     // all workers, then once over the whole) and its re-measurement both ways cost more than
@@ -151,6 +159,7 @@ struct TessellateResult {
     // faceted by TessellateOptions::facetCurves (exact is then true too); 0 otherwise.
     double facetDeviation = 0.0;
     FacetFit facetFit = FacetFit::Inscribed;  // how those faceted curves sat on the exact ones
+    double facetOneWayShare = 1.0;            // and the one-way leaves' share of the deviation
     PolyhedralBoundaryStats polyhedral;       // how it was made, or why it was declined
     bool capped = false;                      // maxCells stopped the refinement
     bool stalled = false;                 // refinement stopped paying (see Tessellate.h's header)

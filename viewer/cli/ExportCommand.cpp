@@ -254,6 +254,7 @@ int exportCommand(std::span<const std::string> args) {
 
     // Mesh the part: curved leaves faceted to a share of the tolerance first (io/ChordFaceting.h).
     options.facetCurves = io::curveFaceter(part.model.root);
+    options.mixedCurvature = io::mixedCurvature(part.model.root);
     ExportJournal journal;
     if (resume && ranks.root())
         if (const std::string error =
@@ -363,10 +364,14 @@ int exportCommand(std::span<const std::string> args) {
     if (verbose && !quiet)
         std::fprintf(stderr, "csgray: export: writing %s (checks, crease normals) took %.2f s\n",
                      output.c_str(), writeSeconds);
-    char faceted[96] = "";
+    char faceted[160] = "", oneWay[64] = "";
+    if (result.facetOneWayShare < 1.0)
+        std::snprintf(oneWay, sizeof oneWay, " (those curved one way within %.3g)",
+                      result.facetOneWayShare * result.facetDeviation);
     if (result.facetDeviation > 0.0)
         std::snprintf(faceted, sizeof faceted,
-                      " of the part with its curves faceted within %.3g, %s", result.facetDeviation,
+                      " of the part with its curves faceted within %.3g%s, %s",
+                      result.facetDeviation, oneWay,
                       result.facetFit == csg::FacetFit::Balanced ? "balanced" : "inscribed");
     if (!quiet && result.exact && !result.measured)
         std::fprintf(stderr,
