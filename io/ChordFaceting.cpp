@@ -176,6 +176,84 @@ std::optional<Fragments> cylinderFragments(const csg::Cylinder& cylinder, double
         [](int64_t n) { return std::cos(std::numbers::pi / double(n)); });
 }
 
+// The part of a convex solid where s z <= h (s = 1 or -1): each face clipped to it (a point
+// where an edge crosses the plane is one vertex, shared by the edge's two faces) and the
+// plane's section as a new face, counter-clockwise from outside.
+io::FacetedSolid keptUnder(const io::FacetedSolid& solid, double s, double h) {
+    const auto height = [&](uint32_t v) { return s * solid.vertices[v].z; };
+    const uint32_t count = uint32_t(solid.vertices.size());
+    bool cut = false;
+    for (uint32_t v = 0; v < count; ++v) cut = cut || height(v) > h;
+    if (!cut) return solid;
+    constexpr uint32_t kGone = ~0u;
+    io::FacetedSolid out;
+    std::vector<uint32_t> kept(count, kGone);
+    for (uint32_t v = 0; v < count; ++v) {
+        if (height(v) > h) continue;
+        kept[v] = uint32_t(out.vertices.size());
+        out.vertices.push_back(solid.vertices[v]);
+    }
+    // The point where edge (a kept, b not) meets the plane: the kept end itself when it lies
+    // on the plane, else one new vertex per edge, with z exactly on the plane.
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> crossings;
+    const auto crossing = [&](uint32_t a, uint32_t b) {
+        if (height(a) == h) return kept[a];
+        const auto [at, fresh] = crossings.try_emplace(std::minmax(a, b), 0u);
+        if (fresh) {
+            const csg::Vec3 &p = solid.vertices[a], &q = solid.vertices[b];
+            csg::Vec3 x = p + (h - height(a)) / (height(b) - height(a)) * (q - p);
+            x.z = s * h;
+            at->second = uint32_t(out.vertices.size());
+            out.vertices.push_back(x);
+        }
+        return at->second;
+    };
+    std::vector<uint32_t> face;
+    for (size_t f = 0; f + 1 < solid.faceStarts.size(); ++f) {
+        face.clear();
+        const auto push = [&](uint32_t v) {
+            if (face.empty() || (face.back() != v && face.front() != v)) face.push_back(v);
+        };
+        const uint32_t first = solid.faceStarts[f], end = solid.faceStarts[f + 1];
+        for (uint32_t i = first; i < end; ++i) {
+            const uint32_t a = solid.faceVertices[i];
+            const uint32_t b = solid.faceVertices[i + 1 < end ? i + 1 : first];
+            if (kept[a] != kGone) push(kept[a]);
+            if (kept[a] != kGone && kept[b] == kGone) push(crossing(a, b));
+            if (kept[a] == kGone && kept[b] != kGone) push(crossing(b, a));
+        }
+        if (face.size() < 3) continue;
+        out.faceVertices.insert(out.faceVertices.end(), face.begin(), face.end());
+        out.faceStarts.push_back(uint32_t(out.faceVertices.size()));
+    }
+    // The section: every vertex on the plane, by angle about their centroid, counter-clockwise
+    // seen from outside (from +z for s = 1).
+    std::vector<uint32_t> section;
+    csg::Vec3 centre(0.0);
+    for (uint32_t v = 0; v < out.vertices.size(); ++v)
+        if (s * out.vertices[v].z == h) {
+            section.push_back(v);
+            centre += out.vertices[v];
+        }
+    centre /= double(section.size());
+    const auto angle = [&](uint32_t v) {
+        return s * std::atan2(out.vertices[v].y - centre.y, out.vertices[v].x - centre.x);
+    };
+    std::sort(section.begin(), section.end(),
+              [&](uint32_t a, uint32_t b) { return angle(a) < angle(b); });
+    out.faceVertices.insert(out.faceVertices.end(), section.begin(), section.end());
+    out.faceStarts.push_back(uint32_t(out.faceVertices.size()));
+    return out;
+}
+
+// A balanced sphere of radius r cut to the planes of its poles, z = r and z = -r: its caps
+// stand above the poles (every vertex is outside the exact sphere), so a pocket cut flush with
+// a pole would keep that slice as a skin. What the cut leaves stays within the deviation (it
+// lies inside the balanced polytope and outside the sphere, or on it at the poles).
+io::FacetedSolid balancedSphere(double r, double scale, int64_t n) {
+    return keptUnder(keptUnder(io::facetedSphere(scale * r, n), 1.0, r), -1.0, r);
+}
+
 // How a leaf's surface is curved: not at all, one way only (a cylinder's sides are straight
 // along its axis), or both ways.
 enum class Curving { None, OneWay, BothWays };
@@ -216,9 +294,12 @@ csg::NodePtr facetLeaf(const csg::Node& node, const csg::Mat4& world, double dev
         const std::optional<Fragments> k =
             layout ? layout : sphereFragments(sphere->radius * scale, deviation, fit);
         if (!k) return nullptr;
-        return csg::leaf(polytopeOf(facetedSphere(k->scale * sphere->radius, k->n),
-                                    {"sphere", uint32_t(k->n), uint32_t(sphereRingCount(k->n))}),
-                         node.tags);
+        const io::FacetedSolid solid = k->scale > 1.0
+                                           ? balancedSphere(sphere->radius, k->scale, k->n)
+                                           : facetedSphere(k->scale * sphere->radius, k->n);
+        return csg::leaf(
+            polytopeOf(solid, {"sphere", uint32_t(k->n), uint32_t(sphereRingCount(k->n))}),
+            node.tags);
     }
     if (const auto* cylinder = std::get_if<csg::Cylinder>(&p)) {
         const std::optional<Fragments> k =

@@ -202,12 +202,13 @@ TEST(ChordFaceting, ACurvedPartExportsAsTheBoundaryOfItsFacetedLeaves) {
     EXPECT_LT(result.mesh.triangles.size(), 20'000u);
 }
 
-// A pocket cut from z = 10 down into sphere(10): the balanced sphere's top cap stands above the
-// pole, so the pocket keeps a skin over it, points with no exact surface within reach. The
-// export measures that, and takes the inscribed fit at the same deviation.
+// A pocket cut from x = 10 into sphere(10), flush with its side: the balanced sphere's equator
+// ring (23 rings at this deviation, the middle one on the equator, a vertex on +x) stands
+// outside it, so the pocket keeps a skin over it, points with no exact surface within reach.
+// The export measures that, and takes the inscribed fit at the same deviation.
 TEST(ChordFaceting, ASkinOverAFlushCutFallsBackToTheInscribedFit) {
     const NodePtr part =
-        subtract(leaf(Sphere{10.0}), leaf(Box{Vec3(-3.0, -3.0, 7.0), Vec3(3.0, 3.0, 10.0)}));
+        subtract(leaf(Sphere{10.0}), leaf(Box{Vec3(7.0, -3.0, -3.0), Vec3(10.0, 3.0, 3.0)}));
     const Scene scene = Scene::compile(part);
     const double tolerance = 0.05;
     const NodePtr skinned = io::facetToDeviation(part, 0.5 * tolerance, FacetFit::Balanced);
@@ -224,6 +225,42 @@ TEST(ChordFaceting, ASkinOverAFlushCutFallsBackToTheInscribedFit) {
     EXPECT_GE(result.facetDeviation, 0.5 * tolerance);  // or coarser, if the slack allowed it
     EXPECT_LE(result.error.max, tolerance);
     EXPECT_LE(result.backError.max, tolerance);
+    EXPECT_EQ(result.error.unresolved, 0u);
+    EXPECT_TRUE(checkTopology(result.mesh).closedManifold());
+}
+
+// A balanced sphere is cut at its poles' planes: the top and bottom faces lie in z = +-r, so a
+// pocket cut flush with a pole (Debian's example012: letters cut from the top of sphere(20))
+// keeps no skin there, and the export stays balanced.
+TEST(ChordFaceting, ABalancedSphereStopsAtItsPoles) {
+    const double r = 10.0, deviation = 0.025;
+    const NodePtr faceted = io::facetToDeviation(leaf(Sphere{r}), deviation, FacetFit::Balanced);
+    ASSERT_TRUE(faceted);
+    const ConvexPolytope& sphere = polytopeOf(faceted);
+    double top = -kInfinity, bottom = kInfinity;
+    int onTop = 0;
+    for (const Vec3& v : sphere.data->vertices) {
+        top = std::max(top, v.z);
+        bottom = std::min(bottom, v.z);
+        onTop += v.z == r;
+        // Every vertex stands outside the sphere, by no more than the deviation.
+        EXPECT_GE(glm::length(v), r * (1.0 - 1e-15));
+        EXPECT_LE(glm::length(v), r + deviation);
+    }
+    EXPECT_EQ(top, r);
+    EXPECT_EQ(bottom, -r);
+    EXPECT_GE(onTop, 3);  // a face, not a point
+    // The exact sphere's pole is on the mesh, and its equator inside it.
+    EXPECT_TRUE(sphere.inside(Vec3(0.0, 0.0, r * (1.0 - 1e-12))));
+    EXPECT_FALSE(sphere.inside(Vec3(0.0, 0.0, r * (1.0 + 1e-12))));
+
+    const double tolerance = 2.0 * deviation;
+    const NodePtr part =
+        subtract(leaf(Sphere{r}), leaf(Box{Vec3(-3.0, -3.0, 7.0), Vec3(3.0, 3.0, r)}));
+    const TessellateResult result = exportFaceted(part, tolerance);
+    ASSERT_TRUE(result.exact);
+    EXPECT_EQ(result.facetFit, FacetFit::Balanced);
+    EXPECT_LE(std::max(result.error.max, result.backError.max), tolerance);
     EXPECT_EQ(result.error.unresolved, 0u);
     EXPECT_TRUE(checkTopology(result.mesh).closedManifold());
 }
