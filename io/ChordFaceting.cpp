@@ -235,6 +235,7 @@ io::FacetedSolid keptUnder(const io::FacetedSolid& solid, double s, double h) {
             section.push_back(v);
             centre += out.vertices[v];
         }
+    if (section.size() < 3) return out;  // the plane only touches what is left
     centre /= double(section.size());
     const auto angle = [&](uint32_t v) {
         return s * std::atan2(out.vertices[v].y - centre.y, out.vertices[v].x - centre.x);
