@@ -183,9 +183,9 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
     // A part with curved leaves faceted within a share of the tolerance: the exact boundary of
     // that polyhedron, kept when it measures within the margin against the exact part. The
     // balanced fit first (about 1 / sqrt(2) of the fragments per curved direction). A miss
-    // far beyond the deviation is material the exact part lacks (a balanced pole's skin over a
-    // flush cut), which no finer balanced fit removes: then the inscribed fit at the same
-    // deviation. Any other miss (curves meeting at a rim move it by up to about twice the
+    // far beyond the deviation is material the exact part lacks (a balanced sphere's skin over
+    // a cut flush with its side), which no finer balanced fit removes: then the inscribed fit at
+    // the same deviation. Any other miss (curves meeting at a rim move it by up to about twice the
     // deviation) is tried again finer: first the leaves curved one way only, where they meet
     // leaves curved both ways (mixedCurvature), then all, in proportion to how far it missed.
     if (options.exactPolyhedra && options.facetCurves) {

@@ -295,7 +295,8 @@ inline constexpr int kFacetAttempts = 3;
 // first attempt, 0.5 cost Debian's children 7.6 %, pawn 12 %, knob 5 %).
 inline constexpr double kFacetOneWayShare = 0.5;
 // A balanced faceting (csg::FacetFit) that measures more than this many times its deviation
-// off keeps material the exact part lacks (a pole's skin over a cut flush with it), and the
+// off keeps material the exact part lacks (a skin of the equator's ring over a cut flush with
+// it; a balanced sphere stops at its poles' planes, io/ChordFaceting.cpp), and the
 // inscribed fit is tried instead (unit: relative to the deviation). Why: the faceting's own
 // error, where curves meet at rims, measured up to about twice the deviation (csg_grid3's
 // parts, --curves exact: 1.66 balanced, 1.85 inscribed); a skin measures its distance to the
