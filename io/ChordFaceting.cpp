@@ -263,11 +263,9 @@ Curving curvingOf(const csg::Primitive& p) {
         return Curving::BothWays;
     if (std::holds_alternative<csg::Cylinder>(p)) return Curving::OneWay;
     const auto* extrusion = std::get_if<csg::Extrusion>(&p);
-    if (!extrusion) return Curving::None;
+    if (!extrusion || !extrusion->outline) return Curving::None;
     if (extrusion->twisted) return Curving::BothWays;
-    const bool curvedOutline =
-        std::any_of(extrusion->outline->segments.begin(), extrusion->outline->segments.end(),
-                    [](const csg::Segment2& s) { return s.kind != csg::Segment2::Kind::Line; });
+    const bool curvedOutline = !csg::straightEdged(*extrusion->outline);
     if (extrusion->kind == csg::Extrusion::Kind::Rotate)
         return curvedOutline ? Curving::BothWays : Curving::OneWay;
     return curvedOutline ? Curving::OneWay : Curving::None;

@@ -1,8 +1,10 @@
 #include "csg/mesh/BoxIndex.h"
 
+#include <utility>
+
 namespace csg {
 
-BoxIndex::BoxIndex(std::span<const Bounds3> boxes) : boxes_(boxes.begin(), boxes.end()) {
+BoxIndex::BoxIndex(std::vector<Bounds3> boxes) : boxes_(std::move(boxes)) {
     if (boxes_.empty()) return;
     // Median cut: half the binned SAH's build time, and a broad phase asks few queries per box.
     root_ =

@@ -6,7 +6,6 @@
 #pragma once
 
 #include <cstdint>
-#include <span>
 #include <vector>
 
 #include "primitives/base/Bounds.h"
@@ -16,8 +15,8 @@ namespace csg {
 
 class BoxIndex {
 public:
-    // Indexes boxes[i] as id i; the boxes are copied.
-    explicit BoxIndex(std::span<const Bounds3> boxes);
+    // Indexes boxes[i] as id i; the index keeps the boxes.
+    explicit BoxIndex(std::vector<Bounds3> boxes);
 
     // Calls fn(id) once for every id whose box overlaps box (closed boxes: touching counts).
     template <class Fn>

@@ -757,7 +757,7 @@ std::optional<TriangleMesh> polyhedralBoundary(const Scene& scene, int threads,
         nearBoxes[i] = faces[i].box;
         nearBoxes[i].lo -= Vec3(onPlane), nearBoxes[i].hi += Vec3(onPlane);
     }
-    const BoxIndex index(nearBoxes);
+    const BoxIndex index(std::move(nearBoxes));
     const int workers = workersFor(distribute, threads);
     std::vector<QueryContext> contexts(static_cast<size_t>(workers));
     std::vector<CutScratch> scratch(static_cast<size_t>(workers));

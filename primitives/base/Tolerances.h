@@ -292,7 +292,8 @@ inline constexpr int kFacetAttempts = 3;
 // where a sphere's grow as 1 / d, so its deviation is the cheaper one to cut. example001 at
 // T = 0.273 (Manifold's distance): 1 912 triangles by shrinking both, 1 208 at 0.5, 1 288 at
 // 0.35; parts whose first faceting measures within the margin never take it (applied from the
-// first attempt, 0.5 cost Debian's children 7.6 %, pawn 12 %, knob 5 %).
+// first attempt, 0.5 cost Debian's children 7.6 %, pawn 12 %, knob 5 %; those and the 0.35
+// from a one-off build, bench/README.md "Rims where a sphere meets a bore").
 inline constexpr double kFacetOneWayShare = 0.5;
 // A balanced faceting (csg::FacetFit) that measures more than this many times its deviation
 // off keeps material the exact part lacks (a skin of the equator's ring over a cut flush with
