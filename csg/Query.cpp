@@ -185,9 +185,9 @@ struct SpanWalk {
         // that serves. They are clipped at t1 too (`to`), and a primitive that left out what
         // lies past it (cutAtTo: a twisted extrusion, whose solve grows with the chord) serves
         // only up to its own `to`. closest() on a leaf that is a whole object reads only its
-        // first span past t0 (firstOnly); such a list is not whole, so it is not kept for
-        // another visit. Margin: a thousand sliver slacks of the span ends the leaf's box
-        // allows.
+        // first span past t0, and of that span only where it begins (firstOnly: its end may
+        // come early); such a list is not whole, so it is not kept for another visit. Margin: a
+        // thousand sliver slacks of the span ends the leaf's box allows.
         const double from = t0 - shift, to = t1 - shift;
         Solved& slot = solved[leafIndex % kSolvedSlots];
         if (slot.leaf != leafIndex || slot.spans.from > from ||
@@ -582,7 +582,9 @@ struct SpanWalk {
         }
         // A leaf's list is non-empty exactly when its first span past t0 that is longer than
         // LocalSpans::margin, or one before it, survives the clipping at t1 (a later span
-        // starts past that one), so the first span is all it needs to solve (firstOnly).
+        // starts past that one), so the first span is all it needs to solve (firstOnly). An end
+        // given early that still leaves the span longer than the margin past t0 survives the
+        // clipping exactly when the true end does.
         const size_t base = top;
         firstSpanOnly = node.kind == Op::Leaf;
         const size_t n = evalShortcut(index, t0, t1, false);

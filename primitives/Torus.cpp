@@ -331,7 +331,11 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
     // is solved in a piece that ends before out.from - out.margin, where the caller clips
     // (its place holds the piece's start, also before it: a reflected or refracted ray's tube
     // behind it); with out.firstOnly, none after the first span that reaches past `from` by
-    // more than out.margin.
+    // more than out.margin, and not that span's exit when the start of its exit piece already
+    // lies that far past `from` and its entry: the start stands for the exit (LocalSpans), as
+    // closest() reads only the entry and any() only that the span is there. That start is
+    // inside (a dip, or a cut that is or is taken negative), and the exit is solved within the
+    // piece, so it lies at or past it.
     double ends[4], times[4];  // sigma = t - tBase, and t itself (polished or tBase + sigma)
     int m = 0;
     const double polishBelow = 2.0 * r * tol::kTubeGrazingCos;
@@ -346,10 +350,29 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
         if (out.firstOnly && m % 2 == 0 && m > 0 &&
             tBase + ends[m - 1] - std::max(tBase + ends[m - 2], out.from) > out.margin)
             break;
+        if (out.firstOnly && m % 2 == 1 &&
+            tBase + lo.s / len - std::max(tBase + ends[m - 1], out.from) > out.margin) {
+            ends[m] = lo.s / len, times[m] = tBase + ends[m];
+            ++m;
+            break;
+        }
         if (tBase + hi.s / len < out.from - out.margin) {
             ends[m] = lo.s / len, times[m] = tBase + ends[m];
             ++m;
             continue;
+        }
+        // A piece that holds `from` and where G has its end's sign, beyond rounding, has its
+        // one crossing before `from`, where the caller clips it away as it would the solved
+        // one: the piece's start holds its place (a ray that starts just off the tube it leaves,
+        // reflected or cast toward a light).
+        const double fromS = (out.from - tBase) * len;
+        if (fromS > lo.s && fromS < hi.s && tBase + lo.s / len < out.from) {
+            const TubeLine::At v = line.at(fromS);
+            if (std::abs(v.g) > v.err && (v.g < 0.0) == hi.negative) {
+                ends[m] = lo.s / len, times[m] = tBase + ends[m];
+                ++m;
+                continue;
+            }
         }
         // Start from the root of G's Taylor quadratic at the end nearer zero (G'' is known
         // there), else from the secant through the ends' values, else from the middle.
