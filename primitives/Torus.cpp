@@ -275,18 +275,35 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
     // Step 3: the pieces of convexity. The line comes closest to the axis at s0, at distance
     // m = |c| / sqrt(a); G is concave where rho^3 < R c^2, i.e. |s - s0| < w, which needs
     // m^3 < R c^2, i.e. |c| < R a^(3/2) (c = 0, a line across the axis, is a kink: w = 0).
-    double cuts[4];
-    int nCuts = 0;
-    cuts[nCuts++] = sLo;
     double s0 = 0.0, w = -1.0;
     if (a > 0.0 && std::abs(line.cross) < R * a * std::sqrt(a)) {
         const double m2 = line.cross2 / a;
         const double rhoI = std::cbrt(R * line.cross2);
         s0 = line.nearest;
         w = std::sqrt(std::max(0.0, rhoI * rhoI - m2) / a);
+    }
+
+    // A line that starts inside its range, outside the tube there beyond rounding and where G
+    // is convex (a ray leaving the surface it starts on, moved off it): the range starts at
+    // `from`, as the caller clips away what lies before it. On a convex piece G either rises
+    // from `from`, crossing nothing before the piece ends, or falls, lying higher behind, so
+    // every crossing found there is ahead of it. On the concave piece G may rise from `from`
+    // and fall through zero further on, and Newton started beside a crossing just behind
+    // `from` (the surface the ray leaves) would settle there.
+    const double fromS = (out.from - tBase) * len;
+    TubeLine::At atFrom{};
+    const bool fromInRange = fromS > sLo && fromS < sHi;
+    if (fromInRange) {
+        atFrom = line.at(fromS);
+        if (atFrom.g > atFrom.err && !(std::abs(fromS - s0) <= w)) sLo = fromS;
+    }
+
+    double cuts[4];
+    int nCuts = 0;
+    cuts[nCuts++] = sLo;
+    if (w >= 0.0)
         for (const double c : {s0 - w, s0 + w})
             if (c > cuts[nCuts - 1] && c < sHi) cuts[nCuts++] = c;
-    }
     cuts[nCuts++] = sHi;
     // The side a cut's G' is taken from: only the kink of a line across the axis has two.
     const auto sideAt = [&](double s, double side) { return w == 0.0 && s == s0 ? side : 0.0; };
@@ -303,7 +320,8 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
     // ends' signs decide.
     Break breaks[8];
     int nBreaks = 0;
-    TubeLine::At vp = line.at(sLo, sideAt(sLo, 1.0));
+    TubeLine::At vp =
+        sLo == fromS && sideAt(sLo, 1.0) == 0.0 ? atFrom : line.at(sLo, sideAt(sLo, 1.0));
     breaks[nBreaks++] = {sLo, vp, false};
     const double convergedStep = tol::kTubeNewtonStep * r;
     for (int k = 0; k + 1 < nCuts; ++k) {
@@ -311,6 +329,11 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
         const bool concave = w >= 0.0 && std::abs(0.5 * p + 0.5 * q - s0) < w;
         const bool last = k + 2 == nCuts;
         const bool pNegative = breaks[nBreaks - 1].negative;
+        // The last piece, convex, rising from outside: no crossing, whatever G is at its end.
+        if (last && !concave && !pNegative && vp.dg >= 0.0) {
+            breaks[nBreaks++] = {q, vp, false};
+            break;
+        }
         const TubeLine::At vq = line.at(q, sideAt(q, -1.0));
         const bool qNegative = last ? false : std::abs(vq.g) <= vq.err ? pNegative : vq.g < 0.0;
         const double sigma = concave ? -1.0 : 1.0;
@@ -365,9 +388,8 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
         // one crossing before `from`, where the caller clips it away as it would the solved
         // one: the piece's start holds its place (a ray that starts just off the tube it leaves,
         // reflected or cast toward a light).
-        const double fromS = (out.from - tBase) * len;
         if (fromS > lo.s && fromS < hi.s && tBase + lo.s / len < out.from) {
-            const TubeLine::At v = line.at(fromS);
+            const TubeLine::At& v = atFrom;  // the piece lies in the range, so from does
             if (std::abs(v.g) > v.err && (v.g < 0.0) == hi.negative) {
                 ends[m] = lo.s / len, times[m] = tBase + ends[m];
                 ++m;
