@@ -377,6 +377,7 @@ struct Compiler {
                                    node.tags.source);
             group.index = static_cast<uint32_t>(scene.frameFromWorld_.size());
             scene.frameFromWorld_.push_back(Affine(groupFromWorld));
+            scene.worldFrames_.push_back(groupFromWorld == Mat4(1.0));
         }
         geometry.frame = group.index;
         const Mat4& groupFromLocal = placement.groupFromNode;

@@ -122,8 +122,18 @@ struct SpanWalk {
     double groupO[3], groupD[3], groupInvD[3];
 
     void enterGroup(uint32_t frame) {
-        const Affine& m = scene.frameFromWorld_[frame];
         group = frame;
+        // The world frame (parts placed without a transform): the ray as it is, and the slab
+        // ray's 1 / d, the same values the matrix and the divisions would give.
+        if (scene.worldFrames_[frame]) {
+            for (int i = 0; i < 3; ++i) {
+                groupO[i] = ray.o[i];
+                groupD[i] = ray.d[i];
+                groupInvD[i] = slab.invD[i];
+            }
+            return;
+        }
+        const Affine& m = scene.frameFromWorld_[frame];
         const Vec3 o = transformPoint(m, ray.o), d = transformVector(m, ray.d);
         for (int i = 0; i < 3; ++i) {
             groupO[i] = o[i];

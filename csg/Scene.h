@@ -144,6 +144,7 @@ private:
     std::vector<LeafGeometry> leaves_;    // indexed by Hit::leaf; read by the ray loop
     std::vector<LeafFrame> frames_;       // same index; read on request
     std::vector<Affine> frameFromWorld_;  // the leaves' frame groups (LeafGeometry::frame)
+    std::vector<uint8_t> worldFrames_;    // same index: 1 where the group's frame is the world's
     std::vector<CompiledNode> nodes_;
     std::vector<uint32_t> children_;  // child node indices of n-ary unions
     std::vector<BvhNode> bvh_;
