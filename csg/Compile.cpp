@@ -359,6 +359,11 @@ struct Compiler {
         scene.frames_.push_back({Affine(localFromWorld), worldFromLocal,
                                  glm::transpose(Mat3(localFromWorld)), node.tags});
         const uint32_t added = addNode({Op::Leaf, false, box, index});
+        // In the world's frame, evalLeaf's test of the leaf's own box is this test or a tighter
+        // one (CompiledNode::boundsImplied).
+        if (scene.worldFrames_[geometry.frame] && !geometry.permuted &&
+            box.contains(geometry.localBounds))
+            scene.nodes_[added].boundsImplied = true;
         if (const std::optional<LocalBall> ball = boundingBall(node.primitive))
             scene.nodes_[added].ball = worldBall(*ball, worldFromLocal);
         setSlabs(added, [&] { return slabsAround(geometry.localBounds, worldFromLocal); });

@@ -79,7 +79,7 @@ struct DiagonalSlabs {
 struct CompiledNode {
     Op kind = Op::Union;
     // The ray loop does not test this node's bounds, because a test that has just passed
-    // implies this one:
+    // implies this one, or one that follows does its work:
     // - the left operand of an intersection or difference: the parent's bounds (the overlap,
     //   or the left operand's own) lie inside it, and the parent evaluates it over the same
     //   [t0, t1]; the slab test is monotone in the box under rounding, so it would pass;
@@ -92,7 +92,9 @@ struct CompiledNode {
     // - a union's child alone in a BVH leaf slot: the slot's box is the child's, tested over
     //   a range [t0, t1'] with t1' no lower than the child is evaluated over, and the walk
     //   skips the child when its entry lies past the lowered t1 (anyCached, which tries an
-    //   object outside the BVH walk, tests the object's box itself).
+    //   object outside the BVH walk, tests the object's box itself);
+    // - a leaf in the world's frame whose bounds contain its local box: evalLeaf clips the ray
+    //   to that box before anything else, the same test or a tighter one.
     bool boundsImplied = false;
     Bounds3 bounds;
     uint32_t first = 0;

@@ -222,22 +222,31 @@ TEST(Compile, BoxTestsTheBvhImpliesAreSkipped) {
 
 // Children whose centres coincide cannot be split: four concentric spheres share one leaf slot,
 // the BVH's only one. Its box is the largest sphere's, so each child's own box is still tested:
-// 1 slot and 4 children, 5 visits, 4 spheres solved, one span from the largest.
+// moved off the origin (each leaf in a frame of its own), 1 slot and 4 children, 5 visits, 4
+// spheres solved, one span from the largest. At the origin, in the world's frame, a child's
+// box is the one evalLeaf clips the ray to first, so it is not tested before: 1 visit, the
+// same solves and span.
 TEST(Compile, ConcentricChildrenShareOneLeafSlot) {
-    std::vector<NodePtr> spheres;
-    for (int r = 1; r <= 4; ++r) spheres.push_back(leaf(Sphere{double(r)}));
-    const Scene scene = Scene::compile(uniteAll(spheres));
-    QueryContext ctx;
-    const auto spans = scene.spans(Ray{{0, 0, -10}, {0, 0, 1}}, ctx);
-    ASSERT_EQ(spans.size(), 1u);
-    EXPECT_EQ(spans[0].in.t, 6.0);
-    EXPECT_EQ(spans[0].out.t, 14.0);
-    EXPECT_EQ(ctx.stats.nodeVisits, 5u);
-    EXPECT_EQ(ctx.stats.primitiveTests, 4u);
-    // Outside the smaller spheres' boxes only the largest is solved.
-    ctx.stats = {};
-    EXPECT_TRUE(scene.occluded(Ray{{3.5, 0, -10}, {0, 0, 1}}, ctx));
-    EXPECT_EQ(ctx.stats.primitiveTests, 1u);
+    for (const Vec3 centre : {Vec3(1, 2, 3), Vec3(0)}) {
+        SCOPED_TRACE(centre.x);
+        std::vector<NodePtr> spheres;
+        for (int r = 1; r <= 4; ++r)
+            spheres.push_back(
+                transformed(glm::translate(Mat4(1.0), centre), leaf(Sphere{double(r)})));
+        const Scene scene = Scene::compile(uniteAll(spheres));
+        QueryContext ctx;
+        const Vec3 o = centre + Vec3(0, 0, -10);
+        const auto spans = scene.spans(Ray{o, {0, 0, 1}}, ctx);
+        ASSERT_EQ(spans.size(), 1u);
+        EXPECT_EQ(spans[0].in.t, 6.0);
+        EXPECT_EQ(spans[0].out.t, 14.0);
+        EXPECT_EQ(ctx.stats.nodeVisits, centre == Vec3(0) ? 1u : 5u);
+        EXPECT_EQ(ctx.stats.primitiveTests, 4u);
+        // Outside the smaller spheres' boxes only the largest is solved.
+        ctx.stats = {};
+        EXPECT_TRUE(scene.occluded(Ray{o + Vec3(3.5, 0, 0), {0, 0, 1}}, ctx));
+        EXPECT_EQ(ctx.stats.primitiveTests, 1u);
+    }
 }
 
 // The 4-wide BVH walk against every part on its own: a union of 400 overlapping parts (several
