@@ -356,8 +356,13 @@ struct Compiler {
             node.primitive);
         const uint32_t index = static_cast<uint32_t>(scene.leaves_.size());
         scene.leaves_.push_back(geometry);
-        scene.frames_.push_back({Affine(localFromWorld), worldFromLocal,
-                                 glm::transpose(Mat3(localFromWorld)), node.tags});
+        LeafFrame& frame =
+            scene.frames_.emplace_back(LeafFrame{Affine(localFromWorld), worldFromLocal,
+                                                 glm::transpose(Mat3(localFromWorld)), node.tags});
+        if (const auto* plane = std::get_if<HalfSpace>(&node.primitive)) {
+            frame.planeNormal = worldNormal(frame, plane->normal(Vec3(0.0), 0));
+            frame.planeNormalKnown = true;
+        }
         const uint32_t added = addNode({Op::Leaf, false, box, index});
         // In the world's frame, evalLeaf's test of the leaf's own box is this test or a tighter
         // one (CompiledNode::boundsImplied).

@@ -40,7 +40,18 @@ struct LeafFrame {
     Mat4 worldFromLocal;
     Mat3 normalFromLocal;  // inverse transpose of worldFromLocal's linear part
     Tags tags;
+    // A half-space's one normal, as surface() would compute it at any of its points: it is
+    // asked for at every hit on a floor, and costs a square root and divisions each time.
+    bool planeNormalKnown = false;
+    Vec3 planeNormal{0.0};
 };
+
+// The unit world normal of a leaf whose local normal is n (surface() and the compile).
+inline Vec3 worldNormal(const LeafFrame& frame, const Vec3& n) {
+    const Vec3 world = frame.normalFromLocal * n;
+    const double len = glm::length(world);
+    return len > 0.0 ? world / len : n;
+}
 
 // A ball (world frame) that contains a node's solid: the ball of a leaf that has one (a sphere,
 // primitives/Primitive.h HasBoundingBall) placed by a similarity

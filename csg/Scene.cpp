@@ -21,14 +21,15 @@ Scene& Scene::operator=(Scene&&) noexcept = default;
 SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
     SurfacePoint sp{ray.at(hit.t), Vec3(0.0)};
     if (!hit.isSurface()) return sp;
-    const LeafGeometry& leaf = leaves_[hit.leaf];
     const LeafFrame& frame = frames_[hit.leaf];
-    const Vec3 local = transformPoint(frame.localFromWorld, sp.point);
-    const Vec3 n =
-        std::visit([&](const auto& shape) { return shape.normal(local, hit.face); }, leaf.shape);
-    const Vec3 world = frame.normalFromLocal * n;
-    const double len = glm::length(world);
-    sp.normal = len > 0.0 ? world / len : n;
+    if (frame.planeNormalKnown) {
+        sp.normal = frame.planeNormal;
+    } else {
+        const Vec3 local = transformPoint(frame.localFromWorld, sp.point);
+        const Vec3 n = std::visit([&](const auto& shape) { return shape.normal(local, hit.face); },
+                                  leaves_[hit.leaf].shape);
+        sp.normal = worldNormal(frame, n);
+    }
     if (hit.flipped) sp.normal = -sp.normal;
     // A sheet has two sides and no outside: the one facing the ray's origin is shown.
     if (hit.sheet && glm::dot(sp.normal, ray.d) > 0.0) sp.normal = -sp.normal;
