@@ -293,9 +293,11 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
     const double fromS = (out.from - tBase) * len;
     TubeLine::At atFrom{};
     const bool fromInRange = fromS > sLo && fromS < sHi;
+    bool startsAtFrom = false;
     if (fromInRange) {
         atFrom = line.at(fromS);
-        if (atFrom.g > atFrom.err && !(std::abs(fromS - s0) <= w)) sLo = fromS;
+        startsAtFrom = atFrom.g > atFrom.err && !(std::abs(fromS - s0) <= w);
+        if (startsAtFrom) sLo = fromS;
     }
 
     double cuts[4];
@@ -320,8 +322,7 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
     // ends' signs decide.
     Break breaks[8];
     int nBreaks = 0;
-    TubeLine::At vp =
-        sLo == fromS && sideAt(sLo, 1.0) == 0.0 ? atFrom : line.at(sLo, sideAt(sLo, 1.0));
+    TubeLine::At vp = startsAtFrom ? atFrom : line.at(sLo, sideAt(sLo, 1.0));
     breaks[nBreaks++] = {sLo, vp, false};
     const double convergedStep = tol::kTubeNewtonStep * r;
     for (int k = 0; k + 1 < nCuts; ++k) {
@@ -329,7 +330,8 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
         const bool concave = w >= 0.0 && std::abs(0.5 * p + 0.5 * q - s0) < w;
         const bool last = k + 2 == nCuts;
         const bool pNegative = breaks[nBreaks - 1].negative;
-        // The last piece, convex, rising from outside: no crossing, whatever G is at its end.
+        // The last piece, convex, rising from outside: no crossing, whatever G is at its end
+        // (so its value there is never read; the start's stands in).
         if (last && !concave && !pNegative && vp.dg >= 0.0) {
             breaks[nBreaks++] = {q, vp, false};
             break;
