@@ -388,8 +388,9 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
         }
         // A piece that holds `from` and where G has its end's sign, beyond rounding, has its
         // one crossing before `from`, where the caller clips it away as it would the solved
-        // one: the piece's start holds its place (a ray that starts just off the tube it leaves,
-        // reflected or cast toward a light).
+        // one: the piece's start holds its place (a ray refracted into the tube, whose entry
+        // lies behind it, or one leaving the tube where G is concave, which the range does not
+        // start at).
         if (fromS > lo.s && fromS < hi.s && tBase + lo.s / len < out.from) {
             const TubeLine::At& v = atFrom;  // the piece lies in the range, so from does
             if (std::abs(v.g) > v.err && (v.g < 0.0) == hi.negative) {
