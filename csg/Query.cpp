@@ -124,7 +124,8 @@ struct SpanWalk {
     void enterGroup(uint32_t frame) {
         group = frame;
         // The world frame (parts placed without a transform): the ray as it is, and the slab
-        // ray's 1 / d, the same values the matrix and the divisions would give.
+        // ray's 1 / d, the values the identity matrix and the divisions give (but for the sign
+        // of a zero component, which the matrix's sums make +0).
         if (scene.worldFrames_[frame]) {
             for (int i = 0; i < 3; ++i) {
                 groupO[i] = ray.o[i];

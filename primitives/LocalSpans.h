@@ -34,8 +34,9 @@ struct LocalSpans {
     bool sheet = false;
 
     // What the caller keeps of the list, set before spans() so that a primitive may skip work
-    // (it may also ignore it). The caller clips the spans at `from`: an end that lies before
-    // from - margin may be given as any value before that. With firstOnly it reads only the
+    // (it may also ignore it). The caller clips the spans at `from`: a span that ends before it
+    // may be left out, and an end that lies before from - margin may be given as any value
+    // before that. With firstOnly it reads only the
     // first span left, and of that span only its start and that it is there: the spans after
     // one whose part past `from` is longer than `margin` may be left out (margin covers the
     // caller's sliver rule, so that span is the first it keeps), and that span's end may be
