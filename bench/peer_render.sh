@@ -7,7 +7,10 @@
 #
 #   bench/peer_render.sh [SIZE] [THREADS]     defaults: 1600 (a SIZE x SIZE image), nproc
 #
-# The glass torus (torus_glass) is rendered at SIZE/2 by both.
+# The glass torus (torus_glass) is rendered at SIZE/2 by both. RUNS=N (default 1) times each
+# scene N times, POV-Ray and csgray in turn, prints every run and then a "NAME median" line: the
+# median of each time and of the per-run ratios (the machine's load moves POV-Ray's time, and
+# so the ratio, more than csgray's).
 #
 # Needs a built csgray (CSGRAY=path, default build/viewer/csgray) and POV-Ray (Debian
 # `povray`; installed by `scripts/install-deps.sh povray` when missing: benchmarks are not part
@@ -20,6 +23,8 @@ peers="${PEERS:-$root/../shared/peers}"
 [ -d "$peers" ] || peers=/work/shared/peers
 size="${1:-1600}"
 threads="${2:-$(nproc)}"
+runs="${RUNS:-1}"
+[[ "$runs" =~ ^[1-9][0-9]*$ ]] || { echo "RUNS must be a positive integer, not '$runs'" >&2; exit 1; }
 csgray="${CSGRAY:-$root/build/viewer/csgray}"
 [ -x "$csgray" ] || { echo "no csgray at $csgray (build it, or set CSGRAY)" >&2; exit 1; }
 
@@ -124,10 +129,16 @@ run_scene() {
         echo "$name: skipped, csgray cannot load $scad: $(head -1 "$work/info.err")"
         return 0
     fi
-    # Timed runs: the scenes as they are (shading, shadows), PNG output for both.
-    read -r pov_wall pov_cpu < <(timed povray "${pov_common[@]}" +I"$pov" +O"$work/$name.pov.png" +FN)
-    read -r cs_wall cs_cpu < <(timed "$csgray" render "$scad" -o "$work/$name.csgray.png" \
-        --size "${size}x${size}" --threads "$threads" --quiet "$@")
+    # Timed runs: the scenes as they are (shading, shadows), PNG output for both; one line of
+    # times (POV wall, POV cpu, csgray wall, csgray cpu) per run in $work/$name.times.
+    : >"$work/$name.times"
+    for ((run = 0; run < runs; ++run)); do
+        read -r pov_wall pov_cpu < <(timed povray "${pov_common[@]}" +I"$pov" \
+            +O"$work/$name.pov.png" +FN)
+        read -r cs_wall cs_cpu < <(timed "$csgray" render "$scad" -o "$work/$name.csgray.png" \
+            --size "${size}x${size}" --threads "$threads" --quiet "$@")
+        echo "$pov_wall $pov_cpu $cs_wall $cs_cpu" >>"$work/$name.times"
+    done
     # Silhouettes: flat colours, linear output.
     pov_flat_"$name" "$pov" >"$work/$name.flat.pov"
     povray "${pov_common[@]}" +I"$work/$name.flat.pov" +O"$work/$name.flat.ppm" +FP \
@@ -136,10 +147,20 @@ run_scene() {
         --threads "$threads" --quiet "$@"
     local differ
     differ="$(compare_ids "$work/$name.flat.ppm" "$work/$name.flat.pfm")"
-    awk -v n="$name" -v sz="$size" -v pw="$pov_wall" -v pc="$pov_cpu" -v cw="$cs_wall" -v cc="$cs_cpu" \
-        -v d="$differ" 'BEGIN {
-        printf "%-6s %5d  POV-Ray wall %7.2f s cpu %7.2f s | csgray wall %7.2f s cpu %7.2f s | ", n, sz, pw, pc, cw, cc
-        printf "wall ratio %5.2fx cpu ratio %5.2fx | objects differ %.2f%% of pixels\n", pw / cw, pc / cc, 100 * d }'
+    awk -v n="$name" -v sz="$size" -v d="$differ" -v runs="$runs" '
+        function line(label, pw, pc, cw, cc, wr, cr) {
+            printf "%-6s %5d  POV-Ray wall %7.2f s cpu %7.2f s | csgray wall %7.2f s cpu %7.2f s | ", label, sz, pw, pc, cw, cc
+            printf "wall ratio %5.2fx cpu ratio %5.2fx | objects differ %.2f%% of pixels\n", wr, cr, 100 * d
+        }
+        function median(a, k,   i, j, t) {  # insertion sort of a[1..k], then its middle
+            for (i = 2; i <= k; ++i)
+                for (j = i; j > 1 && a[j - 1] > a[j]; --j) { t = a[j]; a[j] = a[j - 1]; a[j - 1] = t }
+            return k % 2 ? a[(k + 1) / 2] : (a[k / 2] + a[k / 2 + 1]) / 2
+        }
+        { pw[NR] = $1; pc[NR] = $2; cw[NR] = $3; cc[NR] = $4; wr[NR] = $1 / $3; cr[NR] = $2 / $4
+          line(n, $1, $2, $3, $4, wr[NR], cr[NR]) }
+        END { if (runs > 1) line(n " median", median(pw, NR), median(pc, NR), median(cw, NR),
+                                 median(cc, NR), median(wr, NR), median(cr, NR)) }' "$work/$name.times"
 }
 
 run_scene grid "$peers/csg_grid.pov" "$here/scenes/csg_grid.scad"
