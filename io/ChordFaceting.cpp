@@ -429,12 +429,14 @@ bool mixedCurvature(const csg::NodePtr& root) {
 }
 
 csg::CurveFaceter curveFaceter(csg::NodePtr root) {
-    return [root = std::move(root)](double deviation, csg::FacetFit fit,
-                                    double oneWayShare) -> std::optional<csg::Scene> {
-        const csg::NodePtr faceted = facetToDeviation(root, deviation, fit, oneWayShare);
-        if (!faceted) return std::nullopt;
-        return csg::Scene::compile(faceted);
-    };
+    const bool mixed = mixedCurvature(root);
+    return {[root = std::move(root)](double deviation, csg::FacetFit fit,
+                                     double oneWayShare) -> std::optional<csg::Scene> {
+                const csg::NodePtr faceted = facetToDeviation(root, deviation, fit, oneWayShare);
+                if (!faceted) return std::nullopt;
+                return csg::Scene::compile(faceted);
+            },
+            mixed};
 }
 
 }  // namespace io

@@ -34,10 +34,11 @@ csg::NodePtr facetToDeviation(const csg::NodePtr& root, double deviation, csg::F
 // Whether the tree has leaves curved both ways (spheres, tori, twisted extrusions, revolutions of
 // outlines with curves) and leaves curved one way only (cylinders and cones, untwisted
 // extrusions of outlines with curves, revolutions of straight-edged ones):
-// TessellateOptions::mixedCurvature.
+// CurveFaceter::mixedCurvature.
 bool mixedCurvature(const csg::NodePtr& root);
 
-// TessellateOptions::facetCurves for the part whose tree is root: facetToDeviation, compiled.
+// TessellateOptions::facetCurves for the part whose tree is root: facetToDeviation, compiled,
+// and whether the tree is mixedCurvature.
 csg::CurveFaceter curveFaceter(csg::NodePtr root);
 
 }  // namespace io

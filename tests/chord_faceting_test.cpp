@@ -35,7 +35,6 @@ TessellateResult exportFaceted(const NodePtr& part, double tolerance) {
     TessellateOptions options;
     options.tolerance = tolerance;
     options.facetCurves = io::curveFaceter(part);
-    options.mixedCurvature = io::mixedCurvature(part);
     return tessellate(Scene::compile(part), options);
 }
 
@@ -278,10 +277,11 @@ TEST(ChordFaceting, AMissIsTriedFinerInProportionToIt) {
     std::vector<std::pair<double, FacetFit>> asked;
     TessellateOptions options;
     options.tolerance = 0.05;
-    options.facetCurves = [&](double deviation, FacetFit fit, double oneWayShare) {
-        asked.push_back({deviation, fit});
-        return faceter(1.8 * deviation, fit, oneWayShare);
-    };
+    options.facetCurves = {[&](double deviation, FacetFit fit, double oneWayShare) {
+                               asked.push_back({deviation, fit});
+                               return faceter(1.8 * deviation, fit, oneWayShare);
+                           },
+                           faceter.mixedCurvature};
     const TessellateResult result = tessellate(scene, options);
     ASSERT_TRUE(result.exact);
     ASSERT_EQ(asked.size(), 2u);
@@ -361,11 +361,11 @@ TEST(ChordFaceting, ARimMissIsTriedWithTheOneWayLeavesFinerFirst) {
     const auto exportWith = [&](bool honourShare, std::vector<double>* shares) {
         TessellateOptions options;
         options.tolerance = tolerance;
-        options.mixedCurvature = io::mixedCurvature(part);
-        options.facetCurves = [&](double deviation, FacetFit fit, double oneWayShare) {
-            if (shares) shares->push_back(oneWayShare);
-            return faceter(deviation, fit, honourShare ? oneWayShare : 1.0);
-        };
+        options.facetCurves = {[&](double deviation, FacetFit fit, double oneWayShare) {
+                                   if (shares) shares->push_back(oneWayShare);
+                                   return faceter(deviation, fit, honourShare ? oneWayShare : 1.0);
+                               },
+                               faceter.mixedCurvature};
         return tessellate(scene, options);
     };
     std::vector<double> shares;

@@ -187,7 +187,8 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
     // a cut flush with its side), which no finer balanced fit removes: then the inscribed fit at
     // the same deviation. Any other miss (curves meeting at a rim move it by up to about twice the
     // deviation) is tried again finer: first the leaves curved one way only, where they meet
-    // leaves curved both ways (mixedCurvature), then all, in proportion to how far it missed.
+    // leaves curved both ways (CurveFaceter::mixedCurvature), then all, in proportion to how far it
+    // missed.
     if (options.exactPolyhedra && options.facetCurves) {
         const double margin = tol::kMeshMeasureMargin * tolerance;
         double deviation = tol::kFacetDeviationFraction * tolerance;
@@ -231,7 +232,8 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
             return false;
         };
         // The one-way leaves' finer try is an attempt beside kFacetAttempts.
-        const int attempts = tol::kFacetAttempts + (options.mixedCurvature ? 1 : 0);
+        const bool mixed = options.facetCurves.mixedCurvature;
+        const int attempts = tol::kFacetAttempts + (mixed ? 1 : 0);
         for (int attempt = 0; attempt <= attempts; ++attempt) {
             std::optional<TriangleMesh> mesh = facetedBoundary(deviation);
             if (!mesh) break;
@@ -254,7 +256,7 @@ TessellateResult tessellate(const Scene& scene, const TessellateOptions& options
                     "the faceted part did not measure within the tolerance";
                 if (fit == FacetFit::Balanced && !(measured <= tol::kFacetSkinFactor * deviation))
                     fit = FacetFit::Inscribed;
-                else if (options.mixedCurvature && oneWayShare == 1.0)
+                else if (mixed && oneWayShare == 1.0)
                     oneWayShare = tol::kFacetOneWayShare;
                 else
                     deviation *= std::clamp(tol::kFacetSlackTarget * margin / measured,

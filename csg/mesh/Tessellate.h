@@ -70,9 +70,20 @@ inline double facetFitScale(FacetFit fit, double c, double r, double deviation) 
 
 // A part's curves faceted to a deviation and fit (TessellateOptions::facetCurves); the leaves
 // curved one way only take oneWayShare (in (0, 1]) of the deviation in a part that also has
-// leaves curved both ways (TessellateOptions::mixedCurvature), the whole of it otherwise.
-using CurveFaceter =
-    std::function<std::optional<Scene>(double deviation, FacetFit fit, double oneWayShare)>;
+// leaves curved both ways (mixedCurvature), the whole of it otherwise.
+struct CurveFaceter {
+    std::function<std::optional<Scene>(double deviation, FacetFit fit, double oneWayShare)> facet;
+    // The part has leaves curved both ways (spheres, tori, revolved arcs) and leaves curved one
+    // way only (cylinders, cones, extruded arcs): a faceting that misses is tried once more at
+    // the same deviation with the one-way leaves finer (tol::kFacetOneWayShare) before the
+    // deviation shrinks for all.
+    bool mixedCurvature = false;
+
+    explicit operator bool() const { return bool(facet); }
+    std::optional<Scene> operator()(double deviation, FacetFit fit, double oneWayShare) const {
+        return facet(deviation, fit, oneWayShare);
+    }
+};
 
 struct TessellateOptions {
     // Largest allowed mesh-to-surface distance (world units); <= 0 means 1/500 of the bounds'
@@ -105,12 +116,7 @@ struct TessellateOptions {
     // boundary when it measures within the tolerance of the exact part (balanced first; a miss
     // is tried finer, or inscribed where the balanced fit kept material the part lacks), before
     // it takes the grid. The CLI facets with io/ChordFaceting.h.
-    CurveFaceter facetCurves = nullptr;
-    // The part has leaves curved both ways (spheres, tori, revolved arcs) and leaves curved one
-    // way only (cylinders, cones, extruded arcs): a faceting that misses is tried once more at
-    // the same deviation with the one-way leaves finer (tol::kFacetOneWayShare) before the
-    // deviation shrinks for all.
-    bool mixedCurvature = false;
+    CurveFaceter facetCurves;
     bool simplify = true;  // coarsen flat regions after the grid passes (Simplify.h)
     // Grid meshes larger than this are not simplified (0: no limit). Decimation (in slabs on
     // all workers, then once over the whole) and its re-measurement both ways cost more than

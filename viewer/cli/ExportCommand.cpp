@@ -257,7 +257,6 @@ int exportCommand(std::span<const std::string> args) {
 
     // Mesh the part: curved leaves faceted to a share of the tolerance first (io/ChordFaceting.h).
     options.facetCurves = io::curveFaceter(part.model.root);
-    options.mixedCurvature = io::mixedCurvature(part.model.root);
     ExportJournal journal;
     if (resume && ranks.root())
         if (const std::string error =
