@@ -626,9 +626,35 @@ struct SpanWalk {
         return found;
     }
 
+    // For a ray that starts inside the top-level object `inside`: the end of that object's
+    // first span, when no other object has solid within kExitWindowSlacks coincidence slacks
+    // of it. The root union's first span then starts at the ray's start and ends there, with
+    // that very hit: every other object's spans near the ray lie inside it or begin past it
+    // by more than the slack, the widest gap the union closes. The whole list's answer
+    // without merging every object's list into it (a refracted ray inside glass, whose
+    // object's own list comes from the leaves' slots). Empty where the whole list must decide.
+    static constexpr double kExitWindowSlacks = 4.0;
+    std::optional<Hit> exitAlone(uint32_t inside) {
+        const size_t base = top;
+        const size_t n = eval(inside, ray.tmin, ray.tmax);
+        top = base;
+        if (n == 0 || stack()[base].in.isSurface() || !stack()[base].out.isSurface())
+            return std::nullopt;
+        const Hit exit = stack()[base].out;
+        const double window = kExitWindowSlacks * coincidenceSlack(originScale, exit.t, exit.t);
+        const double lo = exit.t - window;
+        double hi = exit.t + window;
+        bool alone = true;
+        forEachChild(scene.nodes_[scene.root_], lo, hi, [&](uint32_t child) {
+            return child == inside || (alone = !any(child, lo, hi));
+        });
+        return alone ? std::optional<Hit>(exit) : std::nullopt;
+    }
+
     // First surface end of the root union's spans. Front-to-back over the top-level objects,
     // lowering t1 to the best entry so far, which is exact as long as the ray starts outside
-    // every object; a ray that starts inside one falls back to the whole span list.
+    // every object; a ray that starts inside one takes that object's exit (exitAlone), or
+    // else falls back to the whole span list.
     // t1 stays two coincidence slacks past the best entry: an object entered just before it,
     // or at it, would otherwise be clipped there to a span no longer than the slack, which
     // the span writer drops as a sliver, and a later entry, or the first object met of several
@@ -639,7 +665,7 @@ struct SpanWalk {
         const CompiledNode& root = scene.nodes_[scene.root_];
         double t1 = ray.tmax;
         std::optional<Hit> best;
-        bool startsInside = false;
+        uint32_t startsInside = kNoNode;  // the object the ray starts in, once one is met
         if (root.boundsImplied || touches(root.bounds, ray.tmin, t1)) {
             forEachChild(root, ray.tmin, t1, [&](uint32_t child) {
                 const size_t base = top;
@@ -649,7 +675,10 @@ struct SpanWalk {
                 if (n > 0) {
                     const Hit first = stack()[base].in;
                     top = base;
-                    if (!first.isSurface()) return !(startsInside = true);
+                    if (!first.isSurface()) {
+                        startsInside = child;
+                        return false;
+                    }
                     // At one t, the lower leaf, as the union's merge names it (SpanList.h).
                     if (!best || first.t < best->t ||
                         (first.t == best->t && first.leaf < best->leaf)) {
@@ -661,7 +690,8 @@ struct SpanWalk {
                 return true;
             });
         }
-        if (!startsInside) return best;
+        if (startsInside == kNoNode) return best;
+        if (const std::optional<Hit> exit = exitAlone(startsInside)) return exit;
         const size_t base = top;
         const size_t n = eval(scene.root_, ray.tmin, ray.tmax);
         std::optional<Hit> hit;

@@ -164,6 +164,57 @@ TEST(Query, CoincidentFacesNameTheLowestLeafInEveryQuery) {
     EXPECT_GT(hits, 200);
 }
 
+// A ray that starts inside a top-level object leaves the scene where the root union's first
+// span ends: at that object's exit when nothing else is near it (closest() then merges no other
+// object's list), and past it where another object covers the exit or touches it. Sphere A
+// (leaf 0) at the origin, B (leaf 1) overlapping it along +x, C (leaf 2) touching A's surface
+// at y = 1 from outside, and a floor (leaf 3) under all of them.
+TEST(Query, RaysStartingInsideLeaveWhereTheUnionEnds) {
+    const auto at = [](double x, double y, double z, NodePtr n) {
+        return transformed(glm::translate(Mat4(1.0), Vec3(x, y, z)), std::move(n));
+    };
+    const Scene scene = Scene::compile(
+        uniteAll({leaf(Sphere{1.0}), at(1.5, 0, 0, leaf(Sphere{1.0})),
+                  at(0, 2, 0, leaf(Sphere{1.0})), leaf(HalfSpace{Vec3(0, 0, 1), -5.0})}));
+    QueryContext ctx;
+    struct Case {
+        Vec3 d;
+        double t;
+        uint32_t leaf;
+    };
+    // From A's centre: along -x A's own exit; along +x B covers A's exit, so B's far side;
+    // along +y C begins where A ends (the union closes the gap), so C's far side; along -z
+    // A's exit, 4 short of the floor.
+    const Case cases[] = {{Vec3(-1, 0, 0), 1.0, 0},
+                          {Vec3(1, 0, 0), 2.5, 1},
+                          {Vec3(0, 1, 0), 3.0, 2},
+                          {Vec3(0, 0, -1), 1.0, 0}};
+    for (int k = 0; k < 4; ++k) {
+        const Case& c = cases[k];
+        const std::optional<Hit> hit = scene.closest(Ray{Vec3(0.0), c.d, 0.0, 100.0}, ctx);
+        ASSERT_TRUE(hit) << "case " << k;
+        EXPECT_NEAR(hit->t, c.t, 1e-12) << "case " << k;
+        EXPECT_EQ(hit->leaf, c.leaf) << "case " << k;
+    }
+    // Rays from random points inside A against the whole list's answer.
+    testing::Rng rng(2029);
+    int byOthers = 0;
+    for (int r = 0; r < 10000; ++r) {
+        const Vec3 o = 0.99 * rng.inBall();
+        const Ray ray{o, rng.unit(), 0.0, 100.0};
+        const auto spans = scene.spans(ray, ctx);
+        ASSERT_FALSE(spans.empty());
+        ASSERT_FALSE(spans[0].in.isSurface());
+        const Hit want = spans[0].out;
+        byOthers += want.leaf != 0;
+        const std::optional<Hit> got = scene.closest(ray, ctx);
+        ASSERT_TRUE(got) << "ray " << r;
+        EXPECT_EQ(got->t, want.t) << "ray " << r;
+        EXPECT_EQ(got->leaf, want.leaf) << "ray " << r;
+    }
+    EXPECT_GT(byOthers, 1000);  // B or C decided often, not only A's own exit
+}
+
 // Normals returned for hits are unit, finite and face the outside of the solid.
 TEST(Query, SurfaceNormalsPointOutOfTheSolid) {
     std::mt19937_64 rng(5);
