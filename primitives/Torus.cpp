@@ -264,11 +264,32 @@ Polynomial Torus::quarticAlong(const Vec3& b, const Vec3& u) const {
 
 namespace {
 
+// Where the line starts (`from`, in s), and G there once it has been evaluated: the start of a
+// ray that leaves a surface lies on it, and both tests of such a ray read G there.
+struct LineStart {
+    double s;
+    TubeLine::At v{};
+    bool known = false;
+};
+
+// Whether a line that starts where G is v meets nothing past that start (a ray leaving the
+// torus, or moving away from it), given that rho grows from there (the start lies past the
+// line's nearest approach to the axis): G is clearly positive there (beyond its rounding
+// bound), not falling, and convex (G'' > 2 tol::kTubeConvexRel: beyond the concave piece's
+// reach by more than rounding), as it then stays, G'' growing with rho. A convex G that is not
+// falling does not fall later, so no span lies past `from`, and LocalSpans lets those before
+// it be left out: the answer without Steps 2-6 (a shadow or reflected ray from the outer half
+// of a torus, most of the rays that leave one, skips the cube root for the concave piece).
+bool leavesForGood(const TubeLine::At& v) {
+    return v.g > v.err && v.dg >= 0.0 && v.ddg > 2.0 * tol::kTubeConvexRel;
+}
+
 // Steps 3-6 of spans() on the line b + s u, |u| = 1 (built once by spans()), inside [sLo, sHi]
 // (the bounds), for t = tBase + s / len: the tube form's monotone pieces (Solver::Auto), or the
 // quartic by the solver asked for.
-void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine& line, double sLo,
-               double sHi, double tBase, double len, LocalSpans& out) {
+void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine& line,
+               const LineStart& lineStart, double sLo, double sHi, double tBase, double len,
+               LocalSpans& out) {
     const double R = torus.majorRadius, r = torus.minorRadius;
     const double a = line.a;
 
@@ -290,12 +311,12 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
     // every crossing found there is ahead of it. On the concave piece G may rise from `from`
     // and fall through zero further on, and Newton started beside a crossing just behind
     // `from` (the surface the ray leaves) would settle there.
-    const double fromS = (out.from - tBase) * len;
-    TubeLine::At atFrom{};
+    const double fromS = lineStart.s;
+    TubeLine::At atFrom = lineStart.v;
     const bool fromInRange = fromS > sLo && fromS < sHi;
     bool startsAtFrom = false;
     if (fromInRange) {
-        atFrom = line.at(fromS);
+        if (!lineStart.known) atFrom = line.at(fromS);
         startsAtFrom = atFrom.g > atFrom.err && !(std::abs(fromS - s0) <= w);
         if (startsAtFrom) sLo = fromS;
     }
@@ -530,6 +551,15 @@ void Torus::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     const double tBase = -glm::dot(o, d) / (len * len);
     const Vec3 b = pointOnLine(o, d, tBase);
 
+    const TubeLine line(b, u, R, r);
+    const double a = line.a;
+    LineStart start{(out.from - tBase) * len};
+    if (solver == Solver::Auto && a > 0.0 && std::isfinite(start.s) && start.s > line.nearest) {
+        start.v = line.at(start.s);
+        start.known = true;
+        if (leavesForGood(start.v)) return;
+    }
+
     // Step 2: the cheap test: the line against the slab |z| <= r and the cylinder
     // x^2 + y^2 <= (R + r)^2, as an s range; empty means a miss without the quartic.
     double sLo = -kInfinity, sHi = kInfinity;
@@ -539,8 +569,6 @@ void Torus::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     } else if (std::abs(b.z) > r) {
         return;
     }
-    const TubeLine line(b, u, R, r);
-    const double a = line.a;
     if (a > 0.0) {
         // The line's horizontal projection passes the axis at distance m = |c| / sqrt(a),
         // c = b.x u.y - b.y u.x, nearest at s0 = -(b.x u.x + b.y u.y) / a, and is within R + r
@@ -560,7 +588,7 @@ void Torus::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     sLo -= widen, sHi += widen;
 
     if (solver == Solver::Auto)
-        tubeSpans(*this, o, d, line, sLo, sHi, tBase, len, out);
+        tubeSpans(*this, o, d, line, start, sLo, sHi, tBase, len, out);
     else
         quarticSpans(*this, o, d, line, sLo, sHi, tBase, len, out);
 }

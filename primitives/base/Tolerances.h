@@ -147,6 +147,14 @@ inline constexpr double kTubeNewtonStep = 1e-9;
 // (1/4 gains a fraction of an ulp for three times the polishing).
 inline constexpr double kTubeGrazingCos = 0.125;
 
+// The torus answers a line that leaves it for good without solving (Torus.cpp, leavesForGood)
+// only where G is convex past the start by this fraction beyond the concave piece's reach:
+// rho^3 > (1 + kTubeConvexRel) R c^2 (unit: relative). Why: rho^3 and R c^2 are each rounded
+// by a few ulps, and at equality G'' = 0, where rounding could hide a concave stretch. 1e-6 is
+// ten orders above that rounding and gives up only the lines that start within ~3e-7 of the
+// concave piece's end, which the full solve then takes.
+inline constexpr double kTubeConvexRel = 1e-6;
+
 // Root polishing (primitives/solvers/Polish.h). Polisher::Auto polishes a double root in
 // double-double when its estimated error (the evaluation's rounding bound, plus for a surface
 // its chord coefficients' rounding bound and for a torus its tube form's, over |p'|) exceeds
