@@ -148,11 +148,11 @@ inline constexpr double kTubeNewtonStep = 1e-9;
 inline constexpr double kTubeGrazingCos = 0.125;
 
 // The torus answers a line that leaves it for good without solving (Torus.cpp, leavesForGood)
-// only where G is convex past the start by this fraction beyond the concave piece's reach:
-// rho^3 > (1 + kTubeConvexRel) R c^2 (unit: relative). Why: rho^3 and R c^2 are each rounded
-// by a few ulps, and at equality G'' = 0, where rounding could hide a concave stretch. 1e-6 is
-// ten orders above that rounding and gives up only the lines that start within ~3e-7 of the
-// concave piece's end, which the full solve then takes.
+// only where G is convex at the start by this margin: G'' = 2 (1 - R c^2 / rho^3) >
+// 2 kTubeConvexRel, i.e. rho^3 beyond the concave piece's reach R c^2 by this fraction (unit:
+// relative). Why: rho^3 and the quotient are rounded by a few ulps, and at G'' = 0 rounding
+// could hide a concave stretch ahead. 1e-6 is ten orders above that rounding and gives up only
+// lines that start within ~3e-7 of the concave piece's end, which the full solve then takes.
 inline constexpr double kTubeConvexRel = 1e-6;
 
 // Root polishing (primitives/solvers/Polish.h). Polisher::Auto polishes a double root in
