@@ -599,13 +599,18 @@ bool Torus::inside(const Vec3& p) const {
     return dr * dr + p.z * p.z <= minorRadius * minorRadius;
 }
 
+// The direction from the tube's core circle to p: (x (rho - R) / rho, y (rho - R) / rho, z), of
+// length l = sqrt((rho - R)^2 + z^2). rho - R is formed directly, exact where rho is near R
+// (the core's nearest point subtracted from p would cancel there), and the one quotient
+// (rho - R) / (rho l) scales both horizontal components: two divisions instead of five.
 Vec3 Torus::normal(const Vec3& p, uint16_t) const {
     const double rho = radial(p.x, p.y);
     if (!(rho > 0.0)) return Vec3(0.0, 0.0, 1.0);
-    const Vec3 c(majorRadius * p.x / rho, majorRadius * p.y / rho, 0.0);
-    const Vec3 v = p - c;
-    const double l = glm::length(v);
-    return l > 0.0 ? v / l : Vec3(0.0, 0.0, 1.0);
+    const double dr = rho - majorRadius;
+    const double l = std::sqrt(dr * dr + p.z * p.z);
+    if (!(l > 0.0)) return Vec3(0.0, 0.0, 1.0);
+    const double horizontal = dr / (rho * l);
+    return Vec3(p.x * horizontal, p.y * horizontal, p.z / l);
 }
 
 }  // namespace csg
