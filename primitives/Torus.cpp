@@ -33,8 +33,9 @@ double radial(double x, double y) {
 // (constant along the line), G'' = 2 (1 - R c^2 / rho^3): G is convex where rho^3 > R c^2 and
 // concave on the one interval around the line's nearest approach to the axis where
 // rho^3 < R c^2, so its critical points, one at most per piece, cut the line into monotone
-// pieces that hold one root each. The one evaluator of G: the tube path, and the quartic path's
-// polish and sliver test. Built once per ray by spans(), whose cheap test reads a, c and s0 too.
+// pieces that hold one root each. The one evaluator of G (at(), and scaledAt() for Newton's
+// steps): the tube path, and the quartic path's polish and sliver test. Built once per ray by
+// spans(), whose cheap test reads a, c and s0 too.
 struct TubeLine {
     Vec3 b, u;
     double R, r;
@@ -74,12 +75,41 @@ struct TubeLine {
         v.g = dr * dr + (p.z - r) * (p.z + r);
         v.dg = 2.0 * (dr * drho + p.z * u.z);
         v.ddg = 2.0 * (1.0 - R * cross2 / (rho * rho * rho));
-        // Rounding: p is off by an ulp of |p| <= rho + |z| per component (|s| <= |p| as b is
-        // the line's point nearest the centre), rho by ~2 more ulps of rho, which move G by |grad
-        // G| = 2 sqrt(dr^2 + z^2) times that; the products and sums add a few ulps of their terms.
-        // 4 ulps of the sum of those magnitudes covers them.
-        v.err = 4.0 * tol::kUlp *
-                ((std::abs(dr) + az) * (2.0 * rho + R + az) + dr * dr + (az + r) * (az + r));
+        v.err = roundingBound(rho, dr, az);
+        return v;
+    }
+
+    // A bound on the rounding error of G at a point at distance rho from the axis (dr = rho -
+    // R) and height +-az. p is off by an ulp of |p| <= rho + |z| per component (|s| <= |p| as b
+    // is the line's point nearest the centre), rho by ~2 more ulps of rho, which move G by |grad
+    // G| = 2 sqrt(dr^2 + z^2) times that; the products and sums add a few ulps of their terms.
+    // 4 ulps of the sum of those magnitudes covers them.
+    double roundingBound(double rho, double dr, double az) const {
+        return 4.0 * tol::kUlp *
+               ((std::abs(dr) + az) * (2.0 * rho + R + az) + dr * dr + (az + r) * (az + r));
+    }
+
+    // What Newton's step on G reads, without at()'s division by rho: G, and G' times rho
+    // (the step g / G' is g rho / (G' rho)), so that each step's chain of dependent operations
+    // holds one division, not two. G' itself (dg()) is formed once, where the steps end.
+    struct Scaled {
+        double g;
+        double dgRho;  // G' rho = 2 ((rho - R) (p . u)_xy + z u.z rho)
+        double rho;
+        double dgAxis;  // G' where rho = 0: 2 z u.z, as at() takes it there
+        double err;
+        double dg() const { return rho > 0.0 ? dgRho / rho : dgAxis; }
+    };
+    [[gnu::always_inline]] Scaled scaledAt(double s) const {
+        const Vec3 p = b + s * u;
+        const double rho = radial(p.x, p.y);
+        const double dr = rho - R;
+        Scaled v;
+        v.g = dr * dr + (p.z - r) * (p.z + r);
+        v.dgRho = 2.0 * (dr * (p.x * u.x + p.y * u.y) + p.z * u.z * rho);
+        v.rho = rho;
+        v.dgAxis = 2.0 * p.z * u.z;
+        v.err = roundingBound(rho, dr, std::abs(p.z));
         return v;
     }
 
@@ -151,22 +181,22 @@ struct TubeRoot {
 };
 TubeRoot crossing(const TubeLine& line, double lo, double hi, double x, bool rising,
                   double converged) {
-    TubeLine::At v{};
+    TubeLine::Scaled v{};
     for (int i = 0; i < 100; ++i) {
-        v = line.at(x);
-        if (v.g == 0.0) return {x, v.dg, v.err};
+        v = line.scaledAt(x);
+        if (v.g == 0.0) return {x, v.dg(), v.err};
         if ((v.g < 0.0) == rising)
             lo = x;
         else
             hi = x;
-        double next = v.dg != 0.0 ? x - v.g / v.dg : lo;
+        double next = v.dgRho != 0.0 ? x - v.g * v.rho / v.dgRho : lo;
         // A step this small is the last one (it may round onto the bracket's end).
-        if (std::abs(next - x) <= converged) return {std::clamp(next, lo, hi), v.dg, v.err};
+        if (std::abs(next - x) <= converged) return {std::clamp(next, lo, hi), v.dg(), v.err};
         if (!(next > lo && next < hi)) next = 0.5 * lo + 0.5 * hi;
-        if (next <= lo || next >= hi) return {x, v.dg, v.err};
+        if (next <= lo || next >= hi) return {x, v.dg(), v.err};
         x = next;
     }
-    return {x, v.dg, v.err};
+    return {x, v.dg(), v.err};
 }
 
 // Newton on G from a root s of the quartic while |G| drops, kept within [lo, hi]: G has the
