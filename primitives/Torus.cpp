@@ -308,8 +308,8 @@ struct LineStart {
 // bound), not falling, and convex (G'' > 2 tol::kTubeConvexRel: beyond the concave piece's
 // reach by more than rounding), as it then stays, G'' growing with rho. A convex G that is not
 // falling does not fall later, so no span lies past `from`, and LocalSpans lets those before
-// it be left out: the answer without Steps 2-6 (a shadow or reflected ray from the outer half
-// of a torus, most of the rays that leave one, skips the cube root for the concave piece).
+// it be left out: the answer without Steps 2-6 (a shadow or reflected ray that leaves the
+// outer half of a torus away from its axis skips the cube root for the concave piece).
 bool leavesForGood(const TubeLine::At& v) {
     return v.g > v.err && v.dg >= 0.0 && v.ddg > 2.0 * tol::kTubeConvexRel;
 }
