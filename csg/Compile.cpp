@@ -359,8 +359,10 @@ struct Compiler {
         LeafFrame& frame =
             scene.frames_.emplace_back(LeafFrame{Affine(localFromWorld), worldFromLocal,
                                                  glm::transpose(Mat3(localFromWorld)), node.tags});
-        if (const auto* plane = std::get_if<HalfSpace>(&node.primitive)) {
-            frame.planeNormal = worldNormal(frame, plane->normal(Vec3(0.0), 0));
+        if (isPlanar(node.primitive)) {
+            const Vec3 n = std::visit([](const auto& shape) { return shape.normal(Vec3(0.0), 0); },
+                                      node.primitive);
+            frame.planeNormal = worldNormal(frame, n);
             frame.planeNormalKnown = true;
         }
         const uint32_t added = addNode({Op::Leaf, false, box, index});

@@ -40,8 +40,9 @@ struct LeafFrame {
     Mat4 worldFromLocal;
     Mat3 normalFromLocal;  // inverse transpose of worldFromLocal's linear part
     Tags tags;
-    // A half-space's one normal, as surface() would compute it at any of its points: it is
-    // asked for at every hit on a floor, and costs a square root and divisions each time.
+    // A planar leaf's one normal (isPlanar: a half-space), as surface() would compute it at
+    // any of its points: it is asked for at every hit on a floor, and costs a square root and
+    // divisions each time.
     bool planeNormalKnown = false;
     Vec3 planeNormal{0.0};
 };

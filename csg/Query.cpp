@@ -627,15 +627,14 @@ struct SpanWalk {
     }
 
     // For a ray that starts inside the top-level object `inside`: the end of that object's
-    // first span, when no other object has solid within kExitWindowSlacks coincidence slacks
-    // of it. The root union's first span then starts at the ray's start and ends there, with
+    // first span, when no other object has solid within tol::kExitWindowSlacks coincidence
+    // slacks of it. The root union's first span then starts at the ray's start and ends there, with
     // that very hit: every other object's spans near the ray lie inside it or begin past it
     // by more than the slack, the widest gap the union closes. The whole list's answer
     // without merging every object's list into it (a refracted ray inside glass, whose
     // object's own list comes from the leaves' slots). Empty where the whole list must decide.
     // Out of line: inlined, it moved closest()'s BVH walk out of Scene::closest into calls of
     // their own (+1.8 % instructions on csg_grid, which never starts inside an object).
-    static constexpr double kExitWindowSlacks = 4.0;
     [[gnu::noinline]] std::optional<Hit> exitAlone(uint32_t inside) {
         const size_t base = top;
         const size_t n = eval(inside, ray.tmin, ray.tmax);
@@ -643,7 +642,8 @@ struct SpanWalk {
         if (n == 0 || stack()[base].in.isSurface() || !stack()[base].out.isSurface())
             return std::nullopt;
         const Hit exit = stack()[base].out;
-        const double window = kExitWindowSlacks * coincidenceSlack(originScale, exit.t, exit.t);
+        const double window =
+            tol::kExitWindowSlacks * coincidenceSlack(originScale, exit.t, exit.t);
         const double lo = exit.t - window;
         double hi = exit.t + window;
         bool alone = true;

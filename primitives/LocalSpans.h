@@ -36,11 +36,11 @@ struct LocalSpans {
     // What the caller keeps of the list, set before spans() so that a primitive may skip work
     // (it may also ignore it). The caller clips the spans at `from`: a span that ends before it
     // may be left out, and an end that lies before from - margin may be given as any value
-    // before that. With firstOnly it reads only the
-    // first span left, and of that span only its start and that it is there: the spans after
-    // one whose part past `from` is longer than `margin` may be left out (margin covers the
-    // caller's sliver rule, so that span is the first it keeps), and that span's end may be
-    // given as any value at or before the true one that keeps its part past `from` so long.
+    // before that. With firstOnly it reads only the first span left, and of that span only its
+    // start and that it is there: the spans after one whose part past `from` is longer than
+    // `margin` may be left out (margin covers the caller's sliver rule, so that span is the
+    // first it keeps), and that span's end may be given as any value at or before the true one
+    // that keeps its part past `from` so long.
     double from = -std::numeric_limits<double>::infinity();
     double margin = 0.0;
     bool firstOnly = false;

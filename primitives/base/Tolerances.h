@@ -36,6 +36,15 @@ inline constexpr double kCoincidentRel = 1e-9;
 // A's does when the piece does (csg/Query.cpp, Evaluator::uncovered).
 inline constexpr double kUncoveredPieceSlacks = 2.0;
 
+// closest() answers a ray that starts inside a top-level object with that object's exit when
+// no other object has solid within this many coincidence slacks of it (csg/Query.cpp,
+// exitAlone; unit: the slack at the exit). Why 4: the union closes a gap of up to one slack
+// after the exit (a slack taken at the gap's far end, larger by a relative 1e-9 at most), and
+// an object's span there that the window clips to less than a slack would be dropped as a
+// sliver by any(); with four, a span beginning within a slack of the exit keeps three inside
+// the window. Half a slack let closest() differ from the whole list (query_test).
+inline constexpr double kExitWindowSlacks = 4.0;
+
 // A ray is taken to miss a node's bounding ball (csg/Compiled.h, BoundingBall) only when the
 // line passes farther than radius + this fraction of (|ray origin| + |ball centre| + radius)
 // from the centre (unit: relative). Why: the line's distance is computed with an absolute
