@@ -33,6 +33,79 @@ struct Cursor {
     }
 };
 
+// Two single spans are the commonest merge (a part's box and sphere, its bores): the three
+// functions below give what mergeSolid gives them, hit for hit, without its event loop (the
+// merge took 139 instructions on csg_grid, bench/README.md; spanlist_test holds them to the
+// loop's answers).
+
+// Of two ends at one t, the one mergeSolid takes: a surface over a clip end, else the left.
+const Hit& tiedEnd(const Hit& a, const Hit& b) {
+    return a.isSurface() || !b.isSurface() ? a : b;
+}
+
+// The intersection: the later entry (at one t, the tie-break's) and the earlier exit
+// (likewise); nothing when the later entry is not before the earlier exit.
+size_t intersectSingle(const Span& a, const Span& b, Span* out, double originScale) {
+    const Hit* start;
+    if (a.in.t < b.in.t) {
+        if (!(b.in.t < a.out.t)) return 0;
+        start = &b.in;
+    } else if (b.in.t < a.in.t) {
+        if (!(a.in.t < b.out.t)) return 0;
+        start = &a.in;
+    } else {
+        start = &tiedEnd(a.in, b.in);
+    }
+    const Hit& end = a.out.t < b.out.t ? a.out : b.out.t < a.out.t ? b.out : tiedEnd(a.out, b.out);
+    SpanWriter writer(out, originScale);
+    writer.emit({*start, end});
+    return writer.count();
+}
+
+// Of two ends of a union at one t, the one mergeSolid takes: the lower leaf's when both are
+// surfaces or both clip ends.
+const Hit& tiedUnionEnd(const Hit& a, const Hit& b) {
+    return a.isSurface() == b.isSurface() && b.leaf < a.leaf ? b : tiedEnd(a, b);
+}
+
+// The union: both, in order, when a gap parts them (the writer fuses one within the slack);
+// else the earlier entry and the later exit, at one t by the tie-break.
+size_t uniteSingle(const Span& a, const Span& b, Span* out, double originScale) {
+    SpanWriter writer(out, originScale);
+    if (a.out.t < b.in.t || b.out.t < a.in.t) {
+        const bool aFirst = a.out.t < b.in.t;
+        writer.emit(aFirst ? a : b);
+        writer.emit(aFirst ? b : a);
+        return writer.count();
+    }
+    const Hit& start = a.in.t < b.in.t ? a.in : b.in.t < a.in.t ? b.in : tiedUnionEnd(a.in, b.in);
+    const Hit& end = a.out.t > b.out.t   ? a.out
+                     : b.out.t > a.out.t ? b.out
+                                         : tiedUnionEnd(a.out, b.out);
+    writer.emit({start, end});
+    return writer.count();
+}
+
+// The difference: A where B leaves it, before B and past it, with B's hits flipped; where an
+// end of B meets an end of A, the tie-break's.
+size_t subtractSingle(const Span& a, const Span& b, Span* out, double originScale) {
+    SpanWriter writer(out, originScale);
+    Span cut = b;
+    cut.in.flipped = !cut.in.flipped;
+    cut.out.flipped = !cut.out.flipped;
+    if (b.out.t < a.in.t || a.out.t < b.in.t) {
+        writer.emit(a);
+    } else if (b.out.t == a.in.t) {
+        writer.emit({tiedEnd(a.in, cut.out), a.out});
+    } else if (a.out.t == b.in.t) {
+        writer.emit({a.in, tiedEnd(a.out, cut.in)});
+    } else {
+        if (a.in.t < b.in.t) writer.emit({a.in, cut.in});
+        if (b.out.t < a.out.t) writer.emit({cut.out, a.out});
+    }
+    return writer.count();
+}
+
 // The linear merge, with the operation and the sheet skipping fixed at compile time (they
 // are per-call constants, and the loop runs once per span end).
 template <SetOp Op, bool SkipSheets>
@@ -139,10 +212,15 @@ size_t mergeSolidFor(SetOp op, const Span* a, size_t na, const Span* b, size_t n
                      double originScale) {
     switch (op) {
         case SetOp::Union:
+            if (!SkipSheets && na == 1 && nb == 1) return uniteSingle(a[0], b[0], out, originScale);
             return mergeSolid<SetOp::Union, SkipSheets>(a, na, b, nb, out, originScale);
         case SetOp::Intersection:
+            if (!SkipSheets && na == 1 && nb == 1)
+                return intersectSingle(a[0], b[0], out, originScale);
             return mergeSolid<SetOp::Intersection, SkipSheets>(a, na, b, nb, out, originScale);
         case SetOp::Difference:
+            if (!SkipSheets && na == 1 && nb == 1)
+                return subtractSingle(a[0], b[0], out, originScale);
             return mergeSolid<SetOp::Difference, SkipSheets>(a, na, b, nb, out, originScale);
     }
     return 0;
