@@ -335,8 +335,11 @@ struct SpanWalk {
         if (atStart) {
             // Only the first piece counts: A's first span must reach past start + minPiece,
             // and no operand's box, widened by a slack, may begin before that, i.e. none may
-            // meet [start, clear]. Stops at the first one that does; nothing to sort.
-            const double start = a[0].in.t, clear = start + minPiece + slack;
+            // meet [start, clear]. Stops at the first one that does; nothing to sort. For a
+            // ray that starts inside A, the piece is the whole first span, whose end is then
+            // the node's too (closest() hands it to exitAlone).
+            const double start = a[0].in.t;
+            const double clear = (a[0].in.isSurface() ? start + minPiece : a[0].out.t) + slack;
             if (!(a[0].out.t - start > minPiece)) return false;
             for (uint32_t k = 0; k < operands; ++k)
                 if (reach(operand(k), start, clear, r)) return false;
@@ -374,7 +377,8 @@ struct SpanWalk {
     // Pushes the node's list, or, for a difference whose left operand sticks out of every box
     // of its right operand (uncovered()), the left operand's list, without solving the right:
     // empty exactly when the node's list is, and when atStart, its first span begins where the
-    // node's does. What any() (atStart false) and closest() need.
+    // node's does, and ends where the node's does when it begins at t0 (a ray that starts
+    // inside). What any() (atStart false) and closest() need.
     size_t evalShortcut(uint32_t index, double t0, double t1, bool atStart) {
         const CompiledNode& node = scene.nodes_[index];
         if (node.kind != Op::Difference) return eval(index, t0, t1);
@@ -631,17 +635,24 @@ struct SpanWalk {
     // slacks of it. The root union's first span then starts at the ray's start and ends there, with
     // that very hit: every other object's spans near the ray lie inside it or begin past it
     // by more than the slack, the widest gap the union closes. The whole list's answer
-    // without merging every object's list into it (a refracted ray inside glass, whose
-    // object's own list comes from the leaves' slots). Empty where the whole list must decide.
+    // without merging every object's list into it (a refracted ray inside glass). knownEnd:
+    // that end when closest() has it already, else the object is evaluated again (its leaves'
+    // lists come from their slots). Empty where the whole list must decide.
     // Out of line: inlined, it moved closest()'s BVH walk out of Scene::closest into calls of
     // their own (+1.8 % instructions on csg_grid, which never starts inside an object).
-    [[gnu::noinline]] std::optional<Hit> exitAlone(uint32_t inside) {
-        const size_t base = top;
-        const size_t n = eval(inside, ray.tmin, ray.tmax);
-        top = base;
-        if (n == 0 || stack()[base].in.isSurface() || !stack()[base].out.isSurface())
-            return std::nullopt;
-        const Hit exit = stack()[base].out;
+    [[gnu::noinline]] std::optional<Hit> exitAlone(uint32_t inside,
+                                                   const std::optional<Hit>& knownEnd) {
+        Hit exit;
+        if (knownEnd) {
+            exit = *knownEnd;
+        } else {
+            const size_t base = top;
+            const size_t n = eval(inside, ray.tmin, ray.tmax);
+            top = base;
+            if (n == 0 || stack()[base].in.isSurface() || !stack()[base].out.isSurface())
+                return std::nullopt;
+            exit = stack()[base].out;
+        }
         const double window =
             tol::kExitWindowSlacks * coincidenceSlack(originScale, exit.t, exit.t);
         const double lo = exit.t - window;
@@ -656,18 +667,20 @@ struct SpanWalk {
     // First surface end of the root union's spans. Front-to-back over the top-level objects,
     // lowering t1 to the best entry so far, which is exact as long as the ray starts outside
     // every object; a ray that starts inside one takes that object's exit (exitAlone), or
-    // else falls back to the whole span list.
+    // else falls back to the whole span list. Always inlined: it is Scene::closest, and the
+    // BVH walk inlined into it saves a call per node on csg_grid.
     // t1 stays two coincidence slacks past the best entry: an object entered just before it,
     // or at it, would otherwise be clipped there to a span no longer than the slack, which
     // the span writer drops as a sliver, and a later entry, or the first object met of several
     // entered at one t, would win (a face of the exact rounded box, entered 2e-8 before the
     // edge cylinder under it, lost so, and the hit point inside the face's prism shadowed
     // itself).
-    std::optional<Hit> closest() {
+    [[gnu::always_inline]] std::optional<Hit> closest() {
         const CompiledNode& root = scene.nodes_[scene.root_];
         double t1 = ray.tmax;
         std::optional<Hit> best;
         uint32_t startsInside = kNoNode;  // the object the ray starts in, once one is met
+        std::optional<Hit> insideEnd;     // where its first span ends, when that is known
         if (root.boundsImplied || touches(root.bounds, ray.tmin, t1)) {
             forEachChild(root, ray.tmin, t1, [&](uint32_t child) {
                 const size_t base = top;
@@ -678,7 +691,13 @@ struct SpanWalk {
                     const Hit first = stack()[base].in;
                     top = base;
                     if (!first.isSurface()) {
+                        // The object's first span ends where this one does (evalShortcut),
+                        // but for a leaf's, which may end early (LocalSpans::firstOnly), and
+                        // one clipped at a lowered t1 (no surface there).
                         startsInside = child;
+                        const Hit end = stack()[base].out;
+                        if (scene.nodes_[child].kind != Op::Leaf && end.isSurface())
+                            insideEnd = end;
                         return false;
                     }
                     // At one t, the lower leaf, as the union's merge names it (SpanList.h).
@@ -693,7 +712,7 @@ struct SpanWalk {
             });
         }
         if (startsInside == kNoNode) return best;
-        if (const std::optional<Hit> exit = exitAlone(startsInside)) return exit;
+        if (const std::optional<Hit> exit = exitAlone(startsInside, insideEnd)) return exit;
         const size_t base = top;
         const size_t n = eval(scene.root_, ray.tmin, ray.tmax);
         std::optional<Hit> hit;

@@ -215,6 +215,42 @@ TEST(Query, RaysStartingInsideLeaveWhereTheUnionEnds) {
     EXPECT_GT(byOthers, 1000);  // B or C decided often, not only A's own exit
 }
 
+// The same for the parts of bench/scenes/torus_glass: rays refracted into a torus that is one
+// leaf (its first span solved for where it begins only, firstOnly, so its end may come early),
+// and into a torus cut by a box (the difference's first span, whose end closest() hands on
+// when the box is clear of it), over a floor. Origins inside either torus, random directions.
+TEST(Query, RaysStartingInsideATorusLeaveWhereItsSpansEnd) {
+    const NodePtr cutTorus =
+        transformed(glm::translate(Mat4(1.0), Vec3(7, 0, 0)),
+                    subtract(leaf(Torus{2.0, 1.0}), leaf(Box{Vec3(-4, -4, 0.2), Vec3(4, 0, 2)})));
+    const Scene scene = Scene::compile(
+        uniteAll({leaf(Torus{2.0, 1.0}), cutTorus, leaf(HalfSpace{Vec3(0, 0, 1), -1.0})}));
+    ASSERT_TRUE(std::holds_alternative<Box>(scene.leafPrimitive(2)));
+    QueryContext ctx;
+    testing::Rng rng(2030);
+    int byCut = 0, byBox = 0;
+    for (int r = 0; r < 20000; ++r) {
+        const bool cut = r % 2 == 1;
+        Vec3 p;
+        do {
+            p = rng.inBox(Vec3(-3, -3, -1), Vec3(3, 3, 1));
+        } while (!Torus{2.0, 1.0}.inside(p) ||
+                 (cut && p.y < 0 && p.z > 0.2));  // inside the part, not in the cut
+        const Ray ray{cut ? p + Vec3(7, 0, 0) : p, rng.unit(), 0.0, 100.0};
+        const auto spans = scene.spans(ray, ctx);
+        ASSERT_FALSE(spans.empty());
+        ASSERT_FALSE(spans[0].in.isSurface());
+        const Hit want = spans[0].out;
+        byCut += cut;
+        byBox += cut && want.leaf == 2;
+        const std::optional<Hit> got = scene.closest(ray, ctx);
+        ASSERT_TRUE(got) << "ray " << r;
+        EXPECT_EQ(got->t, want.t) << "ray " << r;
+        EXPECT_EQ(got->leaf, want.leaf) << "ray " << r;
+    }
+    EXPECT_GT(byBox, 500);  // rays leaving through the cut's faces, not only the tube
+}
+
 // Normals returned for hits are unit, finite and face the outside of the solid.
 TEST(Query, SurfaceNormalsPointOutOfTheSolid) {
     std::mt19937_64 rng(5);
