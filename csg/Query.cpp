@@ -700,13 +700,12 @@ struct SpanWalk {
                     const Hit first = stack()[base].in;
                     top = base;
                     if (!first.isSurface()) {
-                        // The object's first span ends where this one does (evalShortcut),
-                        // but for a leaf's, which may end early (LocalSpans::firstOnly), and
-                        // one clipped at a lowered t1 (no surface there).
+                        // The object's first span ends where this one does (evalShortcut; a
+                        // leaf's firstOnly list gives its exact end for a span the ray starts
+                        // in), but for one clipped at a lowered t1 (no surface there).
                         startsInside = child;
                         const Hit end = stack()[base].out;
-                        if (scene.nodes_[child].kind != Op::Leaf && end.isSurface())
-                            insideEnd = end;
+                        if (end.isSurface()) insideEnd = end;
                         return false;
                     }
                     // At one t, the lower leaf, as the union's merge names it (SpanList.h).
