@@ -180,23 +180,14 @@ struct SpanWalk {
                 Vec3(s[0] * groupInvD[a[0]], s[1] * groupInvD[a[1]], s[2] * groupInvD[a[2]])};
     }
 
-    // Solve near the primitive: restart the ray where it enters the local bounds. The clip is
-    // inlined into eval() and the solve is not, so that a leaf the ray misses costs no call.
-    [[gnu::always_inline]] size_t evalLeaf(const LeafGeometry& leaf, uint32_t leafIndex, double t0,
-                                           double t1) {
+    size_t evalLeaf(const LeafGeometry& leaf, uint32_t leafIndex, double t0, double t1) {
         const LocalRay leafRay = toLeafFrame(leaf);
+        const Vec3 &o = leafRay.o, &d = leafRay.d;
+        // Solve near the primitive: restart the ray where it enters the local bounds.
         double b0 = -kInfinity, b1 = kInfinity;
-        if (!clipToBox(SlabRay(leafRay.o, leafRay.invD, SlabRay::Reciprocal{}), leaf.localBounds,
-                       b0, b1) ||
+        if (!clipToBox(SlabRay(o, leafRay.invD, SlabRay::Reciprocal{}), leaf.localBounds, b0, b1) ||
             b1 < t0 || b0 > t1)
             return 0;
-        return solveLeaf(leaf, leafIndex, leafRay.o, leafRay.d, b0, b1, t0, t1);
-    }
-
-    // evalLeaf past the clip: the ray o + t d in the leaf's frame meets its local box over
-    // [b0, b1], which overlaps [t0, t1].
-    [[gnu::noinline]] size_t solveLeaf(const LeafGeometry& leaf, uint32_t leafIndex, const Vec3& o,
-                                       const Vec3& d, double b0, double b1, double t0, double t1) {
         const double shift = std::isfinite(b0) ? b0 : (std::isfinite(b1) ? b1 : 0.0);
 
         // The leaf's spans along the whole line depend on the ray only, not on [t0, t1]: a
