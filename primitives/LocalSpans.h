@@ -40,8 +40,9 @@ struct LocalSpans {
     // start and that it is there: the spans after one whose part past `from` is longer than
     // `margin` may be left out (margin covers the caller's sliver rule, so that span is the
     // first it keeps), and that span's end may be given as any value at or before the true one
-    // that keeps its part past `from` so long, unless the span begins before from + margin (a
-    // ray that starts inside it, which closest() answers with where it ends).
+    // that keeps its part past `from` so long, unless the span begins no later than
+    // from + margin or an earlier span ends past `from` (a ray that starts inside a span, which
+    // closest() answers with where the spans it fuses with that one end).
     double from = -std::numeric_limits<double>::infinity();
     double margin = 0.0;
     bool firstOnly = false;

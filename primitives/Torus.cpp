@@ -407,10 +407,11 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
     // is solved in a piece that ends before out.from - out.margin, where the caller clips
     // (its place holds the piece's start, also before it: a reflected or refracted ray's tube
     // behind it); with out.firstOnly, none after the first span that reaches past `from` by
-    // more than out.margin, and not that span's exit when its entry lies that far past `from`
-    // and the start of its exit piece that far past the entry: the start stands for the exit
-    // (LocalSpans), as closest() reads only the entry and any() only that the span is there
-    // (a ray that starts inside the span is answered with its exit). That start is
+    // more than out.margin, and not that span's exit when it is the first span past `from`, its
+    // entry lies that far past `from` and the start of its exit piece that far past the entry:
+    // the start stands for the exit (LocalSpans), as closest() reads only the entry and any()
+    // only that the span is there (a ray that starts inside a span is answered with where it
+    // ends, and the caller may fuse it with the next across a sliver of a gap). That start is
     // inside (a dip, or a cut that is or is taken negative), and the exit is solved within the
     // piece, so it lies at or past it.
     double ends[4], times[4];  // sigma = t - tBase, and t itself (polished or tBase + sigma)
@@ -428,6 +429,7 @@ void tubeSpans(const Torus& torus, const Vec3& o, const Vec3& d, const TubeLine&
             tBase + ends[m - 1] - std::max(tBase + ends[m - 2], out.from) > out.margin)
             break;
         if (out.firstOnly && m % 2 == 1 && tBase + ends[m - 1] > out.from + out.margin &&
+            (m == 1 || times[m - 2] < out.from) &&
             tBase + lo.s / len - (tBase + ends[m - 1]) > out.margin) {
             ends[m] = lo.s / len, times[m] = tBase + ends[m];
             ++m;

@@ -244,8 +244,9 @@ TEST(Torus, RandomLinesAgreeWithInside) {
 // `from`, the hinted list is the whole one, value for value, or with firstOnly a prefix of it
 // that reaches at least to its first span whose part past `from` is longer than the margin (all
 // of it when none is), whose end may come early but not so early that its part past `from` is
-// no longer than the margin, nor when it begins before from + margin (a ray that starts inside
-// it: closest() reads where it ends). The oracle is the same torus asked for the whole line.
+// no longer than the margin, nor when it begins no later than from + margin or follows a span
+// that reaches past `from` (a ray that starts inside: closest() reads where it ends). The
+// oracle is the same torus asked for the whole line.
 void expectHintedPrefix(const Torus& torus, const Vec3& o, const Vec3& d, double from,
                         double margin, bool firstOnly, int& earlyEnds, int& placeholders) {
     const LocalSpans whole = spansOf(torus, o, d);
@@ -269,7 +270,8 @@ void expectHintedPrefix(const Torus& torus, const Vec3& o, const Vec3& d, double
         if (firstOnly && j + 1 == h.size() && h[j].second != w[j].second) {
             ASSERT_LT(h[j].second, w[j].second);
             ASSERT_GT(h[j].second - h[j].first, margin);
-            ASSERT_GT(h[j].first, from + margin);  // not a span the ray starts inside
+            ASSERT_GT(h[j].first, from + margin);  // not a span the ray starts inside,
+            ASSERT_EQ(j, 0u);                      // nor one after a span past `from`
             ++earlyEnds;
         } else {
             ASSERT_EQ(h[j].second, w[j].second) << "span " << j;
