@@ -360,9 +360,7 @@ struct Compiler {
             scene.frames_.emplace_back(LeafFrame{Affine(localFromWorld), worldFromLocal,
                                                  glm::transpose(Mat3(localFromWorld)), node.tags});
         if (isPlanar(node.primitive)) {
-            const Vec3 n = std::visit([](const auto& shape) { return shape.normal(Vec3(0.0), 0); },
-                                      node.primitive);
-            frame.planeNormal = worldNormal(frame, n);
+            frame.planeNormal = worldNormal(frame, primitiveNormal(node.primitive, Vec3(0.0), 0));
             frame.planeNormalKnown = true;
         }
         const uint32_t added = addNode({Op::Leaf, false, box, index});

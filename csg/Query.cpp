@@ -149,9 +149,8 @@ struct SpanWalk {
 
     // The leaves solved in this query, one slot per leaf index modulo kSolvedSlots (a leaf
     // evicts only a leaf of its own slot). A query meets a leaf twice when closest() takes the
-    // whole list of an object a ray starts inside (a refracted ray inside glass: exitAlone, or
-    // the fallback to the root's list): that walks the leaves closest() has just solved, and
-    // the torus of bench/scenes/torus_glass was solved twice for every such ray.
+    // list of an object a ray starts inside whose exit it does not have yet (exitAlone), or
+    // falls back to the root's list: that walks the leaves closest() has just solved.
     static constexpr uint32_t kSolvedSlots = 4;
     // Set while closest() evaluates a top-level object that is one leaf, and while any()
     // evaluates a leaf: they read only its first span past t0 (see evalLeaf).

@@ -26,9 +26,7 @@ SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
         sp.normal = frame.planeNormal;
     } else {
         const Vec3 local = transformPoint(frame.localFromWorld, sp.point);
-        const Vec3 n = std::visit([&](const auto& shape) { return shape.normal(local, hit.face); },
-                                  leaves_[hit.leaf].shape);
-        sp.normal = worldNormal(frame, n);
+        sp.normal = worldNormal(frame, primitiveNormal(leaves_[hit.leaf].shape, local, hit.face));
     }
     if (hit.flipped) sp.normal = -sp.normal;
     // A sheet has two sides and no outside: the one facing the ray's origin is shown.

@@ -144,11 +144,10 @@ size_t mergeSolid(const Span* a, size_t na, const Span* b, size_t nb, Span* out,
         // merged in (the structures of --accel visit them in different orders, and a BVH in
         // an order that changes with the ray: two lines through one pair of coincident faces
         // must name the same one, or the exact boundary keeps both or neither).
-        const bool both = takeA && takeB;
-        const bool lowerB = Op == SetOp::Union && both && hitA.isSurface() == hitB.isSurface() &&
-                            hitB.leaf < hitA.leaf;
-        const Hit& boundary =
-            !lowerB && (!takeB || (takeA && (hitA.isSurface() || !hitB.isSurface()))) ? hitA : hitB;
+        const Hit& boundary = !takeB               ? hitA
+                              : !takeA             ? hitB
+                              : Op == SetOp::Union ? tiedUnionEnd(hitA, hitB)
+                                                   : tiedEnd(hitA, hitB);
         if (now)
             start = boundary;
         else

@@ -72,6 +72,11 @@ inline bool isPlanar(const Primitive& p) {
         [](const auto& shape) { return HasPlanarSurface<std::decay_t<decltype(shape)>>; }, p);
 }
 
+// p's outward unit normal at `local`, a point of its surface in its own frame, on `face`.
+inline Vec3 primitiveNormal(const Primitive& p, const Vec3& local, uint16_t face) {
+    return std::visit([&](const auto& shape) { return shape.normal(local, face); }, p);
+}
+
 // p's bounding ball in its own frame, for primitives that have one (see HasBoundingBall).
 inline std::optional<LocalBall> boundingBall(const Primitive& p) {
     return std::visit(

@@ -137,6 +137,12 @@ TEST(SpanList, TieBreakPrefersSurfacesThenTheLeftHitOrAUnionsLowerLeaf) {
     EXPECT_EQ(i[0].in.leaf, 1u);
     EXPECT_TRUE(i[0].out.isSurface());
     EXPECT_EQ(i[0].out.leaf, 2u);
+    // Of two clip ends at one t (both operands narrowed there), the left operand's.
+    List c = spans({{1, 4}}, 1), e = spans({{0, 4}}, 2);
+    c[0].out.face = kClipFace;
+    e[0].out.face = kClipFace;
+    EXPECT_EQ(merge(SetOp::Intersection, c, e)[0].out.leaf, 1u);
+    EXPECT_EQ(merge(SetOp::Intersection, e, c)[0].out.leaf, 2u);
 }
 
 TEST(SpanList, SpansToInfinityAreNotSlivers) {
@@ -195,7 +201,8 @@ TEST(SpanList, AllOperationsAgreeWithPointSampling) {
 // event loop, where that span adds nothing before itself: the loop is the oracle, hit for hit.
 // Ends come from a few values, so that every kind of tie occurs, some moved off a value within
 // the coincidence slack, so that slivers are dropped and gaps closed; faces are surfaces or
-// clip ends, and leaves and flips vary, so that every tie-break decides.
+// clip ends, and leaves and flips vary, so that every tie-break decides. (The tie-breaks
+// themselves, tiedEnd and tiedUnionEnd, are the loop's too: the test above holds them by hand.)
 TEST(SpanList, SingleSpanMergesAgreeWithTheEventLoop) {
     std::mt19937_64 rng(4242);
     std::uniform_int_distribution<int> value(0, 3), leaf(1, 3), coin(0, 3);
