@@ -1,16 +1,19 @@
 // The spatial structures of --accel side by side (issue 21; bench/README.md, "Spatial
 // structures"): for spheres spread over a layer (core_bench's sphere_layer) and the same spheres
 // in 16 clusters, at 10^3 .. 10^6 spheres, per structure: compile time, the structure's memory,
-// primary (closest) and shadow (occluded) rays per second, and BVH slots / grid cells visited
-// and primitives solved per primary ray. A plain program, run by hand; it prints a Markdown
-// table. The smoke pass runs it on the smallest layer.
+// primary (closest), shadow (occluded) and secondary (closest from a hit) rays per second, and
+// BVH slots / grid cells visited and primitives solved per primary ray. A plain program, run by
+// hand; it prints a Markdown table. The smoke pass runs it on the smallest layer.
 //
 //   accel_sweep [--accel sah,median,...] [--sizes 1000,10000,...] [--scenes uniform,clustered]
 //               [--image N] [--repeats K]
 //
 // Rays: core_bench's sphere_layer camera, N x N pixels (default 128); shadow rays run from one
 // light, above the layer, to every primary hit point (t in [0, 1 - 1e-9], so they stop short
-// of the hit's own surface), tried cached-object first as the renderer does. Times are this
+// of the hit's own surface), tried cached-object first as the renderer does; secondary rays are
+// the mirror reflections of the primary rays at their hits, started off the surface as the
+// renderer starts them (viewer/render/SecondaryOrigin.h): rays that begin inside the
+// structure, among the objects, and scatter. Times are this
 // thread's CPU time; a rate is the median of K timed passes (default 5) of at least 0.2 s each.
 #include <algorithm>
 #include <cstdio>
@@ -21,6 +24,7 @@
 #include <vector>
 
 #include "bench/BenchScenes.h"
+#include "viewer/render/SecondaryOrigin.h"
 
 namespace {
 
@@ -99,8 +103,8 @@ int main(int argc, char** argv) {
     const Vec3 light(30.0, 20.0, 150.0);
     std::printf(
         "| scene | spheres | structure | compile ms | structure MB | primary Mrays/s | "
-        "shadow Mrays/s | visits/ray | prims/ray |\n");
-    std::printf("|---|---:|---|---:|---:|---:|---:|---:|---:|\n");
+        "shadow Mrays/s | secondary Mrays/s | visits/ray | prims/ray |\n");
+    std::printf("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|\n");
     for (const std::string& sceneName : scenes) {
         for (size_t n : sizes) {
             const NodePtr tree =
@@ -110,13 +114,19 @@ int main(int argc, char** argv) {
                 const Scene scene = Scene::compile(tree, {.accel = accel});
                 const double compileSeconds = cpuNow() - start;
 
-                // The shadow rays: from the light to each primary hit.
+                // The shadow rays, from the light to each primary hit, and the reflections there.
                 QueryContext context;
-                std::vector<Ray> shadows;
+                std::vector<Ray> shadows, reflections;
                 for (const Ray& ray : rays) {
                     if (const auto hit = scene.closest(ray, context)) {
-                        const Vec3 p = ray.at(hit->t);
-                        shadows.push_back({light, p - light, 0.0, 1.0 - 1e-9});
+                        const SurfacePoint surface = scene.surface(ray, *hit);
+                        shadows.push_back({light, surface.point - light, 0.0, 1.0 - 1e-9});
+                        const Vec3 d = glm::normalize(ray.d);
+                        const Vec3 r = d - 2.0 * glm::dot(d, surface.normal) * surface.normal;
+                        const Vec3 o = viewer::render::offsetRayOrigin(
+                            surface.point, viewer::render::hitPointError(ray, hit->t),
+                            surface.normal, r);
+                        reflections.push_back({o, r, 0.0, kInfinity});
                     }
                 }
                 // Work per primary ray, from one pass.
@@ -132,10 +142,14 @@ int main(int argc, char** argv) {
                 const double shadow = raysPerSecond(shadows.size(), repeats, [&] {
                     for (const Ray& ray : shadows) sink += scene.occluded(ray, context, cache);
                 });
-                std::printf("| %s | %zu | %s | %.1f | %.2f | %.3f | %.3f | %.1f | %.2f |\n",
+                const double secondary = raysPerSecond(reflections.size(), repeats, [&] {
+                    for (const Ray& ray : reflections)
+                        sink += scene.closest(ray, context).has_value();
+                });
+                std::printf("| %s | %zu | %s | %.1f | %.2f | %.3f | %.3f | %.3f | %.1f | %.2f |\n",
                             sceneName.c_str(), n, std::string(accelName(accel)).c_str(),
                             1e3 * compileSeconds, static_cast<double>(scene.structureBytes()) / 1e6,
-                            primary / 1e6, shadow / 1e6,
+                            primary / 1e6, shadow / 1e6, secondary / 1e6,
                             static_cast<double>(counted.stats.nodeVisits) * perRay,
                             static_cast<double>(counted.stats.primitiveTests) * perRay);
                 std::fflush(stdout);
