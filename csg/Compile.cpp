@@ -7,8 +7,8 @@
 
 #include "csg/Bvh.h"
 #include "csg/Compiled.h"
-#include "csg/Grid.h"
 #include "csg/Scene.h"
+#include "primitives/base/Grid.h"
 
 namespace csg {
 namespace {
@@ -99,15 +99,6 @@ size_t countLeaves(const Node* node) {
 
 }  // namespace
 
-// --accel auto: a union of at least this many bounded children gets a uniform grid when its
-// children fill at least kAutoGridFilled of the grid's cells (spread evenly, as in a layer or a
-// field of parts), and the SAH BVH otherwise. bench/README.md ("Spatial structures"): on evenly
-// spread spheres from 10^4 up the grid traces as fast as the SAH or faster (shadow rays by
-// 10-30 %) with a seventh of the memory and a third of the build time; on clustered ones the
-// SAH is 2-5x faster; below 10^4 the two are level (csg_grid's 1000 parts: SAH by ~4 %).
-constexpr uint32_t kAutoGridMinChildren = 4096;
-constexpr double kAutoGridFilled = 0.5;
-
 // A node holds its slab polyhedron (CompileOptions::slabs) when along some diagonal it is
 // narrower than the node's box by at least this fraction of the box's width there: a thinner
 // cut rarely culls a ray the box lets through, and the test costs about as much as a box's.
@@ -149,14 +140,6 @@ DiagonalSlabs overlapOf(const DiagonalSlabs& a, const DiagonalSlabs& b) {
     for (int i = 0; i < 4; ++i)
         s.lo[i] = std::max(a.lo[i], b.lo[i]), s.hi[i] = std::min(a.hi[i], b.hi[i]);
     return s;
-}
-
-// The fraction of the grid's cells that list a child.
-double filledFraction(const UniformGrid& grid) {
-    size_t filled = 0;
-    const size_t cells = grid.cellStart.size() - 1;
-    for (size_t c = 0; c < cells; ++c) filled += grid.cellStart[c + 1] > grid.cellStart[c];
-    return static_cast<double>(filled) / static_cast<double>(cells);
 }
 
 struct Compiler {
@@ -419,7 +402,7 @@ struct Compiler {
         std::vector<Bounds3> boxes;
         if (u.bounded >= kBvhMinChildren &&
             (accel == Accel::Grid || accel == Accel::NonUniformGrid ||
-             (accel == Accel::Auto && u.bounded >= kAutoGridMinChildren))) {
+             (accel == Accel::Auto && u.bounded >= kAutoGridMinItems))) {
             boxes.resize(u.bounded);
             for (uint32_t i = 0; i < u.bounded; ++i) boxes[i] = scene.nodes_[children[i]].bounds;
         }
@@ -429,7 +412,7 @@ struct Compiler {
             accel = Accel::Sah;
             if (!boxes.empty()) {
                 judged = buildUniformGrid(boxes, u.first);
-                if (filledFraction(judged) >= kAutoGridFilled) accel = Accel::Grid;
+                if (gridPays(judged)) accel = Accel::Grid;
             }
         }
         if (u.bounded >= kBvhMinChildren &&

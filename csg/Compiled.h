@@ -85,7 +85,7 @@ struct DiagonalSlabs {
 // Leaf:         first = leaf index.
 // Intersection, Difference: first = left node, second = right node.
 // Union:        children_[first, first + count) are the child nodes; the first `bounded`
-//               of them are organized by the union's structure (csg/Accel.h): its BVH
+//               of them are organized by the union's structure (primitives/base/Accel.h): its BVH
 //               (rooted at bvhRoot) or its grid (grid), or neither for a short union scanned
 //               linearly; the rest have unbounded bounds.
 struct CompiledNode {
@@ -114,7 +114,7 @@ struct CompiledNode {
     uint32_t count = 0;
     uint32_t bounded = 0;
     uint32_t bvhRoot = kNoNode;
-    // The union's grid instead of a BVH (csg/Grid.h): an index into Scene::grids_ or
+    // The union's grid instead of a BVH (primitives/base/Grid.h): an index into Scene::grids_ or
     // Scene::halvingGrids_ (halving), or kNoNode.
     uint32_t grid = kNoNode;
     bool halving = false;

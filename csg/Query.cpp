@@ -7,9 +7,9 @@
 
 #include "csg/Bvh.h"
 #include "csg/Compiled.h"
-#include "csg/Grid.h"
 #include "csg/Scene.h"
 #include "csg/SpanList.h"
+#include "primitives/base/Grid.h"
 #include "primitives/solvers/LinePoint.h"
 
 namespace csg {
@@ -487,9 +487,9 @@ struct SpanWalk {
         return clipToBox(slab, box, tIn, tOut);
     }
 
-    // forEachChild's walk of a uniform grid (GridCursor, Amanatides and Woo's) from the cell
-    // where the ray enters the box until past t1 (lowered by visit) or out of the box. False
-    // when visit stopped the walk.
+    // forEachChild's walks of the grids (primitives/base/Grid.h) from the cell where the ray
+    // enters the box until past t1 (lowered by visit) or out of the box. False when visit
+    // stopped the walk.
     template <class Visit>
     bool walkGrid(const UniformGrid& g, double t0, double& t1, Visit& visit) {
         double tIn, tOut;
@@ -497,80 +497,21 @@ struct SpanWalk {
         const uint32_t walk = startWalk();
         if (!std::isfinite(tIn) || !std::isfinite(tOut))
             return visitCell(g.items.data(), static_cast<uint32_t>(g.items.size()), walk, visit);
-        GridCursor cursor(g, ray.o, ray.d, slab.invD, tIn);
-        for (;;) {
-            ++ctx.stats.nodeVisits;
-            const size_t c = cursor.index(g);
-            const uint32_t first = g.cellStart[c];
-            if (!visitCell(g.items.data() + first, g.cellStart[c + 1] - first, walk, visit))
-                return false;
-            double cellIn;
-            if (!cursor.advance(g, ray.o, slab.invD, cellIn)) return true;
-            // The next cell begins past the range (its entry widened as the slab test widens
-            // its ends): nothing in it can come before what has been found.
-            if (std::min(cellIn * (1.0 - tol::kSlabWiden), cellIn * (1.0 + tol::kSlabWiden)) >
-                std::min(t1, tOut))
-                return true;
-        }
+        return walkUniformGrid(g, ray.o, ray.d, slab.invD, tIn, tOut, t1, ctx.stats.nodeVisits,
+                               [&](const uint32_t* items, uint32_t count) {
+                                   return visitCell(items, count, walk, visit);
+                               });
     }
 
-    // forEachChild's walk of a non-uniform grid, as an octree walk: each halving the ray
-    // crosses is entered on the near side first, the far side kept with the range past the
-    // plane (a front-to-back walk of the lecture's cells, without pushing exit points).
     template <class Visit>
     bool walkHalvingGrid(const HalvingGrid& g, double t0, double& t1, Visit& visit) {
         double tIn, tOut;
         if (!enterGrid(g.box, t0, t1, tIn, tOut)) return true;
         const uint32_t walk = startWalk();
-        struct Pending {
-            uint32_t cell;
-            double tIn, tOut;
-        };
-        Pending todo[64];
-        int pending = 0;
-        uint32_t at = 0;
-        for (;;) {
-            // Down to the leaf cell where [tIn, tOut] begins.
-            while (!g.cells[at].leaf) {
-                ++ctx.stats.nodeVisits;
-                const HalvingGrid::Cell& c = g.cells[at];
-                const int a = c.axis;
-                const double tSplit = (c.split - ray.o[a]) * slab.invD[a];
-                // The half the ray runs through first; d = +-0 counts by the sign of 1 / d, so
-                // a ray in a plane of the axis stays in the half holding its origin.
-                const uint32_t nearHalf = c.first + (slab.invD[a] >= 0.0 ? 0 : 1);
-                const uint32_t farHalf = c.first + (slab.invD[a] >= 0.0 ? 1 : 0);
-                const double lo =
-                    std::min(tSplit * (1.0 - tol::kSlabWiden), tSplit * (1.0 + tol::kSlabWiden));
-                const double hi =
-                    std::max(tSplit * (1.0 - tol::kSlabWiden), tSplit * (1.0 + tol::kSlabWiden));
-                if (lo > tOut) {
-                    at = nearHalf;
-                } else if (hi < tIn) {
-                    at = farHalf;
-                } else if (std::isnan(tSplit)) {  // the ray lies in the plane: both halves
-                    todo[pending++] = {farHalf, tIn, tOut};
-                    at = nearHalf;
-                } else {
-                    todo[pending++] = {farHalf, std::max(tIn, lo), tOut};
-                    at = nearHalf;
-                    tOut = std::min(tOut, hi);
-                }
-            }
-            ++ctx.stats.nodeVisits;
-            const HalvingGrid::Cell& leaf = g.cells[at];
-            if (!visitCell(g.items.data() + leaf.first, leaf.count, walk, visit)) return false;
-            // The next pending cell that begins before t1 (lowered since it was pushed).
-            for (;;) {
-                if (pending == 0) return true;
-                const Pending& next = todo[--pending];
-                if (next.tIn > t1) continue;
-                at = next.cell;
-                tIn = next.tIn;
-                tOut = next.tOut;
-                break;
-            }
-        }
+        return csg::walkHalvingGrid(g, ray.o, slab.invD, tIn, tOut, t1, ctx.stats.nodeVisits,
+                                    [&](const uint32_t* items, uint32_t count) {
+                                        return visitCell(items, count, walk, visit);
+                                    });
     }
 
     size_t evalUnion(const CompiledNode& node, double t0, double t1) {

@@ -1,7 +1,7 @@
 #include "csg/Scene.h"
 
 #include "csg/Compiled.h"
-#include "csg/Grid.h"
+#include "primitives/base/Grid.h"
 
 namespace csg {
 

@@ -1,4 +1,4 @@
-// The spatial structures of --accel (csg/Accel.h), and the slab polyhedra of --bounds=slabs:
+// The spatial structures of --accel (primitives/base/Accel.h), and the slab polyhedra of --bounds=slabs:
 // every one answers every query exactly as the SAH BVH with boxes does (same spans, same hits,
 // bit for bit) on thousands of seeded rays over several scenes; the uniform grid's walk visits the
 // cells a hand-drawn ray crosses, in order; the lecture's hierarchies keep their invariants.
@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "bench/BenchScenes.h"
-#include "csg/Grid.h"
+#include "primitives/base/Grid.h"
 #include "csg/Scene.h"
 #include "primitives/Polyhedron.h"
 #include "primitives/base/WideBvh.h"

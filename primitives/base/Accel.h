@@ -1,8 +1,10 @@
-// The spatial structure that organizes the objects of a union (--accel): the lecture's three
-// hierarchies, collapsed into the same 4-wide BVH (primitives/base/WideBvh.h), and its two
-// spatial subdivisions (csg/Grid.h). The span merging of csg/Query.cpp walks each through one
-// call, forEachChild, and does not know which it walks. Inside a CSG tree the bottom-up node
-// bounds stay as they are; only unions of at least four bounded children get a structure.
+// The spatial structure that organizes the objects of a union and the faces of a mesh
+// (--accel): the lecture's three hierarchies, collapsed into the same 4-wide BVH
+// (primitives/base/WideBvh.h), and its two spatial subdivisions (primitives/base/Grid.h). The
+// span merging of csg/Query.cpp walks each through one call, forEachChild, and does not know
+// which it walks; a mesh's crossing search (primitives/Polyhedron.cpp) walks each to gather
+// its crossings. Inside a CSG tree the bottom-up node bounds stay as they are; only unions of
+// at least four bounded children get a structure.
 #pragma once
 
 #include <array>
@@ -18,8 +20,8 @@ enum class Accel : uint8_t {
     GoldsmithSalmon,  // Goldsmith-Salmon insertion BVH
     Grid,             // uniform grid, Amanatides-Woo walk
     NonUniformGrid,   // recursive halving along x, y, z in turn, walked as an octree
-    Auto,             // per union: a uniform grid for large evenly spread ones, else SAH
-                      // (Compile.cpp, kAutoGridMinChildren)
+    Auto,             // per union or mesh: a uniform grid for large evenly spread ones, else
+                      // SAH (gridPays in Grid.h)
 };
 
 // The names of --accel, in the enum's order.

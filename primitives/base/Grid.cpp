@@ -1,5 +1,5 @@
-// Builds csg/Grid.h's uniform and non-uniform grids.
-#include "csg/Grid.h"
+// Builds the uniform and non-uniform grids of Grid.h, and judges them for --accel auto.
+#include "primitives/base/Grid.h"
 
 #include <algorithm>
 #include <cmath>
@@ -163,6 +163,13 @@ UniformGrid buildUniformGrid(std::span<const Bounds3> boxes, uint32_t itemsOffse
     for (uint32_t i = 0; i < boxes.size(); ++i)
         forEachCell(boxes[i], [&](size_t c) { grid.items[fill[c]++] = itemsOffset + i; });
     return grid;
+}
+
+bool gridPays(const UniformGrid& grid) {
+    size_t filled = 0;
+    const size_t cells = grid.cellStart.size() - 1;
+    for (size_t c = 0; c < cells; ++c) filled += grid.cellStart[c + 1] > grid.cellStart[c];
+    return static_cast<double>(filled) >= 0.5 * static_cast<double>(cells);
 }
 
 HalvingGrid buildHalvingGrid(std::span<const Bounds3> boxes, uint32_t itemsOffset) {

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "csg/Accel.h"
+#include "primitives/base/Accel.h"
 #include "io/Faceting.h"
 #include "primitives/Polyhedron.h"
 #include "primitives/base/Math.h"
