@@ -1,5 +1,6 @@
 #include "bench/BenchScenes.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -8,6 +9,8 @@
 #include <numbers>
 #include <random>
 #include <stdexcept>
+
+#include "primitives/Polyhedron.h"
 
 namespace csg::bench {
 namespace {
@@ -150,6 +153,40 @@ NodePtr sphereLayerTree(size_t sphereCount) {
         spheres.push_back(transformed(translation(centre), ball));
     }
     return uniteAll(spheres);
+}
+
+NodePtr terrainMeshTree(size_t triangleCount) {
+    const int side = std::max(1, static_cast<int>(std::lround(std::sqrt(triangleCount / 2.0))));
+    const double step = kLayerSide / side;
+    std::vector<Vec3> points;
+    PolygonFaces faces;
+    const auto top = [&](int i, int j) { return static_cast<uint32_t>(j * (side + 1) + i); };
+    for (int j = 0; j <= side; ++j)
+        for (int i = 0; i <= side; ++i) {
+            const double x = step * i, y = step * j;
+            points.emplace_back(x, y,
+                                2.0 + 1.5 * std::sin(0.23 * x) * std::cos(0.31 * y) +
+                                    0.8 * std::sin(0.9 * x + 0.6 * y));
+        }
+    for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side; ++i) {
+            faces.add({top(i, j), top(i + 1, j), top(i + 1, j + 1)});
+            faces.add({top(i, j), top(i + 1, j + 1), top(i, j + 1)});
+        }
+    // The rim counter-clockwise from above, a wall quad down from each of its edges, the floor.
+    std::vector<uint32_t> rim;
+    for (int i = 0; i < side; ++i) rim.push_back(top(i, 0));
+    for (int j = 0; j < side; ++j) rim.push_back(top(side, j));
+    for (int i = side; i > 0; --i) rim.push_back(top(i, side));
+    for (int j = side; j > 0; --j) rim.push_back(top(0, j));
+    const uint32_t floorStart = static_cast<uint32_t>(points.size());
+    for (const uint32_t r : rim) points.emplace_back(points[r].x, points[r].y, -1.0);
+    const uint32_t n = static_cast<uint32_t>(rim.size());
+    for (uint32_t k = 0; k < n; ++k)
+        faces.add({rim[k], floorStart + k, floorStart + (k + 1) % n, rim[(k + 1) % n]});
+    for (uint32_t k = n; k-- > 0;) faces.corners.push_back(floorStart + k);
+    faces.closeFace();
+    return leaf(Polyhedron::make(std::move(points), faces));
 }
 
 NodePtr clusteredLayerTree(size_t sphereCount) {

@@ -60,6 +60,12 @@ PinholeCamera sphereLayerCamera();
 // centres across the layer, uniform in each ball) instead of spread over the layer, so
 // most of the layer is empty and a few spots are dense: the case a uniform grid handles badly.
 NodePtr clusteredLayerTree(size_t sphereCount);
+// A terrain of about n triangles as one mesh (a polyhedron leaf): the height field
+// z = 2 + 1.5 sin(0.23 x) cos(0.31 y) + 0.8 sin(0.9 x + 0.6 y) over the same 100 x 100 layer,
+// sampled on a square lattice (two triangles per square), closed by walls down to z = -1 and a
+// floor. What an imported scan or STL terrain is: many small faces along a surface. Seen by the
+// layer's camera, every pixel but the sky's meets it.
+NodePtr terrainMeshTree(size_t triangleCount);
 // The same camera narrowed to 0.4 degrees: its rays cover about 1 x 1 unit of the layer's
 // centre, so they walk the same BVH but touch only the few nodes and leaves above that patch:
 // the working set fits in cache at every n.

@@ -1,9 +1,11 @@
 // Compiles a CSG tree into the flat arrays the queries walk: transforms flattened into each
 // leaf, nested unions flattened into n-ary unions, bounds computed bottom-up (union = hull,
 // intersection = overlap, difference = left operand), empty subtrees pruned, and a BVH over
-// every union with enough bounded children.
+// every union with enough bounded children (and the structure --accel names over each mesh's
+// faces).
 #include <cmath>
 #include <sstream>
+#include <unordered_map>
 
 #include "csg/Bvh.h"
 #include "csg/Compiled.h"
@@ -306,6 +308,15 @@ struct Compiler {
         }
     }
 
+    // The structure over a mesh's faces that --accel asks for, built once per mesh however
+    // many leaves place it (Polyhedron::organize).
+    std::unordered_map<const PolyhedronData*, std::shared_ptr<const MeshStructure>> meshes;
+    std::shared_ptr<const MeshStructure> meshStructure(const PolyhedronData& data) {
+        const auto [at, added] = meshes.try_emplace(&data);
+        if (added) at->second = Polyhedron::organize(data, options.accel);
+        return at->second;
+    }
+
     uint32_t buildLeaf(const Node& node, const Placement& placement) {
         const Mat4& worldFromLocal = placement.worldFromNode;
         checkTransform(worldFromLocal, node, "the accumulated transform");
@@ -313,8 +324,10 @@ struct Compiler {
         if (!isFinite(localFromWorld))
             throw CompileError("the accumulated transform cannot be inverted", node.tags.source);
         LeafGeometry geometry{node.primitive, {}};
-        if (auto* mesh = std::get_if<Polyhedron>(&geometry.shape))
+        if (auto* mesh = std::get_if<Polyhedron>(&geometry.shape)) {
             mesh->method = options.polygonMethod;
+            if (mesh->data) mesh->structure = meshStructure(*mesh->data);
+        }
         setFrame(geometry, placement, node);
         Bounds3 box;
         std::visit(

@@ -1,5 +1,7 @@
 #include "csg/Scene.h"
 
+#include <unordered_set>
+
 #include "csg/Compiled.h"
 #include "primitives/base/Grid.h"
 
@@ -11,6 +13,16 @@ size_t Scene::structureBytes() const {
     size_t bytes = sizeof(BvhNode) * bvh_.capacity();
     for (const UniformGrid& g : grids_) bytes += g.bytes();
     for (const HalvingGrid& g : halvingGrids_) bytes += g.bytes();
+    std::unordered_set<const void*> counted;
+    for (const LeafGeometry& leaf : leaves_) {
+        const auto* mesh = std::get_if<Polyhedron>(&leaf.shape);
+        if (!mesh || !mesh->data) continue;
+        if (mesh->structure) {
+            if (counted.insert(mesh->structure.get()).second) bytes += mesh->structure->bytes();
+        } else if (counted.insert(mesh->data.get()).second) {
+            bytes += sizeof(BvhNode) * mesh->data->nodes.capacity();
+        }
+    }
     return bytes;
 }
 

@@ -134,8 +134,9 @@ public:
     // only as far as the left one does. Empty for a leaf that nothing of the part can show.
     std::vector<Bounds3> leafReach() const;
 
-    // Bytes held by the structures over unions' children (BVH nodes, grids and their lists):
-    // what --accel changes in memory.
+    // Bytes held by the structures over unions' children and over meshes' faces (BVH nodes,
+    // grids and their lists; a mesh placed many times counts once): what --accel changes in
+    // memory.
     size_t structureBytes() const;
 
 private:

@@ -72,11 +72,14 @@
 #include <vector>
 
 #include "primitives/Primitive.h"
+#include "primitives/base/Accel.h"
+#include "primitives/base/Grid.h"
 #include "primitives/base/WideBvh.h"
 
 namespace csg {
 
 struct PolyhedronData;
+struct MeshStructure;
 
 // How spans() tests a line against the triangles (see the head of this file).
 enum class PolygonMethod : uint8_t { Watertight, Snyder, Marchal };
@@ -129,6 +132,15 @@ struct Polyhedron {
 
     std::shared_ptr<const PolyhedronData> data;        // shared, immutable
     PolygonMethod method = PolygonMethod::Watertight;  // set by Scene::compile's options
+    // What spans() walks to find the triangles a line may cross (--accel, set by
+    // Scene::compile): null for the mesh's own SAH BVH (data->nodes), else another of the
+    // lecture's structures over the same triangles. Every structure yields the same crossings.
+    std::shared_ptr<const MeshStructure> structure;
+
+    // The faces of this mesh organized by `accel` (primitives/base/Accel.h), to be shared by
+    // every leaf placing it; null for the SAH and for auto, which keeps the SAH on a mesh's
+    // faces (Polyhedron.cpp says why). A mesh that is not valid gets none.
+    static std::shared_ptr<const MeshStructure> organize(const PolyhedronData& data, Accel accel);
 
     // Builds the mesh from points (finite) and faces of at least 3 corners (indices below
     // points.size(); checked by the caller). Corners at equal positions are welded; faces of
@@ -176,6 +188,22 @@ struct PolyhedronData {
     // Each triangle's corner normals for the interpolating methods, built on first use.
     mutable std::once_flag smoothOnce;
     mutable std::vector<std::array<Vec3, 3>> cornerNormals;
+};
+
+// The triangles of a mesh (in PolyhedronData's order, so face ids and the order of crossings at
+// one t stay those of the SAH) organized by another of --accel's structures: a median-cut or
+// Goldsmith-Salmon BVH, whose leaves list triangles through leafTriangles, or a uniform or
+// non-uniform grid listing triangle indices, each triangle tested once per line (a per-thread
+// mailbox) however many cells list it.
+struct MeshStructure {
+    Accel accel = Accel::Median;
+    std::vector<BvhNode> nodes;  // the BVH (median cut, Goldsmith-Salmon)
+    uint32_t root = 0;
+    std::vector<uint32_t> leafTriangles;  // a BVH leaf's position -> triangle index
+    UniformGrid grid;                     // Accel::Grid
+    HalvingGrid halving;                  // Accel::NonUniformGrid
+
+    size_t bytes() const;
 };
 
 }  // namespace csg

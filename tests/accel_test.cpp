@@ -1,7 +1,8 @@
-// The spatial structures of --accel (primitives/base/Accel.h), and the slab polyhedra of --bounds=slabs:
-// every one answers every query exactly as the SAH BVH with boxes does (same spans, same hits,
-// bit for bit) on thousands of seeded rays over several scenes; the uniform grid's walk visits the
-// cells a hand-drawn ray crosses, in order; the lecture's hierarchies keep their invariants.
+// The spatial structures of --accel (primitives/base/Accel.h), and the slab polyhedra of
+// --bounds=slabs: every one answers every query exactly as the SAH BVH with boxes does (same
+// spans, same hits, bit for bit) on thousands of seeded rays over several scenes, over a union's
+// objects and over a mesh's faces; the uniform grid's walk visits the cells a hand-drawn ray
+// crosses, in order; the lecture's hierarchies keep their invariants.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -10,9 +11,9 @@
 #include <sstream>
 
 #include "bench/BenchScenes.h"
-#include "primitives/base/Grid.h"
 #include "csg/Scene.h"
 #include "primitives/Polyhedron.h"
+#include "primitives/base/Grid.h"
 #include "primitives/base/WideBvh.h"
 #include "tests/SeededRng.h"
 #include "tests/TreeOracle.h"
@@ -180,10 +181,12 @@ const Variant kOthers[] = {{"median", {.accel = Accel::Median}},
                            {"grid with slabs", {.accel = Accel::Grid, .slabs = true}}};
 
 // Every query of every ray against the SAH scene's answers.
-// Rays aimed into `aim`, or into the scene's bounds when it is empty.
-void expectSameAnswers(const NodePtr& tree, int rayCount, Bounds3 aim = {}) {
+// Rays aimed into `aim`, or into the scene's bounds when it is empty, then the `extra` ones.
+void expectSameAnswers(const NodePtr& tree, int rayCount, Bounds3 aim = {},
+                       const std::vector<Ray>& extra = {}) {
     const Scene sah = Scene::compile(tree);
-    const std::vector<Ray> rays = raysFor(aim.empty() ? sah.bounds() : aim, rayCount);
+    std::vector<Ray> rays = raysFor(aim.empty() ? sah.bounds() : aim, rayCount);
+    rays.insert(rays.end(), extra.begin(), extra.end());
     QueryContext sahContext, context;
     size_t hits = 0;
     for (const Variant& variant : kOthers) {
@@ -251,6 +254,53 @@ TEST(Accel, CsgGridSameAsSah) {
 
 TEST(Accel, MeshesSameAsSah) {
     expectSameAnswers(meshes(), 3000);
+}
+
+// A mesh's faces under each structure (auto keeps the SAH there): a 96-segment ball (9 000
+// triangles) and the benchmarks' terrain at 5 000 triangles, each one leaf, with lines
+// along the axes through the terrain's vertices (on even x and y) and along its edges, where a
+// walk that rounds into the wrong cell or tests a triangle twice would lose or pair a crossing.
+TEST(Accel, MeshFacesSameAsSah) {
+    const Polyhedron ball = meshBall(96);
+    const NodePtr landLeaf = bench::terrainMeshTree(5000);
+    const Polyhedron& land = std::get<Polyhedron>(landLeaf->primitive);
+    ASSERT_EQ(land.invalidReason(), nullptr);
+    EXPECT_TRUE(land.edges().manifold());
+    for (const Accel accel :
+         {Accel::Median, Accel::GoldsmithSalmon, Accel::Grid, Accel::NonUniformGrid}) {
+        const std::shared_ptr<const MeshStructure> s = Polyhedron::organize(*land.data, accel);
+        ASSERT_NE(s, nullptr);
+        EXPECT_EQ(s->accel, accel);
+    }
+    EXPECT_EQ(Polyhedron::organize(*land.data, Accel::Auto), nullptr);
+
+    // Compile gives the leaf the structure asked for, and spans() walks it: a grid whose cells
+    // list nothing finds no crossing.
+    EXPECT_NE(Scene::compile(landLeaf, {.accel = Accel::Grid}).structureBytes(),
+              Scene::compile(landLeaf).structureBytes());
+    const Ray down{Vec3(10.3, 20.6, 9.0), Vec3(0.0, 0.0, -1.0)};
+    Polyhedron blind = land;
+    auto empty = std::make_shared<MeshStructure>(*Polyhedron::organize(*land.data, Accel::Grid));
+    std::fill(empty->grid.cellStart.begin(), empty->grid.cellStart.end(), 0u);
+    blind.structure = empty;
+    LocalSpans seen, unseen;
+    land.spans(down.o, down.d, seen);
+    blind.spans(down.o, down.d, unseen);
+    EXPECT_EQ(seen.count, 1);
+    EXPECT_EQ(unseen.count, 0);
+
+    expectSameAnswers(leaf(ball), 3000);
+    std::vector<Ray> along;
+    testing::Rng rng(18);
+    for (int k = 0; k < 400; ++k) {
+        const double x = 2.0 * rng.index(51), y = 2.0 * rng.index(51);
+        const double half = k % 3 == 0 ? 1.0 : 0.0;  // through vertices, or along edges
+        along.push_back({Vec3(x + half, y, 9.0), Vec3(0.0, 0.0, -1.0)});
+        along.push_back({Vec3(-1.0, y + half, rng.uniform(0.0, 4.0)), Vec3(1.0, 0.0, 0.0)});
+        along.push_back({Vec3(x, -1.0, rng.uniform(0.0, 4.0)), Vec3(0.0, 1.0, 0.0)});
+        along.push_back({Vec3(x, y, 9.0), Vec3(2.0, 2.0, -1.0)});  // diagonally, through corners
+    }
+    expectSameAnswers(landLeaf, 3000, {}, along);
 }
 
 // Nested unions: each object a union of six small parts (a structure of its own), and a

@@ -20,8 +20,8 @@ enum class Accel : uint8_t {
     GoldsmithSalmon,  // Goldsmith-Salmon insertion BVH
     Grid,             // uniform grid, Amanatides-Woo walk
     NonUniformGrid,   // recursive halving along x, y, z in turn, walked as an octree
-    Auto,             // per union or mesh: a uniform grid for large evenly spread ones, else
-                      // SAH (gridPays in Grid.h)
+    Auto,             // per union: a uniform grid for large evenly spread ones, else SAH
+                      // (gridPays in Grid.h); the SAH over a mesh's faces
 };
 
 // The names of --accel, in the enum's order.

@@ -105,8 +105,7 @@ private:
 UniformGrid buildUniformGrid(std::span<const Bounds3> boxes, uint32_t itemsOffset);
 HalvingGrid buildHalvingGrid(std::span<const Bounds3> boxes, uint32_t itemsOffset);
 
-// --accel auto: a union of at least kAutoGridMinItems bounded children (a mesh of as many
-// triangles) gets a uniform grid when its items fill at least half the grid's cells
+// --accel auto: a union of at least kAutoGridMinItems bounded children gets a uniform grid when its items fill at least half the grid's cells
 // (gridPays: spread evenly, as in a layer or a field of parts), and the SAH BVH otherwise.
 // bench/README.md ("Spatial structures"): on evenly spread spheres from 10^4 up the grid traces
 // as fast as the SAH or faster (shadow rays by 10-30 %) with a seventh of the memory and a third
