@@ -625,27 +625,42 @@ struct WatertightTest {
     }
 };
 
-// Calls leaf(first, count) for each leaf of the wide BVH whose box the line meets.
+// Calls leaf(first, count) for each leaf of the wide BVH whose box the line meets before
+// `horizon`, nearer slots first (by the direction's octant, as csg/'s walk orders them); leaf
+// may lower the horizon, and a slot that begins past it is not entered: every leaf whose box
+// begins at or before the final horizon is visited.
 template <class Leaf>
 void forEachBvhLeaf(const std::vector<BvhNode>& nodes, uint32_t root, const Vec3& o, const Vec3& d,
-                    Leaf&& leaf) {
+                    const double& horizon, Leaf&& leaf) {
     const SlabRay slab(o, d);
-    uint32_t todo[3 * kBvhMaxDepth + 4];
+    const unsigned octant =
+        unsigned(d.x < 0.0) | unsigned(d.y < 0.0) << 1 | unsigned(d.z < 0.0) << 2;
+    struct Pending {
+        double tNear;
+        uint32_t target, leafCount;
+    };
+    Pending todo[3 * kBvhMaxDepth + 4];
     int pending = 0;
     const BvhNode* node = &nodes[root];
     for (;;) {
         alignas(32) double near[4];
         const unsigned hits =
-            clipToBoxes(slab, node->boxes, -kInfinity, kInfinity, near) & node->usedMask();
-        for (int k = 0; k < node->slots; ++k) {
-            if (!(hits >> k & 1u)) continue;
-            if (node->leafCount[k] == 0)
-                todo[pending++] = node->slot[k];
-            else
-                leaf(node->slot[k], node->leafCount[k]);
+            clipToBoxes(slab, node->boxes, -kInfinity, horizon, near) & node->usedMask();
+        const unsigned order = node->order[octant];
+        for (int i = node->slots - 1; i >= 0; --i) {
+            const unsigned k = order >> (2 * i) & 3u;
+            if (hits >> k & 1u) todo[pending++] = {near[k], node->slot[k], node->leafCount[k]};
         }
-        if (pending == 0) return;
-        node = &nodes[todo[--pending]];
+        for (;;) {
+            if (pending == 0) return;
+            const Pending& next = todo[--pending];
+            if (next.tNear > horizon) continue;
+            if (next.leafCount == 0) {
+                node = &nodes[next.target];
+                break;
+            }
+            leaf(next.target, next.leafCount);
+        }
     }
 }
 
@@ -663,12 +678,12 @@ uint32_t startMailbox(size_t triangles) {
     return mailboxWalk;
 }
 
-// Calls triangle(i) once for each triangle in a cell of the grid that the line enters (every
-// triangle when the line meets the box along no finite stretch, which a line with d != 0
-// never does).
+// Calls triangle(i) once for each triangle listed by a cell of the grid that the line enters
+// at or before `horizon`, nearer cells first; triangle may lower the horizon. (Every triangle
+// when the line meets the box along no finite stretch, which a line with d != 0 never does.)
 template <class Grid, class Visit>
 void forEachGridTriangle(const Grid& g, size_t triangles, const Vec3& o, const Vec3& d,
-                         Visit&& triangle) {
+                         double& horizon, Visit&& triangle) {
     const SlabRay slab(o, d);
     double tIn = -kInfinity, tOut = kInfinity;
     if (!clipToBox(slab, g.box, tIn, tOut)) return;
@@ -687,40 +702,44 @@ void forEachGridTriangle(const Grid& g, size_t triangles, const Vec3& o, const V
         return;
     }
     uint64_t visits = 0;
-    double t1 = tOut;
     if constexpr (std::is_same_v<Grid, UniformGrid>)
-        walkUniformGrid(g, o, d, slab.invD, tIn, tOut, t1, visits, cell);
+        walkUniformGrid(g, o, d, slab.invD, tIn, tOut, horizon, visits, cell);
     else
-        walkHalvingGrid(g, o, slab.invD, tIn, tOut, t1, visits, cell);
+        walkHalvingGrid(g, o, slab.invD, tIn, tOut, horizon, visits, cell);
 }
 
 // Every crossing of the line with the mesh's triangles by `test`, unsorted, appended to out,
-// found through the mesh's own BVH or `structure`; the line's origin must lie near the mesh's
-// box (the BVH margin assumes it: see Polyhedron.h).
-template <class Test>
+// found through the mesh's own BVH or `structure`: all of them, or, with a finite horizon, at
+// least every one at or before it (found(t) is told each crossing found, and may lower the
+// horizon). The line's origin must lie near the mesh's box (the BVH margin assumes it: see
+// Polyhedron.h).
+template <class Test, class Found>
 void collectCrossingsBy(const Test& test, const PolyhedronData& mesh,
                         const MeshStructure* structure, const Vec3& o, const Vec3& d,
-                        std::vector<Polyhedron::Crossing>& out) {
+                        double& horizon, Found&& found, std::vector<Polyhedron::Crossing>& out) {
     const auto cross = [&](uint32_t i) {
         const std::array<uint32_t, 3>& t = mesh.triangles[i];
         double at;
-        if (test(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], o, d, at))
+        if (test(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], o, d, at)) {
             out.push_back({at, i});
+            found(at);
+        }
     };
     if (!structure) {
         // The SAH BVH's leaves hold the triangles in their own order.
-        return forEachBvhLeaf(mesh.nodes, mesh.root, o, d, [&](uint32_t first, uint32_t count) {
-            for (uint32_t i = first; i < first + count; ++i) cross(i);
-        });
+        return forEachBvhLeaf(mesh.nodes, mesh.root, o, d, horizon,
+                              [&](uint32_t first, uint32_t count) {
+                                  for (uint32_t i = first; i < first + count; ++i) cross(i);
+                              });
     }
     const size_t n = mesh.triangles.size();
     switch (structure->accel) {
         case Accel::Grid:
-            return forEachGridTriangle(structure->grid, n, o, d, cross);
+            return forEachGridTriangle(structure->grid, n, o, d, horizon, cross);
         case Accel::NonUniformGrid:
-            return forEachGridTriangle(structure->halving, n, o, d, cross);
+            return forEachGridTriangle(structure->halving, n, o, d, horizon, cross);
         default:  // median cut, Goldsmith-Salmon (organize() gives no other)
-            return forEachBvhLeaf(structure->nodes, structure->root, o, d,
+            return forEachBvhLeaf(structure->nodes, structure->root, o, d, horizon,
                                   [&](uint32_t first, uint32_t count) {
                                       for (uint32_t k = first; k < first + count; ++k)
                                           cross(structure->leafTriangles[k]);
@@ -728,19 +747,31 @@ void collectCrossingsBy(const Test& test, const PolyhedronData& mesh,
     }
 }
 
+// collectCrossingsBy with the polygon method's test.
+template <class Found>
+void collectCrossingsUpTo(const PolyhedronData& mesh, const Vec3& o, const Vec3& d,
+                          PolygonMethod method, const MeshStructure* structure, double& horizon,
+                          Found&& found, std::vector<Polyhedron::Crossing>& out) {
+    if (!(d.x != 0.0 || d.y != 0.0 || d.z != 0.0)) return;
+    switch (method) {
+        case PolygonMethod::Watertight:
+            return collectCrossingsBy(WatertightTest{ShearedRay(o, d)}, mesh, structure, o, d,
+                                      horizon, found, out);
+        case PolygonMethod::Snyder:
+            return collectCrossingsBy(SnyderTest{}, mesh, structure, o, d, horizon, found, out);
+        case PolygonMethod::Marchal:
+            return collectCrossingsBy(MarchalTest{}, mesh, structure, o, d, horizon, found, out);
+    }
+}
+
+// Every crossing of the line.
 void collectCrossings(const PolyhedronData& mesh, const Vec3& o, const Vec3& d,
                       std::vector<Polyhedron::Crossing>& out,
                       PolygonMethod method = PolygonMethod::Watertight,
                       const MeshStructure* structure = nullptr) {
-    if (!(d.x != 0.0 || d.y != 0.0 || d.z != 0.0)) return;
-    switch (method) {
-        case PolygonMethod::Watertight:
-            return collectCrossingsBy(WatertightTest{ShearedRay(o, d)}, mesh, structure, o, d, out);
-        case PolygonMethod::Snyder:
-            return collectCrossingsBy(SnyderTest{}, mesh, structure, o, d, out);
-        case PolygonMethod::Marchal:
-            return collectCrossingsBy(MarchalTest{}, mesh, structure, o, d, out);
-    }
+    double horizon = kInfinity;
+    collectCrossingsUpTo(
+        mesh, o, d, method, structure, horizon, [](double) {}, out);
 }
 
 bool crossingBefore(const Polyhedron::Crossing& a, const Polyhedron::Crossing& b) {
@@ -759,6 +790,62 @@ void sortCrossings(std::vector<Polyhedron::Crossing>& c) {
 thread_local std::vector<Polyhedron::Crossing> lineCrossings;
 thread_local std::vector<LocalSpans::Entry> lineSpans;
 
+// spans() for a caller that reads only the first span past `from` (LocalSpans::firstOnly), of a
+// closed mesh, whose crossings pair up along every line. The crossings are gathered nearer
+// boxes first, up to a horizon that each crossing past from + margin lowers to itself plus
+// twice the margin; every crossing at or before the final horizon is then known, and so is
+// the pairing up to it (from the line's first crossing). The spans past `from` up to the first
+// whose part past `from` is longer than the margin are answered from those alone: entries and
+// exits exact within the horizon (a ray that starts inside a span meets its exit past `from`,
+// which sets the horizon past it); the first span's exit, past the horizon, is given as the
+// horizon when the span begins more than the margin past `from` (no crossing lies before it,
+// and its part past `from` is then twice the margin long, as LocalSpans allows). False, with
+// nothing written, where the whole list must answer: an exit past the horizon that must be
+// exact, a touch (two crossings at one t) past from + margin, or a span needed past the
+// horizon after a short one. A ray so walks the boxes up to its first crossings, not every
+// box along the line.
+bool firstSpanOfClosedMesh(const PolyhedronData& mesh, const MeshStructure* structure,
+                           PolygonMethod method, const Vec3& o, const Vec3& d, LocalSpans& out) {
+    std::vector<Polyhedron::Crossing>& c = lineCrossings;
+    c.clear();
+    const double past = out.from + out.margin;
+    double horizon = out.to + out.margin;  // nothing past it is read
+    collectCrossingsUpTo(
+        mesh, o, d, method, structure, horizon,
+        [&](double t) {
+            if (t > past) horizon = std::min(horizon, t + 2.0 * out.margin);
+        },
+        c);
+    sortCrossings(c);
+    size_t known = 0;  // the crossings at or before the horizon
+    while (known < c.size() && c[known].t <= horizon) ++known;
+    const auto wholeListNeeded = [&] {
+        out.count = 0;
+        return false;
+    };
+    for (size_t i = 0; i < known; i += 2) {
+        const bool paired = i + 1 < known;
+        if (paired && c[i].t == c[i + 1].t) {
+            if (c[i].t > past) return wholeListNeeded();
+            continue;
+        }
+        if (paired && c[i + 1].t < out.from) continue;  // ends before `from`
+        const uint16_t faceIn = Polyhedron::faceOf(c[i].triangle);
+        if (!paired) {
+            // Its exit lies past the horizon: given early only for the first span, begun
+            // more than the margin past `from` (not one the ray starts inside).
+            if (c[i].t <= past || out.count > 0) return wholeListNeeded();
+            out.add(c[i].t, faceIn, horizon, kClipFace);
+            return true;
+        }
+        out.add(c[i].t, faceIn, c[i + 1].t, Polyhedron::faceOf(c[i + 1].triangle));
+        if (c[i + 1].t - std::max(c[i].t, out.from) > out.margin) return true;
+    }
+    // No span begins before the horizon, `to` + margin, where the caller clips; or the last
+    // one is short and the next lies past the horizon.
+    return out.count == 0 || wholeListNeeded();
+}
+
 }  // namespace
 
 void Polyhedron::crossings(const Vec3& o, const Vec3& d, std::vector<Crossing>& out) const {
@@ -775,6 +862,10 @@ void Polyhedron::crossings(const Vec3& o, const Vec3& d, std::vector<Crossing>& 
 
 void Polyhedron::spans(const Vec3& o, const Vec3& d, LocalSpans& out) const {
     if (!data || data->invalid) return;
+    // (Only the watertight test pairs every line's crossings of a closed mesh.)
+    if (out.firstOnly && method == PolygonMethod::Watertight && data->edges.closed() &&
+        firstSpanOfClosedMesh(*data, structure.get(), method, o, d, out))
+        return;
     std::vector<Crossing>& c = lineCrossings;
     c.clear();
     collectCrossings(*data, o, d, c, method, structure.get());

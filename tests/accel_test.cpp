@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <random>
 #include <sstream>
@@ -301,6 +302,48 @@ TEST(Accel, MeshFacesSameAsSah) {
         along.push_back({Vec3(x, y, 9.0), Vec3(2.0, 2.0, -1.0)});  // diagonally, through corners
     }
     expectSameAnswers(landLeaf, 3000, {}, along);
+}
+
+// Meshes that are whole objects are asked by closest() and any() for their first span only
+// (Polyhedron's horizon walk): both still answer as the whole span list does, for rays from
+// outside, from inside a mesh and starting late, over the terrain, placed balls and a cut one.
+TEST(Accel, MeshObjectsAnswerClosestAndOccludedAsTheirSpans) {
+    testing::Rng rng(19);
+    const NodePtr ball = leaf(meshBall(48));
+    std::vector<NodePtr> parts = {bench::terrainMeshTree(5000)};
+    for (int i = 0; i < 12; ++i) {
+        const Vec3 c = rng.inBox(Vec3(10.0, 10.0, 4.0), Vec3(90.0, 90.0, 8.0));
+        const NodePtr placed = transformed(at(c) * glm::scale(Mat4(1.0), Vec3(3.0)), ball);
+        parts.push_back(i % 4 == 0 ? subtract(placed, leaf(Box{c, c + Vec3(4.0)})) : placed);
+    }
+    const Scene scene = Scene::compile(uniteAll(parts));
+    std::vector<Ray> rays = raysFor(scene.bounds(), 6000);
+    for (size_t i = 0; i < rays.size(); i += 3)
+        if (std::isinf(rays[i].tmax)) rays[i].tmin = rng.uniform(0.2, 0.8) * glm::length(rays[i].d);
+    QueryContext ctx;
+    int hits = 0, inside = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const Ray& ray = rays[i];
+        const std::vector<Span> spans(scene.spans(ray, ctx).begin(), scene.spans(ray, ctx).end());
+        std::optional<Hit> want;
+        for (const Span& s : spans) {
+            if (s.in.isSurface() || s.out.isSurface()) {
+                want = s.in.isSurface() ? s.in : s.out;
+                break;
+            }
+        }
+        const std::optional<Hit> got = scene.closest(ray, ctx);
+        ASSERT_EQ(got.has_value(), want.has_value()) << "ray " << i;
+        if (want) {
+            EXPECT_TRUE(sameHit(*got, *want))
+                << "ray " << i << ": t " << got->t << " vs " << want->t << spansText(spans);
+            ++hits;
+            inside += !spans[0].in.isSurface();
+        }
+        ASSERT_EQ(scene.occluded(ray, ctx), !spans.empty()) << "ray " << i;
+    }
+    EXPECT_GT(hits, 1000);
+    EXPECT_GT(inside, 100);  // rays that start inside a mesh, which take the whole list
 }
 
 // Nested unions: each object a union of six small parts (a structure of its own), and a

@@ -13,6 +13,7 @@
 
 #include "primitives/Polyhedron.h"
 #include "primitives/solvers/LinePoint.h"
+#include "tests/HintedSpans.h"
 
 using namespace csg;
 
@@ -356,6 +357,56 @@ TEST(Polyhedron, RandomLinesThroughVerticesPair) {
         p.crossings(v - 3.0 * d, d, crossings);
         ASSERT_EQ(crossings.size() % 2, 0u) << i;
     }
+}
+
+// LocalSpans' hints on closed meshes (tests/HintedSpans.h): a closest() or any() that reads
+// only the first span past `from` gets it from the crossings up to a horizon near its entry,
+// its exit early where that lies farther, and the whole list where the ray starts inside a
+// span. Over a bumpy sphere (lines meet it in several spans, some through its vertices) and
+// three boxes in a row, one thin and one a sliver of a gap from the first (short spans and
+// gaps against a margin of 1e-6 or 0.1).
+TEST(Polyhedron, FirstSpanHintsArePrefixesOfTheWholeList) {
+    MeshInput ball = sphere(40, 20, 1.0);
+    std::mt19937_64 rng(19);
+    std::uniform_real_distribution<double> bump(0.6, 1.0), u(-1.0, 1.0), unit(0.0, 1.0);
+    for (Vec3& q : ball.points) q *= bump(rng);
+    MeshInput row;
+    for (const auto& [lo, hi] : {std::pair{0.0, 1.0}, {1.05, 1.1}, {1.5, 2.5}}) {
+        const MeshInput c = cube(true);
+        const uint32_t base = static_cast<uint32_t>(row.points.size());
+        for (const Vec3& q : c.points) row.points.push_back({lo + (hi - lo) * q.x, q.y, q.z});
+        for (size_t f = 0; f + 1 < c.faces.faceStart.size(); ++f) {
+            for (uint32_t k = c.faces.faceStart[f]; k < c.faces.faceStart[f + 1]; ++k)
+                row.faces.corners.push_back(base + c.faces.corners[k]);
+            row.faces.closeFace();
+        }
+    }
+    int earlyEnds = 0, placeholders = 0;
+    for (const MeshInput* m : {&ball, &row}) {
+        const Polyhedron p = build(*m);
+        ASSERT_TRUE(p.edges().closed());
+        const Bounds3 box = p.bounds();
+        for (int i = 0; i < 20000; ++i) {
+            Vec3 d(u(rng), u(rng), u(rng));
+            if (i % 5 == 0) d = Vec3(1.0, 0.01 * u(rng), 0.01 * u(rng));  // along the row
+            d = glm::normalize(d);
+            // Through a random point, or through a vertex.
+            const Vec3 through =
+                i % 3 == 0 ? m->points[rng() % m->points.size()]
+                           : box.lo + Vec3(unit(rng), unit(rng), unit(rng)) * box.extent();
+            const Vec3 o = through - 4.0 * d;
+            const double from = 8.0 * unit(rng);
+            const double margin = rng() % 2 ? 1e-6 : 0.1;
+            SCOPED_TRACE(::testing::Message()
+                         << "mesh " << (m == &ball ? "ball" : "row") << ", line " << i);
+            csg::testing::expectHintedPrefix(p, o, d, from, margin, rng() % 2 == 0, earlyEnds,
+                                             placeholders);
+            if (HasFatalFailure()) return;
+        }
+    }
+    // The hints must have saved work, or this test tests nothing.
+    EXPECT_GT(earlyEnds, 1000);
+    EXPECT_GT(placeholders, 1000);
 }
 
 // 40 slabs along x: more spans than LocalSpans holds. The 8 narrowest gaps close; the first
