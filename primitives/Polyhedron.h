@@ -57,6 +57,13 @@
 // the thinnest voids along that one line. (The capacity stays 32: LocalSpans lives on the
 // stack of the recursive CSG walk, one per level.)
 //
+// First span: closest() and any() on a mesh that is a whole object read only its first span
+// past `from` (LocalSpans::firstOnly). A closed mesh under the watertight test, whose
+// crossings pair up along every line, then gathers them nearer boxes first, only up to a
+// horizon just past the first one past `from`, and a line that starts inside the mesh's box
+// is searched ahead of `from` first (no crossing there: no span). The other hints are ignored,
+// and open meshes and the other methods always answer with the whole list.
+//
 // Open meshes (some edge used by an odd number of triangles): the line's crossings are paired
 // as above and, when their count is odd, the last one is dropped; the io layer warns at the
 // call with the edge counts. Normals point out of the parity solid: each connected sheet of

@@ -105,8 +105,9 @@ private:
 UniformGrid buildUniformGrid(std::span<const Bounds3> boxes, uint32_t itemsOffset);
 HalvingGrid buildHalvingGrid(std::span<const Bounds3> boxes, uint32_t itemsOffset);
 
-// --accel auto: a union of at least kAutoGridMinItems bounded children gets a uniform grid when its items fill at least half the grid's cells
-// (gridPays: spread evenly, as in a layer or a field of parts), and the SAH BVH otherwise.
+// --accel auto: a union of at least kAutoGridMinItems bounded children gets a uniform grid
+// when its items fill at least half the grid's cells (gridPays: spread evenly, as in a layer
+// or a field of parts), and the SAH BVH otherwise (a mesh's faces keep the SAH: Polyhedron.cpp).
 // bench/README.md ("Spatial structures"): on evenly spread spheres from 10^4 up the grid traces
 // as fast as the SAH or faster (shadow rays by 10-30 %) with a seventh of the memory and a third
 // of the build time; on clustered ones the SAH is 2-5x faster; below 10^4 the two are level
