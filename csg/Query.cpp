@@ -489,9 +489,11 @@ struct SpanWalk {
 
     // forEachChild's walks of the grids (primitives/base/Grid.h) from the cell where the ray
     // enters the box until past t1 (lowered by visit) or out of the box. False when visit
-    // stopped the walk.
+    // stopped the walk. Out of line: inlined, they changed how the BVH walk's callers inline
+    // (+0.55 % instructions on csg_grid, which has no grid), and a call per grid walk is
+    // nothing beside the walk.
     template <class Visit>
-    bool walkGrid(const UniformGrid& g, double t0, double& t1, Visit& visit) {
+    [[gnu::noinline]] bool walkGrid(const UniformGrid& g, double t0, double& t1, Visit& visit) {
         double tIn, tOut;
         if (!enterGrid(g.box, t0, t1, tIn, tOut)) return true;
         const uint32_t walk = startWalk();
@@ -504,7 +506,8 @@ struct SpanWalk {
     }
 
     template <class Visit>
-    bool walkHalvingGrid(const HalvingGrid& g, double t0, double& t1, Visit& visit) {
+    [[gnu::noinline]] bool walkHalvingGrid(const HalvingGrid& g, double t0, double& t1,
+                                           Visit& visit) {
         double tIn, tOut;
         if (!enterGrid(g.box, t0, t1, tIn, tOut)) return true;
         const uint32_t walk = startWalk();
