@@ -6,16 +6,16 @@
 // BVH slots / grid cells visited and primitives solved per primary ray. A plain program, run by
 // hand; it prints a Markdown table. The smoke pass runs it on the smallest layer.
 //
-//   accel_sweep [--accel sah,median,...] [--sizes 1000,10000,...] [--scenes uniform,clustered]
-//               [--image N] [--repeats K]
+//   accel_sweep [--accel sah,median,...] [--sizes 1000,10000,...]
+//               [--scenes uniform,clustered,terrain] [--image N] [--repeats K]
 //
 // Rays: core_bench's sphere_layer camera, N x N pixels (default 128); shadow rays run from one
 // light, above the layer, to every primary hit point (t in [0, 1 - 1e-9], so they stop short
 // of the hit's own surface), tried cached-object first as the renderer does; secondary rays are
 // the mirror reflections of the primary rays at their hits, started off the surface as the
 // renderer starts them (viewer/render/SecondaryOrigin.h): rays that begin inside the
-// structure, among the objects, and scatter. Times are this
-// thread's CPU time; a rate is the median of K timed passes (default 5) of at least 0.2 s each.
+// structure, among the objects, and scatter. Times are this thread's CPU time; a rate is the
+// median of K timed passes (default 5) of at least 0.2 s each.
 // The terrain's SAH BVH is built with the mesh (Polyhedron::make, timed apart and printed under
 // the table), so its SAH row's compile time leaves that out; the other structures over its
 // faces are built by Scene::compile. Its visits/ray count the union's work only (none: the
@@ -119,8 +119,7 @@ int main(int argc, char** argv) {
                                                           : bench::sphereLayerTree(n);
             if (sceneName == "terrain")
                 meshNotes += "terrain " + std::to_string(n) +
-                             ": the mesh made (welded, its SAH "
-                             "BVH built) in " +
+                             ": the mesh made (welded, its SAH BVH built) in " +
                              std::to_string(1e3 * (cpuNow() - treeStart)) + " ms\n";
             for (Accel accel : structures) {
                 const double start = cpuNow();
@@ -134,8 +133,7 @@ int main(int argc, char** argv) {
                     if (const auto hit = scene.closest(ray, context)) {
                         const SurfacePoint surface = scene.surface(ray, *hit);
                         shadows.push_back({light, surface.point - light, 0.0, 1.0 - 1e-9});
-                        const Vec3 d = glm::normalize(ray.d);
-                        const Vec3 r = d - 2.0 * glm::dot(d, surface.normal) * surface.normal;
+                        const Vec3 r = glm::reflect(glm::normalize(ray.d), surface.normal);
                         const Vec3 o = viewer::render::offsetRayOrigin(
                             surface.point, viewer::render::hitPointError(ray, hit->t),
                             surface.normal, r);

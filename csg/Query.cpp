@@ -27,11 +27,7 @@ struct SpanWalk {
     unsigned octant;  // bit a: d[a] < 0 (BvhNode::order)
 
     SpanWalk(const Scene& s, QueryContext& c, const Ray& r)
-        : scene(s),
-          ctx(c),
-          ray(r),
-          slab(r.o, r.d),
-          octant(unsigned(r.d.x < 0.0) | unsigned(r.d.y < 0.0) << 1 | unsigned(r.d.z < 0.0) << 2) {
+        : scene(s), ctx(c), ray(r), slab(r.o, r.d), octant(octantOf(r.d)) {
         const double dLength = glm::length(r.d);
         originLength = glm::length(r.o);
         originScale = dLength > 0.0 ? originLength / dLength : 0.0;

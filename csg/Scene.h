@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
-#include "primitives/base/Accel.h"
 #include "csg/Ray.h"
 #include "csg/Span.h"
 #include "csg/Tree.h"
 #include "primitives/Polyhedron.h"
+#include "primitives/base/Accel.h"
 #include "primitives/base/Bounds.h"
 
 namespace csg {
@@ -89,7 +89,8 @@ struct HalvingGrid;
 // away from its edges, only the time, the memory and, for polygon meshes, the edge cases and
 // normals.
 struct CompileOptions {
-    Accel accel = Accel::Sah;  // the structure over each union's objects (primitives/base/Accel.h)
+    // The structure over each union's objects and each mesh's faces (primitives/base/Accel.h).
+    Accel accel = Accel::Sah;
     // The crossing test of every polygon mesh (primitives/Polyhedron.h).
     PolygonMethod polygonMethod = PolygonMethod::Watertight;
     // Kay and Kajiya's slab polyhedra (csg/Compiled.h DiagonalSlabs) on the nodes where they are
@@ -100,7 +101,8 @@ struct CompileOptions {
 class Scene {
 public:
     // Throws CompileError. root may be nullptr (the empty scene). options.accel picks the
-    // structure over the objects of each union (primitives/base/Accel.h); every choice gives the same answers.
+    // structure over the objects of each union and the faces of each mesh
+    // (primitives/base/Accel.h); every choice gives the same answers.
     static Scene compile(const NodePtr& root, const CompileOptions& options = {});
 
     Scene();

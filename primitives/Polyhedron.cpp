@@ -635,8 +635,7 @@ template <class Leaf>
 void forEachBvhLeaf(const std::vector<BvhNode>& nodes, uint32_t root, const Vec3& o, const Vec3& d,
                     double lo, const double& horizon, Leaf&& leaf) {
     const SlabRay slab(o, d);
-    const unsigned octant =
-        unsigned(d.x < 0.0) | unsigned(d.y < 0.0) << 1 | unsigned(d.z < 0.0) << 2;
+    const unsigned octant = octantOf(d);
     struct Pending {
         double tNear;
         uint32_t target, leafCount;

@@ -65,8 +65,8 @@ inline constexpr double kSimilarityRel = 1e-12;
 // in the test never culls a box the exact test would hit (pbrt's 2 gamma(3)).
 inline constexpr double kSlabWiden = 2 * gamma(3);
 
-// A grid cell (primitives/base/Grid.h) lists every child whose box, widened by this fraction of the grid's
-// size (the largest coordinate magnitude or side of its box), overlaps the cell (unit:
+// A grid cell (primitives/base/Grid.h) lists every child whose box, widened by this fraction of the
+// grid's size (the largest coordinate magnitude or side of its box), overlaps the cell (unit:
 // relative). Why: the walk finds the cells along a ray from o + t d and from cell faces
 // computed as lo + i * size, each rounded to a few ulps of the grid's size; an object within
 // that of a cell the walk did not enter would be missed where the slab test (kSlabWiden) and

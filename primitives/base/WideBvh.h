@@ -38,6 +38,11 @@ struct alignas(64) BvhNode {
 };
 static_assert(sizeof(BvhNode) == 128);
 
+// The octant of a direction, as BvhNode::order is indexed: bit a set when d[a] < 0.
+inline unsigned octantOf(const Vec3& d) {
+    return unsigned(d.x < 0.0) | unsigned(d.y < 0.0) << 1 | unsigned(d.z < 0.0) << 2;
+}
+
 // How the binary tree is built before it is collapsed into 4-wide nodes: the lecture's three
 // hierarchies. The walk and the node layout are the same for all three.
 enum class BvhMethod : uint8_t {

@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "primitives/base/Accel.h"
 #include "io/Faceting.h"
 #include "primitives/Polyhedron.h"
+#include "primitives/base/Accel.h"
 #include "primitives/base/Math.h"
 
 namespace viewer {
