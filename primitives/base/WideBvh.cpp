@@ -16,55 +16,76 @@ constexpr int kBins = 16;
 constexpr int kSahMaxDepth = kBvhMaxDepth - kBvhMedianLevels;
 
 struct Builder {
-    std::span<uint32_t> items;  // indices into boxes, reordered as the tree is built
-    std::span<const Bounds3> boxes;
+    // An item's box beside its index, reordered in place as the tree is built: every pass over a
+    // node's items then streams through memory. Gathering the boxes through an index array
+    // missed the cache at every level of a large mesh's build (bench/README.md, "Loading a
+    // large mesh").
+    struct Item {
+        Bounds3 box;
+        uint32_t index;
+    };
+    std::vector<Item> items;
     uint32_t maxLeafItems;
     double traversalCost;
     std::vector<BinaryNode> nodes;
 
-    uint32_t build(uint32_t lo, uint32_t hi, int depth) {
+    // The boxes of one axis's bins and their item counts.
+    struct Bins {
+        std::array<Bounds3, kBins> box;
+        std::array<uint32_t, kBins> count{};
+    };
+
+    // Builds the node over items [lo, hi), whose box and centre bounds the caller has found.
+    uint32_t build(uint32_t lo, uint32_t hi, int depth, const Bounds3& box,
+                   const Bounds3& centroids) {
         const uint32_t index = static_cast<uint32_t>(nodes.size());
         nodes.emplace_back();
-        Bounds3 box, centroids;
-        for (uint32_t i = lo; i < hi; ++i) {
-            box.extend(boxes[items[i]]);
-            centroids.extend(boxes[items[i]].center());
-        }
         nodes[index].box = box;
         const uint32_t n = hi - lo;
         if (n <= maxLeafItems) return makeLeaf(index, lo, n);
 
-        // Pick the split plane of least SAH cost over binned centroids on all three axes.
+        // Bin the centres on every axis with a spread, in one pass over the items.
+        std::array<Bins, 3> bins;
+        bool binned[3] = {};
+        for (int axis = 0; axis < 3 && depth < kSahMaxDepth; ++axis)
+            binned[axis] = centroids.hi[axis] - centroids.lo[axis] > 0.0;
+        if (binned[0] || binned[1] || binned[2]) {
+            for (uint32_t i = lo; i < hi; ++i) {
+                const Bounds3& b = items[i].box;
+                const Vec3 c = b.center();
+                for (int axis = 0; axis < 3; ++axis) {
+                    if (!binned[axis]) continue;
+                    const int bin =
+                        binOf(c[axis], centroids.lo[axis], centroids.hi[axis] - centroids.lo[axis]);
+                    bins[axis].box[bin].extend(b);
+                    ++bins[axis].count[bin];
+                }
+            }
+        }
+
+        // Pick the split plane of least SAH cost over the binned centroids.
         int bestAxis = -1, bestBin = 0;
         double bestCost = static_cast<double>(n);  // cost of a leaf, relative to box area
-        for (int axis = 0; axis < 3 && depth < kSahMaxDepth; ++axis) {
-            const double lo0 = centroids.lo[axis], width = centroids.hi[axis] - lo0;
-            if (!(width > 0.0)) continue;
-            std::array<Bounds3, kBins> binBox;
-            std::array<uint32_t, kBins> binCount{};
-            for (uint32_t i = lo; i < hi; ++i) {
-                const Bounds3& b = boxes[items[i]];
-                const int bin = binOf(b.center()[axis], lo0, width);
-                binBox[bin].extend(b);
-                ++binCount[bin];
-            }
+        const double invArea = 1.0 / std::max(box.halfArea(), 1e-300);
+        for (int axis = 0; axis < 3; ++axis) {
+            if (!binned[axis]) continue;
+            const Bins& at = bins[axis];
             // Sweep from the right to get each suffix's area and count, then from the left.
             std::array<double, kBins> rightArea{};
             std::array<uint32_t, kBins> rightCount{};
             Bounds3 acc;
             uint32_t cnt = 0;
             for (int b = kBins - 1; b > 0; --b) {
-                acc.extend(binBox[b]);
-                cnt += binCount[b];
+                acc.extend(at.box[b]);
+                cnt += at.count[b];
                 rightArea[b] = acc.halfArea();
                 rightCount[b] = cnt;
             }
             acc = Bounds3{};
             cnt = 0;
-            const double invArea = 1.0 / std::max(box.halfArea(), 1e-300);
             for (int b = 0; b < kBins - 1; ++b) {
-                acc.extend(binBox[b]);
-                cnt += binCount[b];
+                acc.extend(at.box[b]);
+                cnt += at.count[b];
                 if (cnt == 0 || rightCount[b + 1] == 0) continue;
                 const double cost =
                     traversalCost +
@@ -82,8 +103,8 @@ struct Builder {
             const double lo0 = centroids.lo[bestAxis];
             const double width = centroids.hi[bestAxis] - lo0;
             const auto split =
-                std::partition(items.begin() + lo, items.begin() + hi, [&](uint32_t it) {
-                    return binOf(boxes[it].center()[bestAxis], lo0, width) <= bestBin;
+                std::partition(items.begin() + lo, items.begin() + hi, [&](const Item& it) {
+                    return binOf(it.box.center()[bestAxis], lo0, width) <= bestBin;
                 });
             mid = static_cast<uint32_t>(split - items.begin());
         } else if (n <= 4 * maxLeafItems) {
@@ -94,12 +115,25 @@ struct Builder {
         }
         if (mid == lo || mid == hi) mid = lo + n / 2;
 
-        build(lo, mid, depth + 1);
-        const uint32_t right = build(mid, hi, depth + 1);
+        // The children's boxes and centre bounds: one more pass over the items costs less than
+        // keeping each bin's centre bounds while binning.
+        Bounds3 leftBox, leftCentroids, rightBox, rightCentroids;
+        bound(lo, mid, leftBox, leftCentroids);
+        bound(mid, hi, rightBox, rightCentroids);
+        build(lo, mid, depth + 1, leftBox, leftCentroids);
+        const uint32_t right = build(mid, hi, depth + 1, rightBox, rightCentroids);
         nodes[index].firstOrRight = right;
         nodes[index].count = 0;
         nodes[index].axis = bestAxis >= 0 ? bestAxis : 0;
         return index;
+    }
+
+    // The box of items [lo, hi) and the bounds of their centres.
+    void bound(uint32_t lo, uint32_t hi, Bounds3& box, Bounds3& centroids) const {
+        for (uint32_t i = lo; i < hi; ++i) {
+            box.extend(items[i].box);
+            centroids.extend(items[i].box.center());
+        }
     }
 
     static int binOf(double c, double lo0, double width) {
@@ -195,9 +229,14 @@ uint32_t buildWideBvh(std::span<const Bounds3> boxes, std::vector<uint32_t>& ord
     std::vector<BinaryNode> binary;
     switch (options.method) {
         case BvhMethod::Sah: {
-            Builder builder{order, boxes, options.maxLeafItems, options.traversalCost, {}};
+            Builder builder{{}, options.maxLeafItems, options.traversalCost, {}};
+            builder.items.resize(boxes.size());
+            for (uint32_t i = 0; i < boxes.size(); ++i) builder.items[i] = {boxes[i], i};
+            Bounds3 box, centroids;
+            builder.bound(0, static_cast<uint32_t>(boxes.size()), box, centroids);
             builder.nodes.reserve(2 * boxes.size());
-            builder.build(0, static_cast<uint32_t>(boxes.size()), 0);
+            builder.build(0, static_cast<uint32_t>(boxes.size()), 0, box, centroids);
+            for (uint32_t i = 0; i < order.size(); ++i) order[i] = builder.items[i].index;
             binary = std::move(builder.nodes);
             break;
         }
