@@ -6,6 +6,7 @@
 #include "primitives/SpanCapacity.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -226,38 +227,51 @@ constexpr BvhBuildOptions kMeshBvhOptions{.maxLeafItems = 2, .traversalCost = 1.
 constexpr size_t kMaxEarClipCorners = 4096;
 
 // Welds points of equal position (-0 == +0): returns each point's welded index and leaves the
-// distinct positions in `points`, in order of first appearance.
+// distinct positions in `points`, in order of first appearance. An open-addressing table of
+// the distinct positions, probed by a hash of their bits: a sort of the corners by position
+// took a fifth of a 2.3-million-triangle STL's load (bench/README.md, "Loading a large mesh").
 std::vector<uint32_t> weld(std::vector<Vec3>& points) {
-    // Sorted by position, the positions beside their indices: a sort that gathered positions
-    // through the indices took twice as long on an STL's 3 million corners.
-    struct Keyed {
-        Vec3 p;
-        uint32_t index;
+    constexpr uint32_t kEmpty = UINT32_MAX;
+    // MurmurHash3's 64-bit finalizer, chained over the coordinates' bits: every input bit
+    // reaches the low bits the table masks (a mesh's coordinates often differ only high up).
+    const auto mix = [](uint64_t h) {
+        h ^= h >> 33;
+        h *= 0xff51afd7ed558ccdull;
+        h ^= h >> 33;
+        h *= 0xc4ceb9fe1a85ec53ull;
+        return h ^ (h >> 33);
     };
-    std::vector<Keyed> sorted(points.size());
-    for (uint32_t i = 0; i < points.size(); ++i)
-        sorted[i] = {points[i] + Vec3(0.0), i};  // -0 + 0 = +0: one key per position
-    std::sort(sorted.begin(), sorted.end(), [](const Keyed& a, const Keyed& b) {
-        if (a.p.x != b.p.x) return a.p.x < b.p.x;
-        if (a.p.y != b.p.y) return a.p.y < b.p.y;
-        if (a.p.z != b.p.z) return a.p.z < b.p.z;
-        return a.index < b.index;
-    });
-    // Each run of equal positions maps to its first point (lowest index).
-    std::vector<uint32_t> firstOf(points.size());
-    for (size_t i = 0; i < sorted.size(); ++i) {
-        const bool same = i > 0 && sorted[i].p == sorted[i - 1].p;
-        firstOf[sorted[i].index] = same ? firstOf[sorted[i - 1].index] : sorted[i].index;
-    }
-    sorted = {};
-    std::vector<uint32_t> welded(points.size());
+    const auto hashOf = [&](const Vec3& p) {
+        const auto bits = [&](int i) { return std::bit_cast<uint64_t>(p[i]); };
+        return mix(bits(0) ^ mix(bits(1) ^ mix(bits(2))));
+    };
     std::vector<Vec3> distinct;
+    std::vector<uint32_t> table;
+    uint64_t mask = 0;
+    // Rebuilds the table at twice the size once it is half full. It starts with room for a
+    // sixth of the corners at that load: a closed mesh has about one vertex per six corners.
+    const auto grow = [&](size_t capacity) {
+        table.assign(capacity, kEmpty);
+        mask = capacity - 1;
+        for (uint32_t v = 0; v < distinct.size(); ++v) {
+            uint64_t slot = hashOf(distinct[v]) & mask;
+            while (table[slot] != kEmpty) slot = (slot + 1) & mask;
+            table[slot] = v;
+        }
+    };
+    grow(std::bit_ceil(std::max<size_t>(64, points.size() / 3)));
+    std::vector<uint32_t> welded(points.size());
     for (size_t i = 0; i < points.size(); ++i) {
-        if (firstOf[i] == i) {
-            welded[i] = static_cast<uint32_t>(distinct.size());
-            distinct.push_back(points[i] + Vec3(0.0));
+        const Vec3 p = points[i] + Vec3(0.0);  // -0 + 0 = +0: one key per position
+        uint64_t slot = hashOf(p) & mask;
+        while (table[slot] != kEmpty && distinct[table[slot]] != p) slot = (slot + 1) & mask;
+        if (table[slot] == kEmpty) {
+            table[slot] = static_cast<uint32_t>(distinct.size());
+            distinct.push_back(p);
+            if (2 * distinct.size() > table.size()) grow(2 * table.size());
+            welded[i] = static_cast<uint32_t>(distinct.size() - 1);
         } else {
-            welded[i] = welded[firstOf[i]];
+            welded[i] = table[slot];
         }
     }
     points = std::move(distinct);
@@ -412,52 +426,83 @@ std::vector<Triangle> triangulate(const std::vector<Vec3>& points,
 // Edge statistics, and the sheets: triangles joined across edges of exactly two triangles,
 // each turned (flip) so that the pair runs the edge in opposite directions. Returns each
 // triangle's sheet; flip[i] says whether triangle i was turned relative to its sheet's first.
-std::vector<uint32_t> findSheets(const std::vector<Triangle>& triangles, MeshEdges& stats,
-                                 std::vector<uint8_t>& flip, uint32_t& sheetCount) {
+std::vector<uint32_t> findSheets(const std::vector<Triangle>& triangles, size_t vertexCount,
+                                 MeshEdges& stats, std::vector<uint8_t>& flip,
+                                 uint32_t& sheetCount) {
     const size_t n = triangles.size();
-    // Step 1: every triangle's three edges, as (low, high) keys, sorted.
+    // Step 1: every triangle's three edges, grouped by their lower vertex (a counting sort, so
+    // each group lists its triangles in order), each group then ordered by the upper vertex: the
+    // uses of one edge lie together. Sorting all the uses by (low, high) took a tenth of a
+    // large mesh's load (bench/README.md, "Loading a large mesh").
     struct EdgeUse {
-        uint64_t key;
+        uint32_t high;
         uint32_t triangle;
         bool forward;  // runs low -> high
     };
-    std::vector<EdgeUse> uses;
-    uses.reserve(3 * n);
-    for (uint32_t i = 0; i < n; ++i)
-        for (int k = 0; k < 3; ++k) {
-            const uint32_t a = triangles[i][k], b = triangles[i][(k + 1) % 3];
-            uses.push_back({uint64_t(std::min(a, b)) << 32 | std::max(a, b), i, a < b});
+    std::vector<uint32_t> groupStart(vertexCount + 1, 0);
+    for (const Triangle& t : triangles)
+        for (int k = 0; k < 3; ++k) ++groupStart[std::min(t[k], t[(k + 1) % 3]) + 1];
+    for (size_t v = 0; v < vertexCount; ++v) groupStart[v + 1] += groupStart[v];
+    std::vector<EdgeUse> uses(3 * n);
+    {
+        std::vector<uint32_t> next(groupStart.begin(), groupStart.end() - 1);
+        for (uint32_t i = 0; i < n; ++i)
+            for (int k = 0; k < 3; ++k) {
+                const uint32_t a = triangles[i][k], b = triangles[i][(k + 1) % 3];
+                uses[next[std::min(a, b)]++] = {std::max(a, b), i, a < b};
+            }
+    }
+    const auto byHigh = [](const EdgeUse& x, const EdgeUse& y) { return x.high < y.high; };
+    for (size_t v = 0; v < vertexCount; ++v) {
+        EdgeUse *first = uses.data() + groupStart[v], *last = uses.data() + groupStart[v + 1];
+        if (last - first > 32) {
+            std::stable_sort(first, last, byHigh);  // a fan's hub: not quadratic
+            continue;
         }
-    std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
-        return x.key < y.key || (x.key == y.key && x.triangle < y.triangle);
-    });
-    // Step 2: count, and link the triangles of two-triangle edges.
+        for (EdgeUse* at = first + 1; at < last; ++at)  // insertion sort, stable
+            for (EdgeUse* p = at; p > first && byHigh(p[0], p[-1]); --p) std::swap(p[0], p[-1]);
+    }
+    // Step 2: count, and link the triangles of two-triangle edges; the links grouped by
+    // triangle (each triangle's in the order of its edges' (low, high)).
     struct Link {
         uint32_t other;
         bool sameWay;  // both run the edge the same way: one of them must turn
     };
-    std::vector<uint32_t> linkStart(n + 1, 0);
-    std::vector<std::pair<uint32_t, Link>> links;
-    for (size_t i = 0; i < uses.size();) {
-        size_t j = i;
-        while (j < uses.size() && uses[j].key == uses[i].key) ++j;
-        const size_t count = j - i;
-        ++stats.edges;
-        if (count % 2 == 1) ++stats.openEdges;
-        if (count > 2) ++stats.manyFaces;
-        if (count == 2) {
-            const bool sameWay = uses[i].forward == uses[i + 1].forward;
-            if (sameWay) ++stats.misoriented;
-            links.push_back({uses[i].triangle, {uses[i + 1].triangle, sameWay}});
-            links.push_back({uses[i + 1].triangle, {uses[i].triangle, sameWay}});
+    struct Pair {
+        uint32_t a, b;
+        bool sameWay;
+    };
+    std::vector<Pair> pairs;
+    for (size_t v = 0; v < vertexCount; ++v) {
+        for (uint32_t i = groupStart[v]; i < groupStart[v + 1];) {
+            uint32_t j = i;
+            while (j < groupStart[v + 1] && uses[j].high == uses[i].high) ++j;
+            const uint32_t count = j - i;
+            ++stats.edges;
+            if (count % 2 == 1) ++stats.openEdges;
+            if (count > 2) ++stats.manyFaces;
+            if (count == 2) {
+                const bool sameWay = uses[i].forward == uses[i + 1].forward;
+                if (sameWay) ++stats.misoriented;
+                pairs.push_back({uses[i].triangle, uses[i + 1].triangle, sameWay});
+            }
+            i = j;
         }
-        i = j;
     }
     uses = {};
-    std::sort(links.begin(), links.end(),
-              [](const auto& x, const auto& y) { return x.first < y.first; });
-    for (const auto& l : links) ++linkStart[l.first + 1];
+    groupStart = {};
+    std::vector<uint32_t> linkStart(n + 1, 0);
+    for (const Pair& p : pairs) ++linkStart[p.a + 1], ++linkStart[p.b + 1];
     for (size_t i = 0; i < n; ++i) linkStart[i + 1] += linkStart[i];
+    std::vector<Link> links(linkStart[n]);
+    {
+        std::vector<uint32_t> next(linkStart.begin(), linkStart.end() - 1);
+        for (const Pair& p : pairs) {
+            links[next[p.a]++] = {p.b, p.sameWay};
+            links[next[p.b]++] = {p.a, p.sameWay};
+        }
+    }
+    pairs = {};
     // Step 3: breadth first over the links, each sheet from its lowest triangle.
     constexpr uint32_t kNone = UINT32_MAX;
     std::vector<uint32_t> sheet(n, kNone);
@@ -471,7 +516,7 @@ std::vector<uint32_t> findSheets(const std::vector<Triangle>& triangles, MeshEdg
         for (size_t q = 0; q < queue.size(); ++q) {
             const uint32_t t = queue[q];
             for (uint32_t l = linkStart[t]; l < linkStart[t + 1]; ++l) {
-                const Link& link = links[l].second;
+                const Link& link = links[l];
                 if (sheet[link.other] != kNone) continue;  // a conflict (a Klein bottle) stays
                 sheet[link.other] = sheetCount;
                 flip[link.other] = flip[t] ^ uint8_t(link.sameWay);
@@ -487,7 +532,7 @@ std::vector<uint32_t> findSheets(const std::vector<Triangle>& triangles, MeshEdg
 
 Polyhedron Polyhedron::make(std::vector<Vec3> points, const PolygonFaces& faces) {
     auto data = std::make_shared<PolyhedronData>();
-    Polyhedron mesh{nullptr};
+    Polyhedron mesh{nullptr, PolygonMethod::Watertight, nullptr};
     for (const Vec3& p : points)
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
             data->invalid = "mesh points must be finite";
@@ -503,7 +548,8 @@ Polyhedron Polyhedron::make(std::vector<Vec3> points, const PolygonFaces& faces)
     // Step 2: edges and sheets, each sheet wound one way.
     std::vector<uint8_t> flip;
     uint32_t sheetCount = 0;
-    std::vector<uint32_t> sheet = findSheets(triangles, data->edges, flip, sheetCount);
+    std::vector<uint32_t> sheet =
+        findSheets(triangles, points.size(), data->edges, flip, sheetCount);
     for (size_t i = 0; i < triangles.size(); ++i)
         if (flip[i]) std::swap(triangles[i][1], triangles[i][2]);
 

@@ -7,7 +7,9 @@
 // spans by hand, agreement away from edges, a shared edge counted twice, interpolated normals.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <map>
 #include <random>
 #include <vector>
 
@@ -476,6 +478,77 @@ TEST(Polyhedron, FaceIdsOfLargeMeshes) {
             EXPECT_NEAR(glm::dot(n, expected), 1.0, 1e-12);
             // Outward: away from the sphere's centre.
             EXPECT_GT(glm::dot(n, a), 0.0);
+        }
+    }
+}
+
+TEST(Polyhedron, TriangleSoupWeldsAndTurnsIntoTheIndexedSolid) {
+    // The UV sphere as an STL holds it: every triangle with three corners of its own, the zero
+    // coordinates of every other triangle written -0, and a seeded third of the triangles
+    // turned. The poles are hubs of 64 edges (the sort of a vertex's many edges), the ring
+    // vertices have 6. Expected by hand: S (R - 1) welded vertices and 3 S (R - 1) edges, none
+    // open; the misoriented edges counted here from the indexed mesh's own edge map.
+    constexpr int kSectors = 64, kRings = 12;
+    const MeshInput indexed = sphere(kSectors, kRings, 1.0);
+    const size_t triangles = indexed.faces.size();
+    ASSERT_EQ(triangles, size_t(2 * kSectors * (kRings - 1)));
+    std::mt19937_64 rng(11);
+    std::vector<bool> turned(triangles);
+    MeshInput soup;
+    for (size_t f = 0; f < triangles; ++f) {
+        turned[f] = rng() % 3 == 0;
+        std::array<uint32_t, 3> c;
+        for (int k = 0; k < 3; ++k) c[k] = indexed.faces.corners[indexed.faces.faceStart[f] + k];
+        if (turned[f]) std::swap(c[1], c[2]);
+        const uint32_t first = uint32_t(soup.points.size());
+        for (const uint32_t v : c) {
+            Vec3 q = indexed.points[v];
+            if (f % 2 == 1)
+                for (int a = 0; a < 3; ++a)
+                    if (q[a] == 0.0) q[a] = -0.0;
+            soup.points.push_back(q);
+        }
+        soup.faces.add({first, first + 1, first + 2});
+    }
+    std::map<std::pair<uint32_t, uint32_t>, std::vector<size_t>> users;
+    for (size_t f = 0; f < triangles; ++f)
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t a = indexed.faces.corners[indexed.faces.faceStart[f] + k];
+            const uint32_t b = indexed.faces.corners[indexed.faces.faceStart[f] + (k + 1) % 3];
+            users[{std::min(a, b), std::max(a, b)}].push_back(f);
+        }
+    uint64_t misoriented = 0;
+    for (const auto& [edge, fs] : users) {
+        ASSERT_EQ(fs.size(), 2u);
+        misoriented += turned[fs[0]] != turned[fs[1]];
+    }
+    ASSERT_GT(misoriented, 0u);
+
+    const Polyhedron p = build(soup);
+    EXPECT_EQ(p.data->vertices.size(), size_t(kSectors * (kRings - 1) + 2));
+    EXPECT_EQ(p.edges().edges, uint64_t(3 * kSectors * (kRings - 1)));
+    EXPECT_EQ(p.edges().edges, users.size());
+    EXPECT_EQ(p.edges().openEdges, 0u);
+    EXPECT_EQ(p.edges().manyFaces, 0u);
+    EXPECT_EQ(p.edges().misoriented, misoriented);
+    // One sheet turned outward: every normal points away from the centre, and lines answer as
+    // through the indexed sphere.
+    const Polyhedron q = build(indexed);
+    for (uint32_t t = 0; t < p.data->triangles.size(); ++t) {
+        const auto& c = p.data->triangles[t];
+        const Vec3 &a = p.data->vertices[c[0]], &b = p.data->vertices[c[1]],
+                   &e = p.data->vertices[c[2]];
+        EXPECT_GT(glm::dot(glm::cross(b - a, e - a), a + b + e), 0.0) << "triangle " << t;
+    }
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int i = 0; i < 200; ++i) {
+        const Vec3 o = 3.0 * glm::normalize(Vec3(u(rng), u(rng), u(rng)));
+        const Vec3 d = 0.5 * Vec3(u(rng), u(rng), u(rng)) - o;
+        const auto a = spansOf(p, o, d), b = spansOf(q, o, d);
+        ASSERT_EQ(a.size(), b.size()) << "line " << i;
+        for (size_t k = 0; k < a.size(); ++k) {
+            EXPECT_EQ(a[k].in, b[k].in) << "line " << i;
+            EXPECT_EQ(a[k].out, b[k].out) << "line " << i;
         }
     }
 }
