@@ -6,7 +6,6 @@
 #include "primitives/SpanCapacity.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -14,6 +13,7 @@
 #include <type_traits>
 
 #include "primitives/base/Fma.h"
+#include "primitives/base/PointWelder.h"
 #include "primitives/base/Tolerances.h"
 #include "primitives/base/TrianglePoint.h"
 #include "primitives/solvers/LinePoint.h"
@@ -227,54 +227,12 @@ constexpr BvhBuildOptions kMeshBvhOptions{.maxLeafItems = 2, .traversalCost = 1.
 constexpr size_t kMaxEarClipCorners = 4096;
 
 // Welds points of equal position (-0 == +0): returns each point's welded index and leaves the
-// distinct positions in `points`, in order of first appearance. An open-addressing table of
-// the distinct positions, probed by a hash of their bits: a sort of the corners by position
-// took a fifth of a 2.3-million-triangle STL's load (bench/README.md, "Loading a large mesh").
+// distinct positions in `points`, in order of first appearance, zeros as +0.
 std::vector<uint32_t> weld(std::vector<Vec3>& points) {
-    constexpr uint32_t kEmpty = UINT32_MAX;
-    // MurmurHash3's 64-bit finalizer, chained over the coordinates' bits: every input bit
-    // reaches the low bits the table masks (a mesh's coordinates often differ only high up).
-    const auto mix = [](uint64_t h) {
-        h ^= h >> 33;
-        h *= 0xff51afd7ed558ccdull;
-        h ^= h >> 33;
-        h *= 0xc4ceb9fe1a85ec53ull;
-        return h ^ (h >> 33);
-    };
-    const auto hashOf = [&](const Vec3& p) {
-        const auto bits = [&](int i) { return std::bit_cast<uint64_t>(p[i]); };
-        return mix(bits(0) ^ mix(bits(1) ^ mix(bits(2))));
-    };
-    std::vector<Vec3> distinct;
-    std::vector<uint32_t> table;
-    uint64_t mask = 0;
-    // Rebuilds the table at twice the size once it is half full. It starts with room for a
-    // sixth of the corners at that load: a closed mesh has about one vertex per six corners.
-    const auto grow = [&](size_t capacity) {
-        table.assign(capacity, kEmpty);
-        mask = capacity - 1;
-        for (uint32_t v = 0; v < distinct.size(); ++v) {
-            uint64_t slot = hashOf(distinct[v]) & mask;
-            while (table[slot] != kEmpty) slot = (slot + 1) & mask;
-            table[slot] = v;
-        }
-    };
-    grow(std::bit_ceil(std::max<size_t>(64, points.size() / 3)));
+    PointWelder welder(points.size());
     std::vector<uint32_t> welded(points.size());
-    for (size_t i = 0; i < points.size(); ++i) {
-        const Vec3 p = points[i] + Vec3(0.0);  // -0 + 0 = +0: one key per position
-        uint64_t slot = hashOf(p) & mask;
-        while (table[slot] != kEmpty && distinct[table[slot]] != p) slot = (slot + 1) & mask;
-        if (table[slot] == kEmpty) {
-            table[slot] = static_cast<uint32_t>(distinct.size());
-            distinct.push_back(p);
-            if (2 * distinct.size() > table.size()) grow(2 * table.size());
-            welded[i] = static_cast<uint32_t>(distinct.size() - 1);
-        } else {
-            welded[i] = table[slot];
-        }
-    }
-    points = std::move(distinct);
+    for (size_t i = 0; i < points.size(); ++i) welded[i] = welder.add(points[i] + Vec3(0.0));
+    points = welder.take();
     return welded;
 }
 

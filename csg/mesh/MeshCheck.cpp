@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <vector>
 
 #include "csg/mesh/TriangleBvh.h"
 #include "primitives/base/ParallelFor.h"
+#include "primitives/base/PointWelder.h"
 #include "primitives/base/Tolerances.h"
 
 namespace csg {
@@ -361,18 +361,14 @@ double surfaceArea(const TriangleMesh& mesh) {
 
 TriangleMesh weldExactDuplicates(const TriangleMesh& mesh) {
     TriangleMesh out;
-    std::map<std::array<double, 3>, uint32_t> index;
+    PointWelder welder(mesh.positions.size());
     std::vector<uint32_t> remap(mesh.positions.size());
     for (size_t i = 0; i < mesh.positions.size(); ++i) {
-        const Vec3& p = mesh.positions[i];
-        const auto [it, added] =
-            index.emplace(std::array<double, 3>{p.x, p.y, p.z}, uint32_t(out.positions.size()));
-        if (added) {
-            out.positions.push_back(p);
-            if (!mesh.normals.empty()) out.normals.push_back(mesh.normals[i]);
-        }
-        remap[i] = it->second;
+        const size_t before = welder.size();
+        remap[i] = welder.add(mesh.positions[i]);
+        if (welder.size() > before && !mesh.normals.empty()) out.normals.push_back(mesh.normals[i]);
     }
+    out.positions = welder.take();
     out.triangles.reserve(mesh.triangles.size());
     for (const auto& tri : mesh.triangles)
         out.triangles.push_back({remap[tri[0]], remap[tri[1]], remap[tri[2]]});

@@ -45,14 +45,15 @@ struct MeshReadResult {
     uint32_t line = 0, column = 0;          // where in a text file the error is; 0: nowhere
 };
 
-// Reads an OBJ, STL, OFF, 3MF, GLB or glTF file, in time linear in its size (n log n to weld)
-// whatever the vertex valences. glTF node transforms are applied, so a csgray GLB comes back in its
-// Z-up part frame (the root rotation undone). Vertices with bit-identical positions are merged
-// (STL soups, per-material primitives), so topology can be checked, and where that joined
-// sheets of solids that only touch (an edge of four triangles, a vertex at two cones' apex)
-// they are told apart again (csg/mesh/TouchingSheets.h). An error in an OBJ or
-// ASCII STL file (or a 3MF's model part) comes with its line and column. A coordinate beyond
-// ±csg::tol::kMeshCoordinateMax (or not finite) is an error: it cannot be measured.
+// Reads an OBJ, STL, OFF, 3MF, GLB or glTF file, in time linear in its size whatever the vertex
+// valences (the weld is a hash table, primitives/base/PointWelder.h). glTF node transforms are
+// applied, so a csgray GLB comes back in its Z-up part frame (the root rotation undone). Vertices
+// with equal positions (-0 and +0 alike) are merged (STL soups, per-material primitives), so
+// topology can be checked, and where that joined sheets of solids that only touch (an edge of four
+// triangles, a vertex at two cones' apex) they are told apart again (csg/mesh/TouchingSheets.h). An
+// error in an OBJ or ASCII STL file (or a 3MF's model part) comes with its line and column. A
+// coordinate beyond ±csg::tol::kMeshCoordinateMax (or not finite) is an error: it cannot be
+// measured.
 MeshReadResult readMesh(const std::filesystem::path& file);
 
 // readMesh on bytes already read: baseDir is where a glTF's external buffers are looked up.
