@@ -17,9 +17,9 @@ constexpr int kSahMaxDepth = kBvhMaxDepth - kBvhMedianLevels;
 
 struct Builder {
     // An item's box beside its index, reordered in place as the tree is built: every pass over a
-    // node's items then streams through memory. Gathering the boxes through an index array
-    // missed the cache at every level of a large mesh's build (bench/README.md, "Loading a
-    // large mesh").
+    // node's items then streams through memory, where gathering the boxes through an index
+    // array jumped about the whole array at every level (bench/README.md, "Loading a large
+    // mesh").
     struct Item {
         Bounds3 box;
         uint32_t index;
