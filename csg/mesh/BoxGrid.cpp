@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "primitives/base/MixBits.h"
+
 namespace csg {
 
 namespace {
@@ -14,15 +16,6 @@ int32_t cellCoord(double x) {
     if (!(x > -double(kCoordLimit))) return -kCoordLimit;  // NaN too
     if (!(x < double(kCoordLimit))) return kCoordLimit;
     return int32_t(std::floor(x));
-}
-
-uint64_t mix(uint64_t k) {
-    // splitmix64's finalizer: neighbouring cells land in unrelated slots.
-    k ^= k >> 30;
-    k *= 0xbf58476d1ce4e5b9ull;
-    k ^= k >> 27;
-    k *= 0x94d049bb133111ebull;
-    return k ^ (k >> 31);
 }
 
 }  // namespace
@@ -58,7 +51,7 @@ uint64_t BoxGrid::key(int32_t x, int32_t y, int32_t z) {
 
 uint32_t BoxGrid::find(uint64_t key) const {
     const size_t mask = slots_.size() - 1;
-    for (size_t i = mix(key) & mask;; i = (i + 1) & mask) {
+    for (size_t i = mixBits(key) & mask;; i = (i + 1) & mask) {
         const Slot& s = slots_[i];
         if (s.list == kEmpty) return kEmpty;
         if (s.key == key) return uint32_t(i);
@@ -69,7 +62,7 @@ std::vector<BoxGrid::Entry>& BoxGrid::listOf(uint64_t key) {
     // At most half full, so probes stay short and an empty slot always ends them.
     if (2 * (lists_.size() + 1) > slots_.size()) grow();
     const size_t mask = slots_.size() - 1;
-    size_t i = mix(key) & mask;
+    size_t i = mixBits(key) & mask;
     for (; slots_[i].list != kEmpty; i = (i + 1) & mask)
         if (slots_[i].key == key) return lists_[slots_[i].list];
     slots_[i] = {key, uint32_t(lists_.size())};
@@ -82,7 +75,7 @@ void BoxGrid::grow() {
     const size_t mask = slots_.size() - 1;
     for (const Slot& s : old) {
         if (s.list == kEmpty) continue;
-        size_t i = mix(s.key) & mask;
+        size_t i = mixBits(s.key) & mask;
         while (slots_[i].list != kEmpty) i = (i + 1) & mask;
         slots_[i] = s;
     }

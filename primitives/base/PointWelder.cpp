@@ -3,25 +3,19 @@
 #include <algorithm>
 #include <bit>
 
+#include "primitives/base/MixBits.h"
+
 namespace csg {
 namespace {
 
 constexpr uint32_t kEmpty = UINT32_MAX;
 
-// MurmurHash3's 64-bit finalizer, chained over the coordinates' bits: every input bit reaches
-// the low bits the table masks (a mesh's coordinates often differ only high up). -0 + 0 = +0,
-// so both zeros hash alike.
-uint64_t mix(uint64_t h) {
-    h ^= h >> 33;
-    h *= 0xff51afd7ed558ccdull;
-    h ^= h >> 33;
-    h *= 0xc4ceb9fe1a85ec53ull;
-    return h ^ (h >> 33);
-}
-
+// The coordinates' bits chained through the finalizer: every input bit reaches the low bits
+// the table masks (a mesh's coordinates often differ only high up). -0 + 0 = +0, so both
+// zeros hash alike.
 uint64_t hashOf(const Vec3& p) {
     const auto bits = [&](int i) { return std::bit_cast<uint64_t>(p[i] + 0.0); };
-    return mix(bits(0) ^ mix(bits(1) ^ mix(bits(2))));
+    return mixBits(bits(0) ^ mixBits(bits(1) ^ mixBits(bits(2))));
 }
 
 }  // namespace
