@@ -390,7 +390,7 @@ std::vector<uint32_t> findSheets(const std::vector<Triangle>& triangles, size_t 
     const size_t n = triangles.size();
     // Step 1: every triangle's three edges, grouped by their lower vertex (a counting sort, so
     // each group lists its triangles in order), each group then ordered by the upper vertex: the
-    // uses of one edge lie together. Sorting all the uses by (low, high) took a tenth of a
+    // uses of one edge lie together. Sorting all the uses by (low, high) took 8 % of a
     // large mesh's load (bench/README.md, "Loading a large mesh").
     struct EdgeUse {
         uint32_t high;
