@@ -13,6 +13,7 @@
 #include <type_traits>
 
 #include "primitives/base/Fma.h"
+#include "primitives/base/GroupByKey.h"
 #include "primitives/base/PointWelder.h"
 #include "primitives/base/Tolerances.h"
 #include "primitives/base/TrianglePoint.h"
@@ -397,27 +398,26 @@ std::vector<uint32_t> findSheets(const std::vector<Triangle>& triangles, size_t 
         uint32_t triangle;
         bool forward;  // runs low -> high
     };
-    std::vector<uint32_t> groupStart(vertexCount + 1, 0);
-    for (const Triangle& t : triangles)
-        for (int k = 0; k < 3; ++k) ++groupStart[std::min(t[k], t[(k + 1) % 3]) + 1];
-    for (size_t v = 0; v < vertexCount; ++v) groupStart[v + 1] += groupStart[v];
-    std::vector<EdgeUse> uses(3 * n);
-    {
-        std::vector<uint32_t> next(groupStart.begin(), groupStart.end() - 1);
+    Grouped<EdgeUse> byLow = groupByKey<EdgeUse>(vertexCount, [&](auto&& emit) {
         for (uint32_t i = 0; i < n; ++i)
             for (int k = 0; k < 3; ++k) {
                 const uint32_t a = triangles[i][k], b = triangles[i][(k + 1) % 3];
-                uses[next[std::min(a, b)]++] = {std::max(a, b), i, a < b};
+                emit(std::min(a, b), EdgeUse{std::max(a, b), i, a < b});
             }
-    }
+    });
+    const std::vector<uint32_t>& groupStart = byLow.start;
+    std::vector<EdgeUse>& uses = byLow.values;
+    // Insertion sort, stable, in place: a vertex has a few edges, and std::stable_sort would
+    // allocate a buffer for each group. A hub of many edges (a fan's) takes std::stable_sort,
+    // so no group is sorted in quadratic time.
     const auto byHigh = [](const EdgeUse& x, const EdgeUse& y) { return x.high < y.high; };
     for (size_t v = 0; v < vertexCount; ++v) {
         EdgeUse *first = uses.data() + groupStart[v], *last = uses.data() + groupStart[v + 1];
         if (last - first > 32) {
-            std::stable_sort(first, last, byHigh);  // a fan's hub: not quadratic
+            std::stable_sort(first, last, byHigh);
             continue;
         }
-        for (EdgeUse* at = first + 1; at < last; ++at)  // insertion sort, stable
+        for (EdgeUse* at = first + 1; at < last; ++at)
             for (EdgeUse* p = at; p > first && byHigh(p[0], p[-1]); --p) std::swap(p[0], p[-1]);
     }
     // Step 2: count, and link the triangles of two-triangle edges; the links grouped by
@@ -447,19 +447,11 @@ std::vector<uint32_t> findSheets(const std::vector<Triangle>& triangles, size_t 
             i = j;
         }
     }
-    uses = {};
-    groupStart = {};
-    std::vector<uint32_t> linkStart(n + 1, 0);
-    for (const Pair& p : pairs) ++linkStart[p.a + 1], ++linkStart[p.b + 1];
-    for (size_t i = 0; i < n; ++i) linkStart[i + 1] += linkStart[i];
-    std::vector<Link> links(linkStart[n]);
-    {
-        std::vector<uint32_t> next(linkStart.begin(), linkStart.end() - 1);
-        for (const Pair& p : pairs) {
-            links[next[p.a]++] = {p.b, p.sameWay};
-            links[next[p.b]++] = {p.a, p.sameWay};
-        }
-    }
+    byLow = {};
+    const Grouped<Link> links = groupByKey<Link>(n, [&](auto&& emit) {
+        for (const Pair& p : pairs)
+            emit(p.a, Link{p.b, p.sameWay}), emit(p.b, Link{p.a, p.sameWay});
+    });
     pairs = {};
     // Step 3: breadth first over the links, each sheet from its lowest triangle.
     constexpr uint32_t kNone = UINT32_MAX;
@@ -473,8 +465,8 @@ std::vector<uint32_t> findSheets(const std::vector<Triangle>& triangles, size_t 
         queue.assign(1, seed);
         for (size_t q = 0; q < queue.size(); ++q) {
             const uint32_t t = queue[q];
-            for (uint32_t l = linkStart[t]; l < linkStart[t + 1]; ++l) {
-                const Link& link = links[l];
+            for (uint32_t l = links.start[t]; l < links.start[t + 1]; ++l) {
+                const Link& link = links.values[l];
                 if (sheet[link.other] != kNone) continue;  // a conflict (a Klein bottle) stays
                 sheet[link.other] = sheetCount;
                 flip[link.other] = flip[t] ^ uint8_t(link.sameWay);

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "primitives/base/GroupByKey.h"
+
 namespace csg {
 namespace {
 
@@ -144,7 +146,6 @@ UniformGrid buildUniformGrid(std::span<const Bounds3> boxes, uint32_t itemsOffse
         }
     };
     const size_t cellCount = static_cast<size_t>(cells);
-    grid.cellStart.assign(cellCount + 1, 0);
     const auto forEachCell = [&](const Bounds3& b, auto&& f) {
         int lo[3], hi[3];
         range(b, lo, hi);
@@ -155,13 +156,13 @@ UniformGrid buildUniformGrid(std::span<const Bounds3> boxes, uint32_t itemsOffse
                       static_cast<size_t>(grid.res[0]) *
                           (static_cast<size_t>(j) + static_cast<size_t>(grid.res[1]) * k));
     };
-    // Counting sort: count per cell, prefix sums, then place in item order.
-    for (const Bounds3& b : boxes) forEachCell(b, [&](size_t c) { ++grid.cellStart[c + 1]; });
-    for (size_t c = 0; c < cellCount; ++c) grid.cellStart[c + 1] += grid.cellStart[c];
-    grid.items.resize(grid.cellStart[cellCount]);
-    std::vector<uint32_t> fill(grid.cellStart.begin(), grid.cellStart.end() - 1);
-    for (uint32_t i = 0; i < boxes.size(); ++i)
-        forEachCell(boxes[i], [&](size_t c) { grid.items[fill[c]++] = itemsOffset + i; });
+    // Each cell's items, in item order.
+    Grouped<uint32_t> byCell = groupByKey<uint32_t>(cellCount, [&](auto&& emit) {
+        for (uint32_t i = 0; i < boxes.size(); ++i)
+            forEachCell(boxes[i], [&](size_t c) { emit(c, itemsOffset + i); });
+    });
+    grid.cellStart = std::move(byCell.start);
+    grid.items = std::move(byCell.values);
     return grid;
 }
 

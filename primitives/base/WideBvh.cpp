@@ -46,17 +46,17 @@ struct Builder {
 
         // Bin the centres on every axis with a spread, in one pass over the items.
         std::array<Bins, 3> bins;
+        const Vec3 width = centroids.extent();
         bool binned[3] = {};
         for (int axis = 0; axis < 3 && depth < kSahMaxDepth; ++axis)
-            binned[axis] = centroids.hi[axis] - centroids.lo[axis] > 0.0;
+            binned[axis] = width[axis] > 0.0;
         if (binned[0] || binned[1] || binned[2]) {
             for (uint32_t i = lo; i < hi; ++i) {
                 const Bounds3& b = items[i].box;
                 const Vec3 c = b.center();
                 for (int axis = 0; axis < 3; ++axis) {
                     if (!binned[axis]) continue;
-                    const int bin =
-                        binOf(c[axis], centroids.lo[axis], centroids.hi[axis] - centroids.lo[axis]);
+                    const int bin = binOf(c[axis], centroids.lo[axis], width[axis]);
                     bins[axis].box[bin].extend(b);
                     ++bins[axis].count[bin];
                 }
@@ -100,11 +100,10 @@ struct Builder {
 
         uint32_t mid;
         if (bestAxis >= 0) {
-            const double lo0 = centroids.lo[bestAxis];
-            const double width = centroids.hi[bestAxis] - lo0;
+            const double lo0 = centroids.lo[bestAxis], w = width[bestAxis];
             const auto split =
                 std::partition(items.begin() + lo, items.begin() + hi, [&](const Item& it) {
-                    return binOf(it.box.center()[bestAxis], lo0, width) <= bestBin;
+                    return binOf(it.box.center()[bestAxis], lo0, w) <= bestBin;
                 });
             mid = static_cast<uint32_t>(split - items.begin());
         } else if (n <= 4 * maxLeafItems) {
