@@ -478,5 +478,51 @@ TEST(Hierarchies, EveryItemOnceInsideItsBoxes) {
     }
 }
 
+// A large SAH build on several threads (BvhBuildOptions::threads) is node for node the one a
+// single thread makes, with the same leaf order: over boxes spread about, and over boxes most
+// of which share one centre (the build's halving fallback, inside the parts and above them).
+TEST(Hierarchies, SahOnThreadsIsTheSerialTree) {
+    testing::Rng rng(21);
+    std::vector<Bounds3> spread(150000), stacked(90000);
+    for (Bounds3& b : spread) {
+        const Vec3 c = rng.inBox(Vec3(0.0), Vec3(100.0));
+        b = {c - Vec3(rng.uniform(0.0, 1.0)), c + Vec3(rng.uniform(0.0, 1.0))};
+    }
+    for (size_t i = 0; i < stacked.size(); ++i) {
+        const Vec3 c = i % 3 == 0 ? rng.inBox(Vec3(0.0), Vec3(10.0)) : Vec3(5.0);
+        stacked[i] = {c - Vec3(0.5), c + Vec3(0.5)};
+    }
+    for (const std::vector<Bounds3>* boxes : {&spread, &stacked}) {
+        const auto build = [&](int threads, std::vector<uint32_t>& order) {
+            std::vector<BvhNode> nodes;
+            const BvhBuildOptions options{.maxLeafItems = 2, .threads = threads};
+            EXPECT_EQ(buildWideBvh(*boxes, order, 7, options, nodes), 0u);
+            return nodes;
+        };
+        std::vector<uint32_t> serialOrder;
+        const std::vector<BvhNode> serial = build(1, serialOrder);
+        ASSERT_GT(serial.size(), 1000u);
+        for (int threads : {2, 3}) {
+            std::vector<uint32_t> order;
+            const std::vector<BvhNode> nodes = build(threads, order);
+            ASSERT_EQ(nodes.size(), serial.size()) << threads << " threads";
+            EXPECT_EQ(order, serialOrder) << threads << " threads";
+            for (size_t i = 0; i < nodes.size(); ++i) {
+                const BvhNode &a = nodes[i], &b = serial[i];
+                bool same = a.slots == b.slots;
+                for (int k = 0; k < 4; ++k) {
+                    same = same && a.slot[k] == b.slot[k] && a.leafCount[k] == b.leafCount[k];
+                    for (int axis = 0; axis < 3; ++axis)
+                        same = same && a.boxes.lo[axis][k] == b.boxes.lo[axis][k] &&
+                               a.boxes.hi[axis][k] == b.boxes.hi[axis][k];
+                }
+                for (int octant = 0; octant < 8; ++octant)
+                    same = same && a.order[octant] == b.order[octant];
+                ASSERT_TRUE(same) << "node " << i << ", " << threads << " threads";
+            }
+        }
+    }
+}
+
 }  // namespace
 }  // namespace csg

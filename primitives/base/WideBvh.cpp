@@ -6,6 +6,7 @@
 #include <cassert>
 
 #include "primitives/base/BinaryBvh.h"
+#include "primitives/base/ParallelFor.h"
 
 namespace csg {
 namespace {
@@ -14,6 +15,12 @@ constexpr int kBins = 16;
 // Below this depth splits fall back to the median, so a walk's fixed stack (kBvhMaxDepth) can
 // never overflow whatever the SAH would choose.
 constexpr int kSahMaxDepth = kBvhMaxDepth - kBvhMedianLevels;
+// The SAH build of this many items or more runs on several threads (BvhBuildOptions::threads):
+// below it, starting the threads would cost more than they save. Its parts hold at most
+// 1 / kTasksPerThread of a thread's share of the items (but not fewer than half this many),
+// so that parts of unequal size still share out evenly.
+constexpr uint32_t kParallelBuildItems = 1u << 15;
+constexpr uint32_t kTasksPerThread = 4;
 
 struct Builder {
     // An item's box beside its index, reordered in place as the tree is built: every pass over a
@@ -24,7 +31,8 @@ struct Builder {
         Bounds3 box;
         uint32_t index;
     };
-    std::vector<Item> items;
+    // Shared by the builders of one tree, each of which reorders only its own range.
+    std::span<Item> items;
     uint32_t maxLeafItems;
     double traversalCost;
     std::vector<BinaryNode> nodes;
@@ -35,14 +43,36 @@ struct Builder {
         std::array<uint32_t, kBins> count{};
     };
 
+    // How a node's items [lo, hi) divide: [lo, mid) to the left, split on axis, with each
+    // side's box and centre bounds.
+    struct Split {
+        uint32_t mid = 0;
+        int axis = 0;
+        Bounds3 leftBox, leftCentroids, rightBox, rightCentroids;
+    };
+
     // Builds the node over items [lo, hi), whose box and centre bounds the caller has found.
     uint32_t build(uint32_t lo, uint32_t hi, int depth, const Bounds3& box,
                    const Bounds3& centroids) {
         const uint32_t index = static_cast<uint32_t>(nodes.size());
         nodes.emplace_back();
         nodes[index].box = box;
+        Split s;
+        if (!split(lo, hi, depth, box, centroids, s)) return makeLeaf(index, lo, hi - lo);
+        build(lo, s.mid, depth + 1, s.leftBox, s.leftCentroids);
+        const uint32_t right = build(s.mid, hi, depth + 1, s.rightBox, s.rightCentroids);
+        nodes[index].firstOrRight = right;
+        nodes[index].count = 0;
+        nodes[index].axis = s.axis;
+        return index;
+    }
+
+    // Reorders items [lo, hi) into the node's two sides and says where they divide; false for a
+    // node that stays a leaf.
+    bool split(uint32_t lo, uint32_t hi, int depth, const Bounds3& box, const Bounds3& centroids,
+               Split& out) {
         const uint32_t n = hi - lo;
-        if (n <= maxLeafItems) return makeLeaf(index, lo, n);
+        if (n <= maxLeafItems) return false;
 
         // Bin the centres on every axis with a spread, in one pass over the items.
         std::array<Bins, 3> bins;
@@ -107,7 +137,7 @@ struct Builder {
                 });
             mid = static_cast<uint32_t>(split - items.begin());
         } else if (n <= 4 * maxLeafItems) {
-            return makeLeaf(index, lo, n);  // splitting would not pay
+            return false;  // splitting would not pay
         } else {
             // All centroids coincide (or no split pays): halve so depth stays logarithmic.
             mid = lo + n / 2;
@@ -116,15 +146,12 @@ struct Builder {
 
         // The children's boxes and centre bounds: one more pass over the items costs less than
         // keeping each bin's centre bounds while binning.
-        Bounds3 leftBox, leftCentroids, rightBox, rightCentroids;
-        bound(lo, mid, leftBox, leftCentroids);
-        bound(mid, hi, rightBox, rightCentroids);
-        build(lo, mid, depth + 1, leftBox, leftCentroids);
-        const uint32_t right = build(mid, hi, depth + 1, rightBox, rightCentroids);
-        nodes[index].firstOrRight = right;
-        nodes[index].count = 0;
-        nodes[index].axis = bestAxis >= 0 ? bestAxis : 0;
-        return index;
+        out = {};
+        out.mid = mid;
+        out.axis = bestAxis >= 0 ? bestAxis : 0;
+        bound(lo, mid, out.leftBox, out.leftCentroids);
+        bound(mid, hi, out.rightBox, out.rightCentroids);
+        return true;
     }
 
     // The box of items [lo, hi) and the bounds of their centres.
@@ -147,6 +174,92 @@ struct Builder {
     }
 };
 
+// The SAH tree on several threads, node for node the one Builder::build makes alone. The top
+// is split as build() splits it, down to parts of at most taskItems items; each part is a
+// task, built by a Builder of its own over its own range of the shared items. The parts stay
+// in arrays of their own, which the collapse steps into from the top's placeholders
+// (BinaryTree): copying them into one array cost up to a fifth of the build, most of it in fresh
+// pages. Only the top's few levels are passes over the items on one thread.
+struct ParallelBuilder {
+    Builder top;  // the top's nodes; a part's node there is its placeholder
+    uint32_t taskItems;
+    int threads;
+    struct Task {
+        uint32_t lo, hi;
+        int depth;
+        Bounds3 box, centroids;
+    };
+    std::vector<Task> tasks;
+    std::vector<uint32_t> partAt;  // per top node, its part's index, or kNoPart
+
+    static constexpr uint32_t kNoPart = ~0u;
+
+    void plan(uint32_t lo, uint32_t hi, int depth, const Bounds3& box, const Bounds3& centroids) {
+        const uint32_t index = static_cast<uint32_t>(top.nodes.size());
+        top.nodes.emplace_back();
+        top.nodes[index].box = box;
+        partAt.push_back(kNoPart);
+        if (hi - lo <= taskItems) {
+            partAt[index] = static_cast<uint32_t>(tasks.size());
+            tasks.push_back({lo, hi, depth, box, centroids});
+            return;
+        }
+        Builder::Split s;
+        if (!top.split(lo, hi, depth, box, centroids, s)) {
+            top.makeLeaf(index, lo, hi - lo);
+            return;
+        }
+        plan(lo, s.mid, depth + 1, s.leftBox, s.leftCentroids);
+        const uint32_t right = static_cast<uint32_t>(top.nodes.size());
+        plan(s.mid, hi, depth + 1, s.rightBox, s.rightCentroids);
+        top.nodes[index].firstOrRight = right;
+        top.nodes[index].count = 0;
+        top.nodes[index].axis = s.axis;
+    }
+
+    // The parts' nodes, in the order of tasks.
+    std::vector<std::vector<BinaryNode>> build(uint32_t count, const Bounds3& box,
+                                               const Bounds3& centroids) {
+        plan(0, count, 0, box, centroids);
+        std::vector<std::vector<BinaryNode>> parts(tasks.size());
+        parallelFor(tasks.size(), threads, [&](int, uint64_t k) {
+            const Task& t = tasks[k];
+            Builder part{top.items, top.maxLeafItems, top.traversalCost, {}};
+            part.nodes.reserve(2 * size_t(t.hi - t.lo));
+            part.build(t.lo, t.hi, t.depth, t.box, t.centroids);
+            parts[k] = std::move(part.nodes);
+        });
+        return parts;
+    }
+};
+
+// A binary tree in preorder (BinaryBvh.h), in one array, or in the top's array and its parts'
+// (ParallelBuilder), each part's interior nodes naming their right child by its place in the
+// part. A node is reached through a Ref: the node and the array it lies in.
+struct BinaryTree {
+    std::span<const BinaryNode> top;
+    std::span<const uint32_t> partAt;  // empty: no parts
+    std::span<const std::vector<BinaryNode>> parts;
+
+    struct Ref {
+        const BinaryNode* node;
+        const BinaryNode* array;
+        bool operator==(const Ref& other) const { return node == other.node; }
+    };
+
+    // The node at `index` of `array`, or, for a placeholder of the top's, its part's root.
+    Ref at(const BinaryNode* array, uint32_t index) const {
+        if (array == top.data() && !partAt.empty() && partAt[index] != ParallelBuilder::kNoPart) {
+            const BinaryNode* part = parts[partAt[index]].data();
+            return {part, part};
+        }
+        return {array + index, array};
+    }
+    Ref root() const { return at(top.data(), 0); }
+    Ref left(Ref r) const { return at(r.array, static_cast<uint32_t>(r.node - r.array) + 1); }
+    Ref right(Ref r) const { return at(r.array, r.node->firstOrRight); }
+};
+
 // Slot k of a wide node: its box, and the node or the leaf's first child it leads to.
 void setSlot(BvhNode& node, int k, const Bounds3& box, uint32_t target, uint32_t leafCount) {
     node.boxes.set(k, box);
@@ -159,27 +272,28 @@ void setSlot(BvhNode& node, int k, const Bounds3& box, uint32_t target, uint32_t
 // its place) until it has four, so the slots a ray is most likely to enter are the ones the
 // wide node resolves at once (the usual BVH2 -> BVH4 collapse, as in Embree).
 struct Collapser {
-    const std::vector<BinaryNode>& binary;
+    using Ref = BinaryTree::Ref;
+    const BinaryTree& binary;
     uint32_t itemsOffset;
     std::vector<BvhNode>& wide;
 
-    uint32_t collapse(uint32_t interior) {
-        uint32_t slots[4] = {interior + 1, binary[interior].firstOrRight, 0, 0};
+    uint32_t collapse(Ref interior) {
+        Ref slots[4] = {binary.left(interior), binary.right(interior), {}, {}};
         int count = 2;
         while (count < 4) {
             int open = -1;
             double openArea = -1.0;
             for (int k = 0; k < count; ++k) {
-                const BinaryNode& b = binary[slots[k]];
+                const BinaryNode& b = *slots[k].node;
                 if (b.count == 0 && b.box.halfArea() > openArea) {
                     open = k;
                     openArea = b.box.halfArea();
                 }
             }
             if (open < 0) break;  // only leaves left
-            const uint32_t opened = slots[open];
-            slots[open] = opened + 1;
-            slots[count++] = binary[opened].firstOrRight;
+            const Ref opened = slots[open];
+            slots[open] = binary.left(opened);
+            slots[count++] = binary.right(opened);
         }
 
         const uint32_t index = static_cast<uint32_t>(wide.size());
@@ -191,7 +305,7 @@ struct Collapser {
             wide[index].order[octant] = static_cast<uint8_t>(order);
         }
         for (int k = 0; k < count; ++k) {
-            const BinaryNode& b = binary[slots[k]];
+            const BinaryNode& b = *slots[k].node;
             const uint32_t target = b.count > 0 ? itemsOffset + b.firstOrRight : collapse(slots[k]);
             setSlot(wide[index], k, b.box, target, b.count);  // after collapse() grew `wide`
         }
@@ -202,16 +316,16 @@ struct Collapser {
     // Appends the slots under binary node b to `order` (two bits each), nearer first for a ray
     // of the given direction octant (bit a set: d[a] < 0): at each split the side toward which
     // the ray runs comes second, as the binary walk would visit them.
-    void appendOrder(uint32_t b, unsigned octant, const uint32_t (&slots)[4], int count,
-                     unsigned& order, int& placed) const {
+    void appendOrder(Ref b, unsigned octant, const Ref (&slots)[4], int count, unsigned& order,
+                     int& placed) const {
         for (int k = 0; k < count; ++k) {
             if (slots[k] == b) {
                 order |= unsigned(k) << (2 * placed++);
                 return;
             }
         }
-        const uint32_t left = b + 1, right = binary[b].firstOrRight;
-        const bool leftFirst = (octant >> binary[b].axis & 1u) == 0;
+        const Ref left = binary.left(b), right = binary.right(b);
+        const bool leftFirst = (octant >> b.node->axis & 1u) == 0;
         appendOrder(leftFirst ? left : right, octant, slots, count, order, placed);
         appendOrder(leftFirst ? right : left, octant, slots, count, order, placed);
     }
@@ -226,17 +340,33 @@ uint32_t buildWideBvh(std::span<const Bounds3> boxes, std::vector<uint32_t>& ord
     order.resize(boxes.size());
     for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
     std::vector<BinaryNode> binary;
+    std::vector<uint32_t> partAt;
+    std::vector<std::vector<BinaryNode>> parts;
     switch (options.method) {
         case BvhMethod::Sah: {
-            Builder builder{{}, options.maxLeafItems, options.traversalCost, {}};
-            builder.items.resize(boxes.size());
-            for (uint32_t i = 0; i < boxes.size(); ++i) builder.items[i] = {boxes[i], i};
+            std::vector<Builder::Item> items(boxes.size());
+            for (uint32_t i = 0; i < boxes.size(); ++i) items[i] = {boxes[i], i};
+            Builder builder{items, options.maxLeafItems, options.traversalCost, {}};
+            const uint32_t count = static_cast<uint32_t>(boxes.size());
             Bounds3 box, centroids;
-            builder.bound(0, static_cast<uint32_t>(boxes.size()), box, centroids);
-            builder.nodes.reserve(2 * boxes.size());
-            builder.build(0, static_cast<uint32_t>(boxes.size()), 0, box, centroids);
-            for (uint32_t i = 0; i < order.size(); ++i) order[i] = builder.items[i].index;
-            binary = std::move(builder.nodes);
+            builder.bound(0, count, box, centroids);
+            const int threads = resolveThreads(options.threads);
+            if (threads > 1 && count >= kParallelBuildItems) {
+                ParallelBuilder parallel{
+                    std::move(builder),
+                    std::max(kParallelBuildItems / 2, count / (kTasksPerThread * threads)),
+                    threads,
+                    {},
+                    {}};
+                parts = parallel.build(count, box, centroids);
+                binary = std::move(parallel.top.nodes);
+                partAt = std::move(parallel.partAt);
+            } else {
+                builder.nodes.reserve(2 * boxes.size());
+                builder.build(0, count, 0, box, centroids);
+                binary = std::move(builder.nodes);
+            }
+            for (uint32_t i = 0; i < order.size(); ++i) order[i] = items[i].index;
             break;
         }
         case BvhMethod::Median:
@@ -246,16 +376,18 @@ uint32_t buildWideBvh(std::span<const Bounds3> boxes, std::vector<uint32_t>& ord
             binary = buildGoldsmithSalmon(boxes, order, options.maxLeafItems);
             break;
     }
+    const BinaryTree tree{binary, partAt, parts};
     // A root that is a leaf (items too few or all at one centre) is wrapped in one wide node.
-    if (binary[0].count > 0) {
+    const BinaryNode& root = *tree.root().node;
+    if (root.count > 0) {
         const uint32_t index = static_cast<uint32_t>(nodes.size());
         BvhNode& node = nodes.emplace_back();
-        setSlot(node, 0, binary[0].box, itemsOffset, binary[0].count);
+        setSlot(node, 0, root.box, itemsOffset, root.count);
         node.slots = 1;
         return index;
     }
-    Collapser collapser{binary, itemsOffset, nodes};
-    return collapser.collapse(0);
+    Collapser collapser{tree, itemsOffset, nodes};
+    return collapser.collapse(tree.root());
 }
 
 }  // namespace csg

@@ -60,6 +60,9 @@ struct BvhBuildOptions {
     // SAH cost of testing one box relative to testing one item.
     double traversalCost = 0.5;
     BvhMethod method = BvhMethod::Sah;
+    // Threads for a large SAH build (0: one per core; ParallelFor.h): the tree is the same
+    // with any number.
+    int threads = 0;
 };
 
 // Builds a BVH over boxes (finite, non-empty; at least one), appending its nodes to `nodes`.
