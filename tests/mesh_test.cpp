@@ -636,6 +636,56 @@ TEST(MeshDistance, ALooseBoundThatSetsTheMaximumIsTightened) {
     EXPECT_LE(d.max, truth + 1e-5);  // two foot steps from the fan's best line
 }
 
+// The figures of a measurement do not depend on how its samples fall to threads: a UV sphere's
+// mesh over a ball with a bore through it, whose samples over the bore are loose and tightened
+// against the maximum found so far (DistanceOptions::goodEnough), in chunks of 1024 triangles
+// that two or three workers take as they come. One accumulator per worker gave means that
+// differed between runs (and from one thread's).
+TEST(MeshDistance, SameFiguresOnAnyNumberOfThreads) {
+    const NodePtr bore = transformed(glm::translate(Mat4(1.0), Vec3(0.3, 0.0, -2.0)),
+                                     leaf(Cylinder{4.0, 0.35, 0.35}));
+    const Scene scene = Scene::compile(subtract(leaf(Sphere{1.0}), bore));
+    constexpr int kRings = 40, kSegments = 80;  // 6 240 triangles: 7 chunks
+    TriangleMesh mesh;
+    mesh.positions.push_back({0.0, 0.0, 1.004});
+    for (int i = 1; i < kRings; ++i)
+        for (int j = 0; j < kSegments; ++j) {
+            const double theta = kPi * i / kRings, phi = 2.0 * kPi * j / kSegments;
+            const double r = 1.004 + 0.003 * std::sin(5.0 * phi) * std::sin(3.0 * theta);
+            mesh.positions.push_back(r * Vec3(std::sin(theta) * std::cos(phi),
+                                              std::sin(theta) * std::sin(phi), std::cos(theta)));
+        }
+    mesh.positions.push_back({0.0, 0.0, -1.004});
+    const auto at = [](int ring, int j) {
+        return uint32_t(1 + (ring - 1) * kSegments + j % kSegments);
+    };
+    const uint32_t south = uint32_t(mesh.positions.size() - 1);
+    for (int j = 0; j < kSegments; ++j) {
+        mesh.triangles.push_back({0, at(1, j), at(1, j + 1)});
+        for (int i = 1; i + 1 < kRings; ++i) {
+            mesh.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            mesh.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+        mesh.triangles.push_back({at(kRings - 1, j), south, at(kRings - 1, j + 1)});
+    }
+    ASSERT_GT(mesh.triangles.size(), 6 * 1024u);
+    DistanceOptions options;
+    options.reach = 0.5;
+    options.goodEnough = 0.02;
+    options.threads = 1;
+    const DistanceStats one = meshToSurface(scene, mesh, options);
+    ASSERT_GT(one.max, options.goodEnough);  // the samples over the bore are loose
+    for (int threads : {2, 3, 2, 3}) {
+        options.threads = threads;
+        const DistanceStats d = meshToSurface(scene, mesh, options);
+        EXPECT_EQ(d.samples, one.samples);
+        EXPECT_EQ(d.unresolved, one.unresolved);
+        EXPECT_EQ(d.max, one.max) << threads << " threads";
+        EXPECT_EQ(d.mean, one.mean) << threads << " threads";
+        EXPECT_EQ(d.worst, one.worst);
+    }
+}
+
 TEST(Tessellate, SphereWithinTolerance) {
     const Scene scene = Scene::compile(leaf(Sphere{1.0}));
     const double tol = 0.005;

@@ -170,19 +170,26 @@ SampleBound boundAlongLines(const Vec3& first, double goodEnough, Measure&& meas
     return bound;
 }
 
-// Runs measure(worker, item, accumulator) over count items and merges what they found: on this
-// process's workers, one accumulator each; or on the processes of a job (options.distribute),
-// one accumulator per item, merged in item order.
+// Runs measure(worker, item, accumulator) over count items, on this process's workers or on the
+// processes of a job (options.distribute), and merges what they found: one accumulator per item,
+// merged in item order, so that the figures do not depend on which worker took which item (a
+// chunk of meshToSurface tightens its samples against its accumulator's maximum so far, and the
+// sum's rounding depends on its order: one accumulator per worker gave means that differed
+// between runs on two threads, in the fifth digit on samples/knob.scad).
 template <class Measure>
 DistanceStats measureItems(uint64_t count, std::string_view what, int workers,
                            const DistanceOptions& options, Measure&& measure) {
+    std::vector<Accumulator> acc(static_cast<size_t>(count));
     if (!options.distribute) {
-        std::vector<Accumulator> acc(static_cast<size_t>(workers));
-        parallelFor(count, workers,
-                    [&](int w, uint64_t item) { measure(w, item, acc[size_t(w)]); });
+        // Each item measured into an accumulator of its own stack, not into its neighbour's cache
+        // line.
+        parallelFor(count, workers, [&](int w, uint64_t item) {
+            Accumulator found;
+            measure(w, item, found);
+            acc[size_t(item)] = found;
+        });
         return merge(acc);
     }
-    std::vector<Accumulator> acc(static_cast<size_t>(count));
     options.distribute->run(
         count, what,
         [&](int w, uint64_t item, std::string& bytes) {
