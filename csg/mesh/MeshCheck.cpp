@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "csg/mesh/TriangleBvh.h"
+#include "primitives/base/GroupByKey.h"
 #include "primitives/base/ParallelFor.h"
 #include "primitives/base/PointWelder.h"
 #include "primitives/base/Tolerances.h"
@@ -15,26 +16,27 @@ namespace csg {
 MeshTopology checkTopology(const TriangleMesh& mesh) {
     MeshTopology topo;
 
-    // Step 1: the corners of each vertex, grouped by vertex (counting sort): per corner, the
+    // Step 1: the corners of each vertex, grouped by vertex (groupByKey): per corner, the
     // vertex after it and the one before it in its triangle's winding, and whether the triangle
     // repeats a corner (it then takes part in the fan walk of step 3 but has no edges).
     struct Corner {
         uint32_t next, prev;
         bool degenerate;
     };
-    std::vector<uint32_t> start(mesh.positions.size() + 1, 0);
-    for (const auto& tri : mesh.triangles)
-        for (const uint32_t v : tri) ++start[v + 1];
-    for (size_t v = 0; v < mesh.positions.size(); ++v) start[v + 1] += start[v];
-    std::vector<Corner> corners(start.back());
-    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (const auto& tri : mesh.triangles) {
-        const bool degenerate = tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0];
-        topo.degenerateTriangles += degenerate;
-        for (int i = 0; i < 3; ++i)
-            corners[fill[tri[size_t(i)]]++] = {tri[size_t((i + 1) % 3)], tri[size_t((i + 2) % 3)],
-                                               degenerate};
-    }
+    const auto repeatsCorner = [](const std::array<uint32_t, 3>& tri) {
+        return tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0];
+    };
+    Grouped<Corner> byVertex = groupByKey<Corner>(mesh.positions.size(), [&](auto emit) {
+        for (const auto& tri : mesh.triangles) {
+            const bool degenerate = repeatsCorner(tri);
+            for (int i = 0; i < 3; ++i)
+                emit(tri[size_t(i)],
+                     Corner{tri[size_t((i + 1) % 3)], tri[size_t((i + 2) % 3)], degenerate});
+        }
+    });
+    const std::vector<uint32_t>& start = byVertex.start;
+    std::vector<Corner>& corners = byVertex.values;
+    for (const auto& tri : mesh.triangles) topo.degenerateTriangles += repeatsCorner(tri);
 
     // Per vertex, sorts of its own corners only, so the work is T log(valence), also where a
     // loaded mesh has a vertex of very high valence (a cone's apex).

@@ -314,13 +314,9 @@ int Contourer::chooseApex(const EdgeSample& s, bool in0, uint32_t center, const 
 // noted in foldedLeaves_. The uniform contour is a manifold, so only merging causes these.
 void Contourer::noteNonManifoldLeaves() {
     const size_t n = mesh_.positions.size();
-    std::vector<uint32_t> start(n + 1, 0);
-    for (const auto& tri : mesh_.triangles)
-        for (const uint32_t v : tri) ++start[v + 1];
-    for (size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-    std::vector<uint32_t> around(start[n]), fill(start.begin(), start.end() - 1);
-    for (size_t t = 0; t < mesh_.triangles.size(); ++t)
-        for (const uint32_t v : mesh_.triangles[t]) around[fill[v]++] = uint32_t(t);
+    const Grouped<uint32_t> byVertex = trianglesByVertex(mesh_);
+    const std::vector<uint32_t>& start = byVertex.start;
+    const std::vector<uint32_t>& around = byVertex.values;
     auto noteAt = [&](uint32_t v) {
         for (uint32_t i = start[v]; i < start[v + 1]; ++i)
             for (const uint32_t corner : mesh_.triangles[around[i]])

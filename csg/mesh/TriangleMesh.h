@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "primitives/base/GroupByKey.h"
 #include "primitives/base/Math.h"
 
 namespace csg {
@@ -21,5 +22,14 @@ struct TriangleMesh {
 
     bool empty() const { return triangles.empty(); }
 };
+
+// Per vertex, the triangles that use it, in triangle order (a triangle that repeats a vertex is
+// listed once per corner there).
+inline Grouped<uint32_t> trianglesByVertex(const TriangleMesh& mesh) {
+    return groupByKey<uint32_t>(mesh.positions.size(), [&](auto emit) {
+        for (size_t t = 0; t < mesh.triangles.size(); ++t)
+            for (const uint32_t v : mesh.triangles[t]) emit(v, static_cast<uint32_t>(t));
+    });
+}
 
 }  // namespace csg

@@ -91,17 +91,12 @@ public:
     }
 
 private:
-    // Per vertex, the triangles using it (a counting sort), and per vertex its group.
+    // Per vertex, the triangles using it, and per vertex its group.
     void buildStars() {
         const size_t n = mesh_.positions.size();
-        starStart_.assign(n + 1, 0);
-        for (const auto& tri : mesh_.triangles)
-            for (const uint32_t v : tri) ++starStart_[v + 1];
-        for (size_t v = 0; v < n; ++v) starStart_[v + 1] += starStart_[v];
-        star_.resize(starStart_[n]);
-        std::vector<uint32_t> fill(starStart_.begin(), starStart_.end() - 1);
-        for (size_t t = 0; t < mesh_.triangles.size(); ++t)
-            for (const uint32_t v : mesh_.triangles[t]) star_[fill[v]++] = uint32_t(t);
+        Grouped<uint32_t> stars = trianglesByVertex(mesh_);
+        starStart_ = std::move(stars.start);
+        star_ = std::move(stars.values);
         groupOf_.assign(n, kNoGroup);
         for (size_t g = 0; g < groups_.size(); ++g)
             for (uint32_t k = 0; k < groups_[g].count; ++k)

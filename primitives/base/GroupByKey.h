@@ -1,7 +1,9 @@
 // The counting sort: values grouped by a small integer key, each group in the order its values
-// were given. What a mesh's edges by vertex, a triangle's links and a grid's cells are built by.
+// were given. What a mesh's edges, corners and triangles by vertex, a triangle's links and a grid's
+// cells are built by.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
