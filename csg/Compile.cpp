@@ -310,7 +310,7 @@ struct Compiler {
 
     // The structure over a mesh's faces that --accel asks for, built once per mesh however
     // many leaves place it (Polyhedron::organize).
-    std::unordered_map<const PolyhedronData*, std::shared_ptr<const MeshStructure>> meshes;
+    std::unordered_map<const PolyhedronData*, std::shared_ptr<const MeshStructure>> meshes{};
     std::shared_ptr<const MeshStructure> meshStructure(const PolyhedronData& data) {
         const auto [at, added] = meshes.try_emplace(&data);
         if (added) at->second = Polyhedron::organize(data, options.accel);

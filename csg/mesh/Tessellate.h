@@ -116,7 +116,7 @@ struct TessellateOptions {
     // boundary when it measures within the tolerance of the exact part (balanced first; a miss
     // is tried finer, or inscribed where the balanced fit kept material the part lacks), before
     // it takes the grid. The CLI facets with io/ChordFaceting.h.
-    CurveFaceter facetCurves;
+    CurveFaceter facetCurves{};
     bool simplify = true;  // coarsen flat regions after the grid passes (Simplify.h)
     // Grid meshes larger than this are not simplified (0: no limit). Decimation (in slabs on
     // all workers, then once over the whole) and its re-measurement both ways cost more than
