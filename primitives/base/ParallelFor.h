@@ -8,7 +8,6 @@
 #include <atomic>
 #include <cstdint>
 #include <exception>
-#include <system_error>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -46,10 +45,11 @@ void parallelFor(uint64_t count, int threads, Fn&& fn, const std::atomic<bool>* 
         }
     };
     std::vector<std::thread> pool;
+    pool.reserve(size_t(n - 1));  // before any thread runs, so that only starting one can fail
     for (int w = 1; w < n; ++w) {
         try {
             pool.emplace_back(work, w);
-        } catch (const std::system_error&) {
+        } catch (const std::exception&) {
             break;  // no more threads to be had: the items are shared by those started
         }
     }
