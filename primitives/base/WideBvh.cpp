@@ -36,6 +36,16 @@ struct Builder {
     uint32_t maxLeafItems;
     double traversalCost;
     std::vector<BinaryNode> nodes;
+    // A builder of a tree's top only (buildInParts) leaves each node of at most partItems items
+    // a placeholder, noted in parts for a builder of its own; 0: it builds the whole tree.
+    uint32_t partItems = 0;
+    struct Part {
+        uint32_t node;  // the placeholder
+        uint32_t lo, hi;
+        int depth;
+        Bounds3 box, centroids;
+    };
+    std::vector<Part> parts{};
 
     // The boxes of one axis's bins and their item counts.
     struct Bins {
@@ -57,6 +67,10 @@ struct Builder {
         const uint32_t index = static_cast<uint32_t>(nodes.size());
         nodes.emplace_back();
         nodes[index].box = box;
+        if (hi - lo <= partItems) {
+            parts.push_back({index, lo, hi, depth, box, centroids});
+            return index;
+        }
         Split s;
         if (!split(lo, hi, depth, box, centroids, s)) return makeLeaf(index, lo, hi - lo);
         build(lo, s.mid, depth + 1, s.leftBox, s.leftCentroids);
@@ -174,67 +188,31 @@ struct Builder {
     }
 };
 
-// The SAH tree on several threads, node for node the one Builder::build makes alone. The top
-// is split as build() splits it, down to parts of at most taskItems items; each part is a
-// task, built by a Builder of its own over its own range of the shared items. The parts stay
-// in arrays of their own, which the collapse steps into from the top's placeholders
-// (BinaryTree): copying them into one array cost up to a fifth of the build, most of it in fresh
-// pages. Only the top's few levels are passes over the items on one thread.
-struct ParallelBuilder {
-    Builder top;  // the top's nodes; a part's node there is its placeholder
-    uint32_t taskItems;
-    int threads;
-    struct Task {
-        uint32_t lo, hi;
-        int depth;
-        Bounds3 box, centroids;
-    };
-    std::vector<Task> tasks;
-    std::vector<uint32_t> partAt;  // per top node, its part's index, or kNoPart
+// A part's placeholder in partAt (BinaryTree): none.
+constexpr uint32_t kNoPart = ~0u;
 
-    static constexpr uint32_t kNoPart = ~0u;
-
-    void plan(uint32_t lo, uint32_t hi, int depth, const Bounds3& box, const Bounds3& centroids) {
-        const uint32_t index = static_cast<uint32_t>(top.nodes.size());
-        top.nodes.emplace_back();
-        top.nodes[index].box = box;
-        partAt.push_back(kNoPart);
-        if (hi - lo <= taskItems) {
-            partAt[index] = static_cast<uint32_t>(tasks.size());
-            tasks.push_back({lo, hi, depth, box, centroids});
-            return;
-        }
-        Builder::Split s;
-        if (!top.split(lo, hi, depth, box, centroids, s)) {
-            top.makeLeaf(index, lo, hi - lo);
-            return;
-        }
-        plan(lo, s.mid, depth + 1, s.leftBox, s.leftCentroids);
-        const uint32_t right = static_cast<uint32_t>(top.nodes.size());
-        plan(s.mid, hi, depth + 1, s.rightBox, s.rightCentroids);
-        top.nodes[index].firstOrRight = right;
-        top.nodes[index].count = 0;
-        top.nodes[index].axis = s.axis;
-    }
-
-    // The parts' nodes, in the order of tasks.
-    std::vector<std::vector<BinaryNode>> build(uint32_t count, const Bounds3& box,
-                                               const Bounds3& centroids) {
-        plan(0, count, 0, box, centroids);
-        std::vector<std::vector<BinaryNode>> parts(tasks.size());
-        parallelFor(tasks.size(), threads, [&](int, uint64_t k) {
-            const Task& t = tasks[k];
-            Builder part{top.items, top.maxLeafItems, top.traversalCost, {}};
-            part.nodes.reserve(2 * size_t(t.hi - t.lo));
-            part.build(t.lo, t.hi, t.depth, t.box, t.centroids);
-            parts[k] = std::move(part.nodes);
-        });
-        return parts;
-    }
-};
+// The SAH tree on several threads, node for node the one Builder::build makes alone: `top`
+// (partItems set) builds the top on this thread, splitting it as build() would; each part it
+// leaves is built at once by a Builder of its own over its own range of the shared items. The
+// parts stay in arrays of their own (returned in the order of top.parts), which the collapse
+// steps into from the top's placeholders (BinaryTree): copying them into one array cost up to a
+// fifth of the build, most of it in fresh pages.
+std::vector<std::vector<BinaryNode>> buildInParts(Builder& top, uint32_t count, const Bounds3& box,
+                                                  const Bounds3& centroids, int threads) {
+    top.build(0, count, 0, box, centroids);
+    std::vector<std::vector<BinaryNode>> parts(top.parts.size());
+    parallelFor(parts.size(), threads, [&](int, uint64_t k) {
+        const Builder::Part& p = top.parts[k];
+        Builder part{top.items, top.maxLeafItems, top.traversalCost, {}};
+        part.nodes.reserve(2 * size_t(p.hi - p.lo));
+        part.build(p.lo, p.hi, p.depth, p.box, p.centroids);
+        parts[k] = std::move(part.nodes);
+    });
+    return parts;
+}
 
 // A binary tree in preorder (BinaryBvh.h), in one array, or in the top's array and its parts'
-// (ParallelBuilder), each part's interior nodes naming their right child by its place in the
+// (buildInParts), each part's interior nodes naming their right child by its place in the
 // part. A node is reached through a Ref: the node and the array it lies in.
 struct BinaryTree {
     std::span<const BinaryNode> top;
@@ -249,7 +227,7 @@ struct BinaryTree {
 
     // The node at `index` of `array`, or, for a placeholder of the top's, its part's root.
     Ref at(const BinaryNode* array, uint32_t index) const {
-        if (array == top.data() && !partAt.empty() && partAt[index] != ParallelBuilder::kNoPart) {
+        if (array == top.data() && !partAt.empty() && partAt[index] != kNoPart) {
             const BinaryNode* part = parts[partAt[index]].data();
             return {part, part};
         }
@@ -352,20 +330,17 @@ uint32_t buildWideBvh(std::span<const Bounds3> boxes, std::vector<uint32_t>& ord
             builder.bound(0, count, box, centroids);
             const int threads = resolveThreads(options.threads);
             if (threads > 1 && count >= kParallelBuildItems) {
-                ParallelBuilder parallel{
-                    std::move(builder),
-                    std::max(kParallelBuildItems / 2, count / (kTasksPerThread * threads)),
-                    threads,
-                    {},
-                    {}};
-                parts = parallel.build(count, box, centroids);
-                binary = std::move(parallel.top.nodes);
-                partAt = std::move(parallel.partAt);
+                builder.partItems =
+                    std::max(kParallelBuildItems / 2, count / (kTasksPerThread * threads));
+                parts = buildInParts(builder, count, box, centroids, threads);
+                partAt.assign(builder.nodes.size(), kNoPart);
+                for (uint32_t k = 0; k < builder.parts.size(); ++k)
+                    partAt[builder.parts[k].node] = k;
             } else {
                 builder.nodes.reserve(2 * boxes.size());
                 builder.build(0, count, 0, box, centroids);
-                binary = std::move(builder.nodes);
             }
+            binary = std::move(builder.nodes);
             for (uint32_t i = 0; i < order.size(); ++i) order[i] = items[i].index;
             break;
         }
